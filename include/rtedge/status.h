@@ -1,0 +1,28 @@
+/* Error codes shared by every rtedge function. */
+#ifndef RTEDGE_STATUS_H
+#define RTEDGE_STATUS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum rte_status {
+    RTE_OK = 0,
+    RTE_ERR_ARGUMENT = 1,     /* a parameter is out of its documented range */
+    RTE_ERR_SIZE = 2,         /* image sizes or strides do not fit together */
+    RTE_ERR_NO_MEMORY = 3,    /* the caller's arena or buffer is too small */
+    RTE_ERR_IO = 4,           /* a read or write failed (errno has the cause) */
+    RTE_ERR_FORMAT = 5,       /* the file is not in the format it claims */
+    RTE_ERR_TRUNCATED = 6,    /* the data ends before the header says it should */
+    RTE_ERR_UNSUPPORTED = 7,  /* valid, but a variant rtedge does not handle */
+    RTE_ERR_TOO_LARGE = 8,    /* sizes beyond the configured or absolute maxima */
+    RTE_ERR_CORRUPT = 9,      /* the data fails its own checks (CRC, markers) */
+} rte_status;
+
+/* A short English description of the status, never NULL. */
+const char *rte_status_message(rte_status status);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,22 @@
+# Debian packages each command needs, and the function that installs the
+# missing ones (apt-get update once, then install). Sourced by tools/test,
+# tools/bench and tools/demo.
+RTE_BUILD_PACKAGES=(meson ninja-build gcc g++ pkg-config binutils
+    libspng-dev libturbojpeg0-dev)
+RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}" libcmocka-dev libopencv-dev
+    python3-opencv python3-numpy)
+
+rte_install_packages() {
+    local missing=() p
+    for p in "$@"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+    done
+    [ ${#missing[@]} -eq 0 ] && return 0
+    echo "installing: ${missing[*]}"
+    local sudo=
+    [ "$(id -u)" -ne 0 ] && sudo=sudo
+    export DEBIAN_FRONTEND=noninteractive
+    $sudo apt-get update -q >/dev/null || { echo "apt-get update failed"; return 1; }
+    $sudo apt-get install -y -q --no-install-recommends "${missing[@]}" >/dev/null ||
+        { echo "apt-get install ${missing[*]} failed"; return 1; }
+}
