@@ -143,16 +143,20 @@ static void rgb_rows_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u
                         GRAY_R, GRAY_B);
 }
 
-/* Every second byte from `src + first`: the Y samples of packed 4:2:2. */
+/* Every second byte: the Y samples of one packed 4:2:2 row (s points at
+ * the first Y). */
+static void packed422_row_to_gray(const uint8_t *restrict s, uint8_t *restrict d, int32_t width)
+{
+    for (int32_t x = 0; x < width; x++)
+        d[x] = s[2 * x];
+}
+
 static void packed422_rows_to_gray(const uint8_t *src, int32_t src_stride, int32_t first,
                                    rte_image_u8 *dst)
 {
-    for (int32_t y = 0; y < dst->height; y++) {
-        const uint8_t *restrict s = src + (ptrdiff_t)y * src_stride + first;
-        uint8_t *restrict d = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < dst->width; x++)
-            d[x] = s[2 * x];
-    }
+    for (int32_t y = 0; y < dst->height; y++)
+        packed422_row_to_gray(src + (ptrdiff_t)y * src_stride + first, rte_u8_row(dst, y),
+                              dst->width);
 }
 
 static void copy_rows(const uint8_t *src, int32_t src_stride, rte_image_u8 *dst)

@@ -313,6 +313,14 @@ rte_status rte_polygon_mask_build(rte_image_u8 *mask, const rte_polygon *polygon
     return rte_polygon_fill_u8(mask, polygons, polygon_count, 255, arena);
 }
 
+/* d = s where m != 0, else 0. Not restrict: d may be s (element-wise, so
+ * that is safe; the compiler checks overlap at run time). */
+static void mask_row(const uint8_t *s, const uint8_t *m, uint8_t *d, int32_t width)
+{
+    for (int32_t x = 0; x < width; x++)
+        d[x] = (uint8_t)(s[x] & (uint8_t)-(m[x] != 0));
+}
+
 rte_status rte_polygon_mask_apply(const rte_image_u8 *src, const rte_image_u8 *mask,
                                   rte_image_u8 *dst)
 {
@@ -321,14 +329,8 @@ rte_status rte_polygon_mask_apply(const rte_image_u8 *src, const rte_image_u8 *m
         st = rte_image_u8_check_pair(src, dst);
     if (st != RTE_OK)
         return st;
-    for (int32_t y = 0; y < dst->height; y++) {
-        /* not restrict: dst may be src */
-        const uint8_t *s = rte_u8_row(src, y);
-        const uint8_t *m = rte_u8_row(mask, y);
-        uint8_t *d = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < dst->width; x++)
-            d[x] = (uint8_t)(s[x] & (uint8_t)-(m[x] != 0));
-    }
+    for (int32_t y = 0; y < dst->height; y++)
+        mask_row(rte_u8_row(src, y), rte_u8_row(mask, y), rte_u8_row(dst, y), dst->width);
     return RTE_OK;
 }
 

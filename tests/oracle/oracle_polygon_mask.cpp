@@ -104,13 +104,22 @@ std::string describe(const std::vector<Poly> &polys)
     return s;
 }
 
-struct Scratch {
+// The rtedge view of a polygon set, with an arena sized for it.
+struct RtePolygons {
+    std::vector<rte_polygon> list;
     std::vector<uint8_t> memory;
     rte_arena arena;
-    explicit Scratch(int max_vertices) : memory(rte_polygon_mask_scratch_size(max_vertices))
+    explicit RtePolygons(const std::vector<Poly> &polys)
     {
+        int total = 0;
+        for (const auto &p : polys) {
+            list.push_back(as_polygon(p));
+            total += (int)p.size();
+        }
+        memory.resize(rte_polygon_mask_scratch_size(total));
         rte_arena_init(&arena, memory.data(), memory.size());
     }
+    int32_t count() const { return (int32_t)list.size(); }
 };
 
 // rte_polygon_mask_build against zeros + cv::fillPoly(mask, polys, 255).
@@ -120,22 +129,16 @@ void check_mask(oracle::Tally &t, const std::string &what, int w, int h, const s
     cv::Mat expected = cv::Mat::zeros(h, w, CV_8UC1);
     cv::fillPoly(expected, polys, cv::Scalar(255), cv::LINE_8, 0);
 
-    std::vector<rte_polygon> rp;
-    int total = 0;
-    for (const auto &p : polys) {
-        rp.push_back(as_polygon(p));
-        total += (int)p.size();
-    }
-    Scratch s(total);
+    RtePolygons rp(polys);
     std::vector<uint8_t> storage;
     rte_image_u8 mask = oracle::blank_u8(w, h, storage, rng);
-    rte_status st = rte_polygon_mask_build(&mask, rp.data(), (int32_t)rp.size(), &s.arena);
+    rte_status st = rte_polygon_mask_build(&mask, rp.list.data(), rp.count(), &rp.arena);
     std::string name = what + " " + std::to_string(w) + "x" + std::to_string(h) + " " + describe(polys);
     if (st != RTE_OK) {
         t.call_failed(name, st);
         return;
     }
-    if (s.arena.used != 0)
+    if (rp.arena.used != 0)
         t.call_failed(name + " (arena not reset)", -1);
     t.add(name, expected, oracle::to_mat(mask));
 }
@@ -254,6 +257,18 @@ int main()
         check_mask(t, "random#" + std::to_string(i) + " " + kind, w, h, polys, rng);
     }
 
+    // A few polygons at the documented coordinate limit.
+    for (int i = 0; i < 20; i++) {
+        int w = uniform(rng, 1, 300), h = uniform(rng, 1, 300);
+        Poly p;
+        for (int k = uniform(rng, 3, 6); k > 0; k--)
+            p.emplace_back(uniform(rng, -RTE_POLYGON_MAX_COORD, RTE_POLYGON_MAX_COORD),
+                           uniform(rng, -RTE_POLYGON_MAX_COORD, RTE_POLYGON_MAX_COORD));
+        if (i % 2)
+            p[0] = cv::Point(uniform(rng, 0, w - 1), uniform(rng, 0, h - 1)); // one vertex inside
+        check_mask(t, "limit#" + std::to_string(i), w, h, {p}, rng);
+    }
+
     // fillPoly onto existing content with another value, and masking, on the
     // random images.
     std::vector<oracle::Input> randoms = oracle::random_inputs(rng);
@@ -268,16 +283,10 @@ int main()
         cv::Mat expected = in.gray.clone();
         cv::fillPoly(expected, polys, cv::Scalar(value));
 
-        std::vector<rte_polygon> rp;
-        int total = 0;
-        for (const auto &p : polys) {
-            rp.push_back(as_polygon(p));
-            total += (int)p.size();
-        }
-        Scratch s(total);
+        RtePolygons rp(polys);
         std::vector<uint8_t> storage;
         rte_image_u8 img = oracle::padded_u8(in.gray, storage, rng);
-        rte_status st = rte_polygon_fill_u8(&img, rp.data(), (int32_t)rp.size(), value, &s.arena);
+        rte_status st = rte_polygon_fill_u8(&img, rp.list.data(), rp.count(), value, &rp.arena);
         std::string name = in.name + " fill " + std::to_string(value) + " " + describe(polys);
         if (st != RTE_OK)
             t.call_failed(name, st);
