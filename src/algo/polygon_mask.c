@@ -213,24 +213,13 @@ static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *
             break;
         for (; next < n && edges[next].y0 <= y; next++) {
             poly_edge *e = &edges[next];
-            if (e->y1 > y) {
+            if (e->y1 > y) { /* starts here, or above the image */
                 e->x += (int64_t)(y - e->y0) * e->dx;
-                /* insertion by x keeps the active list sorted */
-                int32_t j = nact++;
-                while (j > 0 && edges[active[j - 1]].x > e->x) {
-                    active[j] = active[j - 1];
-                    j--;
-                }
-                active[j] = next;
+                active[nact++] = next;
             }
         }
-        uint8_t *row = rte_u8_row(img, y);
-        for (int32_t i = 0; i + 1 < nact; i += 2)
-            fill_span(row, img->width, edges[active[i]].x, edges[active[i + 1]].x, value);
-        /* next row: step every edge, then restore the x order (edges that
-         * cross swap; the list is nearly sorted, so insertion sort) */
-        for (int32_t i = 0; i < nact; i++)
-            edges[active[i]].x += edges[active[i]].dx;
+        /* Order by x. From row to row only crossing edges swap and new ones
+         * join at the end, so the list is nearly sorted: insertion sort. */
         for (int32_t i = 1; i < nact; i++) {
             int32_t a = active[i], j = i;
             while (j > 0 && edges[active[j - 1]].x > edges[a].x) {
@@ -239,6 +228,11 @@ static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *
             }
             active[j] = a;
         }
+        uint8_t *row = rte_u8_row(img, y);
+        for (int32_t i = 0; i + 1 < nact; i += 2)
+            fill_span(row, img->width, edges[active[i]].x, edges[active[i + 1]].x, value);
+        for (int32_t i = 0; i < nact; i++)
+            edges[active[i]].x += edges[active[i]].dx;
     }
 }
 
@@ -266,26 +260,37 @@ static rte_status check_polygons(const rte_polygon *polygons, int32_t polygon_co
     return RTE_OK;
 }
 
-rte_status rte_polygon_fill_u8(rte_image_u8 *img, const rte_polygon *polygons,
-                               int32_t polygon_count, uint8_t value, rte_arena *arena)
+/* Shared by fill and mask_build: checks everything and takes the scratch
+ * before touching the image, so a failing call leaves it as it was. With
+ * `clear` the image is zeroed first. */
+static rte_status fill_polygons(rte_image_u8 *img, const rte_polygon *polygons,
+                                int32_t polygon_count, uint8_t value, int clear,
+                                rte_arena *arena)
 {
     rte_status st = rte_image_u8_check(img);
     if (st != RTE_OK)
         return st;
-    if (!arena)
-        return RTE_ERR_ARGUMENT;
     int32_t total = 0;
     st = check_polygons(polygons, polygon_count, &total);
-    if (st != RTE_OK || total == 0)
+    if (st != RTE_OK)
         return st;
+    if (!arena)
+        return RTE_ERR_ARGUMENT;
 
     size_t mark = rte_arena_mark(arena);
-    poly_edge *edges = rte_arena_alloc(arena, (size_t)total * sizeof(poly_edge));
-    int32_t *active = rte_arena_alloc(arena, (size_t)total * sizeof(int32_t));
-    if (!edges || !active) {
-        rte_arena_reset(arena, mark);
-        return RTE_ERR_NO_MEMORY;
+    poly_edge *edges = NULL;
+    int32_t *active = NULL;
+    if (total > 0) {
+        edges = rte_arena_alloc(arena, (size_t)total * sizeof(poly_edge));
+        active = rte_arena_alloc(arena, (size_t)total * sizeof(int32_t));
+        if (!edges || !active) {
+            rte_arena_reset(arena, mark);
+            return RTE_ERR_NO_MEMORY;
+        }
     }
+    if (clear)
+        for (int32_t y = 0; y < img->height; y++)
+            memset(rte_u8_row(img, y), 0, (size_t)img->width);
     int32_t n = 0;
     for (int32_t p = 0; p < polygon_count; p++)
         if (polygons[p].count > 0)
@@ -296,21 +301,16 @@ rte_status rte_polygon_fill_u8(rte_image_u8 *img, const rte_polygon *polygons,
     return RTE_OK;
 }
 
+rte_status rte_polygon_fill_u8(rte_image_u8 *img, const rte_polygon *polygons,
+                               int32_t polygon_count, uint8_t value, rte_arena *arena)
+{
+    return fill_polygons(img, polygons, polygon_count, value, 0, arena);
+}
+
 rte_status rte_polygon_mask_build(rte_image_u8 *mask, const rte_polygon *polygons,
                                   int32_t polygon_count, rte_arena *arena)
 {
-    rte_status st = rte_image_u8_check(mask);
-    if (st != RTE_OK)
-        return st;
-    int32_t total = 0;
-    st = check_polygons(polygons, polygon_count, &total);
-    if (st != RTE_OK)
-        return st;
-    if (!arena)
-        return RTE_ERR_ARGUMENT;
-    for (int32_t y = 0; y < mask->height; y++)
-        memset(rte_u8_row(mask, y), 0, (size_t)mask->width);
-    return rte_polygon_fill_u8(mask, polygons, polygon_count, 255, arena);
+    return fill_polygons(mask, polygons, polygon_count, 255, 1, arena);
 }
 
 /* d = s where m != 0, else 0. Not restrict: d may be s (element-wise, so

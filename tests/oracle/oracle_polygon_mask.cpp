@@ -21,9 +21,9 @@ using Poly = std::vector<cv::Point>;
 int uniform(std::mt19937 &rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
 
 // One random polygon of a random kind around a random centre.
-Poly random_polygon(std::mt19937 &rng, int w, int h, std::string &kind)
+Poly random_polygon(std::mt19937 &rng, int w, int h, std::string &kind, int max_vertices = 12)
 {
-    int n = uniform(rng, 3, 12);
+    int n = uniform(rng, 3, max_vertices);
     int scale_kind = uniform(rng, 0, 9);
     int r; // typical radius
     if (scale_kind <= 1)
@@ -267,6 +267,14 @@ int main()
         if (i % 2)
             p[0] = cv::Point(uniform(rng, 0, w - 1), uniform(rng, 0, h - 1)); // one vertex inside
         check_mask(t, "limit#" + std::to_string(i), w, h, {p}, rng);
+    }
+
+    // Polygons with many vertices (contours, drawn outlines).
+    for (int i = 0; i < 200; i++) {
+        int w = uniform(rng, 1, 640), h = uniform(rng, 1, 480);
+        std::string k;
+        Poly p = random_polygon(rng, w, h, k, 400);
+        check_mask(t, "many#" + std::to_string(i) + " " + k, w, h, {p}, rng);
     }
 
     // fillPoly onto existing content with another value, and masking, on the

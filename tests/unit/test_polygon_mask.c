@@ -196,6 +196,9 @@ static void arena_and_argument_errors(void **state)
     assert_int_equal(rte_polygon_fill_u8(&img, &poly, 1, 1, &small), RTE_ERR_NO_MEMORY);
     assert_int_equal(small.used, 0);
     assert_int_equal(img.buf[5], 9); /* nothing drawn */
+    assert_int_equal(rte_polygon_mask_build(&img, &poly, 1, &small), RTE_ERR_NO_MEMORY);
+    for (int i = 0; i < 16; i++)
+        assert_int_equal(img.buf[i], 9); /* not even cleared */
     assert_true(rte_polygon_mask_scratch_size(4) < rte_polygon_mask_scratch_size(400));
     rte_arena exact;
     rte_arena_init(&exact, arena_memory + 1, rte_polygon_mask_scratch_size(4));
@@ -270,9 +273,9 @@ static void fractions_round_to_the_nearest_pixel(void **state)
 {
     rte_vertex frac[] = {
         { 0, 0 },
-        { RTE_Q16_ONE, RTE_Q16_ONE },
-        { RTE_Q16_ONE / 2, RTE_Q16_ONE / 4 },
-        { -RTE_Q16_ONE / 2, 2 * RTE_Q16_ONE },
+        { RTE_POLYGON_FRACTION_ONE, RTE_POLYGON_FRACTION_ONE },
+        { RTE_POLYGON_FRACTION_ONE / 2, RTE_POLYGON_FRACTION_ONE / 4 },
+        { -RTE_POLYGON_FRACTION_ONE / 2, 2 * RTE_POLYGON_FRACTION_ONE },
         { 1, 65535 },
     };
     rte_vertex out[5];
@@ -289,7 +292,8 @@ static void fractions_round_to_the_nearest_pixel(void **state)
     assert_int_equal(out[4].y, 540); /* 539.99 */
 
     /* halves round up, also below zero: 0.5 -> 1, -0.5 -> 0, -1.5 -> -1 */
-    rte_vertex half[] = { { RTE_Q16_ONE / 2, -RTE_Q16_ONE / 2 }, { -3 * RTE_Q16_ONE / 2, 0 } };
+    rte_vertex half[] = { { RTE_POLYGON_FRACTION_ONE / 2, -RTE_POLYGON_FRACTION_ONE / 2 },
+                          { -3 * RTE_POLYGON_FRACTION_ONE / 2, 0 } };
     assert_int_equal(rte_polygon_from_fractions(half, 2, 1, 1, half), RTE_OK); /* in place */
     assert_int_equal(half[0].x, 1);
     assert_int_equal(half[0].y, 0);
