@@ -41,9 +41,9 @@ typedef enum rte_pixel_format {
 #define RTE_FRAME_MAX_PLANES 2
 
 /* One frame. plane[1]/stride[1] are used by NV12 only (set them to NULL/0
- * otherwise). Strides are in bytes. A YUYV or UYVY row holds 2*width bytes;
- * an odd width is allowed (its last pixel's Y is read, the half chroma pair
- * after it is not), as OpenCV allows it. */
+ * otherwise). Strides are in bytes. A YUYV or UYVY row holds 2*width bytes
+ * (2 bytes per pixel, as a 2-channel cv::Mat); odd widths are allowed, as in
+ * OpenCV. NV12 may have odd sizes too (OpenCV wants even ones). */
 typedef struct rte_frame {
     rte_pixel_format format;
     int32_t width, height;
