@@ -145,6 +145,29 @@ static int passes_through(const int32_t *d, const int8_t *i0, const int8_t *stop
     }
 }
 
+/* First position in [x, end) whose value differs from prev, or end: eight
+ * bytes at a time (the scan spends most of its time in runs). */
+static int32_t skip_run(const int8_t *row, int32_t x, int32_t end, int prev)
+{
+    const uint64_t pattern = (uint64_t)(uint8_t)prev * 0x0101010101010101u;
+    while (x + 8 <= end) {
+        uint64_t w;
+        memcpy(&w, row + x, 8);
+        w ^= pattern;
+        if (w) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+            return x + (__builtin_ctzll(w) >> 3);
+#else
+            break;
+#endif
+        }
+        x += 8;
+    }
+    while (x < end && row[x] == prev)
+        x++;
+    return x;
+}
+
 static size_t label_map_bytes(int32_t w, int32_t h)
 {
     return (size_t)(w + 2) * (size_t)(h + 2);
@@ -275,9 +298,10 @@ rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
         int32_t lnbd = 0;
         int prev = 0;
         for (int32_t x = 1; x < ms - 1; x++) {
+            x = skip_run(row, x, ms - 1, prev);
+            if (x >= ms - 1)
+                break;
             int p = row[x];
-            if (p == prev)
-                continue;
             int is_hole = 0;
             if (!(prev == 0 && p == 1)) {
                 if (p != 0 || prev < 1)

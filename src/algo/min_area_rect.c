@@ -18,8 +18,8 @@ static int32_t atan2_deg_q16(int64_t x, int64_t y)
     if (x == 0)
         return y >= 0 ? 90 * 65536 : -90 * 65536;
     /* scale up for precision: inputs are below 2^26 */
-    x <<= 20;
-    y <<= 20;
+    x *= (int64_t)1 << 20;
+    y *= (int64_t)1 << 20;
     int64_t z = 0;
     for (int i = 0; i < 24; i++) {
         int64_t xs = x >> i, ys = y >> i;
