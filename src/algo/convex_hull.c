@@ -235,6 +235,22 @@ rte_status rte_shape_convex_hull(const rte_point *pts, int32_t n, int32_t *indic
     return RTE_OK;
 }
 
+rte_status rte_shape_hull_in_arena(const rte_point *pts, int32_t n, rte_arena *scratch,
+                                   rte_point **hull, int32_t *n_hull)
+{
+    if (n < 1 || !pts || !scratch)
+        return RTE_ERR_ARGUMENT;
+    const size_t mark = rte_arena_mark(scratch);
+    rte_point *h = rte_arena_alloc(scratch, ((size_t)n + 1) * sizeof *h);
+    if (!h)
+        return RTE_ERR_NO_MEMORY;
+    rte_status st = rte_shape_convex_hull(pts, n, NULL, h, n_hull, scratch);
+    if (st != RTE_OK)
+        rte_arena_reset(scratch, mark);
+    *hull = h;
+    return st;
+}
+
 /* round(256 * c / sqrt(l)) for c >= 0, l > 0, exactly: the q with
  * (2q - 1)^2 l <= 4 (256 c)^2 < (2q + 1)^2 l. */
 static int32_t depth_q8(int64_t c, int64_t l)

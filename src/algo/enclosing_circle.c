@@ -66,15 +66,11 @@ rte_status rte_shape_enclosing_circle(const rte_point *pts, int32_t n, rte_circl
         return RTE_ERR_ARGUMENT;
     *out = (rte_circle){ 0, 0, 0 };
     const size_t mark = rte_arena_mark(scratch);
-    rte_point *h = rte_arena_alloc(scratch, ((size_t)n + 1) * sizeof *h);
-    if (!h)
-        return RTE_ERR_NO_MEMORY;
+    rte_point *h = NULL;
     int32_t m = 0;
-    rte_status st = rte_shape_convex_hull(pts, n, NULL, h, &m, scratch);
-    if (st != RTE_OK) {
-        rte_arena_reset(scratch, mark);
+    rte_status st = rte_shape_hull_in_arena(pts, n, scratch, &h, &m);
+    if (st != RTE_OK)
         return st;
-    }
     /* Fisher-Yates with a fixed xorshift seed: expected linear time,
      * repeatable results. */
     uint32_t seed = 0x9E3779B9u;

@@ -4,27 +4,26 @@
 
 #include <stdint.h>
 
+#include "rtedge/arena.h"
 #include "rtedge/contours.h"
+#include "rtedge/status.h"
 
 __extension__ typedef __int128 rte_i128;
 __extension__ typedef unsigned __int128 rte_u128;
 
-/* floor(sqrt(v)) for any 64-bit v (digit-by-digit, no floating point). */
+/* floor(sqrt(v)) for any 64-bit v: Newton's iteration from above. */
 static inline uint64_t rte_isqrt64(uint64_t v)
 {
-    uint64_t r = 0, bit = (uint64_t)1 << 62;
-    while (bit > v)
-        bit >>= 2;
-    while (bit) {
-        if (v >= r + bit) {
-            v -= r + bit;
-            r = (r >> 1) + bit;
-        } else {
-            r >>= 1;
-        }
-        bit >>= 2;
+    if (v < 2)
+        return v;
+    int bits = 64 - __builtin_clzll(v);
+    uint64_t r = (uint64_t)1 << ((bits + 1) / 2); /* >= sqrt(v) */
+    for (;;) {
+        uint64_t y = (r + v / r) / 2;
+        if (y >= r)
+            return r;
+        r = y;
     }
-    return r;
 }
 
 /* floor(sqrt(v)) for a 128-bit v. */
@@ -58,6 +57,11 @@ static inline rte_i128 rte_div_round128(rte_i128 n, rte_i128 d)
 {
     return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
 }
+
+/* The convex hull of pts as points, in a piece of `scratch` that stays
+ * taken (the caller resets the arena to its own mark). */
+rte_status rte_shape_hull_in_arena(const rte_point *pts, int32_t n, rte_arena *scratch,
+                                   rte_point **hull, int32_t *n_hull);
 
 static inline int64_t rte_cross(rte_point o, rte_point a, rte_point b)
 {

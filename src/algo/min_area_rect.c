@@ -109,15 +109,11 @@ rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_
         return RTE_ERR_ARGUMENT;
     *r = (rte_rotated_rect){ 0 };
     const size_t mark = rte_arena_mark(scratch);
-    rte_point *hull = rte_arena_alloc(scratch, ((size_t)n + 1) * sizeof *hull);
-    if (!hull)
-        return RTE_ERR_NO_MEMORY;
+    rte_point *hull = NULL;
     int32_t m = 0;
-    rte_status st = rte_shape_convex_hull(pts, n, NULL, hull, &m, scratch);
-    if (st != RTE_OK) {
-        rte_arena_reset(scratch, mark);
+    rte_status st = rte_shape_hull_in_arena(pts, n, scratch, &hull, &m);
+    if (st != RTE_OK)
         return st;
-    }
     if (m == 1) {
         for (int k = 0; k < 4; k++) {
             r->corners_q8[k][0] = hull[0].x * 256;

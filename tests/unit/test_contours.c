@@ -35,6 +35,11 @@ static void fx_free(fixture *f)
     test_free(f);
 }
 
+static void find_ok(fixture *f, const rte_image_u8 *img, rte_contour_mode mode, rte_contour_method method)
+{
+    assert_int_equal(rte_contours_find(img, mode, method, &f->r, &f->arena), RTE_OK);
+}
+
 static void fill_rect(rte_image_u8 *img, int x0, int y0, int x1, int y1, uint8_t v)
 {
     for (int y = y0; y <= y1; y++)
@@ -66,14 +71,14 @@ static void filled_rectangle_is_traced_downward_first(void **state)
     rte_image_u8 img = unit_image_u8(9, 8, 5, 0);
     fill_rect(&img, 2, 2, 6, 5, 200);
     fixture *f = fx_new(9, 8);
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_SIMPLE, &f->r, &f->arena), RTE_OK);
+    find_ok(f, &img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_SIMPLE);
     assert_int_equal(f->r.n_contours, 1);
     static const int simple[] = { 2, 2, 2, 5, 6, 5, 6, 2 };
     assert_points(&f->r, 0, simple, 4);
     assert_hier(&f->r, 0, -1, -1, -1, -1);
     assert_int_equal(f->r.truncated, 0);
 
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_NONE, &f->r, &f->arena), RTE_OK);
+    find_ok(f, &img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_NONE);
     assert_int_equal(f->r.n_contours, 1);
     assert_int_equal(f->r.contours[0].count, 14); /* 2*(4+3) border pixels */
     assert_int_equal(f->r.points[1].x, 2);
@@ -95,7 +100,7 @@ static void ring_with_island_builds_the_tree(void **state)
     fill_rect(&img, 2, 2, 6, 6, 0);
     fill_rect(&img, 4, 4, 4, 4, 9);
     fixture *f = fx_new(9, 9);
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_SIMPLE, &f->r, &f->arena), RTE_OK);
+    find_ok(f, &img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_SIMPLE);
     assert_int_equal(f->r.n_contours, 3);
     static const int outer[] = { 0, 0, 0, 8, 8, 8, 8, 0 };
     /* the hole is traced from the pixel left of its first 0, clockwise on
@@ -111,7 +116,7 @@ static void ring_with_island_builds_the_tree(void **state)
     assert_hier(&f->r, 2, -1, -1, -1, 1);
 
     /* CCOMP: the island is an outer border again, so a top-level contour */
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_CCOMP, RTE_CONTOURS_APPROX_SIMPLE, &f->r, &f->arena), RTE_OK);
+    find_ok(f, &img, RTE_CONTOURS_CCOMP, RTE_CONTOURS_APPROX_SIMPLE);
     assert_int_equal(f->r.n_contours, 3);
     assert_points(&f->r, 0, island, 1); /* newest top-level first */
     assert_hier(&f->r, 0, 1, -1, -1, -1);
@@ -120,7 +125,7 @@ static void ring_with_island_builds_the_tree(void **state)
     assert_hier(&f->r, 2, -1, -1, -1, 1);
 
     /* EXTERNAL: only the outer square */
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_EXTERNAL, RTE_CONTOURS_APPROX_SIMPLE, &f->r, &f->arena), RTE_OK);
+    find_ok(f, &img, RTE_CONTOURS_EXTERNAL, RTE_CONTOURS_APPROX_SIMPLE);
     assert_int_equal(f->r.n_contours, 1);
     assert_points(&f->r, 0, outer, 4);
     fx_free(f);
@@ -134,7 +139,7 @@ static void list_puts_the_bottom_blob_first(void **state)
     fill_rect(&img, 2, 4, 2, 4, 1);
     fill_rect(&img, 3, 8, 4, 8, 1);
     fixture *f = fx_new(5, 9);
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, &f->arena), RTE_OK);
+    find_ok(f, &img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE);
     assert_int_equal(f->r.n_contours, 3);
     static const int bottom[] = { 3, 8, 4, 8 };
     static const int middle[] = { 2, 4 };
@@ -156,7 +161,7 @@ static void tiny_and_constant_images(void **state)
             for (int v = 0; v < 256; v += 255) {
                 rte_image_u8 img = unit_image_u8(w, h, 2, (uint8_t)v);
                 fixture *f = fx_new(w, h);
-                assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_SIMPLE, &f->r, &f->arena), RTE_OK);
+                find_ok(f, &img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_SIMPLE);
                 assert_int_equal(f->r.n_contours, v ? 1 : 0);
                 if (v) {
                     /* one box covering the whole image: corners only */
