@@ -58,8 +58,10 @@ rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_ca
 
 /* Edges from given derivatives dx and dy (same size as dst). params->aperture
  * is not used. The L2 magnitude wraps around in 32 bits exactly as OpenCV's
- * does when |dx| = |dy| = 32768, and so does its sector test for |dx| > 27145;
- * derivatives of 8-bit images never come near either. */
+ * does when dx = dy = -32768, and so does the sector test for |dx| > 27145.
+ * One known difference: for the L1 magnitude rtedge takes |-32768| as 32768,
+ * while OpenCV's SIMD loop takes it as -32768 (its scalar tail as 32768).
+ * Derivatives of 8-bit images never come near these values. */
 rte_status rte_canny_from_gradient_u8(const rte_image_s16 *dx, const rte_image_s16 *dy,
                                       rte_image_u8 *dst, const rte_canny_params *params,
                                       rte_arena *scratch);
