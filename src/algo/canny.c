@@ -69,13 +69,23 @@ static void suppress_row(const int32_t *restrict up, const int32_t *restrict cur
         const int32_t tg22 = ax * TG22_Q15;
         /* tan 67.5 = tan 22.5 + 2; wraps in 32 bits as OpenCV's for |dx| > 27145. */
         const int32_t tg67 = (int32_t)((uint32_t)tg22 + ((uint32_t)ax << 16));
+        /* All neighbours are loaded, then selected: no branches, so the
+         * loop vectorises. */
+        const int32_t ul = up[x - 1], uc = up[x], ur = up[x + 1];
+        const int32_t cl = cur[x - 1], cr = cur[x + 1];
+        const int32_t dl = down[x - 1], dc = down[x], dr = down[x + 1];
         const int32_t same_sign = (xs ^ ys) >= 0;
-        const int32_t diag_a = same_sign ? up[x - 1] : up[x + 1];
-        const int32_t diag_b = same_sign ? down[x + 1] : down[x - 1];
-        const int32_t keep_h = (m > cur[x - 1]) & (m >= cur[x + 1]);
-        const int32_t keep_v = (m > up[x]) & (m >= down[x]);
+        const int32_t diag_a = same_sign ? ul : ur;
+        const int32_t diag_b = same_sign ? dr : dl;
+        const int32_t keep_h = (m > cl) & (m >= cr);
+        const int32_t keep_v = (m > uc) & (m >= dc);
         const int32_t keep_d = (m > diag_a) & (m > diag_b);
-        const int32_t keep = (ay < tg22 ? keep_h : ay > tg67 ? keep_v : keep_d) & (m > low);
+        /* Horizontal is tested first: with a wrapped tg67 both tests can hold. */
+        const int32_t horizontal = ay < tg22;
+        const int32_t vertical = !horizontal & (ay > tg67);
+        const int32_t keep = ((horizontal & keep_h) | (vertical & keep_v) |
+                              (!horizontal & !vertical & keep_d)) &
+                             (m > low);
         map[x] = (uint8_t)(keep ? ((m > high) << 1) : 1);
     }
 }
@@ -129,10 +139,12 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
         if (i < h) {
             const int16_t *dxr, *dyr;
             if (src) {
+                /* Apertures 3 and 5 stay inside int16 (|dx| <= 255 * 6 * 16):
+                 * no saturation needed. */
                 rte_grad_column_pass(src, i, smooth, ap, RTE_BORDER_REPLICATE, vs, ap / 2);
                 rte_grad_column_pass(src, i, deriv, ap, RTE_BORDER_REPLICATE, vd, ap / 2);
-                rte_grad_row_pass(vs, deriv, ap, dxb[i & 1], w);
-                rte_grad_row_pass(vd, smooth, ap, dyb[i & 1], w);
+                rte_grad_row_pass(vs, deriv, ap, dxb[i & 1], w, false);
+                rte_grad_row_pass(vd, smooth, ap, dyb[i & 1], w, false);
                 dxr = dxb[i & 1];
                 dyr = dyb[i & 1];
             } else {

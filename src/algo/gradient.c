@@ -95,40 +95,62 @@ static inline int16_t sat_s16(int32_t v)
     return (int16_t)(v < INT16_MIN ? INT16_MIN : v > INT16_MAX ? INT16_MAX : v);
 }
 
-void rte_grad_row_pass(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
-                       int32_t width)
+/* The sums in int32, then either saturated or (when the caller knows they
+ * fit) truncated, which lets the compiler run the loop in 16-bit lanes. */
+static inline int16_t finish(int32_t v, bool saturate)
 {
-    const int16_t *restrict s = v - nx / 2;
-    int16_t *restrict o = out;
+    return saturate ? sat_s16(v) : (int16_t)v;
+}
+
+static inline void row_pass(const int16_t *restrict s, const int16_t *kx, int32_t nx,
+                            int16_t *restrict o, int32_t width, bool saturate)
+{
+    const int16_t c0 = kx[0];
     switch (nx) {
-    case 1: {
-        const int32_t c0 = kx[0];
+    case 1:
         for (int32_t x = 0; x < width; x++)
-            o[x] = sat_s16(c0 * s[x]);
+            o[x] = finish(c0 * s[x], saturate);
         break;
-    }
     case 3: {
-        const int32_t c0 = kx[0], c1 = kx[1], c2 = kx[2];
+        const int16_t c1 = kx[1], c2 = kx[2];
         for (int32_t x = 0; x < width; x++)
-            o[x] = sat_s16(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2]);
+            o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2], saturate);
         break;
     }
     case 5: {
-        const int32_t c0 = kx[0], c1 = kx[1], c2 = kx[2], c3 = kx[3], c4 = kx[4];
+        const int16_t c1 = kx[1], c2 = kx[2], c3 = kx[3], c4 = kx[4];
         for (int32_t x = 0; x < width; x++)
-            o[x] = sat_s16(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
-                           c4 * s[x + 4]);
+            o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
+                              c4 * s[x + 4],
+                          saturate);
         break;
     }
     default: {
-        const int32_t c0 = kx[0], c1 = kx[1], c2 = kx[2], c3 = kx[3], c4 = kx[4], c5 = kx[5],
-                      c6 = kx[6];
+        const int16_t c1 = kx[1], c2 = kx[2], c3 = kx[3], c4 = kx[4], c5 = kx[5], c6 = kx[6];
         for (int32_t x = 0; x < width; x++)
-            o[x] = sat_s16(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
-                           c4 * s[x + 4] + c5 * s[x + 5] + c6 * s[x + 6]);
+            o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
+                              c4 * s[x + 4] + c5 * s[x + 5] + c6 * s[x + 6],
+                          saturate);
         break;
     }
     }
+}
+
+void rte_grad_row_pass(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
+                       int32_t width, bool saturate)
+{
+    if (saturate)
+        row_pass(v - nx / 2, kx, nx, out, width, true);
+    else
+        row_pass(v - nx / 2, kx, nx, out, width, false);
+}
+
+int32_t rte_grad_taps_l1(const int16_t *taps, int32_t n)
+{
+    int32_t s = 0;
+    for (int32_t i = 0; i < n; i++)
+        s += taps[i] < 0 ? -taps[i] : taps[i];
+    return s;
 }
 
 /* Bytes of one padded int16 row for images up to max_width. */
@@ -164,9 +186,11 @@ static rte_status separable(const rte_image_u8 *src, rte_image_s16 *dst, const i
     if (!v)
         return RTE_ERR_NO_MEMORY;
     v += RTE_GRAD_MAX_TAPS / 2;
+    /* Only Sobel 7 can leave int16 (up to 255 * 64 * 64). */
+    const bool saturate = rte_grad_taps_l1(kx, nx) * rte_grad_taps_l1(ky, ny) * 255 > INT16_MAX;
     for (int32_t y = 0; y < src->height; y++) {
         rte_grad_column_pass(src, y, ky, ny, RTE_BORDER_REFLECT_101, v, nx / 2);
-        rte_grad_row_pass(v, kx, nx, rte_s16_row(dst, y), src->width);
+        rte_grad_row_pass(v, kx, nx, rte_s16_row(dst, y), src->width, saturate);
     }
     rte_arena_reset(scratch, mark);
     return RTE_OK;
@@ -261,10 +285,11 @@ rte_status rte_abs_s16_u8(const rte_image_s16 *src, rte_image_u8 *dst)
         return st;
     if (src->width != dst->width || src->height != dst->height)
         return RTE_ERR_SIZE;
+    const int32_t w = src->width;
     for (int32_t y = 0; y < src->height; y++) {
         const int16_t *restrict s = rte_s16_row(src, y);
         uint8_t *restrict d = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < src->width; x++) {
+        for (int32_t x = 0; x < w; x++) {
             int32_t a = s[x] < 0 ? -(int32_t)s[x] : s[x];
             d[x] = (uint8_t)(a > 255 ? 255 : a);
         }

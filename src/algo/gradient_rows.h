@@ -4,6 +4,7 @@
 #ifndef RTEDGE_SRC_ALGO_GRADIENT_ROWS_H
 #define RTEDGE_SRC_ALGO_GRADIENT_ROWS_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "rtedge/image.h"
@@ -27,10 +28,15 @@ int32_t rte_border_fold(int32_t p, int32_t len, rte_border border);
 void rte_grad_column_pass(const rte_image_u8 *src, int32_t y, const int16_t *ky, int32_t ny,
                           rte_border border, int16_t *v, int32_t pad);
 
-/* Row pass: out[x] = saturate_int16(sum_k kx[k] * v[x + k - nx/2]) for
- * 0 <= x < width; v needs nx/2 valid columns on each side. */
+/* Row pass: out[x] = sum_k kx[k] * v[x + k - nx/2] for 0 <= x < width,
+ * saturated to int16 when `saturate`; without it the sums must fit int16
+ * (then the loop runs in 16-bit lanes). v needs nx/2 valid columns on each
+ * side. */
 void rte_grad_row_pass(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
-                       int32_t width);
+                       int32_t width, bool saturate);
+
+/* sum |taps|: with the column taps' sum times 255 it bounds the result. */
+int32_t rte_grad_taps_l1(const int16_t *taps, int32_t n);
 
 /* OpenCV's Sobel taps: order 0 is the binomial row of length ksize, order 1
  * and 2 its differences (ksize 3: [1 2 1], [-1 0 1], [1 -2 1]). */
