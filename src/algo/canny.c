@@ -90,6 +90,30 @@ static void suppress_row(const int32_t *restrict up, const int32_t *restrict cur
     }
 }
 
+/* Pushes the offsets of the seeds (code 2) of a map row. Seeds are sparse:
+ * 8 codes at a time are skipped when none has bit 1 set. The stack never
+ * holds more entries than pixels seen so far. */
+static int32_t push_seeds(const uint8_t *mrow, int32_t w, int32_t base, int32_t *restrict stack,
+                          int32_t top)
+{
+    int32_t x = 0;
+    for (; x + 8 <= w; x += 8) {
+        uint64_t codes;
+        memcpy(&codes, mrow + x, sizeof codes);
+        if (!(codes & 0x0202020202020202u))
+            continue;
+        for (int32_t k = x; k < x + 8; k++) {
+            stack[top] = base + k;
+            top += mrow[k] == 2;
+        }
+    }
+    for (; x < w; x++) {
+        stack[top] = base + x;
+        top += mrow[x] == 2;
+    }
+    return top;
+}
+
 /* dx or dy rows come from src (Sobel, BORDER_REPLICATE) or from gx, gy. */
 static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
                             const rte_image_s16 *gy, rte_image_u8 *dst,
@@ -165,12 +189,7 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
         mrow[-1] = mrow[w] = 1;
         suppress_row(ring[(y + 2) % 3] + 1, ring[y % 3] + 1, next, dxr, dyr, mrow, w,
                      params->low, params->high);
-        /* Branch-free seed collection; top never passes the pixels seen. */
-        const int32_t base = (int32_t)((y + 1) * ms + 1);
-        for (int32_t x = 0; x < w; x++) {
-            stack[top] = base + x;
-            top += mrow[x] == 2;
-        }
+        top = push_seeds(mrow, w, (int32_t)((y + 1) * ms + 1), stack, top);
     }
 
     /* Hysteresis: grow the edges through "maybe" pixels; the frame of 1s

@@ -58,8 +58,16 @@ void rte_grad_column_pass(const rte_image_u8 *src, int32_t y, const int16_t *ky,
     case 3: {
         const uint8_t *restrict a = row[0], *restrict b = row[1], *restrict c = row[2];
         const int16_t c0 = ky[0], c1 = ky[1], c2 = ky[2];
-        for (int32_t x = 0; x < w; x++)
-            out[x] = (int16_t)(c0 * a[x] + c1 * b[x] + c2 * c[x]);
+        /* The two 3x3 Sobel taps (and Canny's) without multiplies. */
+        if (c0 == 1 && c1 == 2 && c2 == 1)
+            for (int32_t x = 0; x < w; x++)
+                out[x] = (int16_t)(a[x] + 2 * b[x] + c[x]);
+        else if (c0 == -1 && c1 == 0 && c2 == 1)
+            for (int32_t x = 0; x < w; x++)
+                out[x] = (int16_t)(c[x] - a[x]);
+        else
+            for (int32_t x = 0; x < w; x++)
+                out[x] = (int16_t)(c0 * a[x] + c1 * b[x] + c2 * c[x]);
         break;
     }
     case 5: {
@@ -113,8 +121,15 @@ static inline void row_pass(const int16_t *restrict s, const int16_t *kx, int32_
         break;
     case 3: {
         const int16_t c1 = kx[1], c2 = kx[2];
-        for (int32_t x = 0; x < width; x++)
-            o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2], saturate);
+        if (c0 == 1 && c1 == 2 && c2 == 1)
+            for (int32_t x = 0; x < width; x++)
+                o[x] = finish(s[x] + 2 * s[x + 1] + s[x + 2], saturate);
+        else if (c0 == -1 && c1 == 0 && c2 == 1)
+            for (int32_t x = 0; x < width; x++)
+                o[x] = finish(s[x + 2] - s[x], saturate);
+        else
+            for (int32_t x = 0; x < width; x++)
+                o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2], saturate);
         break;
     }
     case 5: {
@@ -256,15 +271,18 @@ rte_status rte_laplacian_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_
     const int32_t w = src->width;
     for (int32_t y = 0; y < src->height; y++) {
         rte_grad_column_pass(src, y, pick_outer, 3, RTE_BORDER_REFLECT_101, outer, 1);
-        rte_grad_column_pass(src, y, pick_mid, 1, RTE_BORDER_REFLECT_101, mid, 1);
-        const int16_t *restrict o = outer, *restrict m = mid;
+        const int16_t *restrict o = outer;
         int16_t *restrict d = rte_s16_row(dst, y);
-        if (ksize == 1)
+        if (ksize == 1) {
+            rte_grad_column_pass(src, y, pick_mid, 1, RTE_BORDER_REFLECT_101, mid, 1);
+            const int16_t *restrict m = mid;
             for (int32_t x = 0; x < w; x++)
                 d[x] = (int16_t)(o[x] + m[x - 1] + m[x + 1] - 4 * m[x]);
-        else
+        } else { /* the centre row is only needed at x itself */
+            const uint8_t *restrict m = rte_u8_row(src, y);
             for (int32_t x = 0; x < w; x++)
                 d[x] = (int16_t)(2 * (o[x - 1] + o[x + 1]) - 8 * m[x]);
+        }
     }
     rte_arena_reset(scratch, mark);
     return RTE_OK;
