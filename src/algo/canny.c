@@ -143,6 +143,9 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
     }
 
     const int32_t ap = params->aperture;
+    /* Apertures 3 and 5 stay inside int16 (|dx| <= 255 * 6 * 16); OpenCV
+     * scales aperture 7 by 1/16 (exactly, in float, then rounds to even). */
+    const rte_row_mode row_mode = ap == 7 ? RTE_ROW_ROUND_DIV16 : RTE_ROW_FITS;
     int16_t smooth[RTE_GRAD_MAX_TAPS], deriv[RTE_GRAD_MAX_TAPS];
     if (src) {
         rte_sobel_taps(0, ap, smooth);
@@ -163,12 +166,10 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
         if (i < h) {
             const int16_t *dxr, *dyr;
             if (src) {
-                /* Apertures 3 and 5 stay inside int16 (|dx| <= 255 * 6 * 16):
-                 * no saturation needed. */
                 rte_grad_column_pass(src, i, smooth, ap, RTE_BORDER_REPLICATE, vs, ap / 2);
                 rte_grad_column_pass(src, i, deriv, ap, RTE_BORDER_REPLICATE, vd, ap / 2);
-                rte_grad_row_pass(vs, deriv, ap, dxb[i & 1], w, false);
-                rte_grad_row_pass(vd, smooth, ap, dyb[i & 1], w, false);
+                rte_grad_row_pass(vs, deriv, ap, dxb[i & 1], w, row_mode);
+                rte_grad_row_pass(vd, smooth, ap, dyb[i & 1], w, row_mode);
                 dxr = dxb[i & 1];
                 dyr = dyb[i & 1];
             } else {
@@ -219,7 +220,8 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
 rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_canny_params *params,
                         rte_arena *scratch)
 {
-    if (!params || !scratch || (params->aperture != 3 && params->aperture != 5))
+    if (!params || !scratch ||
+        (params->aperture != 3 && params->aperture != 5 && params->aperture != 7))
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_image_u8_check_pair(src, dst);
     if (st != RTE_OK)
@@ -231,7 +233,8 @@ rte_status rte_canny_from_gradient_u8(const rte_image_s16 *dx, const rte_image_s
                                       rte_image_u8 *dst, const rte_canny_params *params,
                                       rte_arena *scratch)
 {
-    if (!params || !scratch)
+    /* Aperture-7 params hold thresholds divided by 16: not for given dx, dy. */
+    if (!params || !scratch || (params->aperture != 3 && params->aperture != 5))
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_image_s16_check(dx);
     if (st == RTE_OK)

@@ -20,9 +20,13 @@ static int32_t opencv_floor(double v)
 rte_status rte_canny_params_init(rte_canny_params *params, double low_threshold,
                                  double high_threshold, int32_t aperture, bool l2_gradient)
 {
-    if (!params || (aperture != 3 && aperture != 5) || isnan(low_threshold) ||
+    if (!params || (aperture != 3 && aperture != 5 && aperture != 7) || isnan(low_threshold) ||
         isnan(high_threshold))
         return RTE_ERR_ARGUMENT;
+    if (aperture == 7) { /* the gradient is scaled by 1/16 too */
+        low_threshold /= 16.0;
+        high_threshold /= 16.0;
+    }
     if (low_threshold > high_threshold) {
         double t = low_threshold;
         low_threshold = high_threshold;

@@ -103,33 +103,41 @@ static inline int16_t sat_s16(int32_t v)
     return (int16_t)(v < INT16_MIN ? INT16_MIN : v > INT16_MAX ? INT16_MAX : v);
 }
 
-/* The sums in int32, then either saturated or (when the caller knows they
- * fit) truncated, which lets the compiler run the loop in 16-bit lanes. */
-static inline int16_t finish(int32_t v, bool saturate)
+/* The sums in int32, then truncated (when the caller knows they fit: the
+ * compiler then runs the loop in 16-bit lanes), saturated, or divided by 16
+ * rounding half to even. The bias keeps the shift on non-negative values;
+ * it is a multiple of 16 above any 7-tap sum of int16 column values. */
+static inline int16_t finish(int32_t v, rte_row_mode mode)
 {
-    return saturate ? sat_s16(v) : (int16_t)v;
+    if (mode == RTE_ROW_FITS)
+        return (int16_t)v;
+    if (mode == RTE_ROW_SATURATE)
+        return sat_s16(v);
+    const int32_t bias = 1 << 25;
+    const int32_t b = v + bias, q = b >> 4, r = b & 15;
+    return (int16_t)(q - (bias >> 4) + ((r > 8) | ((r == 8) & (q & 1))));
 }
 
 static inline void row_pass(const int16_t *restrict s, const int16_t *kx, int32_t nx,
-                            int16_t *restrict o, int32_t width, bool saturate)
+                            int16_t *restrict o, int32_t width, rte_row_mode mode)
 {
     const int16_t c0 = kx[0];
     switch (nx) {
     case 1:
         for (int32_t x = 0; x < width; x++)
-            o[x] = finish(c0 * s[x], saturate);
+            o[x] = finish(c0 * s[x], mode);
         break;
     case 3: {
         const int16_t c1 = kx[1], c2 = kx[2];
         if (c0 == 1 && c1 == 2 && c2 == 1)
             for (int32_t x = 0; x < width; x++)
-                o[x] = finish(s[x] + 2 * s[x + 1] + s[x + 2], saturate);
+                o[x] = finish(s[x] + 2 * s[x + 1] + s[x + 2], mode);
         else if (c0 == -1 && c1 == 0 && c2 == 1)
             for (int32_t x = 0; x < width; x++)
-                o[x] = finish(s[x + 2] - s[x], saturate);
+                o[x] = finish(s[x + 2] - s[x], mode);
         else
             for (int32_t x = 0; x < width; x++)
-                o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2], saturate);
+                o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2], mode);
         break;
     }
     case 5: {
@@ -137,7 +145,7 @@ static inline void row_pass(const int16_t *restrict s, const int16_t *kx, int32_
         for (int32_t x = 0; x < width; x++)
             o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
                               c4 * s[x + 4],
-                          saturate);
+                          mode);
         break;
     }
     default: {
@@ -145,19 +153,21 @@ static inline void row_pass(const int16_t *restrict s, const int16_t *kx, int32_
         for (int32_t x = 0; x < width; x++)
             o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
                               c4 * s[x + 4] + c5 * s[x + 5] + c6 * s[x + 6],
-                          saturate);
+                          mode);
         break;
     }
     }
 }
 
 void rte_grad_row_pass(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
-                       int32_t width, bool saturate)
+                       int32_t width, rte_row_mode mode)
 {
-    if (saturate)
-        row_pass(v - nx / 2, kx, nx, out, width, true);
-    else
-        row_pass(v - nx / 2, kx, nx, out, width, false);
+    /* One instance per mode, each with a constant `finish`. */
+    switch (mode) {
+    case RTE_ROW_FITS: row_pass(v - nx / 2, kx, nx, out, width, RTE_ROW_FITS); break;
+    case RTE_ROW_SATURATE: row_pass(v - nx / 2, kx, nx, out, width, RTE_ROW_SATURATE); break;
+    default: row_pass(v - nx / 2, kx, nx, out, width, RTE_ROW_ROUND_DIV16); break;
+    }
 }
 
 int32_t rte_grad_taps_l1(const int16_t *taps, int32_t n)
@@ -174,15 +184,16 @@ static size_t padded_row_bytes(int32_t max_width)
     return ((size_t)max_width + 2 * (RTE_GRAD_MAX_TAPS / 2)) * sizeof(int16_t);
 }
 
-static rte_status check_images(const rte_image_u8 *src, const rte_image_s16 *dst)
+/* Both images valid and of the same size (either may be the source). */
+static rte_status check_u8_s16(const rte_image_u8 *a, const rte_image_s16 *b)
 {
-    rte_status st = rte_image_u8_check(src);
+    rte_status st = rte_image_u8_check(a);
     if (st != RTE_OK)
         return st;
-    st = rte_image_s16_check(dst);
+    st = rte_image_s16_check(b);
     if (st != RTE_OK)
         return st;
-    if (src->width != dst->width || src->height != dst->height)
+    if (a->width != b->width || a->height != b->height)
         return RTE_ERR_SIZE;
     return RTE_OK;
 }
@@ -191,7 +202,7 @@ static rte_status check_images(const rte_image_u8 *src, const rte_image_s16 *dst
 static rte_status separable(const rte_image_u8 *src, rte_image_s16 *dst, const int16_t *kx,
                             int32_t nx, const int16_t *ky, int32_t ny, rte_arena *scratch)
 {
-    rte_status st = check_images(src, dst);
+    rte_status st = check_u8_s16(src, dst);
     if (st != RTE_OK)
         return st;
     if (!scratch)
@@ -202,10 +213,12 @@ static rte_status separable(const rte_image_u8 *src, rte_image_s16 *dst, const i
         return RTE_ERR_NO_MEMORY;
     v += RTE_GRAD_MAX_TAPS / 2;
     /* Only Sobel 7 can leave int16 (up to 255 * 64 * 64). */
-    const bool saturate = rte_grad_taps_l1(kx, nx) * rte_grad_taps_l1(ky, ny) * 255 > INT16_MAX;
+    const rte_row_mode mode = rte_grad_taps_l1(kx, nx) * rte_grad_taps_l1(ky, ny) * 255 > INT16_MAX
+                                  ? RTE_ROW_SATURATE
+                                  : RTE_ROW_FITS;
     for (int32_t y = 0; y < src->height; y++) {
         rte_grad_column_pass(src, y, ky, ny, RTE_BORDER_REFLECT_101, v, nx / 2);
-        rte_grad_row_pass(v, kx, nx, rte_s16_row(dst, y), src->width, saturate);
+        rte_grad_row_pass(v, kx, nx, rte_s16_row(dst, y), src->width, mode);
     }
     rte_arena_reset(scratch, mark);
     return RTE_OK;
@@ -251,7 +264,7 @@ rte_status rte_laplacian_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_
 {
     if (ksize != 1 && ksize != 3)
         return RTE_ERR_ARGUMENT;
-    rte_status st = check_images(src, dst);
+    rte_status st = check_u8_s16(src, dst);
     if (st != RTE_OK)
         return st;
     if (!scratch)
@@ -295,14 +308,9 @@ size_t rte_laplacian_scratch_size(int32_t max_width, int32_t max_height, int32_t
 
 rte_status rte_abs_s16_u8(const rte_image_s16 *src, rte_image_u8 *dst)
 {
-    rte_status st = rte_image_s16_check(src);
+    rte_status st = check_u8_s16(dst, src);
     if (st != RTE_OK)
         return st;
-    st = rte_image_u8_check(dst);
-    if (st != RTE_OK)
-        return st;
-    if (src->width != dst->width || src->height != dst->height)
-        return RTE_ERR_SIZE;
     const int32_t w = src->width;
     for (int32_t y = 0; y < src->height; y++) {
         const int16_t *restrict s = rte_s16_row(src, y);

@@ -4,7 +4,6 @@
 #ifndef RTEDGE_SRC_ALGO_GRADIENT_ROWS_H
 #define RTEDGE_SRC_ALGO_GRADIENT_ROWS_H
 
-#include <stdbool.h>
 #include <stdint.h>
 
 #include "rtedge/image.h"
@@ -28,12 +27,17 @@ int32_t rte_border_fold(int32_t p, int32_t len, rte_border border);
 void rte_grad_column_pass(const rte_image_u8 *src, int32_t y, const int16_t *ky, int32_t ny,
                           rte_border border, int16_t *v, int32_t pad);
 
+/* How a row pass turns its int32 sums into int16. */
+typedef enum rte_row_mode {
+    RTE_ROW_FITS,        /* the caller knows the sums fit int16 (fastest) */
+    RTE_ROW_SATURATE,    /* saturate to int16 */
+    RTE_ROW_ROUND_DIV16, /* sum / 16 rounded half to even (OpenCV's Canny aperture 7) */
+} rte_row_mode;
+
 /* Row pass: out[x] = sum_k kx[k] * v[x + k - nx/2] for 0 <= x < width,
- * saturated to int16 when `saturate`; without it the sums must fit int16
- * (then the loop runs in 16-bit lanes). v needs nx/2 valid columns on each
- * side. */
+ * finished as `mode` says. v needs nx/2 valid columns on each side. */
 void rte_grad_row_pass(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
-                       int32_t width, bool saturate);
+                       int32_t width, rte_row_mode mode);
 
 /* sum |taps|: with the column taps' sum times 255 it bounds the result. */
 int32_t rte_grad_taps_l1(const int16_t *taps, int32_t n);

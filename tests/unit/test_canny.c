@@ -38,7 +38,11 @@ static void params_convert_thresholds(void **state)
     assert_int_equal(p.low, INT32_MAX);
     assert_int_equal(p.high, INT32_MIN);
     assert_int_equal(rte_canny_params_init(&p, 1, 2, 4, false), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_canny_params_init(&p, 1, 2, 7, false), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_params_init(&p, 1, 2, 9, false), RTE_ERR_ARGUMENT);
+    /* Aperture 7: thresholds divided by 16 first (OpenCV scales that Sobel by 1/16). */
+    assert_int_equal(rte_canny_params_init(&p, 160, 50, 7, true), RTE_OK);
+    assert_int_equal(p.low, 9);   /* floor((50/16)^2) = floor(9.77) */
+    assert_int_equal(p.high, 100); /* (160/16)^2 */
     assert_int_equal(rte_canny_params_init(&p, NAN, 2, 3, false), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_canny_params_init(NULL, 1, 2, 3, false), RTE_ERR_ARGUMENT);
 }
@@ -56,7 +60,7 @@ static void assert_edges(const rte_image_u8 *dst, const char *const *rows)
 static void step_edge_is_one_pixel_wide(void **state)
 {
     rte_arena a = make_arena();
-    for (int ap = 3; ap <= 5; ap += 2) {
+    for (int ap = 3; ap <= 7; ap += 2) {
         rte_image_u8 src = unit_image_u8(10, 8, 3, 0);
         for (int y = 0; y < 8; y++)
             memset(src.buf + y * src.stride + 5, 200, 5);
@@ -176,6 +180,8 @@ static void from_gradient(void **state)
     rte_image_u8 wrong = unit_image_u8(6, 5, 0, 0);
     assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &wrong, &p, &a), RTE_ERR_SIZE);
     assert_int_equal(rte_canny_from_gradient_u8(&dx, NULL, &dst, &p, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_params_init(&p, 50, 200, 7, false), RTE_OK);
+    assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &dst, &p, &a), RTE_ERR_ARGUMENT);
     test_free(wrong.buf);
     test_free(dx.buf);
     test_free(dy.buf);
@@ -223,7 +229,7 @@ static void arena_size_and_arguments(void **state)
     assert_int_equal(rte_canny_u8(&src, &dst, NULL, &a), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_canny_u8(&src, &dst, &p, NULL), RTE_ERR_ARGUMENT);
     rte_canny_params bad = p;
-    bad.aperture = 7;
+    bad.aperture = 9;
     assert_int_equal(rte_canny_u8(&src, &dst, &bad, &a), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_canny_scratch_size(0, 10, 3), 0);
     test_free(other.buf);
