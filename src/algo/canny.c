@@ -8,6 +8,7 @@
  * stack, and the flood through 8-connected "maybe" pixels follows when all
  * rows are done. Each pixel is pushed at most once (when it becomes 2), so a
  * stack of width*height entries cannot overflow. */
+#include <stdint.h>
 #include <string.h>
 
 #include "rtedge/canny.h"
@@ -30,6 +31,9 @@ size_t rte_canny_scratch_size(int32_t max_width, int32_t max_height, int32_t ape
 {
     if (max_width <= 0 || max_height <= 0)
         return 0;
+    /* Where size_t is 32 bits, the largest images do not fit at all. */
+    if ((uint64_t)max_width * (uint64_t)max_height * 8u > (uint64_t)(SIZE_MAX / 2))
+        return SIZE_MAX;
     return rte_arena_piece_size(map_bytes(max_width, max_height)) +
            rte_arena_piece_size(stack_bytes(max_width, max_height)) +
            3 * rte_arena_piece_size(mag_row_bytes(max_width)) +
