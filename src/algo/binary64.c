@@ -18,6 +18,16 @@ static uint64_t shift_right_jam(uint64_t x, int32_t n)
     return (x >> n) | ((x << (64 - n)) != 0);
 }
 
+/* Index of the highest set bit of x != 0 (binary search, no builtins). */
+static int32_t top_bit(uint64_t x)
+{
+    int32_t n = 0;
+    for (int32_t step = 32; step > 0; step >>= 1)
+        if (x >> (n + step))
+            n += step;
+    return n;
+}
+
 /* Value sig * 2^(e - 62), sig in [2^62, 2^63) (or 0), rounded to binary64. */
 static rte_f64 round_pack(uint64_t sign, int32_t e, uint64_t sig)
 {
@@ -50,13 +60,9 @@ static int32_t unpack(rte_f64 a, uint64_t *sig)
     int32_t biased = (int32_t)((a >> 52) & 0x7FF);
     uint64_t frac = a & FRAC_MASK;
     if (biased == 0) {
-        int32_t e = -1022;
-        while (!(frac & HIDDEN_BIT)) {
-            frac <<= 1;
-            e--;
-        }
-        *sig = frac;
-        return e;
+        int32_t shift = 52 - top_bit(frac);
+        *sig = frac << shift;
+        return -1022 - shift;
     }
     *sig = frac | HIDDEN_BIT;
     return biased - 1023;
@@ -68,9 +74,7 @@ rte_f64 rte_f64_from_u64(uint64_t v)
 {
     if (v == 0)
         return 0;
-    int32_t lead = 63;
-    while (!(v >> lead))
-        lead--;
+    int32_t lead = top_bit(v);
     /* Bring the leading bit to bit 62, keeping what falls off as sticky. */
     uint64_t sig = lead > 62 ? shift_right_jam(v, lead - 62) : v << (62 - lead);
     return round_pack(0, lead, sig);
@@ -105,11 +109,8 @@ rte_f64 rte_f64_add(rte_f64 a, rte_f64 b)
     uint64_t diff = sa - sb;
     if (diff == 0)
         return 0; /* x - x = +0 under round-to-nearest */
-    while (!(diff >> 62)) {
-        diff <<= 1;
-        ea--;
-    }
-    return round_pack(sign_a, ea, diff);
+    int32_t shift = 62 - top_bit(diff);
+    return round_pack(sign_a, ea - shift, diff << shift);
 }
 
 rte_f64 rte_f64_sub(rte_f64 a, rte_f64 b) { return rte_f64_add(a, b ^ SIGN_BIT); }
@@ -149,15 +150,16 @@ rte_f64 rte_f64_div(rte_f64 a, rte_f64 b)
         ma <<= 1;
         e--;
     }
-    /* Restoring division: 63 quotient bits of ma / mb in [1, 2). */
-    uint64_t q = 0, r = ma;
-    for (int32_t i = 0; i < 63; i++) {
-        q <<= 1;
-        if (r >= mb) {
-            r -= mb;
-            q |= 1;
-        }
-        r <<= 1;
+    /* 63 quotient bits of ma / mb in [1, 2), 8 then 9 bits per step:
+     * r < mb < 2^54, so r << 9 stays below 2^63. */
+    uint64_t r = ma << 8;
+    uint64_t q = r / mb;
+    r -= q * mb;
+    for (int32_t i = 0; i < 6; i++) {
+        r <<= 9;
+        uint64_t digit = r / mb;
+        r -= digit * mb;
+        q = (q << 9) | digit;
     }
     q |= r != 0;
     return round_pack(sign, e, q);

@@ -5,16 +5,19 @@
  * outside the image are simply left out and each loaded row is padded on
  * both sides with the neutral value (255 for min, 0 for max).
  *
- * Horizontal runs use doubling tables: level k of a padded row holds the
- * min (max) of 2^k consecutive pixels, and any run of length len is the
- * min of two overlapping level-k windows with 2^k <= len < 2^(k+1). Rows
- * stream through a ring of `height` slots, which also makes dst == src
- * safe: a source row is loaded before the output row that overwrites it.
- *  - A full rectangle is separable: each loaded row is reduced to its
- *    width-W minimum once, then the output row is the minimum of the H
- *    ring rows in its window (clipped to the image).
- *  - Any other element combines, for every run, two reads of the level
- *    tables of the run's source row. */
+ * Long horizontal windows use doubling tables: level k of a padded row
+ * holds the min (max) of 2^k consecutive pixels, and any run of length len
+ * is the min of two overlapping level-k windows with 2^k <= len < 2^(k+1).
+ * Short windows are reduced tap by tap, two or three rows (or shifted
+ * copies of a row) per pass over the output.
+ *  - A full rectangle is separable: the column window straight from the
+ *    source rows into a padded row, then the row window into dst.
+ *  - Any other element: every source row's padded copy and its levels
+ *    stream through a ring of `height` slots; each output row combines,
+ *    for every run, two reads of the levels of the run's source row.
+ * dst == src is safe: the ring (for the separable path, a ring of plain
+ * row copies, used only then) takes each source row before the output row
+ * that overwrites it. */
 #include "rtedge/morphology.h"
 
 #include <stdbool.h>
@@ -35,7 +38,7 @@ static size_t round_up64(size_t n) { return (n + 63) & ~(size_t)63; }
 typedef struct morph_plan {
     int32_t kw, kh, ax, ay; /* effective element size and anchor */
     int32_t levels;         /* doubling levels kept per padded row */
-    bool separable;         /* full rectangle: ring rows hold the reduced row */
+    bool separable;         /* full rectangle: column window, then row window */
     size_t padded;          /* bytes per padded row, rounded up */
     size_t slot;            /* bytes per ring slot */
 } morph_plan;
@@ -61,16 +64,17 @@ static morph_plan make_plan(int32_t width, const rte_morph_element *e, int32_t i
         p.levels = floor_log2(e->max_run) + 1;
     }
     p.padded = round_up64((size_t)width + (size_t)p.kw - 1);
+    /* separable: raw source rows (only used in place); otherwise the levels */
     p.slot = p.separable ? round_up64((size_t)width) : p.padded * (size_t)p.levels;
     return p;
 }
 
-/* The ring, plus (separable) two padded rows to build the levels in. */
+/* The ring, plus (separable) a padded row and two rows for its levels. */
 static size_t plan_bytes(const morph_plan *p)
 {
     size_t bytes = rte_arena_piece_size(p->slot * (size_t)p->kh);
     if (p->separable)
-        bytes += rte_arena_piece_size(2 * p->padded);
+        bytes += rte_arena_piece_size(3 * p->padded);
     return bytes;
 }
 
@@ -122,6 +126,48 @@ static void row_acc2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, 
         }
 }
 
+/* d = op(a, b, c) elementwise. */
+static void row_op3(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, int32_t n, bool is_max)
+{
+    if (is_max)
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t v = a[x] > b[x] ? a[x] : b[x];
+            d[x] = v > c[x] ? v : c[x];
+        }
+    else
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t v = a[x] < b[x] ? a[x] : b[x];
+            d[x] = v < c[x] ? v : c[x];
+        }
+}
+
+/* d = op of the rows first, first + step, ..., `count` of them (step in
+ * bytes, modulo `wrap` bytes for a ring; wrap 0 means no ring). Two or
+ * three rows per pass over d. */
+static void reduce_rows(uint8_t *d, const uint8_t *base, int32_t first, int32_t count, size_t step,
+                        int32_t wrap, int32_t n, bool is_max)
+{
+#define ROW(i) (base + (size_t)(wrap ? (first + (i)) % wrap : first + (i)) * step)
+    int32_t i;
+    if (count == 1) {
+        memcpy(d, ROW(0), (size_t)n);
+        return;
+    }
+    if (count % 2 == 0) {
+        row_op2(d, ROW(0), ROW(1), n, is_max);
+        i = 2;
+    } else {
+        row_op3(d, ROW(0), ROW(1), ROW(2), n, is_max);
+        i = 3;
+    }
+    for (; i < count; i += 2)
+        row_acc2(d, ROW(i), ROW(i + 1), n, is_max);
+#undef ROW
+}
+
+/* Widest window reduced tap by tap; wider ones use the doubling levels. */
+#define DIRECT_TAPS 6
+
 /* Copies a source row into `pad` with p->ax neutral pixels before it and
  * kw - 1 - ax after it. */
 static void load_padded(uint8_t *pad, const uint8_t *row, int32_t width, const morph_plan *p,
@@ -139,64 +185,88 @@ static void next_level(uint8_t *dst, const uint8_t *prev, int32_t n, int32_t k, 
     row_op2(dst, prev, prev + half, n - 2 * half + 1, is_max);
 }
 
-static void one_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph_plan *p,
-                     const rte_morph_element *e, uint8_t *ring, uint8_t *work, bool is_max)
+/* Full rectangle, separable: the column window first, straight from the
+ * source rows (or from copies of them when dst == src, so that rows still
+ * needed are not lost), into the middle of a padded row; then the row
+ * window from there into dst. */
+static void separable_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph_plan *p,
+                           uint8_t *ring, uint8_t *work, bool is_max)
 {
     const int32_t w = src->width, h = src->height;
-    const int32_t n = w + p->kw - 1; /* padded row length */
+    const int32_t n = w + p->kw - 1;
+    const uint8_t neutral = is_max ? 0 : 255;
+    const bool in_place = src->buf == dst->buf;
+    uint8_t *pad = work, *lv_a = work + p->padded, *lv_b = work + 2 * p->padded;
+    memset(pad, neutral, (size_t)n); /* the margins stay neutral; the middle is rewritten per row */
+    int32_t loaded = 0;
+    for (int32_t y = 0; y < h; y++) {
+        int32_t r0 = y - p->ay < 0 ? 0 : y - p->ay;
+        int32_t last = y - p->ay + p->kh - 1 > h - 1 ? h - 1 : y - p->ay + p->kh - 1;
+        const uint8_t *base = src->buf;
+        size_t step = (size_t)src->stride;
+        int32_t wrap = 0;
+        if (in_place) {
+            for (; loaded <= last; loaded++)
+                memcpy(ring + (size_t)(loaded % p->kh) * p->slot, rte_u8_row(src, loaded), (size_t)w);
+            base = ring;
+            step = p->slot;
+            wrap = p->kh;
+        }
+        uint8_t *d = rte_u8_row(dst, y);
+        if (p->kw == 1) {
+            reduce_rows(d, base, r0, last - r0 + 1, step, wrap, w, is_max);
+            continue;
+        }
+        reduce_rows(pad + p->ax, base, r0, last - r0 + 1, step, wrap, w, is_max);
+        if (p->kw <= DIRECT_TAPS) {
+            reduce_rows(d, pad, 0, p->kw, 1, 0, w, is_max);
+            continue;
+        }
+        const uint8_t *level = pad;
+        for (int32_t k = 1; k < p->levels; k++) {
+            uint8_t *next = level == lv_a ? lv_b : lv_a;
+            next_level(next, level, n, k, is_max);
+            level = next;
+        }
+        row_op2(d, level, level + p->kw - (1 << (p->levels - 1)), w, is_max);
+    }
+}
+
+/* Any other element: per source row, the doubling levels of its padded
+ * copy in the ring; per output row, two reads per run. */
+static void general_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph_plan *p,
+                         const rte_morph_element *e, uint8_t *ring, bool is_max)
+{
+    const int32_t w = src->width, h = src->height;
+    const int32_t n = w + p->kw - 1;
     const uint8_t neutral = is_max ? 0 : 255;
     int32_t loaded = 0; /* next source row to bring into the ring */
-
     for (int32_t y = 0; y < h; y++) {
-        int32_t last = y - p->ay + p->kh - 1;
-        if (last > h - 1)
-            last = h - 1;
+        int32_t last = y - p->ay + p->kh - 1 > h - 1 ? h - 1 : y - p->ay + p->kh - 1;
         for (; loaded <= last; loaded++) {
             uint8_t *slot = ring + (size_t)(loaded % p->kh) * p->slot;
-            const uint8_t *row = rte_u8_row(src, loaded);
-            if (p->separable) {
-                if (p->kw == 1) {
-                    memcpy(slot, row, (size_t)w);
-                    continue;
-                }
-                uint8_t *a = work, *b = work + p->padded;
-                load_padded(a, row, w, p, neutral);
-                for (int32_t k = 1; k < p->levels; k++) {
-                    next_level(b, a, n, k, is_max);
-                    uint8_t *t = a; a = b; b = t;
-                }
-                row_op2(slot, a, a + p->kw - (1 << (p->levels - 1)), w, is_max);
-            } else {
-                load_padded(slot, row, w, p, neutral);
-                for (int32_t k = 1; k < p->levels; k++)
-                    next_level(slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n, k,
-                               is_max);
-            }
+            load_padded(slot, rte_u8_row(src, loaded), w, p, neutral);
+            for (int32_t k = 1; k < p->levels; k++)
+                next_level(slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n, k, is_max);
         }
-
         uint8_t *d = rte_u8_row(dst, y);
-        if (p->separable) {
-            int32_t r0 = y - p->ay < 0 ? 0 : y - p->ay;
-            const uint8_t *first = ring + (size_t)(r0 % p->kh) * p->slot;
-            if (r0 == last) {
-                memcpy(d, first, (size_t)w);
+        bool any = false;
+        for (int32_t i = 0; i < e->run_count; i++) {
+            const rte_morph_run run = e->runs[i];
+            int32_t r = y + run.dy - p->ay;
+            if (r < 0 || r >= h)
                 continue;
-            }
-            row_op2(d, first, ring + (size_t)((r0 + 1) % p->kh) * p->slot, w, is_max);
-            for (int32_t r = r0 + 2; r <= last; r++)
-                row_op2(d, d, ring + (size_t)(r % p->kh) * p->slot, w, is_max);
-        } else {
-            memset(d, neutral, (size_t)w);
-            for (int32_t i = 0; i < e->run_count; i++) {
-                const rte_morph_run run = e->runs[i];
-                int32_t r = y + run.dy - p->ay;
-                if (r < 0 || r >= h)
-                    continue;
-                int32_t k = floor_log2(run.len);
-                const uint8_t *level = ring + (size_t)(r % p->kh) * p->slot + (size_t)k * p->padded;
-                row_acc2(d, level + run.dx, level + run.dx + run.len - (1 << k), w, is_max);
-            }
+            int32_t k = floor_log2(run.len);
+            const uint8_t *level = ring + (size_t)(r % p->kh) * p->slot + (size_t)k * p->padded;
+            const uint8_t *a = level + run.dx, *b = a + run.len - (1 << k);
+            if (any)
+                row_acc2(d, a, b, w, is_max);
+            else
+                row_op2(d, a, b, w, is_max);
+            any = true;
         }
+        if (!any) /* every run's row is outside the image */
+            memset(d, neutral, (size_t)w);
     }
 }
 
@@ -214,7 +284,7 @@ rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_mor
     const size_t mark = rte_arena_mark(arena);
     morph_plan p = make_plan(src->width, element, iterations);
     uint8_t *ring = (uint8_t *)rte_arena_alloc(arena, p.slot * (size_t)p.kh);
-    uint8_t *work = p.separable ? (uint8_t *)rte_arena_alloc(arena, 2 * p.padded) : NULL;
+    uint8_t *work = p.separable ? (uint8_t *)rte_arena_alloc(arena, 3 * p.padded) : NULL;
     if (!ring || (p.separable && !work)) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
@@ -228,7 +298,10 @@ rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_mor
     for (int32_t s = 0; s < stages; s++) {
         bool is_max = s == 0 ? first_max : !first_max;
         for (int32_t i = 0; i < repeat; i++) {
-            one_pass(in, dst, &p, element, ring, work, is_max);
+            if (p.separable)
+                separable_pass(in, dst, &p, ring, work, is_max);
+            else
+                general_pass(in, dst, &p, element, ring, is_max);
             in = dst;
         }
     }
