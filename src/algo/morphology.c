@@ -23,6 +23,11 @@
 #include <stdbool.h>
 #include <string.h>
 
+/* Widest window reduced tap by tap (two or three taps per pass); wider
+ * rows use the doubling levels, taller columns van Herk / Gil-Werman. */
+#define DIRECT_TAPS 6
+#define DIRECT_ROWS 7
+
 /* Largest k with 2^k <= n (n >= 1). */
 static int32_t floor_log2(int32_t n)
 {
@@ -39,6 +44,7 @@ typedef struct morph_plan {
     int32_t kw, kh, ax, ay; /* effective element size and anchor */
     int32_t levels;         /* doubling levels kept per padded row */
     bool separable;         /* full rectangle: column window, then row window */
+    bool blocks;            /* separable with a tall window: van Herk / Gil-Werman columns */
     size_t padded;          /* bytes per padded row, rounded up */
     size_t slot;            /* bytes per ring slot */
 } morph_plan;
@@ -64,17 +70,27 @@ static morph_plan make_plan(int32_t width, const rte_morph_element *e, int32_t i
         p.levels = floor_log2(e->max_run) + 1;
     }
     p.padded = round_up64((size_t)width + (size_t)p.kw - 1);
+    p.blocks = p.separable && p.kh > DIRECT_ROWS;
     /* separable: raw source rows (only used in place); otherwise the levels */
     p.slot = p.separable ? round_up64((size_t)width) : p.padded * (size_t)p.levels;
     return p;
 }
 
-/* The ring, plus (separable) a padded row and two rows for its levels. */
+/* Separable: a padded row and two rows for its levels, and for tall
+ * windows one block of suffix rows, a prefix row and a neutral row. */
+static size_t work_bytes(const morph_plan *p)
+{
+    if (!p->separable)
+        return 0;
+    return 3 * p->padded + (p->blocks ? ((size_t)p->kh + 2) * p->slot : 0);
+}
+
+/* The ring plus the work rows. */
 static size_t plan_bytes(const morph_plan *p)
 {
     size_t bytes = rte_arena_piece_size(p->slot * (size_t)p->kh);
     if (p->separable)
-        bytes += rte_arena_piece_size(3 * p->padded);
+        bytes += rte_arena_piece_size(work_bytes(p));
     return bytes;
 }
 
@@ -141,32 +157,72 @@ static void row_op3(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_
         }
 }
 
-/* d = op of the rows first, first + step, ..., `count` of them (step in
- * bytes, modulo `wrap` bytes for a ring; wrap 0 means no ring). Two or
- * three rows per pass over d. */
-static void reduce_rows(uint8_t *d, const uint8_t *base, int32_t first, int32_t count, size_t step,
-                        int32_t wrap, int32_t n, bool is_max)
+#define MIN8(u, v) ((u) < (v) ? (u) : (v))
+#define MAX8(u, v) ((u) > (v) ? (u) : (v))
+
+/* d = op(a, b, c, e) elementwise: four rows in one pass. */
+static void row_op4(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, const uint8_t *e,
+                    int32_t n, bool is_max)
 {
-#define ROW(i) (base + (size_t)(wrap ? (first + (i)) % wrap : first + (i)) * step)
-    int32_t i;
-    if (count == 1) {
-        memcpy(d, ROW(0), (size_t)n);
-        return;
-    }
-    if (count % 2 == 0) {
-        row_op2(d, ROW(0), ROW(1), n, is_max);
-        i = 2;
-    } else {
-        row_op3(d, ROW(0), ROW(1), ROW(2), n, is_max);
-        i = 3;
-    }
-    for (; i < count; i += 2)
-        row_acc2(d, ROW(i), ROW(i + 1), n, is_max);
-#undef ROW
+    if (is_max)
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t u = MAX8(a[x], b[x]), v = MAX8(c[x], e[x]);
+            d[x] = MAX8(u, v);
+        }
+    else
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t u = MIN8(a[x], b[x]), v = MIN8(c[x], e[x]);
+            d[x] = MIN8(u, v);
+        }
 }
 
-/* Widest window reduced tap by tap; wider ones use the doubling levels. */
-#define DIRECT_TAPS 6
+/* d = op(a, b, c, e, f) elementwise: five rows in one pass. */
+static void row_op5(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, const uint8_t *e,
+                    const uint8_t *f, int32_t n, bool is_max)
+{
+    if (is_max)
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t u = MAX8(a[x], b[x]), v = MAX8(c[x], e[x]);
+            u = MAX8(u, f[x]);
+            d[x] = MAX8(u, v);
+        }
+    else
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t u = MIN8(a[x], b[x]), v = MIN8(c[x], e[x]);
+            u = MIN8(u, f[x]);
+            d[x] = MIN8(u, v);
+        }
+}
+
+/* d = op of the `count` rows r[0..count-1], or of d and them when
+ * `accumulate` is set: up to five rows in the first pass, then two per
+ * pass. */
+static void reduce_rows(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate, int32_t n,
+                        bool is_max)
+{
+    int32_t i = 0;
+    if (!accumulate) {
+        if (count == 1) {
+            memcpy(d, r[0], (size_t)n);
+            return;
+        }
+        /* an even remainder after the first pass keeps the pairs whole */
+        int32_t head = count <= 5 ? count : 5 - (count - 5) % 2;
+        if (head == 2)
+            row_op2(d, r[0], r[1], n, is_max);
+        else if (head == 3)
+            row_op3(d, r[0], r[1], r[2], n, is_max);
+        else if (head == 4)
+            row_op4(d, r[0], r[1], r[2], r[3], n, is_max);
+        else
+            row_op5(d, r[0], r[1], r[2], r[3], r[4], n, is_max);
+        i = head;
+    }
+    for (; i + 1 < count; i += 2)
+        row_acc2(d, r[i], r[i + 1], n, is_max);
+    if (i < count)
+        row_op2(d, d, r[i], n, is_max);
+}
 
 /* Copies a source row into `pad` with p->ax neutral pixels before it and
  * kw - 1 - ax after it. */
@@ -192,34 +248,61 @@ static void next_level(uint8_t *dst, const uint8_t *prev, int32_t n, int32_t k, 
 static void separable_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph_plan *p,
                            uint8_t *ring, uint8_t *work, bool is_max)
 {
-    const int32_t w = src->width, h = src->height;
+    const int32_t w = src->width, h = src->height, kh = p->kh;
     const int32_t n = w + p->kw - 1;
     const uint8_t neutral = is_max ? 0 : 255;
     const bool in_place = src->buf == dst->buf;
     uint8_t *pad = work, *lv_a = work + p->padded, *lv_b = work + 2 * p->padded;
+    uint8_t *suffix = work + 3 * p->padded, *prefix = suffix + (size_t)kh * p->slot;
+    uint8_t *neutral_row = prefix + p->slot;
     memset(pad, neutral, (size_t)n); /* the margins stay neutral; the middle is rewritten per row */
+    if (p->blocks)
+        memset(neutral_row, neutral, (size_t)w);
+    /* Source row v of the column window: rows outside the image are neutral. */
+#define SRC_ROW(v) ((v) < 0 || (v) >= h ? neutral_row \
+                    : in_place ? ring + (size_t)((v) % kh) * p->slot : rte_u8_row(src, (v)))
     int32_t loaded = 0;
     for (int32_t y = 0; y < h; y++) {
-        int32_t r0 = y - p->ay < 0 ? 0 : y - p->ay;
-        int32_t last = y - p->ay + p->kh - 1 > h - 1 ? h - 1 : y - p->ay + p->kh - 1;
-        const uint8_t *base = src->buf;
-        size_t step = (size_t)src->stride;
-        int32_t wrap = 0;
-        if (in_place) {
+        const int32_t v0 = y - p->ay; /* the column window is v0 .. v0 + kh - 1 */
+        int32_t r0 = v0 < 0 ? 0 : v0;
+        int32_t last = v0 + kh - 1 > h - 1 ? h - 1 : v0 + kh - 1;
+        if (in_place)
             for (; loaded <= last; loaded++)
-                memcpy(ring + (size_t)(loaded % p->kh) * p->slot, rte_u8_row(src, loaded), (size_t)w);
-            base = ring;
-            step = p->slot;
-            wrap = p->kh;
-        }
+                memcpy(ring + (size_t)(loaded % kh) * p->slot, rte_u8_row(src, loaded), (size_t)w);
         uint8_t *d = rte_u8_row(dst, y);
-        if (p->kw == 1) {
-            reduce_rows(d, base, r0, last - r0 + 1, step, wrap, w, is_max);
-            continue;
+        uint8_t *column = p->kw == 1 ? d : pad + p->ax;
+        if (p->blocks) {
+            /* Windows start at v0 = y - ay; blocks of kh windows share one
+             * suffix table of their first window's rows, and the rows past
+             * it accumulate in a running prefix. */
+            const int32_t o = y % kh;
+            if (o == 0) {
+                memcpy(suffix + (size_t)(kh - 1) * p->slot, SRC_ROW(v0 + kh - 1), (size_t)w);
+                for (int32_t j = kh - 2; j >= 1; j--)
+                    row_op2(suffix + (size_t)j * p->slot, SRC_ROW(v0 + j), suffix + (size_t)(j + 1) * p->slot,
+                            w, is_max);
+                row_op2(column, SRC_ROW(v0), suffix + p->slot, w, is_max);
+            } else {
+                const uint8_t *entering = SRC_ROW(v0 + kh - 1);
+                if (o == 1)
+                    memcpy(prefix, entering, (size_t)w);
+                else
+                    row_op2(prefix, prefix, entering, w, is_max);
+                row_op2(column, suffix + (size_t)o * p->slot, prefix, w, is_max);
+            }
+        } else {
+            const uint8_t *rows[DIRECT_ROWS];
+            for (int32_t v = r0; v <= last; v++)
+                rows[v - r0] = SRC_ROW(v);
+            reduce_rows(column, rows, last - r0 + 1, false, w, is_max);
         }
-        reduce_rows(pad + p->ax, base, r0, last - r0 + 1, step, wrap, w, is_max);
+        if (p->kw == 1)
+            continue;
         if (p->kw <= DIRECT_TAPS) {
-            reduce_rows(d, pad, 0, p->kw, 1, 0, w, is_max);
+            const uint8_t *taps[DIRECT_TAPS];
+            for (int32_t i = 0; i < p->kw; i++)
+                taps[i] = pad + i;
+            reduce_rows(d, taps, p->kw, false, w, is_max);
             continue;
         }
         const uint8_t *level = pad;
@@ -230,6 +313,7 @@ static void separable_pass(const rte_image_u8 *src, rte_image_u8 *dst, const mor
         }
         row_op2(d, level, level + p->kw - (1 << (p->levels - 1)), w, is_max);
     }
+#undef SRC_ROW
 }
 
 /* Any other element: per source row, the doubling levels of its padded
@@ -249,7 +333,11 @@ static void general_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph
             for (int32_t k = 1; k < p->levels; k++)
                 next_level(slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n, k, is_max);
         }
+        /* Every run gives one or two rows of the levels; they are reduced
+         * a chunk at a time. */
         uint8_t *d = rte_u8_row(dst, y);
+        const uint8_t *taps[64];
+        int32_t count = 0;
         bool any = false;
         for (int32_t i = 0; i < e->run_count; i++) {
             const rte_morph_run run = e->runs[i];
@@ -258,11 +346,17 @@ static void general_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph
                 continue;
             int32_t k = floor_log2(run.len);
             const uint8_t *level = ring + (size_t)(r % p->kh) * p->slot + (size_t)k * p->padded;
-            const uint8_t *a = level + run.dx, *b = a + run.len - (1 << k);
-            if (any)
-                row_acc2(d, a, b, w, is_max);
-            else
-                row_op2(d, a, b, w, is_max);
+            taps[count++] = level + run.dx;
+            if (run.len != 1 << k)
+                taps[count++] = level + run.dx + run.len - (1 << k);
+            if (count >= 62) {
+                reduce_rows(d, taps, count, any, w, is_max);
+                any = true;
+                count = 0;
+            }
+        }
+        if (count) {
+            reduce_rows(d, taps, count, any, w, is_max);
             any = true;
         }
         if (!any) /* every run's row is outside the image */
@@ -284,7 +378,7 @@ rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_mor
     const size_t mark = rte_arena_mark(arena);
     morph_plan p = make_plan(src->width, element, iterations);
     uint8_t *ring = (uint8_t *)rte_arena_alloc(arena, p.slot * (size_t)p.kh);
-    uint8_t *work = p.separable ? (uint8_t *)rte_arena_alloc(arena, 3 * p.padded) : NULL;
+    uint8_t *work = p.separable ? (uint8_t *)rte_arena_alloc(arena, work_bytes(&p)) : NULL;
     if (!ring || (p.separable && !work)) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
