@@ -8,8 +8,8 @@
  * Long horizontal windows use doubling tables: level k of a padded row
  * holds the min (max) of 2^k consecutive pixels, and any run of length len
  * is the min of two overlapping level-k windows with 2^k <= len < 2^(k+1).
- * Short windows are reduced tap by tap, two or three rows (or shifted
- * copies of a row) per pass over the output.
+ * Short windows are reduced tap by tap, up to five rows (or shifted
+ * views of one row) per pass over the output.
  *  - A full rectangle is separable: the column window straight from the
  *    source rows into a padded row, then the row window into dst.
  *  - Any other element: every source row's padded copy and its levels
@@ -23,8 +23,9 @@
 #include <stdbool.h>
 #include <string.h>
 
-/* Widest window reduced tap by tap (two or three taps per pass); wider
- * rows use the doubling levels, taller columns van Herk / Gil-Werman. */
+/* Widest row window and tallest column window reduced tap by tap; wider
+ * rows use the doubling levels, taller columns van Herk / Gil-Werman
+ * (three passes per row whatever the height). */
 #define DIRECT_TAPS 6
 #define DIRECT_ROWS 7
 
@@ -94,13 +95,22 @@ static size_t plan_bytes(const morph_plan *p)
     return bytes;
 }
 
+/* The element is caller memory: check every field the passes index with. */
 static bool valid_element(const rte_morph_element *e)
 {
-    return e && e->width >= 1 && e->width <= RTE_MORPH_MAX_KSIZE && e->height >= 1 &&
-           e->height <= RTE_MORPH_MAX_KSIZE && e->anchor_x >= 0 && e->anchor_x < e->width &&
-           e->anchor_y >= 0 && e->anchor_y < e->height && e->run_count >= 1 &&
-           e->run_count <= (int32_t)(sizeof e->runs / sizeof e->runs[0]) && e->max_run >= 1 &&
-           e->max_run <= e->width;
+    if (!e || e->width < 1 || e->width > RTE_MORPH_MAX_KSIZE || e->height < 1 ||
+        e->height > RTE_MORPH_MAX_KSIZE || e->anchor_x < 0 || e->anchor_x >= e->width ||
+        e->anchor_y < 0 || e->anchor_y >= e->height || e->run_count < 1 ||
+        e->run_count > (int32_t)(sizeof e->runs / sizeof e->runs[0]) || e->max_run < 1 ||
+        e->max_run > e->width)
+        return false;
+    for (int32_t i = 0; i < e->run_count; i++) {
+        const rte_morph_run r = e->runs[i];
+        if (r.dy < 0 || r.dy >= e->height || r.dx < 0 || r.len < 1 || r.len > e->max_run ||
+            r.dx + r.len > e->width)
+            return false;
+    }
+    return true;
 }
 
 /* Iterated rectangles grow; keep every size inside int32_t arithmetic. */

@@ -219,6 +219,27 @@ static void constant_images_stay_constant(void **state)
         }
 }
 
+/* An element whose only set cell lies above every image row: OpenCV gives
+ * the border value itself (255 for erode, 0 for dilate). */
+static void element_reaching_only_outside_gives_the_neutral_value(void **state)
+{
+    const uint8_t mask[7] = { 1, 0, 0, 0, 0, 0, 0 };
+    rte_morph_element e;
+    assert_int_equal(rte_morphology_element_from_mask(&e, mask, 1, 7, 0, 6), RTE_OK);
+    rte_image_u8 img = unit_image_u8(2, 3, 1, 50), out = unit_image_u8(2, 3, 2, 1);
+    rte_arena arena;
+    rte_arena_init(&arena, arena_memory, sizeof arena_memory);
+    assert_int_equal(rte_morphology_erode_u8(&img, &out, &e, 1, &arena), RTE_OK);
+    for (int32_t y = 0; y < 3; y++)
+        assert_true(out.buf[y * out.stride] == 255 && out.buf[y * out.stride + 1] == 255);
+    assert_int_equal(rte_morphology_dilate_u8(&img, &out, &e, 1, &arena), RTE_OK);
+    for (int32_t y = 0; y < 3; y++)
+        assert_true(out.buf[y * out.stride] == 0 && out.buf[y * out.stride + 1] == 0);
+    unit_assert_padding_u8(&out);
+    test_free(img.buf);
+    test_free(out.buf);
+}
+
 static void arena_and_argument_errors(void **state)
 {
     rte_morph_element e = element(RTE_MORPH_ELLIPSE, 5, 5), r = element(RTE_MORPH_RECT, 5, 5);
@@ -242,6 +263,12 @@ static void arena_and_argument_errors(void **state)
     bad.anchor_x = 5;
     assert_int_equal(rte_morphology_dilate_u8(&a, &a, &bad, 1, &arena), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_morphology_scratch_size(40, 30, &bad, 1), 0);
+    bad = e;
+    bad.runs[1].len = 6; /* wider than the element */
+    assert_int_equal(rte_morphology_dilate_u8(&a, &a, &bad, 1, &arena), RTE_ERR_ARGUMENT);
+    bad = e;
+    bad.runs[0].dy = -1;
+    assert_int_equal(rte_morphology_erode_u8(&a, &a, &bad, 1, &arena), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_morphology_scratch_size(0, 30, &e, 1), 0);
     test_free(a.buf);
     test_free(b.buf);
@@ -256,6 +283,7 @@ int main(void)
         cmocka_unit_test(all_widths_thin_and_tiny_images),
         cmocka_unit_test(custom_masks_with_anchors),
         cmocka_unit_test(constant_images_stay_constant),
+        cmocka_unit_test(element_reaching_only_outside_gives_the_neutral_value),
         cmocka_unit_test(arena_and_argument_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
