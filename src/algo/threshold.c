@@ -21,7 +21,7 @@ rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256])
         const uint8_t *row = rte_u8_row(src, y);
         int32_t x = 0;
         for (; x + 8 <= src->width; x += 8) {
-            /* one 8-byte load instead of eight byte loads */
+            /* one 8-byte load instead of eight (byte order cannot matter here) */
             uint64_t v;
             memcpy(&v, row + x, sizeof v);
             part[0][v & 0xFF]++;
