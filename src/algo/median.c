@@ -30,17 +30,24 @@
         (b) = RTE_MED_MAX(t_, (b));      \
     } while (0)
 
-/* Scratch rows are padded to whole 64-byte lines. */
-static size_t padded_stride(int32_t width, int32_t r)
+/* Pixels per block of the 5x5 kernel: its sorted columns and merged pairs
+ * live in small local arrays (L1-resident, and the compiler can see that
+ * they alias nothing, so every loop vectorises without runtime checks). */
+#define MEDIAN5_BLOCK 64
+
+/* Bytes of a padded ring row: width + 2r, plus (5x5) the slack a last,
+ * partial block reads past the border; rounded to whole 64-byte lines. */
+static size_t padded_stride(int32_t width, int32_t ksize)
 {
-    return ((size_t)width + 2 * (size_t)r + 63) & ~(size_t)63;
+    size_t need = (size_t)width + (ksize == 5 ? MEDIAN5_BLOCK + 3 : 2);
+    return (need + 63) & ~(size_t)63;
 }
 
-/* Rows of scratch: ksize ring rows of padded source, plus the sorted columns
- * (3 for 3x3; 5 for 5x5, plus the 10 ranks of each merged column pair). */
+/* Rows of scratch: ksize ring rows of padded source, plus for 3x3 the three
+ * rows of sorted columns. */
 static size_t scratch_rows(int32_t ksize)
 {
-    return ksize == 3 ? 3 + 3 : 5 + 5 + 10;
+    return ksize == 3 ? 3 + 3 : 5;
 }
 
 size_t rte_median_blur_u8_scratch_size(int32_t max_width, int32_t max_height, int32_t ksize)
@@ -51,7 +58,7 @@ size_t rte_median_blur_u8_scratch_size(int32_t max_width, int32_t max_height, in
         return rte_arena_piece_size(0);
     if (ksize != 3 && ksize != 5)
         return 0;
-    return rte_arena_piece_size(scratch_rows(ksize) * padded_stride(max_width, ksize / 2));
+    return rte_arena_piece_size(scratch_rows(ksize) * padded_stride(max_width, ksize));
 }
 
 /* 3x3 on one output row; r0..r2 are padded rows (one pixel of replicated
@@ -81,65 +88,70 @@ static void median3_row(const uint8_t *restrict r0, const uint8_t *restrict r1,
 }
 
 /* 5x5 on one output row; rows[] are padded rows (two pixels of replicated
- * border each side). col[k] gets rank k of each sorted source column
- * (width + 4 of them), pair[k] rank k of the merge of columns x and x + 1. */
-static void median5_row(const uint8_t *const *restrict rows, uint8_t *restrict *restrict col,
-                        uint8_t *restrict *restrict pair, uint8_t *restrict dst, int32_t width)
+ * border each side) readable up to MEDIAN5_BLOCK + 4 bytes past any block
+ * start below width. */
+static void median5_row(const uint8_t *const *rows, uint8_t *restrict dst, int32_t width)
 {
-    const uint8_t *restrict s0 = rows[0], *restrict s1 = rows[1], *restrict s2 = rows[2];
-    const uint8_t *restrict s3 = rows[3], *restrict s4 = rows[4];
-    uint8_t *restrict c0 = col[0], *restrict c1 = col[1], *restrict c2 = col[2];
-    uint8_t *restrict c3 = col[3], *restrict c4 = col[4];
-    for (int32_t x = 0; x < width + 4; x++) {
-        uint8_t w0 = s0[x], w1 = s1[x], w2 = s2[x], w3 = s3[x], w4 = s4[x];
-        /* optimal 9-exchange sorting network for 5 */
-        RTE_MED_CE(w0, w1); RTE_MED_CE(w3, w4); RTE_MED_CE(w2, w4);
-        RTE_MED_CE(w2, w3); RTE_MED_CE(w0, w3); RTE_MED_CE(w0, w2);
-        RTE_MED_CE(w1, w4); RTE_MED_CE(w1, w3); RTE_MED_CE(w1, w2);
-        c0[x] = w0; c1[x] = w1; c2[x] = w2; c3[x] = w3; c4[x] = w4;
-    }
+    for (int32_t x0 = 0; x0 < width; x0 += MEDIAN5_BLOCK) {
+        const uint8_t *s0 = rows[0] + x0, *s1 = rows[1] + x0, *s2 = rows[2] + x0;
+        const uint8_t *s3 = rows[3] + x0, *s4 = rows[4] + x0;
+        /* col[k][i]: rank k of source column x0 + i, sorted */
+        uint8_t col[5][MEDIAN5_BLOCK + 4];
+        for (int32_t i = 0; i < MEDIAN5_BLOCK + 4; i++) {
+            uint8_t w0 = s0[i], w1 = s1[i], w2 = s2[i], w3 = s3[i], w4 = s4[i];
+            /* optimal 9-exchange sorting network for 5 */
+            RTE_MED_CE(w0, w1); RTE_MED_CE(w3, w4); RTE_MED_CE(w2, w4);
+            RTE_MED_CE(w2, w3); RTE_MED_CE(w0, w3); RTE_MED_CE(w0, w2);
+            RTE_MED_CE(w1, w4); RTE_MED_CE(w1, w3); RTE_MED_CE(w1, w2);
+            col[0][i] = w0; col[1][i] = w1; col[2][i] = w2; col[3][i] = w3; col[4][i] = w4;
+        }
 
-    uint8_t *restrict p0 = pair[0], *restrict p1 = pair[1], *restrict p2 = pair[2];
-    uint8_t *restrict p3 = pair[3], *restrict p4 = pair[4], *restrict p5 = pair[5];
-    uint8_t *restrict p6 = pair[6], *restrict p7 = pair[7], *restrict p8 = pair[8];
-    uint8_t *restrict p9 = pair[9];
-    for (int32_t x = 0; x < width + 3; x++) {
-        /* Batcher merge of two sorted 5-lists (w0..w4, w5..w9) */
-        uint8_t w0 = c0[x], w1 = c1[x], w2 = c2[x], w3 = c3[x], w4 = c4[x];
-        uint8_t w5 = c0[x + 1], w6 = c1[x + 1], w7 = c2[x + 1], w8 = c3[x + 1], w9 = c4[x + 1];
-        RTE_MED_CE(w0, w5); RTE_MED_CE(w4, w9); RTE_MED_CE(w4, w5); RTE_MED_CE(w2, w7);
-        RTE_MED_CE(w2, w4); RTE_MED_CE(w7, w5); RTE_MED_CE(w1, w6); RTE_MED_CE(w3, w8);
-        RTE_MED_CE(w3, w6); RTE_MED_CE(w1, w2); RTE_MED_CE(w3, w4); RTE_MED_CE(w6, w7);
-        RTE_MED_CE(w8, w5);
-        /* the network leaves the ranks in this wire order */
-        p0[x] = w0; p1[x] = w1; p2[x] = w2; p3[x] = w3; p4[x] = w4;
-        p5[x] = w6; p6[x] = w7; p7[x] = w8; p8[x] = w5; p9[x] = w9;
-    }
+        /* pair[k][i]: rank k of the merge of columns x0 + i and x0 + i + 1 */
+        uint8_t pair[10][MEDIAN5_BLOCK + 2];
+        for (int32_t i = 0; i < MEDIAN5_BLOCK + 2; i++) {
+            /* Batcher merge of two sorted 5-lists (w0..w4, w5..w9) */
+            uint8_t w0 = col[0][i], w1 = col[1][i], w2 = col[2][i], w3 = col[3][i], w4 = col[4][i];
+            uint8_t w5 = col[0][i + 1], w6 = col[1][i + 1], w7 = col[2][i + 1];
+            uint8_t w8 = col[3][i + 1], w9 = col[4][i + 1];
+            RTE_MED_CE(w0, w5); RTE_MED_CE(w4, w9); RTE_MED_CE(w4, w5); RTE_MED_CE(w2, w7);
+            RTE_MED_CE(w2, w4); RTE_MED_CE(w7, w5); RTE_MED_CE(w1, w6); RTE_MED_CE(w3, w8);
+            RTE_MED_CE(w3, w6); RTE_MED_CE(w1, w2); RTE_MED_CE(w3, w4); RTE_MED_CE(w6, w7);
+            RTE_MED_CE(w8, w5);
+            /* the network leaves the ranks in this wire order */
+            pair[0][i] = w0; pair[1][i] = w1; pair[2][i] = w2; pair[3][i] = w3; pair[4][i] = w4;
+            pair[5][i] = w6; pair[6][i] = w7; pair[7][i] = w8; pair[8][i] = w5; pair[9][i] = w9;
+        }
 
-    for (int32_t x = 0; x < width; x++) {
-        /* w0..w9: pair at x, w10..w19: pair at x + 2, w20..w24: column x + 4 */
-        uint8_t w0 = p0[x], w1 = p1[x], w2 = p2[x], w3 = p3[x], w4 = p4[x];
-        uint8_t w5 = p5[x], w6 = p6[x], w7 = p7[x], w8 = p8[x], w9 = p9[x];
-        uint8_t w10 = p0[x + 2], w11 = p1[x + 2], w12 = p2[x + 2], w13 = p3[x + 2];
-        uint8_t w14 = p4[x + 2], w15 = p5[x + 2], w16 = p6[x + 2], w17 = p7[x + 2];
-        uint8_t w18 = p8[x + 2], w19 = p9[x + 2];
-        uint8_t w20 = c0[x + 4], w21 = c1[x + 4], w22 = c2[x + 4], w23 = c3[x + 4];
-        uint8_t w24 = c4[x + 4];
-        RTE_MED_CE(w0, w20); RTE_MED_CE(w8, w20); RTE_MED_CE(w4, w24); RTE_MED_CE(w4, w8);
-        RTE_MED_CE(w24, w20); RTE_MED_CE(w2, w22); RTE_MED_CE(w6, w22); RTE_MED_CE(w2, w4);
-        RTE_MED_CE(w6, w8); RTE_MED_CE(w22, w24); RTE_MED_CE(w1, w21); RTE_MED_CE(w9, w21);
-        RTE_MED_CE(w5, w9); RTE_MED_CE(w3, w23); RTE_MED_CE(w7, w23); RTE_MED_CE(w3, w5);
-        RTE_MED_CE(w7, w9); RTE_MED_CE(w23, w21); RTE_MED_CE(w1, w2); RTE_MED_CE(w3, w4);
-        RTE_MED_CE(w5, w6); RTE_MED_CE(w7, w8); RTE_MED_CE(w9, w22); RTE_MED_CE(w23, w24);
-        w21 = RTE_MED_MIN(w21, w20); w10 = RTE_MED_MAX(w0, w10); w8 = RTE_MED_MIN(w8, w18);
-        w10 = RTE_MED_MAX(w8, w10); w14 = RTE_MED_MAX(w4, w14); w24 = RTE_MED_MIN(w24, w14);
-        w24 = RTE_MED_MIN(w24, w10); w12 = RTE_MED_MAX(w2, w12); w22 = RTE_MED_MIN(w22, w12);
-        w6 = RTE_MED_MIN(w6, w16); w22 = RTE_MED_MAX(w6, w22); w24 = RTE_MED_MAX(w22, w24);
-        w11 = RTE_MED_MAX(w1, w11); w9 = RTE_MED_MIN(w9, w19); w11 = RTE_MED_MAX(w9, w11);
-        w15 = RTE_MED_MAX(w5, w15); w21 = RTE_MED_MIN(w21, w15); w21 = RTE_MED_MIN(w21, w11);
-        w13 = RTE_MED_MAX(w3, w13); w23 = RTE_MED_MIN(w23, w13); w7 = RTE_MED_MIN(w7, w17);
-        w23 = RTE_MED_MAX(w7, w23); w23 = RTE_MED_MIN(w23, w21); w24 = RTE_MED_MAX(w23, w24);
-        dst[x] = w24;
+        uint8_t out[MEDIAN5_BLOCK];
+        for (int32_t i = 0; i < MEDIAN5_BLOCK; i++) {
+            /* w0..w9: pair at i, w10..w19: pair at i + 2, w20..w24: column i + 4 */
+            uint8_t w0 = pair[0][i], w1 = pair[1][i], w2 = pair[2][i], w3 = pair[3][i];
+            uint8_t w4 = pair[4][i], w5 = pair[5][i], w6 = pair[6][i], w7 = pair[7][i];
+            uint8_t w8 = pair[8][i], w9 = pair[9][i];
+            uint8_t w10 = pair[0][i + 2], w11 = pair[1][i + 2], w12 = pair[2][i + 2];
+            uint8_t w13 = pair[3][i + 2], w14 = pair[4][i + 2], w15 = pair[5][i + 2];
+            uint8_t w16 = pair[6][i + 2], w17 = pair[7][i + 2], w18 = pair[8][i + 2];
+            uint8_t w19 = pair[9][i + 2];
+            uint8_t w20 = col[0][i + 4], w21 = col[1][i + 4], w22 = col[2][i + 4];
+            uint8_t w23 = col[3][i + 4], w24 = col[4][i + 4];
+            RTE_MED_CE(w0, w20); RTE_MED_CE(w8, w20); RTE_MED_CE(w4, w24); RTE_MED_CE(w4, w8);
+            RTE_MED_CE(w24, w20); RTE_MED_CE(w2, w22); RTE_MED_CE(w6, w22); RTE_MED_CE(w2, w4);
+            RTE_MED_CE(w6, w8); RTE_MED_CE(w22, w24); RTE_MED_CE(w1, w21); RTE_MED_CE(w9, w21);
+            RTE_MED_CE(w5, w9); RTE_MED_CE(w3, w23); RTE_MED_CE(w7, w23); RTE_MED_CE(w3, w5);
+            RTE_MED_CE(w7, w9); RTE_MED_CE(w23, w21); RTE_MED_CE(w1, w2); RTE_MED_CE(w3, w4);
+            RTE_MED_CE(w5, w6); RTE_MED_CE(w7, w8); RTE_MED_CE(w9, w22); RTE_MED_CE(w23, w24);
+            w21 = RTE_MED_MIN(w21, w20); w10 = RTE_MED_MAX(w0, w10); w8 = RTE_MED_MIN(w8, w18);
+            w10 = RTE_MED_MAX(w8, w10); w14 = RTE_MED_MAX(w4, w14); w24 = RTE_MED_MIN(w24, w14);
+            w24 = RTE_MED_MIN(w24, w10); w12 = RTE_MED_MAX(w2, w12); w22 = RTE_MED_MIN(w22, w12);
+            w6 = RTE_MED_MIN(w6, w16); w22 = RTE_MED_MAX(w6, w22); w24 = RTE_MED_MAX(w22, w24);
+            w11 = RTE_MED_MAX(w1, w11); w9 = RTE_MED_MIN(w9, w19); w11 = RTE_MED_MAX(w9, w11);
+            w15 = RTE_MED_MAX(w5, w15); w21 = RTE_MED_MIN(w21, w15); w21 = RTE_MED_MIN(w21, w11);
+            w13 = RTE_MED_MAX(w3, w13); w23 = RTE_MED_MIN(w23, w13); w7 = RTE_MED_MIN(w7, w17);
+            w23 = RTE_MED_MAX(w7, w23); w23 = RTE_MED_MIN(w23, w21); w24 = RTE_MED_MAX(w23, w24);
+            out[i] = w24;
+        }
+        int32_t n = width - x0 < MEDIAN5_BLOCK ? width - x0 : MEDIAN5_BLOCK;
+        memcpy(dst + x0, out, (size_t)n);
     }
 }
 
@@ -160,15 +172,16 @@ rte_status rte_median_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst, int32_
     }
 
     const int32_t r = ksize / 2;
-    const size_t pstride = padded_stride(width, r);
+    const size_t pstride = padded_stride(width, ksize);
     const size_t mark = rte_arena_mark(arena);
     uint8_t *block = rte_arena_alloc(arena, scratch_rows(ksize) * pstride);
     if (!block)
         return RTE_ERR_NO_MEMORY;
-    uint8_t *ring = block;
-    uint8_t *work[15]; /* sorted columns, then merged pairs */
-    for (size_t i = 0; i + (size_t)ksize < scratch_rows(ksize); i++)
-        work[i] = block + ((size_t)ksize + i) * pstride;
+    uint8_t *ring = block, *sorted = block + (size_t)ksize * pstride;
+    /* The slack past each padded row only feeds outputs that are never
+     * stored; it is cleared so no uninitialised byte is ever read. */
+    for (int32_t j = 0; j < ksize; j++)
+        memset(ring + (size_t)j * pstride + width + 2 * r, 0, pstride - (size_t)width - 2 * (size_t)r);
 
     /* Source rows are padded into ring slot (y % ksize) just before the first
      * output row that needs them; an output row reads rows within r of it
@@ -183,10 +196,10 @@ rte_status rte_median_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst, int32_
         for (int32_t j = 0; j < ksize; j++)
             rows[j] = ring + (size_t)(rte_blur_clamp(y - r + j, height) % ksize) * pstride;
         if (ksize == 3)
-            median3_row(rows[0], rows[1], rows[2], work[0], work[1], work[2], rte_u8_row(dst, y),
-                        width);
+            median3_row(rows[0], rows[1], rows[2], sorted, sorted + pstride, sorted + 2 * pstride,
+                        rte_u8_row(dst, y), width);
         else
-            median5_row(rows, work, work + 5, rte_u8_row(dst, y), width);
+            median5_row(rows, rte_u8_row(dst, y), width);
     }
 
     rte_arena_reset(arena, mark);
