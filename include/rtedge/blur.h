@@ -5,8 +5,8 @@
  * Gaussian blur is split in two: rte_gaussian_kernel_init() runs once at
  * configuration time (it uses floating point, like OpenCV's kernel builder)
  * and fills a small caller-owned table of Q8 taps; rte_gaussian_blur_u8()
- * runs per frame in integers only, with a rolling buffer of filtered rows
- * taken from the caller's arena.
+ * runs per frame in integers only, one output row at a time, with a line
+ * of scratch from the caller's arena (no intermediate image).
  *
  * Both kernels work in place: dst may be the same view as src (same buf and
  * stride). Any other overlap of src and dst is not allowed. */
@@ -50,8 +50,9 @@ rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x
                                     int32_t ksize_y, double sigma_x, double sigma_y);
 
 /* Arena bytes rte_gaussian_blur_u8() needs for images up to max_width wide
- * with this kernel (max_height is accepted for symmetry; the rolling row
- * buffer does not depend on it). 0 for invalid arguments. */
+ * with this kernel, in place or not (one padded line of column sums, plus
+ * copies of ksize_y source rows when dst is src; max_height is accepted for
+ * symmetry, nothing depends on it). 0 for invalid arguments. */
 size_t rte_gaussian_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
                                          const rte_gaussian_kernel *kernel);
 

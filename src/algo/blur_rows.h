@@ -28,16 +28,13 @@ static inline int32_t rte_blur_clamp(int32_t i, int32_t n)
     return i < 0 ? 0 : i >= n ? n - 1 : i;
 }
 
-/* pad[0 .. width + 2r) = row[reflect101(x - r)], widened to u16 once so
- * the filter loops need no per-tap widening. */
-static inline void rte_blur_pad_row_reflect101_u16(const uint8_t *restrict row,
-                                                   uint16_t *restrict pad, int32_t width, int32_t r)
+/* line[r .. r + width) holds a row; fills line[0 .. r) and
+ * line[r + width .. width + 2r) with its BORDER_REFLECT_101 continuation. */
+static inline void rte_blur_reflect101_borders_u16(uint16_t *line, int32_t width, int32_t r)
 {
-    for (int32_t x = 0; x < width; x++)
-        pad[r + x] = row[x];
     for (int32_t i = 1; i <= r; i++) {
-        pad[r - i] = row[rte_blur_reflect101(-i, width)];
-        pad[r + width - 1 + i] = row[rte_blur_reflect101(width - 1 + i, width)];
+        line[r - i] = line[r + rte_blur_reflect101(-i, width)];
+        line[r + width - 1 + i] = line[r + rte_blur_reflect101(width - 1 + i, width)];
     }
 }
 

@@ -1,29 +1,27 @@
 /* Per-frame Gaussian blur, bit-exact with OpenCV 4.6's fixed-point path for
  * 8-bit images (GaussianBlurFixedPoint): integers only.
  *
- *  - Row pass: each source row is copied into a padded u16 row
- *    (BORDER_REFLECT_101 on both sides), then convolved with the Q8 x taps
- *    into u16. The sum cannot overflow: the taps add up to 256, so it is at
- *    most 255 * 256.
- *  - Column pass: the last ksize_y filtered rows live in a ring buffer; each
- *    output row is sum(tap_y * row) rounded from Q16: (v + 2^15) >> 16.
- *    That sum needs 24 bits; to keep the arithmetic in u16 lanes (twice as
- *    many per vector as u32) the row pass stores each filtered value v as
- *    two planes, v >> 8 and v & 255, and the column pass sums each plane
- *    separately (see column_taps).
- *
- * Both sums are exact, so the order of additions does not matter and the
- * result equals OpenCV's whatever vector path it takes. */
+ * OpenCV computes out = (sum_j ty_j * sum_i tx_i * p(i, j) + 2^15) >> 16 with
+ * Q8 taps summing to 256. Every partial sum is exact, so the passes may run
+ * in either order; this one runs the column pass first because its input is
+ * u8 and needs no intermediate rows, only the ksize_y source rows:
+ *  - Column pass: v = sum_j ty_j * src(y - ry + j) for one output row, at
+ *    most 255 * 256, so u16. Rows beyond the edges reflect (BORDER_REFLECT_101).
+ *  - Row pass: out = (sum_i tx_i * v(x - rx + i) + 2^15) >> 16. That sum needs
+ *    24 bits; to keep the arithmetic in u16 lanes (twice as many per vector
+ *    as u32) v is stored as two planes, v >> 8 and v & 255, each padded
+ *    with reflected columns, and summed separately (see row_taps).
+ * No intermediate image: per output row only one padded line of scratch, plus
+ * (when working in place) copies of the source rows still needed. */
 #include <string.h>
 
 #include "blur_rows.h"
 #include "rtedge/blur.h"
 
-/* Ring planes are padded to whole 64-byte lines so every one starts aligned.
- * A ring row is two planes (high and low bytes of the filtered values). */
-static size_t ring_stride(int32_t width)
+/* Scratch rows are padded to whole 64-byte lines so each starts aligned. */
+static size_t line_elems(int32_t width, size_t elem_size)
 {
-    return ((size_t)width + 31) & ~(size_t)31;
+    return ((size_t)width * elem_size + 63) / 64 * 64 / elem_size;
 }
 
 static int kernel_is_valid(const rte_gaussian_kernel *k)
@@ -34,8 +32,8 @@ static int kernel_is_valid(const rte_gaussian_kernel *k)
         int32_t n = sizes[a];
         if (n < 1 || n > RTE_GAUSSIAN_MAX_KSIZE || (n & 1) == 0)
             return 0;
-        /* The overflow-free u16 row sums need taps summing to 256; the row
-         * and column kernels fold symmetric taps together. */
+        /* The overflow-free u16 sums need taps summing to 256; both passes
+         * fold symmetric taps together. */
         uint32_t sum = 0;
         for (int32_t i = 0; i < n; i++) {
             if (taps[a][i] != taps[a][n - 1 - i])
@@ -48,83 +46,87 @@ static int kernel_is_valid(const rte_gaussian_kernel *k)
     return 1;
 }
 
+/* Scratch: the two planes of one padded line, and for in-place calls a ring
+ * of ksize_y source rows. */
+static size_t plane_elems(int32_t width, int32_t rx)
+{
+    return line_elems(width + 2 * rx, sizeof(uint16_t));
+}
+
 size_t rte_gaussian_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
                                          const rte_gaussian_kernel *kernel)
 {
     if (!kernel || !kernel_is_valid(kernel) || max_width < 1 || max_width > RTE_MAX_SIDE ||
         max_height < 1 || max_height > RTE_MAX_SIDE)
         return 0;
-    int32_t rx = kernel->ksize_x / 2;
-    return rte_arena_piece_size((size_t)kernel->ksize_y * 2 * ring_stride(max_width) * sizeof(uint16_t)) +
-           rte_arena_piece_size(((size_t)max_width + 2 * (size_t)rx) * sizeof(uint16_t));
+    return rte_arena_piece_size(2 * plane_elems(max_width, kernel->ksize_x / 2) * sizeof(uint16_t)) +
+           rte_arena_piece_size((size_t)kernel->ksize_y * line_elems(max_width, 1));
 }
 
-/* v = sum_j taps[j] * pad[x + j] (taps symmetric), stored as hi = v >> 8
- * and lo = v & 255. The radius r is a constant in each caller so the tap
- * loop unrolls and the x loop vectorises in u16 lanes. */
-static inline void row_taps(const uint16_t *restrict pad, uint16_t *restrict hi,
-                            uint16_t *restrict lo, int32_t width, const uint16_t *restrict taps,
-                            int32_t r)
+/* v = sum_j taps[j] * rows[j][x] (taps symmetric), stored as hi = v >> 8 and
+ * lo = v & 255. The radius r is a constant in each caller so the tap loop
+ * unrolls and the x loop vectorises in u16 lanes. */
+static inline void column_taps(const uint8_t *const *rows, uint16_t *restrict hi,
+                               uint16_t *restrict lo, int32_t width, const uint16_t *restrict taps,
+                               int32_t r)
 {
+    const uint8_t *restrict mid = rows[r];
     for (int32_t x = 0; x < width; x++) {
-        uint16_t s = (uint16_t)(taps[r] * pad[x + r]);
+        uint16_t s = (uint16_t)(taps[r] * mid[x]);
         for (int32_t j = 0; j < r; j++)
-            s = (uint16_t)(s + taps[j] * (uint16_t)(pad[x + j] + pad[x + 2 * r - j]));
+            s = (uint16_t)(s + taps[j] * (uint16_t)(rows[j][x] + rows[2 * r - j][x]));
         hi[x] = (uint16_t)(s >> 8);
         lo[x] = (uint16_t)(s & 255);
     }
 }
 
-static void row_pass(const uint16_t *pad, uint16_t *hi, uint16_t *lo, int32_t width,
-                     const uint16_t *taps, int32_t ksize)
+static void column_pass(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo, int32_t width,
+                        const uint16_t *taps, int32_t ksize)
 {
     switch (ksize / 2) {
-    case 0: row_taps(pad, hi, lo, width, taps, 0); break;
-    case 1: row_taps(pad, hi, lo, width, taps, 1); break;
-    case 2: row_taps(pad, hi, lo, width, taps, 2); break;
-    case 3: row_taps(pad, hi, lo, width, taps, 3); break;
-    case 4: row_taps(pad, hi, lo, width, taps, 4); break;
-    case 5: row_taps(pad, hi, lo, width, taps, 5); break;
-    case 6: row_taps(pad, hi, lo, width, taps, 6); break;
-    default: row_taps(pad, hi, lo, width, taps, 7); break;
+    case 0: column_taps(rows, hi, lo, width, taps, 0); break;
+    case 1: column_taps(rows, hi, lo, width, taps, 1); break;
+    case 2: column_taps(rows, hi, lo, width, taps, 2); break;
+    case 3: column_taps(rows, hi, lo, width, taps, 3); break;
+    case 4: column_taps(rows, hi, lo, width, taps, 4); break;
+    case 5: column_taps(rows, hi, lo, width, taps, 5); break;
+    case 6: column_taps(rows, hi, lo, width, taps, 6); break;
+    default: column_taps(rows, hi, lo, width, taps, 7); break;
     }
 }
 
-/* dst[x] = (sum_j taps[j] * v_j[x] + 2^15) >> 16 where row j holds
- * v_j = 256 * hi_j + lo_j. With H = sum taps * hi_j and L = sum taps * lo_j
- * (each at most 255 * 256, so u16):
+/* dst[x] = (sum_i taps[i] * v(x + i) + 2^15) >> 16 over the padded planes,
+ * v = 256 * hi + lo. With H = sum taps * hi and L = sum taps * lo (each at
+ * most 255 * 256, so u16):
  *   sum = 256 * H + L  and  (sum + 2^15) >> 16 = (H + (L >> 8) + 128) >> 8,
- * where H + (L >> 8) <= 255 * 256 (as sum <= 255 * 2^16), so nothing
- * overflows. rows[j] is the high plane of row j, rows[j] + plane the low. */
-static inline void column_taps(const uint16_t *const *restrict rows, size_t plane,
-                               uint8_t *restrict dst, int32_t width, const uint16_t *restrict taps,
-                               int32_t r)
+ * where H + (L >> 8) <= 255 * 256 (as sum <= 255 * 2^16): no overflow. */
+static inline void row_taps(const uint16_t *restrict hi, const uint16_t *restrict lo,
+                            uint8_t *restrict dst, int32_t width, const uint16_t *restrict taps,
+                            int32_t r)
 {
-    const uint16_t *restrict mid = rows[r];
     for (int32_t x = 0; x < width; x++) {
-        uint16_t hs = (uint16_t)(taps[r] * mid[x]);
-        uint16_t ls = (uint16_t)(taps[r] * mid[x + plane]);
-        for (int32_t j = 0; j < r; j++) {
-            const uint16_t *a = rows[j], *b = rows[2 * r - j];
-            hs = (uint16_t)(hs + taps[j] * (uint16_t)(a[x] + b[x]));
-            ls = (uint16_t)(ls + taps[j] * (uint16_t)(a[x + plane] + b[x + plane]));
+        uint16_t hs = (uint16_t)(taps[r] * hi[x + r]);
+        uint16_t ls = (uint16_t)(taps[r] * lo[x + r]);
+        for (int32_t i = 0; i < r; i++) {
+            hs = (uint16_t)(hs + taps[i] * (uint16_t)(hi[x + i] + hi[x + 2 * r - i]));
+            ls = (uint16_t)(ls + taps[i] * (uint16_t)(lo[x + i] + lo[x + 2 * r - i]));
         }
         dst[x] = (uint8_t)((uint16_t)(hs + (ls >> 8) + 128) >> 8);
     }
 }
 
-static void column_pass(const uint16_t *const *rows, size_t plane, uint8_t *dst, int32_t width,
-                        const uint16_t *taps, int32_t ksize)
+static void row_pass(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
+                     const uint16_t *taps, int32_t ksize)
 {
     switch (ksize / 2) {
-    case 0: column_taps(rows, plane, dst, width, taps, 0); break;
-    case 1: column_taps(rows, plane, dst, width, taps, 1); break;
-    case 2: column_taps(rows, plane, dst, width, taps, 2); break;
-    case 3: column_taps(rows, plane, dst, width, taps, 3); break;
-    case 4: column_taps(rows, plane, dst, width, taps, 4); break;
-    case 5: column_taps(rows, plane, dst, width, taps, 5); break;
-    case 6: column_taps(rows, plane, dst, width, taps, 6); break;
-    default: column_taps(rows, plane, dst, width, taps, 7); break;
+    case 0: row_taps(hi, lo, dst, width, taps, 0); break;
+    case 1: row_taps(hi, lo, dst, width, taps, 1); break;
+    case 2: row_taps(hi, lo, dst, width, taps, 2); break;
+    case 3: row_taps(hi, lo, dst, width, taps, 3); break;
+    case 4: row_taps(hi, lo, dst, width, taps, 4); break;
+    case 5: row_taps(hi, lo, dst, width, taps, 5); break;
+    case 6: row_taps(hi, lo, dst, width, taps, 6); break;
+    default: row_taps(hi, lo, dst, width, taps, 7); break;
     }
 }
 
@@ -140,34 +142,40 @@ rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,
     const int32_t width = src->width, height = src->height;
     const int32_t kx = kernel->ksize_x, ky = kernel->ksize_y;
     const int32_t rx = kx / 2, ry = ky / 2;
-    const size_t rstride = ring_stride(width);
+    const size_t plane = plane_elems(width, rx);
+    const int in_place = src->buf == dst->buf;
+    const size_t ring_stride = line_elems(width, 1);
 
     const size_t mark = rte_arena_mark(arena);
-    uint16_t *ring = rte_arena_alloc(arena, (size_t)ky * 2 * rstride * sizeof(uint16_t));
-    uint16_t *pad = rte_arena_alloc(arena, ((size_t)width + 2 * (size_t)rx) * sizeof(uint16_t));
-    if (!ring || !pad) {
+    uint16_t *hi = rte_arena_alloc(arena, 2 * plane * sizeof(uint16_t));
+    uint8_t *ring = in_place ? rte_arena_alloc(arena, (size_t)ky * ring_stride) : NULL;
+    if (!hi || (in_place && !ring)) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
+    uint16_t *lo = hi + plane;
 
-    /* Source rows are filtered into ring slot (y % ky) just before the first
-     * output row that needs them. An output row needs source rows within
-     * ry of it only (reflection stays inside that window), so writing dst
-     * row y after filtering row y + ry also works in place. */
-    int32_t filtered = 0;
+    /* In place, source row y is copied into ring slot (y % ky) before the
+     * first output row that needs it, and dst row y is written after copying
+     * row y + ry: an output row reads source rows within ry of it only
+     * (reflection stays inside that window). */
+    int32_t copied = 0;
     for (int32_t y = 0; y < height; y++) {
-        int32_t last = y + ry < height ? y + ry : height - 1;
-        for (; filtered <= last; filtered++) {
-            uint16_t *hi = ring + (size_t)(filtered % ky) * 2 * rstride;
-            rte_blur_pad_row_reflect101_u16(rte_u8_row(src, filtered), pad, width, rx);
-            row_pass(pad, hi, hi + rstride, width, kernel->taps_x, kx);
+        const uint8_t *rows[RTE_GAUSSIAN_MAX_KSIZE];
+        if (in_place) {
+            int32_t last = y + ry < height ? y + ry : height - 1;
+            for (; copied <= last; copied++)
+                memcpy(ring + (size_t)(copied % ky) * ring_stride, rte_u8_row(src, copied),
+                       (size_t)width);
         }
-        const uint16_t *rows[RTE_GAUSSIAN_MAX_KSIZE];
         for (int32_t j = 0; j < ky; j++) {
             int32_t sy = rte_blur_reflect101(y - ry + j, height);
-            rows[j] = ring + (size_t)(sy % ky) * 2 * rstride;
+            rows[j] = in_place ? ring + (size_t)(sy % ky) * ring_stride : rte_u8_row(src, sy);
         }
-        column_pass(rows, rstride, rte_u8_row(dst, y), width, kernel->taps_y, ky);
+        column_pass(rows, hi + rx, lo + rx, width, kernel->taps_y, ky);
+        rte_blur_reflect101_borders_u16(hi, width, rx);
+        rte_blur_reflect101_borders_u16(lo, width, rx);
+        row_pass(hi, lo, rte_u8_row(dst, y), width, kernel->taps_x, kx);
     }
 
     rte_arena_reset(arena, mark);

@@ -228,7 +228,7 @@ static void gaussian_scratch_size_is_enough_and_checked(void **state)
     }
     /* too small: an error, the arena and the destination untouched */
     rte_arena a;
-    rte_arena_init(&a, arena_memory, need / 2);
+    rte_arena_init(&a, arena_memory, 64);
     memset(dst.buf, 200, (size_t)dst.stride * (size_t)dst.height);
     assert_int_equal(rte_gaussian_blur_u8(&src, &dst, &k, &a), RTE_ERR_NO_MEMORY);
     assert_int_equal(a.used, 0);
