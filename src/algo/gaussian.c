@@ -80,21 +80,6 @@ static inline void column_taps(const uint8_t *const *rows, uint16_t *restrict hi
     }
 }
 
-static void column_pass(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo, int32_t width,
-                        const uint16_t *taps, int32_t ksize)
-{
-    switch (ksize / 2) {
-    case 0: column_taps(rows, hi, lo, width, taps, 0); break;
-    case 1: column_taps(rows, hi, lo, width, taps, 1); break;
-    case 2: column_taps(rows, hi, lo, width, taps, 2); break;
-    case 3: column_taps(rows, hi, lo, width, taps, 3); break;
-    case 4: column_taps(rows, hi, lo, width, taps, 4); break;
-    case 5: column_taps(rows, hi, lo, width, taps, 5); break;
-    case 6: column_taps(rows, hi, lo, width, taps, 6); break;
-    default: column_taps(rows, hi, lo, width, taps, 7); break;
-    }
-}
-
 /* dst[x] = (sum_i taps[i] * v(x + i) + 2^15) >> 16 over the padded planes,
  * v = 256 * hi + lo. With H = sum taps * hi and L = sum taps * lo (each at
  * most 255 * 256, so u16):
@@ -115,19 +100,34 @@ static inline void row_taps(const uint16_t *restrict hi, const uint16_t *restric
     }
 }
 
+/* Calls STEP(r) with the radius as a constant, so each pass is compiled once
+ * per kernel size with its tap loop unrolled. */
+#define DISPATCH_RADIUS(radius, STEP) \
+    switch (radius) {                 \
+    case 0: STEP(0); break;           \
+    case 1: STEP(1); break;           \
+    case 2: STEP(2); break;           \
+    case 3: STEP(3); break;           \
+    case 4: STEP(4); break;           \
+    case 5: STEP(5); break;           \
+    case 6: STEP(6); break;           \
+    default: STEP(7); break;          \
+    }
+
+static void column_pass(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo, int32_t width,
+                        const uint16_t *taps, int32_t ksize)
+{
+#define COLUMN_STEP(r) column_taps(rows, hi, lo, width, taps, r)
+    DISPATCH_RADIUS(ksize / 2, COLUMN_STEP)
+#undef COLUMN_STEP
+}
+
 static void row_pass(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
                      const uint16_t *taps, int32_t ksize)
 {
-    switch (ksize / 2) {
-    case 0: row_taps(hi, lo, dst, width, taps, 0); break;
-    case 1: row_taps(hi, lo, dst, width, taps, 1); break;
-    case 2: row_taps(hi, lo, dst, width, taps, 2); break;
-    case 3: row_taps(hi, lo, dst, width, taps, 3); break;
-    case 4: row_taps(hi, lo, dst, width, taps, 4); break;
-    case 5: row_taps(hi, lo, dst, width, taps, 5); break;
-    case 6: row_taps(hi, lo, dst, width, taps, 6); break;
-    default: row_taps(hi, lo, dst, width, taps, 7); break;
-    }
+#define ROW_STEP(r) row_taps(hi, lo, dst, width, taps, r)
+    DISPATCH_RADIUS(ksize / 2, ROW_STEP)
+#undef ROW_STEP
 }
 
 rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,

@@ -83,6 +83,17 @@ static int32_t size_from_sigma(double sigma)
     return (int32_t)nearbyint(v) | 1;
 }
 
+/* Size 0 means "from sigma", which needs a positive sigma. */
+static rte_status resolve_size(int32_t *ksize, double sigma)
+{
+    if (*ksize != 0)
+        return RTE_OK;
+    if (sigma <= 0.0)
+        return RTE_ERR_ARGUMENT;
+    *ksize = size_from_sigma(sigma);
+    return *ksize == 0 ? RTE_ERR_UNSUPPORTED : RTE_OK;
+}
+
 static int valid_size(int32_t k)
 {
     return k >= 1 && k <= RTE_GAUSSIAN_MAX_KSIZE && (k & 1) == 1;
@@ -97,20 +108,11 @@ rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x
         sigma_y = sigma_x;
     if (ksize_x < 0 || ksize_y < 0)
         return RTE_ERR_ARGUMENT;
-    if (ksize_x == 0) {
-        if (sigma_x <= 0.0)
-            return RTE_ERR_ARGUMENT;
-        ksize_x = size_from_sigma(sigma_x);
-        if (ksize_x == 0)
-            return RTE_ERR_UNSUPPORTED;
-    }
-    if (ksize_y == 0) {
-        if (sigma_y <= 0.0)
-            return RTE_ERR_ARGUMENT;
-        ksize_y = size_from_sigma(sigma_y);
-        if (ksize_y == 0)
-            return RTE_ERR_UNSUPPORTED;
-    }
+    rte_status st = resolve_size(&ksize_x, sigma_x);
+    if (st == RTE_OK)
+        st = resolve_size(&ksize_y, sigma_y);
+    if (st != RTE_OK)
+        return st;
     if ((ksize_x & 1) == 0 || (ksize_y & 1) == 0)
         return RTE_ERR_ARGUMENT;
     if (!valid_size(ksize_x) || !valid_size(ksize_y))

@@ -66,7 +66,26 @@ struct Runner {
         tally.add(what, with_padding(expected, dst.stride), oracle::to_mat(whole));
     }
 
-    // in_place: run on a padded copy of the source and write over it.
+    // Runs `blur(src view, dst view)` on a padded copy of the input, writing
+    // to a padded blank destination or (in_place) over the copy itself.
+    template <class Blur>
+    void compare(const std::string &what, const cv::Mat &src, const cv::Mat &expected, bool in_place,
+                 Blur blur)
+    {
+        std::vector<uint8_t> s_mem, d_mem;
+        rte_image_u8 s = oracle::padded_u8(src, s_mem, rng);
+        rte_image_u8 d = in_place ? s : oracle::blank_u8(src.cols, src.rows, d_mem, rng);
+        rte_status st = blur(&s, &d);
+        if (st != RTE_OK || arena.used != 0) {
+            tally.call_failed(what, st != RTE_OK ? st : -1);
+            return;
+        }
+        if (in_place)
+            tally.add(what, expected, oracle::to_mat(d));
+        else
+            check(what, expected, d);
+    }
+
     void gaussian(const std::string &name, const cv::Mat &src, const Gauss &g, bool in_place = false)
     {
         std::string what = name + " " + describe(g) + (in_place ? " in place" : "");
@@ -78,18 +97,9 @@ struct Runner {
         }
         cv::Mat expected;
         cv::GaussianBlur(src, expected, cv::Size(g.kx, g.ky), g.sx, g.sy);
-        std::vector<uint8_t> s_mem, d_mem;
-        rte_image_u8 s = oracle::padded_u8(src, s_mem, rng);
-        rte_image_u8 d = in_place ? s : oracle::blank_u8(src.cols, src.rows, d_mem, rng);
-        st = rte_gaussian_blur_u8(&s, &d, &k, &arena);
-        if (st != RTE_OK || arena.used != 0) {
-            tally.call_failed(what, st != RTE_OK ? st : -1);
-            return;
-        }
-        if (in_place)
-            tally.add(what, expected, oracle::to_mat(d));
-        else
-            check(what, expected, d);
+        compare(what, src, expected, in_place, [&](const rte_image_u8 *s, rte_image_u8 *d) {
+            return rte_gaussian_blur_u8(s, d, &k, &arena);
+        });
     }
 
     void median(const std::string &name, const cv::Mat &src, int ksize, bool in_place = false)
@@ -97,18 +107,9 @@ struct Runner {
         std::string what = name + " median " + std::to_string(ksize) + (in_place ? " in place" : "");
         cv::Mat expected;
         cv::medianBlur(src, expected, ksize);
-        std::vector<uint8_t> s_mem, d_mem;
-        rte_image_u8 s = oracle::padded_u8(src, s_mem, rng);
-        rte_image_u8 d = in_place ? s : oracle::blank_u8(src.cols, src.rows, d_mem, rng);
-        rte_status st = rte_median_blur_u8(&s, &d, ksize, &arena);
-        if (st != RTE_OK || arena.used != 0) {
-            tally.call_failed(what, st != RTE_OK ? st : -1);
-            return;
-        }
-        if (in_place)
-            tally.add(what, expected, oracle::to_mat(d));
-        else
-            check(what, expected, d);
+        compare(what, src, expected, in_place, [&](const rte_image_u8 *s, rte_image_u8 *d) {
+            return rte_median_blur_u8(s, d, ksize, &arena);
+        });
     }
 };
 

@@ -37,6 +37,35 @@ static void assert_taps(const uint16_t *taps, const uint16_t *expected, int32_t 
         assert_int_equal(taps[i], expected[i]);
 }
 
+/* One blur under test and its direct reference, with a parameter each. */
+typedef struct blur_case {
+    rte_status (*run)(const rte_image_u8 *src, rte_image_u8 *dst, const void *param, rte_arena *a);
+    void (*reference)(const rte_image_u8 *src, rte_image_u8 *dst, const void *param);
+    const void *param;
+} blur_case;
+
+/* Blurs src into a padded destination and, on a copy, in place; both must
+ * equal the reference, leave all padding alone and give the arena back. */
+static void assert_blur_matches_reference(const rte_image_u8 *src, const blur_case *c)
+{
+    rte_image_u8 dst = unit_image_u8(src->width, src->height, 3, 0);
+    rte_image_u8 ref = unit_image_u8(src->width, src->height, 0, 0);
+    rte_arena a = make_arena();
+    assert_int_equal(c->run(src, &dst, c->param, &a), RTE_OK);
+    assert_int_equal(a.used, 0);
+    c->reference(src, &ref, c->param);
+    assert_same_pixels(&dst, &ref);
+    unit_assert_padding_u8(&dst);
+    unit_assert_padding_u8(src);
+    for (int32_t y = 0; y < src->height; y++)
+        memcpy(rte_u8_row(&dst, y), rte_u8_row(src, y), (size_t)src->width);
+    assert_int_equal(c->run(&dst, &dst, c->param, &a), RTE_OK);
+    assert_same_pixels(&dst, &ref);
+    unit_assert_padding_u8(&dst);
+    test_free(dst.buf);
+    test_free(ref.buf);
+}
+
 /* ---- kernel construction ---- */
 
 static void kernel_sigma0_uses_opencv_tables(void **state)
@@ -152,6 +181,17 @@ static void gaussian_hand_checked_row(void **state)
     assert_int_equal(a.used, 0);
 }
 
+static rte_status run_gaussian(const rte_image_u8 *src, rte_image_u8 *dst, const void *param,
+                               rte_arena *a)
+{
+    return rte_gaussian_blur_u8(src, dst, (const rte_gaussian_kernel *)param, a);
+}
+
+static void gaussian_reference(const rte_image_u8 *src, rte_image_u8 *dst, const void *param)
+{
+    reference_gaussian(src, dst, (const rte_gaussian_kernel *)param);
+}
+
 static void gaussian_matches_direct_reference(void **state)
 {
     uint32_t seed = 12345;
@@ -165,23 +205,8 @@ static void gaussian_matches_direct_reference(void **state)
             rte_gaussian_kernel k;
             double sigma = (s & 1) ? 0.0 : 0.4 + (s * 0.7);
             assert_int_equal(rte_gaussian_kernel_init(&k, sizes[s][0], sizes[s][1], sigma, 0), RTE_OK);
-            rte_image_u8 dst = unit_image_u8(w, h, 3, 0);
-            rte_image_u8 ref = unit_image_u8(w, h, 0, 0);
-            rte_arena a = make_arena();
-            assert_int_equal(rte_gaussian_blur_u8(&src, &dst, &k, &a), RTE_OK);
-            assert_int_equal(a.used, 0);
-            reference_gaussian(&src, &ref, &k);
-            assert_same_pixels(&dst, &ref);
-            unit_assert_padding_u8(&dst);
-            unit_assert_padding_u8(&src);
-            /* in place: a copy of src blurred over itself */
-            for (int32_t y = 0; y < h; y++)
-                memcpy(rte_u8_row(&dst, y), rte_u8_row(&src, y), (size_t)w);
-            assert_int_equal(rte_gaussian_blur_u8(&dst, &dst, &k, &a), RTE_OK);
-            assert_same_pixels(&dst, &ref);
-            unit_assert_padding_u8(&dst);
-            test_free(dst.buf);
-            test_free(ref.buf);
+            blur_case c = { run_gaussian, gaussian_reference, &k };
+            assert_blur_matches_reference(&src, &c);
         }
         test_free(src.buf);
     }
@@ -290,6 +315,17 @@ static void reference_median(const rte_image_u8 *src, rte_image_u8 *dst, int32_t
     }
 }
 
+static rte_status run_median(const rte_image_u8 *src, rte_image_u8 *dst, const void *param,
+                             rte_arena *a)
+{
+    return rte_median_blur_u8(src, dst, *(const int32_t *)param, a);
+}
+
+static void median_reference(const rte_image_u8 *src, rte_image_u8 *dst, const void *param)
+{
+    reference_median(src, dst, *(const int32_t *)param);
+}
+
 static void median_matches_direct_reference(void **state)
 {
     uint32_t seed = 777;
@@ -298,15 +334,8 @@ static void median_matches_direct_reference(void **state)
         rte_image_u8 src = unit_image_u8(w, h, (int32_t)(unit_rand(&seed) % 4), 0);
         fill_random(&src, &seed, (w & 1) ? 256 : 3);
         for (int32_t ksize = 1; ksize <= 5; ksize += 2) {
-            rte_image_u8 dst = unit_image_u8(w, h, 2, 0), ref = unit_image_u8(w, h, 0, 0);
-            rte_arena a = make_arena();
-            assert_int_equal(rte_median_blur_u8(&src, &dst, ksize, &a), RTE_OK);
-            assert_int_equal(a.used, 0);
-            reference_median(&src, &ref, ksize);
-            assert_same_pixels(&dst, &ref);
-            unit_assert_padding_u8(&dst);
-            test_free(dst.buf);
-            test_free(ref.buf);
+            blur_case c = { run_median, median_reference, &ksize };
+            assert_blur_matches_reference(&src, &c);
         }
         test_free(src.buf);
     }
@@ -366,23 +395,18 @@ static void median5_network_proven_on_all_binary_windows(void **state)
     }
 }
 
-static void median_in_place_and_small_images(void **state)
+static void median_small_and_thin_images(void **state)
 {
     uint32_t seed = 4242;
     static const int32_t dims[][2] = { { 1, 1 }, { 1, 9 }, { 9, 1 }, { 2, 2 }, { 4, 3 }, { 33, 17 } };
     for (size_t d = 0; d < sizeof dims / sizeof dims[0]; d++) {
+        rte_image_u8 src = unit_image_u8(dims[d][0], dims[d][1], 3, 0);
+        fill_random(&src, &seed, 256);
         for (int32_t ksize = 3; ksize <= 5; ksize += 2) {
-            rte_image_u8 img = unit_image_u8(dims[d][0], dims[d][1], 3, 0);
-            rte_image_u8 ref = unit_image_u8(dims[d][0], dims[d][1], 0, 0);
-            fill_random(&img, &seed, 256);
-            reference_median(&img, &ref, ksize);
-            rte_arena a = make_arena();
-            assert_int_equal(rte_median_blur_u8(&img, &img, ksize, &a), RTE_OK);
-            assert_same_pixels(&img, &ref);
-            unit_assert_padding_u8(&img);
-            test_free(img.buf);
-            test_free(ref.buf);
+            blur_case c = { run_median, median_reference, &ksize };
+            assert_blur_matches_reference(&src, &c);
         }
+        test_free(src.buf);
     }
 }
 
@@ -430,7 +454,7 @@ int main(void)
         cmocka_unit_test(median_matches_direct_reference),
         cmocka_unit_test(median3_network_proven_on_all_binary_windows),
         cmocka_unit_test(median5_network_proven_on_all_binary_windows),
-        cmocka_unit_test(median_in_place_and_small_images),
+        cmocka_unit_test(median_small_and_thin_images),
         cmocka_unit_test(median_scratch_and_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
