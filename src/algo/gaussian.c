@@ -11,6 +11,10 @@
  *    24 bits; to keep the arithmetic in u16 lanes (twice as many per vector
  *    as u32) v is stored as two planes, v >> 8 and v & 255, each padded
  *    with reflected columns, and summed separately (see row_taps).
+ * Narrow path: when the taps of both axes share power-of-two factors worth
+ * 8 bits together (OpenCV's sigma-0 kernels of size 3 and 5, any axis of
+ * size 1), dividing them out leaves a sum of at most 255 * 256 and the
+ * whole filter runs on one u16 plane, about half the work.
  * No intermediate image: per output row only one padded line of scratch, plus
  * (when working in place) copies of the source rows still needed. */
 #include <string.h>
@@ -63,20 +67,25 @@ size_t rte_gaussian_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
            rte_arena_piece_size((size_t)kernel->ksize_y * line_elems(max_width, 1));
 }
 
-/* v = sum_j taps[j] * rows[j][x] (taps symmetric), stored as hi = v >> 8 and
- * lo = v & 255. The radius r is a constant in each caller so the tap loop
- * unrolls and the x loop vectorises in u16 lanes. */
+/* v = sum_j taps[j] * rows[j][x] (taps symmetric). Split: stored as
+ * hi = v >> 8 and lo = v & 255; otherwise v goes to hi as it is. The radius
+ * r and `split` are constants in each caller so the tap loop unrolls and the
+ * x loop vectorises in u16 lanes. */
 static inline void column_taps(const uint8_t *const *rows, uint16_t *restrict hi,
                                uint16_t *restrict lo, int32_t width, const uint16_t *restrict taps,
-                               int32_t r)
+                               int32_t r, int split)
 {
     const uint8_t *restrict mid = rows[r];
     for (int32_t x = 0; x < width; x++) {
         uint16_t s = (uint16_t)(taps[r] * mid[x]);
         for (int32_t j = 0; j < r; j++)
             s = (uint16_t)(s + taps[j] * (uint16_t)(rows[j][x] + rows[2 * r - j][x]));
-        hi[x] = (uint16_t)(s >> 8);
-        lo[x] = (uint16_t)(s & 255);
+        if (split) {
+            hi[x] = (uint16_t)(s >> 8);
+            lo[x] = (uint16_t)(s & 255);
+        } else {
+            hi[x] = s;
+        }
     }
 }
 
@@ -100,6 +109,19 @@ static inline void row_taps(const uint16_t *restrict hi, const uint16_t *restric
     }
 }
 
+/* Narrow path: dst[x] = (sum_i taps[i] * v(x + i) + 128) >> 8 where the
+ * scaled-down taps keep the sum within 255 * 256. */
+static inline void row_taps_narrow(const uint16_t *restrict v, uint8_t *restrict dst, int32_t width,
+                                   const uint16_t *restrict taps, int32_t r)
+{
+    for (int32_t x = 0; x < width; x++) {
+        uint16_t s = (uint16_t)(taps[r] * v[x + r]);
+        for (int32_t i = 0; i < r; i++)
+            s = (uint16_t)(s + taps[i] * (uint16_t)(v[x + i] + v[x + 2 * r - i]));
+        dst[x] = (uint8_t)((uint16_t)(s + 128) >> 8);
+    }
+}
+
 /* Calls STEP(r) with the radius as a constant, so each pass is compiled once
  * per kernel size with its tap loop unrolled. */
 #define DISPATCH_RADIUS(radius, STEP) \
@@ -115,19 +137,43 @@ static inline void row_taps(const uint16_t *restrict hi, const uint16_t *restric
     }
 
 static void column_pass(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo, int32_t width,
-                        const uint16_t *taps, int32_t ksize)
+                        const uint16_t *taps, int32_t ksize, int split)
 {
-#define COLUMN_STEP(r) column_taps(rows, hi, lo, width, taps, r)
-    DISPATCH_RADIUS(ksize / 2, COLUMN_STEP)
-#undef COLUMN_STEP
+#define SPLIT_STEP(r) column_taps(rows, hi, lo, width, taps, r, 1)
+#define NARROW_STEP(r) column_taps(rows, hi, lo, width, taps, r, 0)
+    if (split) {
+        DISPATCH_RADIUS(ksize / 2, SPLIT_STEP)
+    } else {
+        DISPATCH_RADIUS(ksize / 2, NARROW_STEP)
+    }
+#undef SPLIT_STEP
+#undef NARROW_STEP
 }
 
 static void row_pass(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
-                     const uint16_t *taps, int32_t ksize)
+                     const uint16_t *taps, int32_t ksize, int split)
 {
-#define ROW_STEP(r) row_taps(hi, lo, dst, width, taps, r)
-    DISPATCH_RADIUS(ksize / 2, ROW_STEP)
-#undef ROW_STEP
+#define SPLIT_STEP(r) row_taps(hi, lo, dst, width, taps, r)
+#define NARROW_STEP(r) row_taps_narrow(hi, dst, width, taps, r)
+    if (split) {
+        DISPATCH_RADIUS(ksize / 2, SPLIT_STEP)
+    } else {
+        DISPATCH_RADIUS(ksize / 2, NARROW_STEP)
+    }
+#undef SPLIT_STEP
+#undef NARROW_STEP
+}
+
+/* Power-of-two factor shared by all n taps, as a shift, at most `limit`. */
+static int32_t common_shift(const uint16_t *taps, int32_t n, int32_t limit)
+{
+    uint32_t all = 0;
+    for (int32_t i = 0; i < n; i++)
+        all |= taps[i];
+    int32_t shift = 0;
+    while (shift < limit && ((all >> shift) & 1) == 0)
+        shift++;
+    return shift;
 }
 
 rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,
@@ -155,6 +201,17 @@ rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,
     }
     uint16_t *lo = hi + plane;
 
+    /* Narrow path when 8 bits of power-of-two factors can be divided out of
+     * the taps (the sum then never exceeds 255 * 256; see the top). */
+    uint16_t taps_x[RTE_GAUSSIAN_MAX_KSIZE], taps_y[RTE_GAUSSIAN_MAX_KSIZE];
+    const int32_t shift_y = common_shift(kernel->taps_y, ky, 8);
+    const int32_t shift_x = common_shift(kernel->taps_x, kx, 8 - shift_y);
+    const int split = shift_x + shift_y < 8;
+    for (int32_t i = 0; i < kx; i++)
+        taps_x[i] = split ? kernel->taps_x[i] : (uint16_t)(kernel->taps_x[i] >> shift_x);
+    for (int32_t j = 0; j < ky; j++)
+        taps_y[j] = split ? kernel->taps_y[j] : (uint16_t)(kernel->taps_y[j] >> shift_y);
+
     /* In place, source row y is copied into ring slot (y % ky) before the
      * first output row that needs it, and dst row y is written after copying
      * row y + ry: an output row reads source rows within ry of it only
@@ -172,10 +229,11 @@ rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,
             int32_t sy = rte_blur_reflect101(y - ry + j, height);
             rows[j] = in_place ? ring + (size_t)(sy % ky) * ring_stride : rte_u8_row(src, sy);
         }
-        column_pass(rows, hi + rx, lo + rx, width, kernel->taps_y, ky);
+        column_pass(rows, hi + rx, lo + rx, width, taps_y, ky, split);
         rte_blur_reflect101_borders_u16(hi, width, rx);
-        rte_blur_reflect101_borders_u16(lo, width, rx);
-        row_pass(hi, lo, rte_u8_row(dst, y), width, kernel->taps_x, kx);
+        if (split)
+            rte_blur_reflect101_borders_u16(lo, width, rx);
+        row_pass(hi, lo, rte_u8_row(dst, y), width, taps_x, kx, split);
     }
 
     rte_arena_reset(arena, mark);
