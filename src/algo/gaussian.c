@@ -136,32 +136,30 @@ static inline void row_taps_narrow(const uint16_t *restrict v, uint8_t *restrict
     default: STEP(7); break;          \
     }
 
+/* The same for the split (two-plane) or narrow (one-plane) variant. */
+#define DISPATCH(split, radius, SPLIT_STEP, NARROW_STEP) \
+    do {                                                 \
+        if (split) {                                     \
+            DISPATCH_RADIUS(radius, SPLIT_STEP)          \
+        } else {                                         \
+            DISPATCH_RADIUS(radius, NARROW_STEP)         \
+        }                                                \
+    } while (0)
+
 static void column_pass(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo, int32_t width,
                         const uint16_t *taps, int32_t ksize, int split)
 {
-#define SPLIT_STEP(r) column_taps(rows, hi, lo, width, taps, r, 1)
-#define NARROW_STEP(r) column_taps(rows, hi, lo, width, taps, r, 0)
-    if (split) {
-        DISPATCH_RADIUS(ksize / 2, SPLIT_STEP)
-    } else {
-        DISPATCH_RADIUS(ksize / 2, NARROW_STEP)
-    }
-#undef SPLIT_STEP
-#undef NARROW_STEP
+#define COLUMN_SPLIT(r) column_taps(rows, hi, lo, width, taps, r, 1)
+#define COLUMN_NARROW(r) column_taps(rows, hi, lo, width, taps, r, 0)
+    DISPATCH(split, ksize / 2, COLUMN_SPLIT, COLUMN_NARROW);
 }
 
 static void row_pass(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
                      const uint16_t *taps, int32_t ksize, int split)
 {
-#define SPLIT_STEP(r) row_taps(hi, lo, dst, width, taps, r)
-#define NARROW_STEP(r) row_taps_narrow(hi, dst, width, taps, r)
-    if (split) {
-        DISPATCH_RADIUS(ksize / 2, SPLIT_STEP)
-    } else {
-        DISPATCH_RADIUS(ksize / 2, NARROW_STEP)
-    }
-#undef SPLIT_STEP
-#undef NARROW_STEP
+#define ROW_SPLIT(r) row_taps(hi, lo, dst, width, taps, r)
+#define ROW_NARROW(r) row_taps_narrow(hi, dst, width, taps, r)
+    DISPATCH(split, ksize / 2, ROW_SPLIT, ROW_NARROW);
 }
 
 /* Power-of-two factor shared by all n taps, as a shift, at most `limit`. */
