@@ -42,10 +42,12 @@ typedef struct rte_gaussian_kernel {
  *    from the sigma of that axis as OpenCV does (round(sigma * 6 + 1) | 1).
  *  - sigma_x: > 0, or <= 0 to derive it from ksize_x (OpenCV's rule).
  *  - sigma_y: <= 0 means "same as sigma_x" (as in OpenCV).
- * Returns RTE_ERR_ARGUMENT for an even or negative size, or a size of 0 with
- * no positive sigma; RTE_ERR_UNSUPPORTED when a derived size exceeds
- * RTE_GAUSSIAN_MAX_KSIZE, or for a sigma outside the range in which OpenCV
- * 4.6 uses its bit-exact path (see the notes in src/algo/gaussian_kernel.c). */
+ * Returns RTE_ERR_ARGUMENT for an even or negative size, a size of 0 with no
+ * positive sigma, or a NaN or infinite sigma; RTE_ERR_UNSUPPORTED for a
+ * size, given or derived, above RTE_GAUSSIAN_MAX_KSIZE. OpenCV 4.6 takes its
+ * bit-exact path for every other parameter (checked for sigmas up to 1000),
+ * so all of them are inside the bit-exactness guarantee; see
+ * src/algo/gaussian_kernel.c for how the taps are reproduced. */
 rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x,
                                     int32_t ksize_y, double sigma_x, double sigma_y);
 
@@ -56,7 +58,9 @@ rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x
 size_t rte_gaussian_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
                                          const rte_gaussian_kernel *kernel);
 
-/* dst = cv::GaussianBlur(src) with BORDER_REFLECT_101. src and dst must have
+/* dst = cv::GaussianBlur(src) with BORDER_REFLECT_101, as OpenCV computes it
+ * for a whole Mat (or a ROI with BORDER_ISOLATED; for a plain ROI OpenCV reads
+ * the pixels around it and uses a floating-point path). src and dst must have
  * the same width and height. Scratch comes from `arena` and is given back
  * before returning. Errors: RTE_ERR_ARGUMENT (NULL or a malformed kernel),
  * RTE_ERR_SIZE (bad or mismatched images), RTE_ERR_NO_MEMORY (arena too
