@@ -14,6 +14,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <turbojpeg.h>
 #include <zlib.h>
 
 extern "C" {
@@ -388,6 +389,66 @@ int main()
                 std::remove(path.c_str());
             }
 
+    // 4. PGM/PPM that OpenCV does not write: text and binary with maxval
+    // 1..254, values above maxval, comments, and every kind of whitespace.
+    for (int i = 0; i < 40; i++) {
+        int w = 1 + (int)(rng() % 23), h = 1 + (int)(rng() % 17);
+        bool ppm = (i & 1) != 0, text = (i & 2) != 0;
+        int maxval = i % 5 == 0 ? 255 : 1 + (int)(rng() % 254);
+        const char *ws[] = {" ", "\n", "\t", "\r\n", "  \n ", "\v", "\f"};
+        auto sep = [&] { return std::string(ws[rng() % 7]); };
+        std::string head = std::string("P") + (char)('2' + (ppm ? 1 : 0) + (text ? 0 : 3)) + sep();
+        if (rng() & 1)
+            head += "# a comment\n";
+        head += std::to_string(w) + sep() + (rng() & 1 ? "#c\r" : "") + std::to_string(h) + sep() +
+                std::to_string(maxval) + (text ? sep() : std::string(ws[rng() % 3]));
+        std::vector<uint8_t> bytes(head.begin(), head.end());
+        int n = w * h * (ppm ? 3 : 1);
+        for (int k = 0; k < n; k++) {
+            int v = (int)(rng() % 256); // above maxval too
+            if (text) {
+                std::string tok = std::to_string(v) + (k % 7 == 6 ? std::string("\n") : sep());
+                bytes.insert(bytes.end(), tok.begin(), tok.end());
+            } else {
+                bytes.push_back((uint8_t)v);
+            }
+        }
+        std::string path = tmp + "/p" + std::to_string(i) + (ppm ? ".ppm" : ".pgm");
+        write_bytes(path, bytes);
+        c.check(path, "pnm " + std::to_string(i) + (text ? " text" : " binary") + " maxval " +
+                          std::to_string(maxval));
+        std::remove(path.c_str());
+    }
+
+    // 5. JPEG chroma subsamplings OpenCV does not write (libjpeg-turbo's
+    // encoder), grey JPEGs with an orientation.
+    const int samps[] = {TJSAMP_444, TJSAMP_422, TJSAMP_420, TJSAMP_440, TJSAMP_411, TJSAMP_GRAY};
+    for (int i = 0; i < 36; i++) {
+        const oracle::Input &in = inputs[(size_t)i % n];
+        cv::Mat bgr = colour_of(in, rng);
+        int samp = samps[i % 6];
+        unsigned char *jpg = nullptr;
+        unsigned long size = 0;
+        int q = 40 + (int)(rng() % 60);
+        // A fresh compressor each time: libjpeg-turbo 2.1 keeps progressive
+        // scan settings across calls on one handle.
+        tjhandle tj = tjInitCompress();
+        int rc = tjCompress2(tj, bgr.data, bgr.cols, (int)bgr.step, bgr.rows, TJPF_BGR, &jpg, &size, samp, q,
+                             (i % 4 == 3 ? TJFLAG_PROGRESSIVE : 0));
+        tjDestroy(tj);
+        if (rc != 0) {
+            t.call_failed("tjCompress2", -1);
+            continue;
+        }
+        std::vector<uint8_t> bytes(jpg, jpg + size);
+        tjFree(jpg);
+        int orient = samp == TJSAMP_GRAY ? 1 + (int)(rng() % 8) : 1;
+        std::string path = tmp + "/s" + std::to_string(i) + ".jpg";
+        write_bytes(path, orient == 1 ? bytes : with_orientation(bytes, orient, (rng() & 1) != 0));
+        c.check(path, "jpeg subsampling " + std::to_string(samp) + " " + std::to_string(bgr.cols) + "x" +
+                          std::to_string(bgr.rows) + " orientation " + std::to_string(orient));
+        std::remove(path.c_str());
+    }
     fs::remove_all(tmp);
     rte_image_reader_destroy(reader);
     return t.finish();
