@@ -214,12 +214,13 @@ rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_t
     if (fread(r->file, 1, (size_t)size, f) != (size_t)size)
         return io_fail_errno(m, RTE_ERR_IO, "read error");
 
-    int w, ht, subsamp, colorspace;
+    /* The frame size comes from our own header walk: tjDecompressHeader3
+     * is not used because after an error it leaves the handle mid-header,
+     * and the next file would fail. */
+    int w = h.width, ht = h.height;
     tjhandle tj = r->tj;
-    if (tjDecompressHeader3(tj, r->file, (unsigned long)size, &w, &ht, &subsamp, &colorspace) != 0)
-        return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: %s", tjGetErrorStr2(tj));
-    if (w != h.width || ht != h.height)
-        return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: inconsistent frame size");
+    if (!tj)
+        return io_fail(m, RTE_ERR_NO_MEMORY, "no JPEG decoder (out of memory after an earlier error)");
 
     int pf = dst->channels == 1 ? TJPF_GRAY : TJPF_BGR;
     /* Warnings (e.g. premature end of data) are errors; progressive files
@@ -236,8 +237,13 @@ rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_t
     if (rc != 0) {
         const char *text = tjGetErrorStr2(tj);
         int truncated = strstr(text, "Premature end") != NULL;
-        return io_fail(m, truncated ? RTE_ERR_TRUNCATED : RTE_ERR_CORRUPT, "%s JPEG: %s",
-                       truncated ? "truncated" : "corrupt", text);
+        st = io_fail(m, truncated ? RTE_ERR_TRUNCATED : RTE_ERR_CORRUPT, "%s JPEG: %s",
+                     truncated ? "truncated" : "corrupt", text);
+        /* A fresh handle after an error, so no state of the bad file can
+         * affect the next one (the only allocation on this path). */
+        tjDestroy(tj);
+        r->tj = tjInitDecompress();
+        return st;
     }
     return RTE_OK;
 }

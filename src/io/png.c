@@ -227,8 +227,38 @@ static rte_status decode_rows(spng_ctx *ctx, rte_image_reader *r, const io_msg *
     return RTE_OK;
 }
 
+/* Walks the chunk headers to IEND. libspng stops reading once the pixels
+ * are done, but libpng (OpenCV) reads on to IEND and fails on a file cut
+ * after its pixel data: so does this. */
+static rte_status check_chunks(FILE *f, const io_msg *m)
+{
+    long pos = 8;
+    uint8_t b[8];
+    for (;;) {
+        if (fseek(f, pos, SEEK_SET) != 0 || fread(b, 1, 8, f) != 8)
+            return io_fail(m, RTE_ERR_TRUNCATED, "truncated PNG: the file ends at byte %ld, before IEND", pos);
+        uint32_t len = be32(b);
+        if (len > 0x7FFFFFFFu)
+            return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: chunk length %u at byte %ld", (unsigned)len, pos);
+        if (memcmp(b + 4, "IEND", 4) == 0) {
+            if (len != 0)
+                return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IEND has length %u", (unsigned)len);
+            if (fread(b, 1, 4, f) != 4)
+                return io_fail(m, RTE_ERR_TRUNCATED, "truncated PNG: the IEND chunk is cut");
+            if (be32(b) != crc32_bytes((const uint8_t *)"IEND", 4))
+                return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IEND CRC mismatch");
+            rewind(f);
+            return RTE_OK;
+        }
+        pos += 12 + (long)len;
+    }
+}
+
 rte_status png_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_target *dst)
 {
+    rte_status st = check_chunks(f, m);
+    if (st != RTE_OK)
+        return st;
     spng_ctx *ctx = spng_ctx_new(0);
     if (!ctx)
         return io_fail(m, RTE_ERR_NO_MEMORY, "out of memory for the PNG decoder");
@@ -241,7 +271,7 @@ rte_status png_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_ta
      * chunk the chunk is dropped. */
     if (!err)
         err = spng_set_crc_action(ctx, SPNG_CRC_ERROR, SPNG_CRC_DISCARD);
-    rte_status st = err ? spng_status(m, err) : decode_rows(ctx, r, m, dst);
+    st = err ? spng_status(m, err) : decode_rows(ctx, r, m, dst);
     spng_ctx_free(ctx);
     return st;
 }
