@@ -143,7 +143,8 @@ rte_image_reader *rte_image_reader_create(int32_t max_width, int32_t max_height)
     r->pixels_capacity = (size_t)max_width * (size_t)max_height * 3;
     r->pixels = malloc(r->pixels_capacity);
     r->tj = jpeg_decoder_new();
-    if (!r->row || !r->file || !r->pixels || !r->tj) {
+    r->io_buffer = malloc(IO_BUFFER_SIZE);
+    if (!r->row || !r->file || !r->pixels || !r->tj || !r->io_buffer) {
         rte_image_reader_destroy(r);
         return NULL;
     }
@@ -155,6 +156,7 @@ void rte_image_reader_destroy(rte_image_reader *reader)
     if (!reader)
         return;
     jpeg_decoder_free(reader->tj);
+    free(reader->io_buffer);
     free(reader->pixels);
     free(reader->file);
     free(reader->row);
@@ -177,6 +179,8 @@ static rte_status read_file(rte_image_reader *r, const io_msg *m, want w, io_tar
     FILE *f = open_read(m, &st);
     if (!f)
         return st;
+    /* The reader's buffer instead of one stdio would allocate per file. */
+    setvbuf(f, r->io_buffer, _IOFBF, IO_BUFFER_SIZE);
     st = detect_and_probe(f, m, info);
     if (st != RTE_OK)
         goto done;
@@ -310,62 +314,62 @@ static rte_status write_file(const io_msg *m, const struct write_job *j)
     return st;
 }
 
-rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg, size_t msg_size)
+struct ext_format {
+    const char *ext;
+    rte_file_format format;
+};
+
+/* The checks every writer shares, then the format from the extension. */
+static rte_status write_checked(const char *path, char *msg, size_t msg_size, rte_status view_status,
+                                struct write_job *j, const struct ext_format *formats, const char *kind)
 {
     io_msg m = { path, msg, msg_size };
     clear_msg(msg, msg_size);
     if (!path)
         return io_fail(&m, RTE_ERR_ARGUMENT, "no path");
+    if (view_status != RTE_OK)
+        return io_fail(&m, view_status, "bad image");
+    for (; formats->ext; formats++)
+        if (has_ext(path, formats->ext)) {
+            j->format = formats->format;
+            return write_file(&m, j);
+        }
+    return io_fail(&m, RTE_ERR_ARGUMENT, "unknown extension for %s", kind);
+}
+
+rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg, size_t msg_size)
+{
+    static const struct ext_format formats[] = {
+        { ".pgm", RTE_FILE_PGM }, { ".png", RTE_FILE_PNG }, { ".npy", RTE_FILE_NPY }, { NULL, RTE_FILE_UNKNOWN }
+    };
     rte_status st = rte_image_u8_check(img);
-    if (st != RTE_OK)
-        return io_fail(&m, st, "bad image");
-    struct write_job j = { img->buf, (size_t)img->stride, img->width, img->height, 1, RTE_FILE_UNKNOWN,
-                           "|u1", 1 };
-    if (has_ext(path, ".pgm"))
-        j.format = RTE_FILE_PGM;
-    else if (has_ext(path, ".png"))
-        j.format = RTE_FILE_PNG;
-    else if (has_ext(path, ".npy"))
-        j.format = RTE_FILE_NPY;
-    else
-        return io_fail(&m, RTE_ERR_ARGUMENT, "unknown extension for a grey image (use .pgm, .png or .npy)");
-    return write_file(&m, &j);
+    struct write_job j = { 0 };
+    if (st == RTE_OK)
+        j = (struct write_job){ img->buf, (size_t)img->stride, img->width, img->height, 1, RTE_FILE_UNKNOWN,
+                                "|u1", 1 };
+    return write_checked(path, msg, msg_size, st, &j, formats, "a grey image (use .pgm, .png or .npy)");
 }
 
 rte_status rte_image_write_bgr(const char *path, const rte_image_u8c3 *img, char *msg, size_t msg_size)
 {
-    io_msg m = { path, msg, msg_size };
-    clear_msg(msg, msg_size);
-    if (!path)
-        return io_fail(&m, RTE_ERR_ARGUMENT, "no path");
+    static const struct ext_format formats[] = {
+        { ".ppm", RTE_FILE_PPM }, { ".png", RTE_FILE_PNG }, { ".npy", RTE_FILE_NPY }, { NULL, RTE_FILE_UNKNOWN }
+    };
     rte_status st = rte_image_u8c3_check(img);
-    if (st != RTE_OK)
-        return io_fail(&m, st, "bad image");
-    struct write_job j = { img->buf, (size_t)img->stride, img->width, img->height, 3, RTE_FILE_UNKNOWN,
-                           "|u1", 1 };
-    if (has_ext(path, ".ppm"))
-        j.format = RTE_FILE_PPM;
-    else if (has_ext(path, ".png"))
-        j.format = RTE_FILE_PNG;
-    else if (has_ext(path, ".npy"))
-        j.format = RTE_FILE_NPY;
-    else
-        return io_fail(&m, RTE_ERR_ARGUMENT, "unknown extension for a colour image (use .ppm, .png or .npy)");
-    return write_file(&m, &j);
+    struct write_job j = { 0 };
+    if (st == RTE_OK)
+        j = (struct write_job){ img->buf, (size_t)img->stride, img->width, img->height, 3, RTE_FILE_UNKNOWN,
+                                "|u1", 1 };
+    return write_checked(path, msg, msg_size, st, &j, formats, "a colour image (use .ppm, .png or .npy)");
 }
 
 rte_status rte_image_write_s16(const char *path, const rte_image_s16 *img, char *msg, size_t msg_size)
 {
-    io_msg m = { path, msg, msg_size };
-    clear_msg(msg, msg_size);
-    if (!path)
-        return io_fail(&m, RTE_ERR_ARGUMENT, "no path");
+    static const struct ext_format formats[] = { { ".npy", RTE_FILE_NPY }, { NULL, RTE_FILE_UNKNOWN } };
     rte_status st = rte_image_s16_check(img);
-    if (st != RTE_OK)
-        return io_fail(&m, st, "bad image");
-    if (!has_ext(path, ".npy"))
-        return io_fail(&m, RTE_ERR_ARGUMENT, "unknown extension for an int16 image (use .npy)");
-    struct write_job j = { img->buf, (size_t)img->stride * sizeof(int16_t), img->width, img->height, 1,
-                           RTE_FILE_NPY, "<i2", 2 };
-    return write_file(&m, &j);
+    struct write_job j = { 0 };
+    if (st == RTE_OK)
+        j = (struct write_job){ img->buf, (size_t)img->stride * sizeof(int16_t), img->width, img->height, 1,
+                                RTE_FILE_UNKNOWN, "<i2", 2 };
+    return write_checked(path, msg, msg_size, st, &j, formats, "an int16 image (use .npy)");
 }

@@ -38,6 +38,8 @@ static inline uint8_t *io_target_row(const io_target *t, int32_t y)
     return t->buf + (size_t)y * t->stride;
 }
 
+enum { IO_BUFFER_SIZE = 1 << 16 };
+
 struct rte_image_reader {
     int32_t max_width, max_height;
     uint8_t *row;           /* one decoded row of any format: max_width * 8 bytes */
@@ -46,6 +48,7 @@ struct rte_image_reader {
     uint8_t *pixels;        /* a whole decoded image before EXIF reorientation */
     size_t pixels_capacity;
     void *tj;               /* libjpeg-turbo decompressor (tjhandle) */
+    char *io_buffer;        /* stdio's buffer for the file being read */
 };
 
 /* The formats. probe reads the header of f (positioned at its start);

@@ -30,6 +30,16 @@ struct Checker {
     rte_image_reader *reader;
     std::mt19937 &rng;
 
+    // Reports a failed call (with its message); true when st is RTE_OK.
+    bool ok(rte_status st, const char *msg, const std::string &what)
+    {
+        if (st == RTE_OK)
+            return true;
+        std::fprintf(stderr, "%s\n", msg);
+        t.call_failed(what, st);
+        return false;
+    }
+
     // Our BGR decode (padded destination), or an empty Mat on failure.
     cv::Mat read_bgr(const std::string &path, int w, int h)
     {
@@ -37,12 +47,8 @@ struct Checker {
         std::vector<uint8_t> buf((size_t)stride * h, 0xA5);
         rte_image_u8c3 dst = {w, h, stride, buf.data()};
         char msg[RTE_IO_MESSAGE_SIZE];
-        rte_status st = rte_image_read_bgr(reader, path.c_str(), &dst, msg, sizeof msg);
-        if (st != RTE_OK) {
-            std::fprintf(stderr, "%s\n", msg);
-            t.call_failed("read_bgr " + path, st);
+        if (!ok(rte_image_read_bgr(reader, path.c_str(), &dst, msg, sizeof msg), msg, "read_bgr " + path))
             return cv::Mat();
-        }
         return cv::Mat(h, w, CV_8UC3, buf.data(), (size_t)stride).clone();
     }
 
@@ -51,17 +57,12 @@ struct Checker {
         std::vector<uint8_t> buf;
         rte_image_u8 dst = oracle::blank_u8(w, h, buf, rng);
         char msg[RTE_IO_MESSAGE_SIZE];
-        rte_status st = rte_image_read_gray(reader, path.c_str(), &dst, msg, sizeof msg);
-        if (st != RTE_OK) {
-            std::fprintf(stderr, "%s\n", msg);
-            t.call_failed("read_gray " + path, st);
+        if (!ok(rte_image_read_gray(reader, path.c_str(), &dst, msg, sizeof msg), msg, "read_gray " + path))
             return cv::Mat();
-        }
         return oracle::to_mat(dst);
     }
 
-    // Every way of reading `path` against imread; returns false when
-    // OpenCV cannot read it either.
+    // Every way of reading `path` against imread.
     void check(const std::string &path, const std::string &label)
     {
         cv::Mat color = cv::imread(path, cv::IMREAD_COLOR);
@@ -72,23 +73,16 @@ struct Checker {
         }
         rte_image_info info;
         char msg[RTE_IO_MESSAGE_SIZE];
-        rte_status st = rte_image_probe(path.c_str(), &info, msg, sizeof msg);
-        if (st != RTE_OK) {
-            std::fprintf(stderr, "%s\n", msg);
-            t.call_failed("probe " + path, st);
+        if (!ok(rte_image_probe(path.c_str(), &info, msg, sizeof msg), msg, "probe " + path))
             return;
-        }
         t.add(label + " bgr", color, read_bgr(path, info.width, info.height));
 
         // The packed read in the file's own channels.
         std::vector<uint8_t> packed((size_t)info.width * info.height * info.channels + 7, 0xA5);
         rte_image_info info2;
-        st = rte_image_read(reader, path.c_str(), packed.data(), packed.size(), &info2, msg, sizeof msg);
-        if (st != RTE_OK) {
-            std::fprintf(stderr, "%s\n", msg);
-            t.call_failed("read " + path, st);
+        if (!ok(rte_image_read(reader, path.c_str(), packed.data(), packed.size(), &info2, msg, sizeof msg), msg,
+                "read " + path))
             return;
-        }
         cv::Mat native(info.height, info.width, info.channels == 3 ? CV_8UC3 : CV_8UC1, packed.data());
         if (info.channels == 1) {
             cv::Mat gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
