@@ -7,8 +7,9 @@
  * bit for bit: BGR order, 16-bit PNG samples reduced to their high byte,
  * alpha dropped (not blended), palettes expanded, 1/2/4-bit grey scaled to
  * 0..255, JPEG decoded with the accurate integer IDCT and smooth ("fancy")
- * chroma upsampling, and the EXIF orientation of a JPEG applied. A grey file
- * (PGM, grey PNG, grey JPEG) can also be read as one channel.
+ * chroma upsampling, and the EXIF orientation of a JPEG (first APP1) or a
+ * PNG (first eXIf chunk) applied. A grey file (PGM, grey PNG, grey JPEG)
+ * can also be read as one channel.
  *
  * Stricter than imread, on purpose: a JPEG that libjpeg only warns about (cut
  * short and padded with grey, damaged entropy data) is an error, as is a PNG
@@ -62,14 +63,14 @@ typedef struct rte_image_info {
 
 /* Reads the header of `path` (format from the content, not the name): size,
  * channels, format. Reads only the headers (JPEG: the markers up to the
- * first scan) and needs no decode buffers (fopen's FILE aside); fails with RTE_ERR_TOO_LARGE beyond RTE_MAX_SIDE. A JPEG whose
- * EXIF orientation swaps the axes reports the swapped (displayed) size. */
+ * first scan; PNG: every chunk header up to IEND) and needs no decode buffers (fopen's FILE aside); fails with RTE_ERR_TOO_LARGE beyond RTE_MAX_SIDE. A JPEG or PNG
+ * whose EXIF orientation swaps the axes reports the swapped (displayed) size. */
 rte_status rte_image_probe(const char *path, rte_image_info *info, char *msg, size_t msg_size);
 
 /* A reader: decode buffers for images up to max_width x max_height
  * (1..RTE_MAX_SIDE each), allocated once here: one row buffer, a whole-file
  * buffer for JPEG (rte_image_reader_max_file_bytes), a BGR image for
- * reorienting EXIF-rotated JPEGs, a 64 KB stdio buffer and the TurboJPEG
+ * reorienting EXIF-rotated files, a 64 KB stdio buffer and the TurboJPEG
  * handle; about 7.5 MB for 1280x720. NULL on bad sizes or when memory runs
  * out. A reader is not thread-safe: one per thread.
  *

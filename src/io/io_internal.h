@@ -77,6 +77,19 @@ rte_status png_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride
 rte_status npy_write(FILE *f, const io_msg *m, const void *buf, size_t stride_bytes, int32_t w, int32_t h,
                      int channels, const char *dtype, size_t elem_size);
 
+/* Reads n bytes at absolute offset pos; 0 when the file is shorter. */
+int io_read_at(FILE *f, long pos, uint8_t *out, size_t n);
+
+/* The orientation (1..8; 1 when absent or not understood) in the TIFF
+ * structure at [tiff, tiff + len) of f, as OpenCV's ExifReader finds it:
+ * byte order, 0x002A, IFD0, the first orientation entry's 16-bit value;
+ * entries beyond the data end the search. */
+int io_exif_orientation(FILE *f, long tiff, long len);
+
+/* dst = src (sw x sh, c channels, packed) turned by an EXIF orientation,
+ * as OpenCV's ExifTransform does; dst is sh x sw for 5..8. */
+void io_reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientation, const io_target *dst);
+
 /* Grey row -> target row (copy or replicate to BGR). */
 void io_put_gray_row(const io_target *t, int32_t y, const uint8_t *gray);
 /* RGB row -> target row (BGR; the target has 3 channels). */

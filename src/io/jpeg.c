@@ -34,54 +34,6 @@ size_t jpeg_max_file_bytes(int32_t max_width, int32_t max_height)
     return (n == (unsigned long)-1 ? (size_t)max_width * (size_t)max_height * 6 : (size_t)n) + ((size_t)1 << 20);
 }
 
-/* Reads n bytes at absolute offset pos; 0 when the file is shorter. */
-static int read_at(FILE *f, long pos, uint8_t *out, size_t n)
-{
-    return fseek(f, pos, SEEK_SET) == 0 && fread(out, 1, n, f) == n;
-}
-
-/* OpenCV's ExifReader on the APP1 payload at [start, start + size): skip 6
- * bytes ("Exif\0\0" in a real EXIF segment, unchecked), TIFF byte order,
- * 0x002A, IFD0, and the first orientation entry's 16-bit value. Entries
- * beyond the segment end the search. */
-static int exif_orientation(FILE *f, long start, long size)
-{
-    if (size <= 6)
-        return 1;
-    long tiff = start + 6, len = size - 6;
-    uint8_t b[12];
-    if (len < 8 || !read_at(f, tiff, b, 8))
-        return 1;
-    int le;
-    if (b[0] == 'I' && b[1] == 'I')
-        le = 1;
-    else if (b[0] == 'M' && b[1] == 'M')
-        le = 0;
-    else
-        return 1;
-#define U16(p) (le ? (unsigned)((p)[0] | (p)[1] << 8) : (unsigned)((p)[0] << 8 | (p)[1]))
-#define U32(p) (le ? ((uint32_t)(p)[0] | (uint32_t)(p)[1] << 8 | (uint32_t)(p)[2] << 16 | (uint32_t)(p)[3] << 24) \
-                   : ((uint32_t)(p)[0] << 24 | (uint32_t)(p)[1] << 16 | (uint32_t)(p)[2] << 8 | (uint32_t)(p)[3]))
-    if (U16(b + 2) != 0x2A)
-        return 1;
-    uint32_t ifd = U32(b + 4);
-    if ((long)ifd + 2 > len || !read_at(f, tiff + (long)ifd, b, 2))
-        return 1;
-    unsigned count = U16(b);
-    for (unsigned i = 0; i < count; i++) {
-        long entry = (long)ifd + 2 + 12 * (long)i;
-        if (entry + 10 > len || !read_at(f, tiff + entry, b, 10))
-            return 1;
-        if (U16(b) == 0x0112) {
-            unsigned v = U16(b + 8);
-            return v >= 1 && v <= 8 ? (int)v : 1;
-        }
-    }
-    return 1;
-#undef U16
-#undef U32
-}
-
 static int is_sof(int marker)
 {
     return (marker >= 0xC0 && marker <= 0xCF) && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
@@ -95,10 +47,10 @@ static rte_status read_header(FILE *f, const io_msg *m, jpeg_header *h)
     long pos = 2, app1 = -1, app1_size = 0;
     int have_sof = 0;
     h->orientation = 1;
-    if (!read_at(f, 0, b, 2) || b[0] != 0xFF || b[1] != 0xD8)
+    if (!io_read_at(f, 0, b, 2) || b[0] != 0xFF || b[1] != 0xD8)
         return io_fail(m, RTE_ERR_FORMAT, "not a JPEG file (no SOI marker)");
     for (;;) {
-        if (!read_at(f, pos, b, 2))
+        if (!io_read_at(f, pos, b, 2))
             return io_fail(m, RTE_ERR_TRUNCATED, "truncated JPEG: the file ends in the headers at byte %ld", pos);
         if (b[0] != 0xFF)
             return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: expected a marker at byte %ld, found 0x%02x", pos,
@@ -114,7 +66,7 @@ static rte_status read_header(FILE *f, const io_msg *m, jpeg_header *h)
         }
         if (marker == 0xD8 || marker == 0xD9 || marker == 0x00)
             return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: unexpected marker 0x%02x at byte %ld", marker, pos);
-        if (!read_at(f, pos + 2, b, 2))
+        if (!io_read_at(f, pos + 2, b, 2))
             return io_fail(m, RTE_ERR_TRUNCATED, "truncated JPEG: the file ends in the headers at byte %ld", pos);
         long len = (long)(b[0] << 8 | b[1]);
         if (len < 2)
@@ -123,7 +75,7 @@ static rte_status read_header(FILE *f, const io_msg *m, jpeg_header *h)
         if (marker == 0xDA)
             break;
         if (is_sof(marker)) {
-            if (len < 8 || !read_at(f, pos + 4, b, 6))
+            if (len < 8 || !io_read_at(f, pos + 4, b, 6))
                 return len < 8 ? io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: short frame header")
                                : io_fail(m, RTE_ERR_TRUNCATED, "truncated JPEG: the frame header is cut");
             if (have_sof)
@@ -153,7 +105,7 @@ static rte_status read_header(FILE *f, const io_msg *m, jpeg_header *h)
     if (h->components != 1 && h->components != 3)
         return io_fail(m, RTE_ERR_UNSUPPORTED, "JPEG with %d components (CMYK?) is not supported", h->components);
     if (app1 >= 0)
-        h->orientation = exif_orientation(f, app1, app1_size);
+        h->orientation = app1_size > 6 ? io_exif_orientation(f, app1 + 6, app1_size - 6) : 1;
     return RTE_OK;
 }
 
@@ -169,31 +121,6 @@ rte_status jpeg_probe(FILE *f, const io_msg *m, rte_image_info *info)
     info->channels = h.components == 1 ? 1 : 3;
     info->format = RTE_FILE_JPEG;
     return RTE_OK;
-}
-
-/* dst = src turned as OpenCV's ExifTransform does: flips for 2-4, a
- * transpose followed by the same flips for 5-8. */
-static void reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientation, const io_target *dst)
-{
-    ptrdiff_t sstride = (ptrdiff_t)sw * c;
-    /* The source pixel of dst (0, y) and the steps per x and per y. */
-    ptrdiff_t origin = 0, step_x = c, step_y = sstride;
-    switch (orientation) {
-    case 2: origin = (sw - 1) * c; step_x = -c; step_y = sstride; break;
-    case 3: origin = (sh - 1) * sstride + (sw - 1) * c; step_x = -c; step_y = -sstride; break;
-    case 4: origin = (sh - 1) * sstride; step_x = c; step_y = -sstride; break;
-    case 5: origin = 0; step_x = sstride; step_y = c; break;
-    case 6: origin = (sh - 1) * sstride; step_x = -sstride; step_y = c; break;
-    case 7: origin = (sh - 1) * sstride + (sw - 1) * c; step_x = -sstride; step_y = -c; break;
-    case 8: origin = (sw - 1) * c; step_x = sstride; step_y = -c; break;
-    default: break;
-    }
-    for (int32_t y = 0; y < dst->height; y++) {
-        const uint8_t *s = src + origin + step_y * y;
-        uint8_t *d = io_target_row(dst, y);
-        for (int32_t x = 0; x < dst->width; x++, s += step_x)
-            memcpy(d + (size_t)x * (size_t)c, s, (size_t)c);
-    }
 }
 
 rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_target *dst)
@@ -232,7 +159,7 @@ rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_t
     } else {
         rc = tjDecompress2(tj, r->file, (unsigned long)size, r->pixels, w, w * dst->channels, ht, pf, flags);
         if (rc == 0)
-            reorient(r->pixels, w, ht, dst->channels, h.orientation, dst);
+            io_reorient(r->pixels, w, ht, dst->channels, h.orientation, dst);
     }
     if (rc != 0) {
         const char *text = tjGetErrorStr2(tj);

@@ -23,15 +23,69 @@ static uint32_t be32(const uint8_t *p)
     return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
 }
 
-static uint32_t crc32_bytes(const uint8_t *p, size_t n)
+/* CRC-32 of PNG chunks, continued over pieces: start with crc = 0. Only
+ * headers and small chunks go through it (libspng checks the pixel data). */
+static uint32_t crc32_update(uint32_t crc, const uint8_t *p, size_t n)
 {
-    uint32_t crc = 0xFFFFFFFFu;
+    crc = ~crc;
     for (size_t i = 0; i < n; i++) {
         crc ^= p[i];
         for (int k = 0; k < 8; k++)
             crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
     }
     return ~crc;
+}
+
+/* The CRC of the chunk at pos (type and data) equals the stored one. */
+static int chunk_crc_ok(FILE *f, long pos, uint32_t len)
+{
+    uint8_t b[256];
+    uint32_t crc = 0;
+    long at = pos + 4, end = pos + 8 + (long)len;
+    while (at < end) {
+        size_t n = end - at < (long)sizeof b ? (size_t)(end - at) : sizeof b;
+        if (!io_read_at(f, at, b, n))
+            return 0;
+        crc = crc32_update(crc, b, n);
+        at += (long)n;
+    }
+    return io_read_at(f, end, b, 4) && be32(b) == crc;
+}
+
+/* Walks the chunk headers to IEND. libspng stops reading once the pixels
+ * are done, but libpng (OpenCV) reads on to IEND and fails on a file cut
+ * after its pixel data: so does this. On the way it finds the EXIF
+ * orientation as OpenCV 4.6 does: the first eXIf chunk that libpng keeps
+ * (good CRC, "II" or "MM"), before or after the image data. */
+static rte_status walk_chunks(FILE *f, const io_msg *m, int *orientation)
+{
+    long pos = 8;
+    uint8_t b[8];
+    *orientation = 1;
+    int have_exif = 0;
+    for (;;) {
+        if (!io_read_at(f, pos, b, 8))
+            return io_fail(m, RTE_ERR_TRUNCATED, "truncated PNG: the file ends at byte %ld, before IEND", pos);
+        uint32_t len = be32(b);
+        if (len > 0x7FFFFFFFu)
+            return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: chunk length %u at byte %ld", (unsigned)len, pos);
+        if (memcmp(b + 4, "IEND", 4) == 0) {
+            if (len != 0)
+                return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IEND has length %u", (unsigned)len);
+            if (!io_read_at(f, pos + 8, b, 4))
+                return io_fail(m, RTE_ERR_TRUNCATED, "truncated PNG: the IEND chunk is cut");
+            if (!chunk_crc_ok(f, pos, 0))
+                return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IEND CRC mismatch");
+            rewind(f);
+            return RTE_OK;
+        }
+        if (!have_exif && memcmp(b + 4, "eXIf", 4) == 0 && len >= 2 && io_read_at(f, pos + 8, b, 2) &&
+            b[0] == b[1] && (b[0] == 'I' || b[0] == 'M') && chunk_crc_ok(f, pos, len)) {
+            have_exif = 1;
+            *orientation = io_exif_orientation(f, pos + 8, (long)len);
+        }
+        pos += 12 + (long)len;
+    }
 }
 
 static int valid_depth(int color_type, int depth)
@@ -54,7 +108,7 @@ rte_status png_probe(FILE *f, const io_msg *m, rte_image_info *info)
         return io_fail(m, RTE_ERR_TRUNCATED, "truncated: PNG header cut after %zu of 33 bytes", n);
     if (be32(h + 8) != 13 || memcmp(h + 12, "IHDR", 4) != 0)
         return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: the first chunk is not a 13-byte IHDR");
-    if (crc32_bytes(h + 12, 17) != be32(h + 29))
+    if (crc32_update(0, h + 12, 17) != be32(h + 29))
         return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IHDR CRC mismatch");
     uint32_t w = be32(h + 16), ht = be32(h + 20);
     int depth = h[24], color_type = h[25];
@@ -67,8 +121,13 @@ rte_status png_probe(FILE *f, const io_msg *m, rte_image_info *info)
     if (w > RTE_MAX_SIDE || ht > RTE_MAX_SIDE)
         return io_fail(m, RTE_ERR_TOO_LARGE, "size %ux%u exceeds the maximum side %d", (unsigned)w, (unsigned)ht,
                        RTE_MAX_SIDE);
-    info->width = (int32_t)w;
-    info->height = (int32_t)ht;
+    int orientation;
+    rte_status st = walk_chunks(f, m, &orientation);
+    if (st != RTE_OK)
+        return st;
+    int swap = orientation >= 5;
+    info->width = (int32_t)(swap ? ht : w);
+    info->height = (int32_t)(swap ? w : ht);
     info->channels = (color_type == 0 || color_type == 4) ? 1 : 3;
     info->format = RTE_FILE_PNG;
     return RTE_OK;
@@ -227,52 +286,40 @@ static rte_status decode_rows(spng_ctx *ctx, rte_image_reader *r, const io_msg *
     return RTE_OK;
 }
 
-/* Walks the chunk headers to IEND. libspng stops reading once the pixels
- * are done, but libpng (OpenCV) reads on to IEND and fails on a file cut
- * after its pixel data: so does this. */
-static rte_status check_chunks(FILE *f, const io_msg *m)
-{
-    long pos = 8;
-    uint8_t b[8];
-    for (;;) {
-        if (fseek(f, pos, SEEK_SET) != 0 || fread(b, 1, 8, f) != 8)
-            return io_fail(m, RTE_ERR_TRUNCATED, "truncated PNG: the file ends at byte %ld, before IEND", pos);
-        uint32_t len = be32(b);
-        if (len > 0x7FFFFFFFu)
-            return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: chunk length %u at byte %ld", (unsigned)len, pos);
-        if (memcmp(b + 4, "IEND", 4) == 0) {
-            if (len != 0)
-                return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IEND has length %u", (unsigned)len);
-            if (fread(b, 1, 4, f) != 4)
-                return io_fail(m, RTE_ERR_TRUNCATED, "truncated PNG: the IEND chunk is cut");
-            if (be32(b) != crc32_bytes((const uint8_t *)"IEND", 4))
-                return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IEND CRC mismatch");
-            rewind(f);
-            return RTE_OK;
-        }
-        pos += 12 + (long)len;
-    }
-}
-
 rte_status png_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_target *dst)
 {
-    rte_status st = check_chunks(f, m);
+    int orientation;
+    rte_status st = walk_chunks(f, m, &orientation);
     if (st != RTE_OK)
         return st;
+    /* An EXIF-turned image is decoded into the reader's image buffer first. */
+    io_target coded = *dst;
+    if (orientation != 1) {
+        int swap = orientation >= 5;
+        coded.buf = r->pixels;
+        coded.width = swap ? dst->height : dst->width;
+        coded.height = swap ? dst->width : dst->height;
+        coded.stride = (size_t)coded.width * (size_t)dst->channels;
+    }
     spng_ctx *ctx = spng_ctx_new(0);
     if (!ctx)
         return io_fail(m, RTE_ERR_NO_MEMORY, "out of memory for the PNG decoder");
     int err = spng_set_png_file(ctx, f);
+    /* The reader's maxima hold for the displayed size; the pixel buffers
+     * were checked for that, so either side may take the larger maximum. */
+    uint32_t max_side = (uint32_t)(r->max_width > r->max_height ? r->max_width : r->max_height);
     if (!err)
-        err = spng_set_image_limits(ctx, (uint32_t)r->max_width, (uint32_t)r->max_height);
+        err = spng_set_image_limits(ctx, max_side, max_side);
     if (!err)
         err = spng_set_chunk_limits(ctx, PNG_CHUNK_LIMIT, PNG_CACHE_LIMIT);
     /* As libpng: a bad CRC in a critical chunk is an error, in an ancillary
      * chunk the chunk is dropped. */
     if (!err)
         err = spng_set_crc_action(ctx, SPNG_CRC_ERROR, SPNG_CRC_DISCARD);
-    st = err ? spng_status(m, err) : decode_rows(ctx, r, m, dst);
+    st = err ? spng_status(m, err) : decode_rows(ctx, r, m, &coded);
     spng_ctx_free(ctx);
+    if (st == RTE_OK && orientation != 1)
+        io_reorient(coded.buf, coded.width, coded.height, dst->channels, orientation, dst);
     return st;
 }
 

@@ -440,6 +440,27 @@ static void jpeg_truncated_and_corrupt(void **state)
     memcpy(p, jpg.data, 2);
     memcpy(p + 2, jpg.data + sos, jpg.size - sos);
     check_fails(p, 2 + jpg.size - sos, RTE_ERR_CORRUPT, "no SOF");
+    /* Garbage EXIF in an APP1 segment: whatever orientation comes out, no
+     * read beyond the segment and no crash. */
+    uint8_t *q = malloc(jpg.size + 80);
+    for (int i = 0; i < 200; i++) {
+        static const uint8_t head[14] = { 0xFF, 0xD8, 0xFF, 0xE1, 0, 66, 'E', 'x', 'i', 'f', 0, 0, 'I', 'I' };
+        memcpy(q, head, sizeof head);
+        if (i & 1)
+            q[12] = q[13] = 'M';
+        q[14] = (i & 1) ? 0 : 0x2A;
+        q[15] = (i & 1) ? 0x2A : 0;
+        for (int k = 16; k < 70; k++)
+            q[k] = (uint8_t)(rnd() % 4 == 0 ? rnd() % 12 : rnd());
+        memcpy(q + 70, jpg.data + 2, jpg.size - 2);
+        write_file(q, jpg.size + 68);
+        char msg[RTE_IO_MESSAGE_SIZE];
+        rte_image_info info;
+        rte_status st = rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info, msg, sizeof msg);
+        if (st != RTE_OK)
+            fail_msg("garbage EXIF: %s", msg);
+    }
+    free(q);
     /* Entropy-coded data replaced with 0xFF runs and markers. */
     memcpy(p, jpg.data, jpg.size);
     size_t data = sos + 2 + (size_t)(jpg.data[sos + 2] << 8 | jpg.data[sos + 3]);

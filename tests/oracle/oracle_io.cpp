@@ -117,7 +117,8 @@ void chunk(std::vector<uint8_t> &png, const char *type, const std::vector<uint8_
 // samples: h rows of w * spp values (each < 2^depth), written as given.
 std::vector<uint8_t> encode_png(int w, int h, int color_type, int depth, bool interlace,
                                 const std::vector<uint16_t> &samples, const std::vector<uint8_t> &plte,
-                                const std::vector<uint8_t> &trns)
+                                const std::vector<uint8_t> &trns, const std::vector<uint8_t> &before_idat = {},
+                                const std::vector<uint8_t> &after_idat = {})
 {
     int spp = color_type == 2 ? 3 : color_type == 4 ? 2 : color_type == 6 ? 4 : 1;
     std::vector<uint8_t> raw;
@@ -169,11 +170,13 @@ std::vector<uint8_t> encode_png(int w, int h, int color_type, int depth, bool in
         chunk(png, "PLTE", plte);
     if (!trns.empty())
         chunk(png, "tRNS", trns);
+    png.insert(png.end(), before_idat.begin(), before_idat.end());
     // Split the data over two IDAT chunks when it is long enough.
     size_t half = z.size() > 64 ? z.size() / 2 : z.size();
     chunk(png, "IDAT", std::vector<uint8_t>(z.begin(), z.begin() + (long)half));
     if (half < z.size())
         chunk(png, "IDAT", std::vector<uint8_t>(z.begin() + (long)half, z.end()));
+    png.insert(png.end(), after_idat.begin(), after_idat.end());
     chunk(png, "IEND", {});
     return png;
 }
@@ -188,8 +191,8 @@ void write_bytes(const std::string &path, const std::vector<uint8_t> &bytes)
     std::fclose(f);
 }
 
-// An APP1 EXIF segment with IFD0 = {orientation}, inserted after SOI.
-std::vector<uint8_t> with_orientation(const std::vector<uint8_t> &jpg, int orientation, bool little)
+// A TIFF structure whose IFD0 holds a resolution unit and the orientation.
+std::vector<uint8_t> exif_tiff(int orientation, bool little)
 {
     std::vector<uint8_t> tiff;
     auto u16 = [&](unsigned v) {
@@ -218,14 +221,20 @@ std::vector<uint8_t> with_orientation(const std::vector<uint8_t> &jpg, int orien
     u16(0x0128), u16(3), u32(1), u16(2), u16(0);
     u16(0x0112), u16(3), u32(1), u16((unsigned)orientation), u16(0);
     u32(0);
+    return tiff;
+}
+
+// An APP1 EXIF segment with that TIFF structure, inserted after SOI.
+std::vector<uint8_t> with_orientation(const std::vector<uint8_t> &jpg, int orientation, bool little)
+{
+    std::vector<uint8_t> tiff = exif_tiff(orientation, little);
     std::vector<uint8_t> seg = {0xFF, 0xE1, 0, 0, 'E', 'x', 'i', 'f', 0, 0};
     seg.insert(seg.end(), tiff.begin(), tiff.end());
     size_t len = seg.size() - 2;
     seg[2] = (uint8_t)(len >> 8);
     seg[3] = (uint8_t)len;
-    std::vector<uint8_t> out(jpg.begin(), jpg.begin() + 2);
-    out.insert(out.end(), seg.begin(), seg.end());
-    out.insert(out.end(), jpg.begin() + 2, jpg.end());
+    std::vector<uint8_t> out = jpg; // SOI, then the segment
+    out.insert(out.begin() + 2, seg.begin(), seg.end());
     return out;
 }
 
@@ -374,11 +383,36 @@ int main()
                         trns.push_back((uint8_t)v);
                     }
                 }
+                // Every third image gets eXIf chunks: before or after the
+                // data, sometimes a first one libpng drops (bad CRC or byte
+                // order) so the second one counts.
+                std::vector<uint8_t> before, after;
+                int orient = 1, variant = k % 3 == 0 ? (int)(rng() % 4) : -1;
+                if (variant >= 0) {
+                    orient = 1 + (int)(rng() % 8);
+                    std::vector<uint8_t> good;
+                    chunk(good, "eXIf", exif_tiff(orient, (rng() & 1) != 0));
+                    std::vector<uint8_t> other;
+                    chunk(other, "eXIf", exif_tiff(1 + (int)(rng() % 8), (rng() & 1) != 0));
+                    if (variant == 1)
+                        other[other.size() - 1] ^= 1; // bad CRC
+                    if (variant == 2) {
+                        other[9] = 'M'; // "IM": bad byte order
+                        std::vector<uint8_t> data(other.begin() + 8, other.end() - 4);
+                        other.clear();
+                        chunk(other, "eXIf", data);
+                    }
+                    if (variant > 0) // the bad one first
+                        before = other;
+                    std::vector<uint8_t> &where = (rng() & 1) ? before : after;
+                    where.insert(where.end(), good.begin(), good.end());
+                }
                 std::string path = tmp + "/k" + std::to_string(k++) + ".png";
-                write_bytes(path, encode_png(w, h, kind.color_type, kind.depth, interlace != 0, s, plte, trns));
-                char label[96];
-                std::snprintf(label, sizeof label, "png type %d depth %d %dx%d%s", kind.color_type, kind.depth,
-                              w, h, interlace ? " interlaced" : "");
+                write_bytes(path, encode_png(w, h, kind.color_type, kind.depth, interlace != 0, s, plte, trns,
+                                             before, after));
+                char label[128];
+                std::snprintf(label, sizeof label, "png type %d depth %d %dx%d%s exif %d/%d", kind.color_type,
+                              kind.depth, w, h, interlace ? " interlaced" : "", variant, orient);
                 c.check(path, label);
                 std::remove(path.c_str());
             }
