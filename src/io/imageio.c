@@ -61,6 +61,17 @@ void io_put_rgb_row(const io_target *t, int32_t y, const uint8_t *rgb)
 /* ------------------------------------------------------------------ */
 /* Probing */
 
+rte_status io_set_info(rte_image_info *info, int32_t coded_width, int32_t coded_height, int orientation,
+                       int32_t channels, rte_file_format format)
+{
+    int swap = orientation >= 5;
+    info->width = swap ? coded_height : coded_width;
+    info->height = swap ? coded_width : coded_height;
+    info->channels = channels;
+    info->format = format;
+    return RTE_OK;
+}
+
 static void clear_msg(char *msg, size_t msg_size)
 {
     if (msg && msg_size)

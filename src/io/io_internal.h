@@ -90,6 +90,10 @@ int io_exif_orientation(FILE *f, long tiff, long len);
  * as OpenCV's ExifTransform does; dst is sh x sw for 5..8. */
 void io_reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientation, const io_target *dst);
 
+/* Fills info from a coded size; orientations 5..8 swap the axes. */
+rte_status io_set_info(rte_image_info *info, int32_t coded_width, int32_t coded_height, int orientation,
+                       int32_t channels, rte_file_format format);
+
 /* Grey row -> target row (copy or replicate to BGR). */
 void io_put_gray_row(const io_target *t, int32_t y, const uint8_t *gray);
 /* RGB row -> target row (BGR; the target has 3 channels). */

@@ -115,12 +115,7 @@ rte_status jpeg_probe(FILE *f, const io_msg *m, rte_image_info *info)
     rte_status st = read_header(f, m, &h);
     if (st != RTE_OK)
         return st;
-    int swap = h.orientation >= 5;
-    info->width = swap ? h.height : h.width;
-    info->height = swap ? h.width : h.height;
-    info->channels = h.components == 1 ? 1 : 3;
-    info->format = RTE_FILE_JPEG;
-    return RTE_OK;
+    return io_set_info(info, h.width, h.height, h.orientation, h.components == 1 ? 1 : 3, RTE_FILE_JPEG);
 }
 
 rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_target *dst)

@@ -125,12 +125,8 @@ rte_status png_probe(FILE *f, const io_msg *m, rte_image_info *info)
     rte_status st = walk_chunks(f, m, &orientation);
     if (st != RTE_OK)
         return st;
-    int swap = orientation >= 5;
-    info->width = (int32_t)(swap ? ht : w);
-    info->height = (int32_t)(swap ? w : ht);
-    info->channels = (color_type == 0 || color_type == 4) ? 1 : 3;
-    info->format = RTE_FILE_PNG;
-    return RTE_OK;
+    return io_set_info(info, (int32_t)w, (int32_t)ht, orientation, (color_type == 0 || color_type == 4) ? 1 : 3,
+                       RTE_FILE_PNG);
 }
 
 static rte_status spng_status(const io_msg *m, int err)

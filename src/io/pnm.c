@@ -159,11 +159,7 @@ rte_status pnm_probe(FILE *f, const io_msg *m, rte_image_info *info)
     rte_status st = read_header(f, m, &h);
     if (st != RTE_OK)
         return st;
-    info->width = h.width;
-    info->height = h.height;
-    info->channels = h.channels;
-    info->format = h.channels == 3 ? RTE_FILE_PPM : RTE_FILE_PGM;
-    return RTE_OK;
+    return io_set_info(info, h.width, h.height, 1, h.channels, h.channels == 3 ? RTE_FILE_PPM : RTE_FILE_PGM);
 }
 
 /* One row of text values into `row` (scaled to 0..255). */
