@@ -340,6 +340,29 @@ int main()
             c.check(path, label + o.ext);
             std::remove(path.c_str());
         }
+        // Our writers, read back by OpenCV.
+        {
+            std::vector<uint8_t> gs, cs;
+            rte_image_u8 g = oracle::padded_u8(in.gray, gs, rng);
+            int cstride = bgr.cols * 3 + (int)(rng() % 11);
+            cs.assign((size_t)cstride * bgr.rows, 0xA5);
+            for (int y = 0; y < bgr.rows; y++)
+                std::memcpy(cs.data() + (size_t)y * cstride, bgr.ptr(y), (size_t)bgr.cols * 3);
+            rte_image_u8c3 cimg = {bgr.cols, bgr.rows, cstride, cs.data()};
+            char msg[RTE_IO_MESSAGE_SIZE];
+            for (const char *ext : {".pgm", ".png"}) {
+                std::string path = base + "_w" + ext;
+                if (c.ok(rte_image_write_gray(path.c_str(), &g, msg, sizeof msg), msg, "write " + path))
+                    t.add(label + " written" + ext, in.gray, cv::imread(path, cv::IMREAD_UNCHANGED));
+                std::remove(path.c_str());
+            }
+            for (const char *ext : {".ppm", ".png"}) {
+                std::string path = base + "_wc" + ext;
+                if (c.ok(rte_image_write_bgr(path.c_str(), &cimg, msg, sizeof msg), msg, "write " + path))
+                    t.add(label + " written" + ext, bgr, cv::imread(path, cv::IMREAD_UNCHANGED));
+                std::remove(path.c_str());
+            }
+        }
         // EXIF orientation on a small colour JPEG.
         if (i < 12) {
             std::vector<uint8_t> jpg;
