@@ -29,7 +29,8 @@ typedef struct rte_source_frame {
     int64_t recorded_ns;  /* the recording's own timestamp (pacing); live sources: = capture_ns */
     uint64_t sequence;    /* the source's frame number: the driver's, or the index in a recording */
     uint32_t dropped;     /* frames lost just before this one, as far as the source can tell
-                             (e.g. gaps in the driver's sequence numbers) */
+                             (gaps in the driver's sequence numbers and older frames skipped
+                             in favour of this one) */
 } rte_source_frame;
 
 typedef enum rte_source_state {
@@ -44,6 +45,8 @@ typedef struct rte_source_stats {
     rte_source_state state;
     uint64_t frames;        /* frames handed out */
     uint64_t driver_drops;  /* frames the driver or recording lost (sequence gaps) */
+    uint64_t skipped;       /* frames that were ready but not handed out because a newer one
+                               was (live sources deliver the newest frame) */
     uint64_t bad_frames;    /* frames skipped because they could not be decoded */
     uint64_t reconnects;    /* successful reopenings after a device loss */
     uint64_t errors;        /* errors reported through next() */
