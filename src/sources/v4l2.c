@@ -169,7 +169,17 @@ const char *rte_v4l2_fourcc_name(uint32_t fourcc, char buf[5])
  * ends. "White Balance, Automatic" == "white_balance_automatic". */
 static int names_equal(const char *a, const char *b)
 {
+    while (*a && !isalnum((unsigned char)*a))
+        a++;
+    while (*b && !isalnum((unsigned char)*b))
+        b++;
     for (;;) {
+        if (!*a || !*b)
+            return !*a && !*b;
+        if (tolower((unsigned char)*a) != tolower((unsigned char)*b))
+            return 0;
+        a++;
+        b++;
         int sep_a = 0, sep_b = 0;
         while (*a && !isalnum((unsigned char)*a)) {
             a++;
@@ -179,15 +189,9 @@ static int names_equal(const char *a, const char *b)
             b++;
             sep_b = 1;
         }
-        if (!*a || !*b)
-            return !*a && !*b;
-        /* A separator inside the name must be matched by one on the other side. */
-        if (sep_a != sep_b)
+        /* A separator inside one name must be matched by one in the other. */
+        if (sep_a != sep_b && *a && *b)
             return 0;
-        if (tolower((unsigned char)*a) != tolower((unsigned char)*b))
-            return 0;
-        a++;
-        b++;
     }
 }
 
@@ -697,7 +701,10 @@ static rte_status decode_mjpeg(v4l2_source *s, const uint8_t *jpeg, uint32_t siz
                                char *msg, size_t msg_size)
 {
     int w, h, subsamp, colorspace;
-    if (tjDecompressHeader3(s->tj, jpeg, size, &w, &h, &subsamp, &colorspace) != 0) {
+    w = h = 0;
+    /* A stream of tables only passes the header check with no size. */
+    if (tjDecompressHeader3(s->tj, jpeg, size, &w, &h, &subsamp, &colorspace) != 0 || w < 1 ||
+        h < 1) {
         msg_printf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path, tjGetErrorStr2(s->tj));
         return RTE_ERR_CORRUPT;
     }
