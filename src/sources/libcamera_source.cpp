@@ -9,7 +9,6 @@
 
 #include <chrono>
 #include <condition_variable>
-#include <cstdarg>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -19,20 +18,11 @@
 
 #include <libcamera/libcamera.h>
 
+#include "source_msg.h"
+
 namespace {
 
 using namespace libcamera;
-
-void msg_printf(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-void msg_printf(char *msg, size_t size, const char *fmt, ...)
-{
-    if (!msg || size == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, size, fmt, ap);
-    va_end(ap);
-}
 
 struct FormatPair {
     rte_pixel_format rte;
@@ -156,7 +146,7 @@ rte_status Source::map_buffers(char *msg, size_t msg_size)
     for (size_t b = 0; b < buffers.size(); b++) {
         const std::vector<FrameBuffer::Plane> &planes = buffers[b]->planes();
         if (planes.empty()) {
-            msg_printf(msg, msg_size, "libcamera buffer without planes");
+            rte_source_msgf(msg, msg_size, "libcamera buffer without planes");
             return RTE_ERR_DEVICE;
         }
         for (size_t p = 0; p < n_planes_; p++) {
@@ -169,7 +159,7 @@ rte_status Source::map_buffers(char *msg, size_t msg_size)
             m.length = plane.offset + plane.length;
             m.base = mmap(nullptr, m.length, PROT_READ, MAP_SHARED, plane.fd.get(), 0);
             if (m.base == MAP_FAILED) {
-                msg_printf(msg, msg_size, "mmap of a libcamera buffer: %s", strerror(errno));
+                rte_source_msgf(msg, msg_size, "mmap of a libcamera buffer: %s", strerror(errno));
                 return RTE_ERR_DEVICE;
             }
             planes_[b * n_planes_ + p] = static_cast<uint8_t *>(m.base) + offset;
@@ -184,7 +174,7 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
     manager_ = std::make_unique<CameraManager>();
     if (manager_->start() != 0) {
         manager_.reset();
-        msg_printf(msg, msg_size, "the libcamera camera manager does not start");
+        rte_source_msgf(msg, msg_size, "the libcamera camera manager does not start");
         return RTE_ERR_DEVICE;
     }
     if (cfg.camera) {
@@ -196,21 +186,21 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
     }
     if (!camera_) {
         if (cfg.camera)
-            msg_printf(msg, msg_size, "no libcamera camera \"%s\"", cfg.camera);
+            rte_source_msgf(msg, msg_size, "no libcamera camera \"%s\"", cfg.camera);
         else
-            msg_printf(msg, msg_size, "no libcamera camera %d (%zu found)", cfg.index,
+            rte_source_msgf(msg, msg_size, "no libcamera camera %d (%zu found)", cfg.index,
                        manager_->cameras().size());
         return RTE_ERR_DEVICE;
     }
     if (camera_->acquire() != 0) {
-        msg_printf(msg, msg_size, "libcamera camera %s is in use", camera_->id().c_str());
+        rte_source_msgf(msg, msg_size, "libcamera camera %s is in use", camera_->id().c_str());
         return RTE_ERR_DEVICE;
     }
     acquired_ = true;
 
     config_ = camera_->generateConfiguration({ StreamRole::VideoRecording });
     if (!config_ || config_->size() != 1) {
-        msg_printf(msg, msg_size, "%s: no video stream", camera_->id().c_str());
+        rte_source_msgf(msg, msg_size, "%s: no video stream", camera_->id().c_str());
         return RTE_ERR_UNSUPPORTED;
     }
     StreamConfiguration &sc = config_->at(0);
@@ -221,24 +211,24 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
     sc.bufferCount = static_cast<unsigned>(cfg.buffers ? cfg.buffers : 4);
     CameraConfiguration::Status status = config_->validate();
     if (status == CameraConfiguration::Invalid) {
-        msg_printf(msg, msg_size, "%s: configuration %s is invalid", camera_->id().c_str(),
+        rte_source_msgf(msg, msg_size, "%s: configuration %s is invalid", camera_->id().c_str(),
                    sc.toString().c_str());
         return RTE_ERR_UNSUPPORTED;
     }
     format = to_rte(sc.pixelFormat);
     if (!format) {
-        msg_printf(msg, msg_size, "%s: libcamera settled on %s, which rtedge does not read",
+        rte_source_msgf(msg, msg_size, "%s: libcamera settled on %s, which rtedge does not read",
                    camera_->id().c_str(), sc.pixelFormat.toString().c_str());
         return RTE_ERR_UNSUPPORTED;
     }
     if (sc.bufferCount < 2 || sc.bufferCount > RTE_LIBCAMERA_MAX_BUFFERS ||
         sc.size.width > RTE_MAX_SIDE || sc.size.height > RTE_MAX_SIDE) {
-        msg_printf(msg, msg_size, "%s: %s is out of range", camera_->id().c_str(),
+        rte_source_msgf(msg, msg_size, "%s: %s is out of range", camera_->id().c_str(),
                    sc.toString().c_str());
         return RTE_ERR_UNSUPPORTED;
     }
     if (camera_->configure(config_.get()) != 0) {
-        msg_printf(msg, msg_size, "%s: configure %s failed", camera_->id().c_str(),
+        rte_source_msgf(msg, msg_size, "%s: configure %s failed", camera_->id().c_str(),
                    sc.toString().c_str());
         return RTE_ERR_DEVICE;
     }
@@ -249,7 +239,7 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
 
     allocator_ = std::make_unique<FrameBufferAllocator>(camera_);
     if (allocator_->allocate(stream_) < 2) {
-        msg_printf(msg, msg_size, "%s: buffer allocation failed", camera_->id().c_str());
+        rte_source_msgf(msg, msg_size, "%s: buffer allocation failed", camera_->id().c_str());
         return RTE_ERR_NO_MEMORY;
     }
     rte_status st = map_buffers(msg, msg_size);
@@ -259,7 +249,7 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
     for (size_t b = 0; b < buffers.size(); b++) {
         std::unique_ptr<Request> request = camera_->createRequest(b);
         if (!request || request->addBuffer(stream_, buffers[b].get()) != 0) {
-            msg_printf(msg, msg_size, "%s: cannot create requests", camera_->id().c_str());
+            rte_source_msgf(msg, msg_size, "%s: cannot create requests", camera_->id().c_str());
             return RTE_ERR_DEVICE;
         }
         requests_.push_back(std::move(request));
@@ -268,18 +258,18 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
     camera_->requestCompleted.connect(this, &Source::on_complete);
     camera_->disconnected.connect(this, &Source::on_disconnect);
     if (camera_->start() != 0) {
-        msg_printf(msg, msg_size, "%s: start failed", camera_->id().c_str());
+        rte_source_msgf(msg, msg_size, "%s: start failed", camera_->id().c_str());
         return RTE_ERR_DEVICE;
     }
     started_ = true;
     for (std::unique_ptr<Request> &r : requests_)
         if (camera_->queueRequest(r.get()) != 0) {
-            msg_printf(msg, msg_size, "%s: queueing a request failed", camera_->id().c_str());
+            rte_source_msgf(msg, msg_size, "%s: queueing a request failed", camera_->id().c_str());
             return RTE_ERR_DEVICE;
         }
 
     bool adjusted = status == CameraConfiguration::Adjusted;
-    msg_printf(msg, msg_size, "libcamera %s: %s, stride %d, %zu buffers%s", camera_->id().c_str(),
+    rte_source_msgf(msg, msg_size, "libcamera %s: %s, stride %d, %zu buffers%s", camera_->id().c_str(),
                sc.toString().c_str(), stride_, buffers.size(),
                adjusted ? " (adjusted from the request)" : "");
     if (info) {
@@ -306,7 +296,7 @@ rte_status Source::next(rte_source_frame *out, int32_t timeout_ms, char *msg, si
     if (msg && msg_size)
         msg[0] = 0;
     if (stats.state == RTE_SOURCE_FAILED) {
-        msg_printf(msg, msg_size, "the libcamera camera is gone");
+        rte_source_msgf(msg, msg_size, "the libcamera camera is gone");
         return RTE_ERR_DEVICE;
     }
     if (held_) {
@@ -315,7 +305,7 @@ rte_status Source::next(rte_source_frame *out, int32_t timeout_ms, char *msg, si
         if (!requeue(r)) {
             stats.state = RTE_SOURCE_FAILED;
             stats.errors++;
-            msg_printf(msg, msg_size, "libcamera: queueing a request failed");
+            rte_source_msgf(msg, msg_size, "libcamera: queueing a request failed");
             return RTE_ERR_DEVICE;
         }
     }
@@ -338,11 +328,11 @@ rte_status Source::next(rte_source_frame *out, int32_t timeout_ms, char *msg, si
     if (gone) {
         stats.state = RTE_SOURCE_FAILED;
         stats.errors++;
-        msg_printf(msg, msg_size, "the libcamera camera was disconnected");
+        rte_source_msgf(msg, msg_size, "the libcamera camera was disconnected");
         return RTE_ERR_DEVICE;
     }
     if (n == 0) {
-        msg_printf(msg, msg_size, "libcamera: no frame within %d ms", timeout_ms);
+        rte_source_msgf(msg, msg_size, "libcamera: no frame within %d ms", timeout_ms);
         return RTE_ERR_TIMEOUT;
     }
 
@@ -375,13 +365,13 @@ rte_status Source::next(rte_source_frame *out, int32_t timeout_ms, char *msg, si
         if (give_back && !requeue(give_back)) {
             stats.state = RTE_SOURCE_FAILED;
             stats.errors++;
-            msg_printf(msg, msg_size, "libcamera: queueing a request failed");
+            rte_source_msgf(msg, msg_size, "libcamera: queueing a request failed");
             return RTE_ERR_DEVICE;
         }
     }
     if (!newest) {
         stats.errors++;
-        msg_printf(msg, msg_size, "libcamera: frame failed%s", bad ? " (skipped)" : "");
+        rte_source_msgf(msg, msg_size, "libcamera: frame failed%s", bad ? " (skipped)" : "");
         return RTE_ERR_CORRUPT;
     }
 
@@ -435,20 +425,20 @@ extern "C" rte_status rte_libcamera_source_open(rte_source *source,
         config->buffers < 0 || config->buffers == 1 ||
         config->buffers > RTE_LIBCAMERA_MAX_BUFFERS ||
         (config->format && to_libcamera(config->format) == PixelFormat())) {
-        msg_printf(msg, msg_size, "invalid libcamera source configuration");
+        rte_source_msgf(msg, msg_size, "invalid libcamera source configuration");
         return RTE_ERR_ARGUMENT;
     }
     std::memset(source, 0, sizeof(*source));
     Source *s = new (std::nothrow) Source;
     if (!s) {
-        msg_printf(msg, msg_size, "out of memory");
+        rte_source_msgf(msg, msg_size, "out of memory");
         return RTE_ERR_NO_MEMORY;
     }
     rte_status st;
     try {
         st = s->open(*config, info, msg, msg_size);
     } catch (const std::bad_alloc &) {
-        msg_printf(msg, msg_size, "out of memory");
+        rte_source_msgf(msg, msg_size, "out of memory");
         st = RTE_ERR_NO_MEMORY;
     }
     if (st != RTE_OK) {

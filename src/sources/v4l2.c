@@ -10,7 +10,6 @@
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +20,8 @@
 
 #include <linux/videodev2.h>
 #include <turbojpeg.h>
+
+#include "source_msg.h"
 
 /* ---- the real syscalls ---- */
 
@@ -116,34 +117,6 @@ typedef struct v4l2_source {
 } v4l2_source;
 
 /* ---- helpers ---- */
-
-static void msg_printf(char *msg, size_t size, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void msg_printf(char *msg, size_t size, const char *fmt, ...)
-{
-    if (!msg || size == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, size, fmt, ap);
-    va_end(ap);
-}
-
-/* Appends to a message already in msg. */
-static void msg_append(char *msg, size_t size, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void msg_append(char *msg, size_t size, const char *fmt, ...)
-{
-    if (!msg || size == 0)
-        return;
-    size_t len = strnlen(msg, size);
-    if (len + 1 >= size)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg + len, size - len, fmt, ap);
-    va_end(ap);
-}
 
 static void copy_string(char *dst, size_t size, const void *src, size_t src_size)
 {
@@ -277,13 +250,14 @@ static rte_status open_node(v4l2_source *s, char *msg, size_t msg_size)
     if (strchr(want, '/')) {
         s->fd = s->ops->open(s->ops->ctx, want, flags);
         if (s->fd < 0) {
-            msg_printf(msg, msg_size, "%s: %s", want, strerror(errno));
-            return errno == ENOENT || errno == ENODEV || errno == ENXIO || errno == EIO
-                       ? RTE_ERR_DEVICE : RTE_ERR_IO;
+            int err = errno;
+            rte_source_msgf(msg, msg_size, "%s: %s", want, strerror(err));
+            return err == ENOENT || err == ENODEV || err == ENXIO || err == EIO ? RTE_ERR_DEVICE
+                                                                                : RTE_ERR_IO;
         }
         rte_status st = query_node(s, &cap);
         if (st != RTE_OK) {
-            msg_printf(msg, msg_size, "%s: %s", want,
+            rte_source_msgf(msg, msg_size, "%s: %s", want,
                        st == RTE_ERR_DEVICE ? strerror(errno)
                                             : "not a video capture node with streaming I/O");
             close_fd(s);
@@ -307,7 +281,7 @@ static rte_status open_node(v4l2_source *s, char *msg, size_t msg_size)
             close_fd(s);
         }
         if (i == MAX_DEVICE_NODES) {
-            msg_printf(msg, msg_size, "no capture device with card or bus \"%s\"", want);
+            rte_source_msgf(msg, msg_size, "no capture device with card or bus \"%s\"", want);
             return RTE_ERR_DEVICE;
         }
     }
@@ -331,32 +305,33 @@ static rte_status negotiate_format(v4l2_source *s, int reopening, char *msg, siz
     f.fmt.pix.pixelformat = s->cfg.fourcc;
     f.fmt.pix.field = V4L2_FIELD_NONE;
     if (xioctl(s, VIDIOC_S_FMT, &f) < 0) {
-        msg_printf(msg, msg_size, "%s: VIDIOC_S_FMT: %s", s->info.path, strerror(errno));
-        return errno == EBUSY ? RTE_ERR_IO : RTE_ERR_DEVICE;
+        int err = errno;
+        rte_source_msgf(msg, msg_size, "%s: VIDIOC_S_FMT: %s", s->info.path, strerror(err));
+        return err == EBUSY ? RTE_ERR_IO : RTE_ERR_DEVICE;
     }
     const struct v4l2_pix_format *p = &f.fmt.pix;
     rte_v4l2_fourcc_name(s->cfg.fourcc, want_name);
     rte_v4l2_fourcc_name(p->pixelformat, got_name);
 
     if (delivered_format(p->pixelformat, s->cfg.decode_to) == 0) {
-        msg_printf(msg, msg_size, "%s: asked for %s, the driver offers %s, which rtedge does not read",
+        rte_source_msgf(msg, msg_size, "%s: asked for %s, the driver offers %s, which rtedge does not read",
                    s->info.path, want_name, got_name);
         return RTE_ERR_UNSUPPORTED;
     }
     if (p->field != V4L2_FIELD_NONE && p->field != V4L2_FIELD_ANY) {
-        msg_printf(msg, msg_size, "%s: the driver sends interlaced fields (%u)", s->info.path,
+        rte_source_msgf(msg, msg_size, "%s: the driver sends interlaced fields (%u)", s->info.path,
                    p->field);
         return RTE_ERR_UNSUPPORTED;
     }
     if (p->width < 1 || p->height < 1 || p->width > RTE_MAX_SIDE || p->height > RTE_MAX_SIDE) {
-        msg_printf(msg, msg_size, "%s: the driver settled on %ux%u", s->info.path, p->width,
+        rte_source_msgf(msg, msg_size, "%s: the driver settled on %ux%u", s->info.path, p->width,
                    p->height);
         return RTE_ERR_TOO_LARGE;
     }
     uint32_t min_line = (uint32_t)bytes_per_pixel(p->pixelformat) * p->width;
     uint32_t line = p->bytesperline ? p->bytesperline : min_line;
     if (line < min_line || line > INT32_MAX / 4) {
-        msg_printf(msg, msg_size, "%s: bytesperline %u does not hold a %u-pixel row",
+        rte_source_msgf(msg, msg_size, "%s: bytesperline %u does not hold a %u-pixel row",
                    s->info.path, p->bytesperline, p->width);
         return RTE_ERR_FORMAT;
     }
@@ -367,19 +342,19 @@ static rte_status negotiate_format(v4l2_source *s, int reopening, char *msg, siz
     got.bytesperline = (int32_t)line;
     got.sizeimage = p->sizeimage;
     if (got.fourcc != V4L2_PIX_FMT_MJPEG && got.sizeimage < raw_frame_bytes(&got)) {
-        msg_printf(msg, msg_size, "%s: sizeimage %u is smaller than a %dx%d %s frame",
+        rte_source_msgf(msg, msg_size, "%s: sizeimage %u is smaller than a %dx%d %s frame",
                    s->info.path, got.sizeimage, got.width, got.height, got_name);
         return RTE_ERR_FORMAT;
     }
     if (reopening && (got.fourcc != s->open_fourcc || got.width > s->max_width ||
                       got.height > s->max_height)) {
-        msg_printf(msg, msg_size, "%s came back with %s %dx%d, not the %dx%d it had",
+        rte_source_msgf(msg, msg_size, "%s came back with %s %dx%d, not the %dx%d it had",
                    s->info.path, got_name, got.width, got.height, s->max_width, s->max_height);
         return RTE_ERR_TOO_LARGE;
     }
     if (got.fourcc != s->cfg.fourcc || got.width != s->cfg.width || got.height != s->cfg.height) {
         got.adjusted = 1;
-        msg_append(msg, msg_size, "; driver adjusted %s %dx%d to %s %dx%d", want_name,
+        rte_source_msg_append(msg, msg_size, "; driver adjusted %s %dx%d to %s %dx%d", want_name,
                    s->cfg.width, s->cfg.height, got_name, got.width, got.height);
     }
     s->info = got;
@@ -396,19 +371,19 @@ static void set_frame_rate(v4l2_source *s, char *msg, size_t msg_size)
     s->info.interval_num = s->info.interval_den = 0;
     if (xioctl(s, VIDIOC_G_PARM, &parm) < 0) {
         if (s->cfg.fps > 0)
-            msg_append(msg, msg_size, "; no frame rate control (VIDIOC_G_PARM: %s)",
+            rte_source_msg_append(msg, msg_size, "; no frame rate control (VIDIOC_G_PARM: %s)",
                        strerror(errno));
         return;
     }
     if (s->cfg.fps > 0) {
         if (!(parm.parm.capture.capability & V4L2_CAP_TIMEPERFRAME)) {
-            msg_append(msg, msg_size, "; the driver does not set the frame rate");
+            rte_source_msg_append(msg, msg_size, "; the driver does not set the frame rate");
             s->info.adjusted = 1;
         } else {
             parm.parm.capture.timeperframe.numerator = 1;
             parm.parm.capture.timeperframe.denominator = (uint32_t)s->cfg.fps;
             if (xioctl(s, VIDIOC_S_PARM, &parm) < 0) {
-                msg_append(msg, msg_size, "; VIDIOC_S_PARM: %s", strerror(errno));
+                rte_source_msg_append(msg, msg_size, "; VIDIOC_S_PARM: %s", strerror(errno));
                 s->info.adjusted = 1;
             }
         }
@@ -418,7 +393,7 @@ static void set_frame_rate(v4l2_source *s, char *msg, size_t msg_size)
     s->info.interval_den = t->denominator;
     if (s->cfg.fps > 0 && t->numerator && (uint64_t)t->denominator != (uint64_t)s->cfg.fps * t->numerator) {
         s->info.adjusted = 1;
-        msg_append(msg, msg_size, "; driver adjusted %d fps to %u/%u s per frame", s->cfg.fps,
+        rte_source_msg_append(msg, msg_size, "; driver adjusted %d fps to %u/%u s per frame", s->cfg.fps,
                    t->numerator, t->denominator);
     }
 }
@@ -442,11 +417,11 @@ static rte_status set_control(v4l2_source *s, const char *name, int32_t value, c
 {
     struct v4l2_queryctrl qc;
     if (s->fd < 0) {
-        msg_printf(msg, msg_size, "control %s: the device is not open", name);
+        rte_source_msgf(msg, msg_size, "control %s: the device is not open", name);
         return RTE_ERR_DEVICE;
     }
     if (!find_control(s, name, &qc)) {
-        msg_printf(msg, msg_size, "%s has no control \"%s\"", s->info.path, name);
+        rte_source_msgf(msg, msg_size, "%s has no control \"%s\"", s->info.path, name);
         return RTE_ERR_ARGUMENT;
     }
     switch (qc.type) {
@@ -455,7 +430,7 @@ static rte_status set_control(v4l2_source *s, const char *name, int32_t value, c
     case V4L2_CTRL_TYPE_MENU:
     case V4L2_CTRL_TYPE_INTEGER_MENU:
         if (value < qc.minimum || value > qc.maximum) {
-            msg_printf(msg, msg_size, "control \"%s\": %d is outside %d..%d", qc.name, value,
+            rte_source_msgf(msg, msg_size, "control \"%s\": %d is outside %d..%d", qc.name, value,
                        qc.minimum, qc.maximum);
             return RTE_ERR_ARGUMENT;
         }
@@ -464,18 +439,18 @@ static rte_status set_control(v4l2_source *s, const char *name, int32_t value, c
         value = 0;
         break;
     default:
-        msg_printf(msg, msg_size, "control \"%s\" is not an integer, boolean, menu or button",
+        rte_source_msgf(msg, msg_size, "control \"%s\" is not an integer, boolean, menu or button",
                    qc.name);
         return RTE_ERR_UNSUPPORTED;
     }
     if (qc.flags & V4L2_CTRL_FLAG_READ_ONLY) {
-        msg_printf(msg, msg_size, "control \"%s\" is read-only", qc.name);
+        rte_source_msgf(msg, msg_size, "control \"%s\" is read-only", qc.name);
         return RTE_ERR_ARGUMENT;
     }
     struct v4l2_control c = { qc.id, value };
     if (xioctl(s, VIDIOC_S_CTRL, &c) < 0) {
         int err = errno;
-        msg_printf(msg, msg_size, "control \"%s\" = %d: %s", qc.name, value, strerror(err));
+        rte_source_msgf(msg, msg_size, "control \"%s\" = %d: %s", qc.name, value, strerror(err));
         return err == ENODEV || err == EIO ? RTE_ERR_DEVICE : RTE_ERR_ARGUMENT;
     }
     return RTE_OK;
@@ -532,13 +507,13 @@ static rte_status start_streaming(v4l2_source *s, char *msg, size_t msg_size)
     req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     req.memory = V4L2_MEMORY_MMAP;
     if (xioctl(s, VIDIOC_REQBUFS, &req) < 0) {
-        msg_printf(msg, msg_size, "%s: VIDIOC_REQBUFS: %s", s->info.path, strerror(errno));
+        rte_source_msgf(msg, msg_size, "%s: VIDIOC_REQBUFS: %s", s->info.path, strerror(errno));
         return RTE_ERR_DEVICE;
     }
     /* One buffer is held by the caller between next() calls: two is the
      * least that keeps the driver capturing. */
     if (req.count < 2 || req.count > RTE_V4L2_MAX_BUFFERS) {
-        msg_printf(msg, msg_size, "%s: the driver granted %u buffers", s->info.path, req.count);
+        rte_source_msgf(msg, msg_size, "%s: the driver granted %u buffers", s->info.path, req.count);
         return RTE_ERR_DEVICE;
     }
     for (uint32_t i = 0; i < req.count; i++) {
@@ -548,32 +523,32 @@ static rte_status start_streaming(v4l2_source *s, char *msg, size_t msg_size)
         b.memory = V4L2_MEMORY_MMAP;
         b.index = i;
         if (xioctl(s, VIDIOC_QUERYBUF, &b) < 0) {
-            msg_printf(msg, msg_size, "%s: VIDIOC_QUERYBUF: %s", s->info.path, strerror(errno));
+            rte_source_msgf(msg, msg_size, "%s: VIDIOC_QUERYBUF: %s", s->info.path, strerror(errno));
             return RTE_ERR_DEVICE;
         }
         void *p = s->ops->mmap(s->ops->ctx, b.length, PROT_READ | PROT_WRITE, MAP_SHARED, s->fd,
                                (off_t)b.m.offset);
         if (p == MAP_FAILED) {
-            msg_printf(msg, msg_size, "%s: mmap: %s", s->info.path, strerror(errno));
+            rte_source_msgf(msg, msg_size, "%s: mmap: %s", s->info.path, strerror(errno));
             return RTE_ERR_DEVICE;
         }
         s->buf[i].start = p;
         s->buf[i].length = b.length;
         s->n_buf = (int32_t)i + 1;
         if (s->info.fourcc != V4L2_PIX_FMT_MJPEG && b.length < raw_frame_bytes(&s->info)) {
-            msg_printf(msg, msg_size, "%s: buffer of %u bytes for %u-byte frames", s->info.path,
+            rte_source_msgf(msg, msg_size, "%s: buffer of %u bytes for %u-byte frames", s->info.path,
                        b.length, (unsigned)raw_frame_bytes(&s->info));
             return RTE_ERR_FORMAT;
         }
     }
     for (int32_t i = 0; i < s->n_buf; i++)
         if (queue_buffer(s, (uint32_t)i) < 0) {
-            msg_printf(msg, msg_size, "%s: VIDIOC_QBUF: %s", s->info.path, strerror(errno));
+            rte_source_msgf(msg, msg_size, "%s: VIDIOC_QBUF: %s", s->info.path, strerror(errno));
             return RTE_ERR_DEVICE;
         }
     int type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     if (xioctl(s, VIDIOC_STREAMON, &type) < 0) {
-        msg_printf(msg, msg_size, "%s: VIDIOC_STREAMON: %s", s->info.path, strerror(errno));
+        rte_source_msgf(msg, msg_size, "%s: VIDIOC_STREAMON: %s", s->info.path, strerror(errno));
         return RTE_ERR_DEVICE;
     }
     s->info.buffers = s->n_buf;
@@ -584,7 +559,7 @@ static rte_status start_streaming(v4l2_source *s, char *msg, size_t msg_size)
  * The message gets the adjustments the driver made. */
 static rte_status setup_device(v4l2_source *s, int reopening, char *msg, size_t msg_size)
 {
-    msg_printf(msg, msg_size, "%s", "");
+    rte_source_msgf(msg, msg_size, "%s", "");
     rte_status st = open_node(s, msg, msg_size);
     if (st != RTE_OK)
         return st;
@@ -610,7 +585,7 @@ static void describe(const v4l2_source *s, char *msg, size_t msg_size)
     char adjustments[RTE_SOURCE_MESSAGE_SIZE], name[5];
     copy_string(adjustments, sizeof(adjustments), msg ? msg : "", msg ? msg_size : 1);
     const rte_v4l2_info *i = &s->info;
-    msg_printf(msg, msg_size, "%s (%s, %s): %s %dx%d, %u/%u s per frame, %d buffers%s",
+    rte_source_msgf(msg, msg_size, "%s (%s, %s): %s %dx%d, %u/%u s per frame, %d buffers%s",
                i->path, i->card, i->bus_info, rte_v4l2_fourcc_name(i->fourcc, name), i->width,
                i->height, i->interval_num, i->interval_den, i->buffers, adjustments);
 }
@@ -626,7 +601,7 @@ static rte_status device_lost(v4l2_source *s, const char *what, int err, char *m
     s->stats.errors++;
     s->backoff_ms = s->cfg.reconnect_min_ms;
     s->retry_at_ns = s->ops->now_ns(s->ops->ctx) + (int64_t)s->backoff_ms * 1000000;
-    msg_printf(msg, msg_size, "%s: %s: %s; reconnecting", s->info.path, what,
+    rte_source_msgf(msg, msg_size, "%s: %s: %s; reconnecting", s->info.path, what,
                err ? strerror(err) : "error condition");
     return RTE_ERR_DEVICE;
 }
@@ -643,7 +618,7 @@ static rte_status reconnect(v4l2_source *s, int64_t deadline_ns, char *msg, size
         s->ops->poll(s->ops->ctx, NULL, 0, (int)((wake - now + 999999) / 1000000));
     now = s->ops->now_ns(s->ops->ctx);
     if (now < s->retry_at_ns) {
-        msg_printf(msg, msg_size, "%s: reconnecting, next attempt in %lld ms", s->info.path,
+        rte_source_msgf(msg, msg_size, "%s: reconnecting, next attempt in %lld ms", s->info.path,
                    (long long)((s->retry_at_ns - now + 999999) / 1000000));
         return RTE_ERR_TIMEOUT;
     }
@@ -653,7 +628,7 @@ static rte_status reconnect(v4l2_source *s, int64_t deadline_ns, char *msg, size
         s->backoff_ms = s->backoff_ms > s->cfg.reconnect_max_ms / 2 ? s->cfg.reconnect_max_ms
                                                                    : 2 * s->backoff_ms;
         s->retry_at_ns = now + (int64_t)s->backoff_ms * 1000000;
-        msg_append(msg, msg_size, "; retrying in %d ms", s->backoff_ms);
+        rte_source_msg_append(msg, msg_size, "; retrying in %d ms", s->backoff_ms);
         return RTE_ERR_DEVICE;
     }
     s->stats.state = RTE_SOURCE_STREAMING;
@@ -705,11 +680,11 @@ static rte_status decode_mjpeg(v4l2_source *s, const uint8_t *jpeg, uint32_t siz
     /* A stream of tables only passes the header check with no size. */
     if (tjDecompressHeader3(s->tj, jpeg, size, &w, &h, &subsamp, &colorspace) != 0 || w < 1 ||
         h < 1) {
-        msg_printf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path, tjGetErrorStr2(s->tj));
+        rte_source_msgf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path, tjGetErrorStr2(s->tj));
         return RTE_ERR_CORRUPT;
     }
     if (w > s->max_width || h > s->max_height) {
-        msg_printf(msg, msg_size, "%s: JPEG frame of %dx%d in a %dx%d stream", s->info.path, w, h,
+        rte_source_msgf(msg, msg_size, "%s: JPEG frame of %dx%d in a %dx%d stream", s->info.path, w, h,
                    s->max_width, s->max_height);
         return RTE_ERR_FORMAT;
     }
@@ -718,7 +693,7 @@ static rte_status decode_mjpeg(v4l2_source *s, const uint8_t *jpeg, uint32_t siz
     if (tjDecompress2(s->tj, jpeg, size, s->decoded, w, pitch, h, bgr ? TJPF_BGR : TJPF_GRAY,
                       TJFLAG_FASTDCT) != 0 &&
         tjGetErrorCode(s->tj) == TJERR_FATAL) {
-        msg_printf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path, tjGetErrorStr2(s->tj));
+        rte_source_msgf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path, tjGetErrorStr2(s->tj));
         return RTE_ERR_CORRUPT;
     }
     memset(f, 0, sizeof(*f));
@@ -736,7 +711,7 @@ static rte_status v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_m
     v4l2_source *s = impl;
     const int64_t start = s->ops->now_ns(s->ops->ctx);
     const int64_t deadline = timeout_ms < 0 ? -1 : start + (int64_t)timeout_ms * 1000000;
-    msg_printf(msg, msg_size, "%s", "");
+    rte_source_msgf(msg, msg_size, "%s", "");
 
     if (s->stats.state == RTE_SOURCE_STREAMING && s->held >= 0) {
         uint32_t index = (uint32_t)s->held;
@@ -763,7 +738,7 @@ static rte_status v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_m
             return device_lost(s, "poll", errno, msg, msg_size);
         }
         if (r == 0) {
-            msg_printf(msg, msg_size, "%s: no frame within %d ms", s->info.path, timeout_ms);
+            rte_source_msgf(msg, msg_size, "%s: no frame within %d ms", s->info.path, timeout_ms);
             return RTE_ERR_TIMEOUT;
         }
         if (pfd.revents & (POLLERR | POLLHUP | POLLNVAL))
@@ -808,7 +783,7 @@ static rte_status v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_m
             if (!bad)
                 continue; /* woken without a buffer: wait again */
             s->stats.errors++;
-            msg_printf(msg, msg_size, "%s: the driver marked frame %u bad (skipped)",
+            rte_source_msgf(msg, msg_size, "%s: the driver marked frame %u bad (skipped)",
                        s->info.path, s->last_seq);
             return RTE_ERR_CORRUPT;
         }
@@ -890,7 +865,7 @@ rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *confi
         config->buffers == 1 || config->n_controls < 0 ||
         config->n_controls > RTE_V4L2_MAX_CONTROLS || config->reconnect_min_ms < 0 ||
         config->reconnect_max_ms < 0) {
-        msg_printf(msg, msg_size, "invalid V4L2 source configuration");
+        rte_source_msgf(msg, msg_size, "invalid V4L2 source configuration");
         return RTE_ERR_ARGUMENT;
     }
     memset(source, 0, sizeof(*source));
@@ -899,14 +874,14 @@ rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *confi
     if (delivered_format(fourcc, decode_to) == 0 ||
         (decode_to != RTE_PIXEL_GREY && decode_to != RTE_PIXEL_BGR24)) {
         char name[5];
-        msg_printf(msg, msg_size, "V4L2 format %s is not one rtedge reads",
+        rte_source_msgf(msg, msg_size, "V4L2 format %s is not one rtedge reads",
                    rte_v4l2_fourcc_name(fourcc, name));
         return RTE_ERR_UNSUPPORTED;
     }
 
     v4l2_source *s = calloc(1, sizeof(*s));
     if (!s) {
-        msg_printf(msg, msg_size, "out of memory");
+        rte_source_msgf(msg, msg_size, "out of memory");
         return RTE_ERR_NO_MEMORY;
     }
     s->cfg = *config;
@@ -942,7 +917,7 @@ rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *confi
             s->decoded = malloc(s->decoded_size);
             s->tj = tjInitDecompress();
             if (!s->decoded || !s->tj) {
-                msg_printf(msg, msg_size, "out of memory for the MJPEG decoder");
+                rte_source_msgf(msg, msg_size, "out of memory for the MJPEG decoder");
                 st = RTE_ERR_NO_MEMORY;
             }
         }
@@ -966,7 +941,7 @@ rte_status rte_v4l2_source_set_control(rte_source *source, const char *name, int
                                        char *msg, size_t msg_size)
 {
     if (!source || source->ops != &v4l2_source_ops || !name) {
-        msg_printf(msg, msg_size, "not a V4L2 source");
+        rte_source_msgf(msg, msg_size, "not a V4L2 source");
         return RTE_ERR_ARGUMENT;
     }
     return set_control(source->impl, name, value, msg, msg_size);

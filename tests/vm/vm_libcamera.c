@@ -1,6 +1,7 @@
 /* Runs inside the test VM against vimc through the libcamera source:
  * opens camera 0 at 640x480 (vimc adjusts the width), captures frames and
- * checks sizes, sequence numbers and CLOCK_MONOTONIC timestamps. Prints
+ * checks sizes, sequence numbers and CLOCK_MONOTONIC timestamps, then
+ * opens it again by id after a clean stop. Prints
  * "RTE-VM PASS|FAIL libcamera-vimc: detail". */
 #include <stdio.h>
 #include <string.h>
@@ -69,11 +70,24 @@ int main(void)
     rte_source_stats stats;
     rte_source_get_stats(&src, &stats);
     rte_source_close(&src);
-    int ok = n == FRAMES && varied && info.adjusted && stats.frames == FRAMES;
+
+    /* A clean stop releases the camera: it opens again at once, by id. */
+    cfg.camera = info.id;
+    st = rte_libcamera_source_open(&src, &cfg, NULL, msg, sizeof(msg));
+    int reopened = st == RTE_OK;
+    if (reopened) {
+        rte_source_frame f;
+        for (int i = 0; i < 3 && reopened; i++)
+            reopened = rte_source_next(&src, &f, 5000, msg, sizeof(msg)) == RTE_OK;
+        rte_source_close(&src);
+    }
+    if (!reopened && !why[0])
+        snprintf(why, sizeof(why), "reopening: %s", msg);
+    int ok = n == FRAMES && varied && info.adjusted && stats.frames == FRAMES && reopened;
     printf("RTE-VM %s libcamera-vimc: %s %dx%d stride %d, adjusted %d; %d frames in %lld ms, "
-           "driver drops %llu, skipped %llu, varied %d; %s\n",
+           "driver drops %llu, skipped %llu, varied %d, reopened %d; %s\n",
            ok ? "PASS" : "FAIL", info.id, info.width, info.height, info.stride, info.adjusted, n,
            (long long)ms, (unsigned long long)stats.driver_drops,
-           (unsigned long long)stats.skipped, varied, why);
+           (unsigned long long)stats.skipped, varied, reopened, why);
     return ok ? 0 : 1;
 }
