@@ -37,12 +37,17 @@ typedef struct rte_libcamera_info {
 
 /* Starts the camera manager, acquires and configures the camera, allocates
  * and maps its buffers and starts capturing. `msg` says what was set up
- * (adjustments included) or what failed. */
+ * (adjustments included) or what failed. A camera that disconnects ends
+ * the source (RTE_ERR_DEVICE, state RTE_SOURCE_FAILED): unlike the V4L2
+ * source it is not reopened. rte_source_close() stops the camera and
+ * releases it. */
 rte_status rte_libcamera_source_open(rte_source *source, const rte_libcamera_config *config,
                                      rte_libcamera_info *info, char *msg, size_t msg_size);
 
 /* Lists the libcamera cameras with their stream formats and sizes. Returns
- * the number of cameras (0 also when the camera manager does not start). */
+ * the number of cameras (0 also when the camera manager does not start).
+ * Not while a libcamera source is open: libcamera allows one camera
+ * manager per process. */
 int rte_libcamera_list(FILE *out);
 
 #ifdef __cplusplus

@@ -26,7 +26,11 @@ for tool in qemu-system-x86_64 apt-get apt-cache dpkg xz timeout; do
     command -v "$tool" >/dev/null || skip "$tool is missing (tools/packages.sh lists the packages)"
 done
 busybox=/bin/busybox
-"$busybox" --list 2>/dev/null | grep -qx cpio || skip "$busybox with cpio is missing (busybox-static)"
+# (No `busybox --list | grep -q`: with pipefail, grep's early exit is a failure.)
+applets=$("$busybox" --list 2>/dev/null)
+for applet in cpio depmod modprobe; do
+    grep -qx "$applet" <<<"$applets" || skip "$busybox with $applet is missing (busybox-static)"
+done
 file_type=$(LC_ALL=C od -An -tx1 -N4 "$busybox" | tr -d ' ')
 [ "$file_type" = 7f454c46 ] || skip "$busybox is not an ELF binary"
 if ldd "$busybox" >/dev/null 2>&1; then skip "$busybox is not static (busybox-static)"; fi
@@ -117,6 +121,7 @@ if [ -n "$vm_libcamera" ] && [ ! -f "vimc-$kver/vimc.ko" ]; then
     make -s -C "$hdr" M="$work/vimc-$kver/vimc" CONFIG_VIDEO_VIMC=m modules \
         >"vimc-$kver/build.log" 2>&1 || { tail -n 20 "vimc-$kver/build.log"; fail "vimc build"; }
     cp "vimc-$kver/vimc/vimc.ko" "vimc-$kver/vimc.ko"
+    rm -rf "headers-$kver"
 fi
 
 # ---- initramfs ----
@@ -126,7 +131,7 @@ rm -rf "$root"
 mkdir -p "$root"/{bin,proc,sys,dev,run,tmp,lib64,usr/lib/x86_64-linux-gnu} "$root/lib/modules/$kver" ||
     fail "mkdir $root"
 cp "$busybox" "$root/bin/busybox"
-for applet in $("$busybox" --list); do
+for applet in $applets; do
     [ -e "$root/bin/$applet" ] || ln -s busybox "$root/bin/$applet"
 done
 install -m 755 "$here/init.sh" "$root/init"

@@ -47,7 +47,7 @@ static rte_v4l2_config config(const char *device, uint32_t fourcc)
 
 /* n frames: the right format and size, strictly increasing timestamps and
  * sequence numbers, timestamps on CLOCK_MONOTONIC (not in the future, not
- * older than a second), pixels that are not all the same. */
+ * older than two seconds), pixels that are not all the same. */
 static int capture(rte_source *src, int n, char *why, size_t why_size)
 {
     char msg[RTE_SOURCE_MESSAGE_SIZE];
@@ -68,8 +68,9 @@ static int capture(rte_source *src, int n, char *why, size_t why_size)
             return 0;
         }
         /* vivid stamps the end of the exposure, 0.9 frame periods after it
-         * filled the buffer: a timestamp may lie that much ahead. */
-        if (f.capture_ns > now + 100000000 || now - f.capture_ns > 1000000000) {
+         * filled the buffer: a timestamp may lie that much ahead. (Another
+         * clock would be off by far more than the 2 s allowed behind.) */
+        if (f.capture_ns > now + 100000000 || now - f.capture_ns > 2000000000) {
             snprintf(why, why_size, "frame %d: capture time %lld ns, now %lld ns", i,
                      (long long)f.capture_ns, (long long)now);
             return 0;
