@@ -8,7 +8,8 @@
  * The grey conversions are bit-exact with OpenCV 4.6's cv::cvtColor for 8-bit
  * data:
  *   BGR24 -> COLOR_BGR2GRAY, RGB24 -> COLOR_RGB2GRAY
- *       grey = (1868*B + 9617*G + 4899*R + 8192) >> 14  (Q14, ITU-R BT.601)
+ *       grey = (3735*B + 19235*G + 9798*R + 16384) >> 15  (BT.601 in Q15:
+ *       OpenCV 4.6 uses these, not its Q14 table, for every 8-bit row)
  *   YUYV  -> COLOR_YUV2GRAY_YUY2, UYVY -> COLOR_YUV2GRAY_UYVY (the Y samples)
  *   NV12  -> COLOR_YUV2GRAY_NV12 (the Y plane)
  *   GREY  -> a copy. */
@@ -40,9 +41,9 @@ typedef enum rte_pixel_format {
 #define RTE_FRAME_MAX_PLANES 2
 
 /* One frame. plane[1]/stride[1] are used by NV12 only (set them to NULL/0
- * otherwise). Strides are in bytes. A YUYV or UYVY row holds 2*width bytes;
- * an odd width is allowed (its last pixel's Y is read, the half chroma pair
- * after it is not), as OpenCV allows it. */
+ * otherwise). Strides are in bytes. A YUYV or UYVY row holds 2*width bytes
+ * (2 bytes per pixel, as a 2-channel cv::Mat); odd widths are allowed, as in
+ * OpenCV. NV12 may have odd sizes too (OpenCV wants even ones). */
 typedef struct rte_frame {
     rte_pixel_format format;
     int32_t width, height;
