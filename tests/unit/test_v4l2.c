@@ -574,6 +574,12 @@ static void test_open_driver_adjusts_size_and_rate(void **state)
     assert_int_equal(fr.frame.stride[0], 62 + 16);
     assert_int_equal(fr.frame.stride[1], 62 + 16);
     assert_ptr_equal(fr.frame.plane[1], fr.frame.plane[0] + (62 + 16) * 48);
+    /* A valid rte_frame whose grey image is its Y plane. */
+    assert_int_equal(rte_frame_check(&fr.frame), RTE_OK);
+    rte_image_u8 grey;
+    assert_int_equal(rte_frame_gray_view(&fr.frame, &grey), RTE_OK);
+    assert_ptr_equal(grey.buf, fr.frame.plane[0]);
+    assert_int_equal(grey.stride, 62 + 16);
     rte_source_close(&src);
 }
 
@@ -739,6 +745,7 @@ static void test_newest_frame(void **state)
     assert_int_equal(fr.frame.plane[0][0], 2); /* the buffer that holds frame 2 */
     assert_int_equal(fr.frame.plane[0][64 * 2 - 1], 2);
     assert_int_equal(fr.frame.stride[0], 64 * 2 + 16);
+    assert_int_equal(rte_frame_check(&fr.frame), RTE_OK);
     assert_int_equal(queued_count(), 3); /* all but the one handed out */
     rte_source_stats s = stats_of(&src);
     assert_int_equal(s.skipped, 2);
@@ -932,6 +939,7 @@ static void test_mjpeg(void **state)
         assert_int_equal(fr.frame.height, 48);
         assert_int_equal(fr.frame.stride[0], as_bgr ? 64 * 3 : 64);
         assert_int_equal(fr.sequence, 1);
+        assert_int_equal(rte_frame_check(&fr.frame), RTE_OK);
         assert_memory_equal(fr.frame.plane[0], as_bgr ? ref_bgr : ref_grey,
                             as_bgr ? sizeof(ref_bgr) : sizeof(ref_grey));
         /* Decoded into our own buffer: every driver buffer is back. */

@@ -60,8 +60,17 @@ int main(void)
                      (unsigned long long)f.sequence, (unsigned long long)prev_seq);
             break;
         }
-        const uint8_t *row = f.frame.plane[0] + (size_t)f.frame.stride[0] * (size_t)(f.frame.height / 2);
-        for (int x = 3; x < 3 * f.frame.width && !varied; x++)
+        /* What the daemon does next: the frame to grey. */
+        static uint8_t grey_buf[1920 * 1080];
+        rte_image_u8 grey = { f.frame.width, f.frame.height, f.frame.width, grey_buf };
+        st = (size_t)f.frame.width * (size_t)f.frame.height > sizeof(grey_buf)
+                 ? RTE_ERR_TOO_LARGE : rte_frame_to_gray(&f.frame, &grey);
+        if (st != RTE_OK) {
+            snprintf(why, sizeof(why), "frame %d: rte_frame_to_gray: %s", n, rte_status_message(st));
+            break;
+        }
+        const uint8_t *row = grey_buf + (size_t)grey.stride * (size_t)(grey.height / 2);
+        for (int x = 1; x < grey.width && !varied; x++)
             varied = row[x] != row[0];
         prev_ns = f.capture_ns;
         prev_seq = f.sequence;

@@ -81,12 +81,20 @@ static int capture(rte_source *src, int n, char *why, size_t why_size)
                      (unsigned long long)prev_seq);
             return 0;
         }
-        const uint8_t *row = f.frame.plane[0] + (size_t)f.frame.stride[0] * 240;
+        /* What the daemon does next: the frame to grey. */
+        static uint8_t grey_buf[640 * 480];
+        rte_image_u8 grey = { 640, 480, 640, grey_buf };
+        st = rte_frame_to_gray(&f.frame, &grey);
+        if (st != RTE_OK) {
+            snprintf(why, why_size, "frame %d: rte_frame_to_gray: %s", i, rte_status_message(st));
+            return 0;
+        }
+        const uint8_t *row = grey_buf + 640 * 240;
         int varied = 0;
         for (int x = 1; x < 640 && !varied; x++)
             varied = row[x] != row[0];
         if (!varied) {
-            snprintf(why, why_size, "frame %d: a constant row", i);
+            snprintf(why, why_size, "frame %d: a constant grey row", i);
             return 0;
         }
         prev_ns = f.capture_ns;
