@@ -977,6 +977,23 @@ static void test_mjpeg(void **state)
 
 /* ---- loss and reconnection ---- */
 
+/* Opens with frames coming on demand, takes one, then the device reports
+ * POLLERR: the loss is reported once and everything is closed. */
+static void open_and_lose(rte_source *src, const rte_v4l2_config *c)
+{
+    rte_source_frame fr;
+    char msg[RTE_SOURCE_MESSAGE_SIZE];
+    open_ok(src, c, NULL);
+    F->auto_frames = 1;
+    assert_int_equal(next(src, &fr, 100), RTE_OK);
+    F->poll_error = 1;
+    assert_int_equal(rte_source_next(src, &fr, 100, msg, sizeof(msg)), RTE_ERR_DEVICE);
+    assert_string_equal(msg, "/dev/video1: poll: error condition; reconnecting");
+    assert_int_equal(F->open_fds, 0);
+    assert_int_equal(F->mapped, 0);
+    assert_int_equal(stats_of(src).state, RTE_SOURCE_RECONNECTING);
+}
+
 /* POLLERR: the device is closed (all buffers unmapped), RTE_ERR_DEVICE is
  * reported once and the source reopens it on later calls, with a backoff
  * that doubles up to the maximum while the device stays away. */
@@ -987,19 +1004,10 @@ static void test_reconnect_backoff(void **state)
     c.reconnect_min_ms = 100;
     c.reconnect_max_ms = 500;
     rte_source src;
-    open_ok(&src, &c, NULL);
-    F->auto_frames = 1;
     rte_source_frame fr;
     char msg[RTE_SOURCE_MESSAGE_SIZE];
-    assert_int_equal(next(&src, &fr, 100), RTE_OK);
-
-    F->poll_error = 1;
-    assert_int_equal(rte_source_next(&src, &fr, 100, msg, sizeof(msg)), RTE_ERR_DEVICE);
-    assert_string_equal(msg, "/dev/video1: poll: error condition; reconnecting");
+    open_and_lose(&src, &c);
     F->present = 0; /* and the node stays away */
-    assert_int_equal(F->open_fds, 0);
-    assert_int_equal(F->mapped, 0);
-    assert_int_equal(stats_of(&src).state, RTE_SOURCE_RECONNECTING);
 
     /* Attempts at +100, then +200, +400, +500, +500 ms. */
     int64_t lost = F->now;
@@ -1065,12 +1073,9 @@ static void test_reconnect_size_changed(void **state)
     c.width = 32;
     c.height = 24;
     rte_source src;
-    open_ok(&src, &c, NULL);
-    F->auto_frames = 1;
     rte_source_frame fr;
     char msg[RTE_SOURCE_MESSAGE_SIZE];
-    F->poll_error = 1;
-    assert_int_equal(next(&src, &fr, 100), RTE_ERR_DEVICE);
+    open_and_lose(&src, &c);
     F->force_w = 64;
     F->force_h = 48;
     assert_int_equal(rte_source_next(&src, &fr, 1000, msg, sizeof(msg)), RTE_ERR_DEVICE);
