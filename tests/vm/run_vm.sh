@@ -206,7 +206,7 @@ tr -d '\r' <"$work/console.log" >"$work/console.txt"
 cat "$work/console.txt"
 
 # ---- verdict ----
-expected=(vivid-yuyv vivid-grey vivid-drops vivid-buf-error vivid-fatal-error
+expected=(vivid-yuyv vivid-grey vivid-uyvy vivid-nv12 vivid-drops vivid-buf-error vivid-fatal-error
           vivid-streamon-error vivid-disconnect vivid-reload list-cameras)
 [ -n "$vm_libcamera" ] && expected+=(libcamera-vimc)
 bad=0

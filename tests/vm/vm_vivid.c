@@ -103,7 +103,7 @@ static int capture(rte_source *src, int n, char *why, size_t why_size)
     return 1;
 }
 
-static void test_capture(const char *name, const char *device, uint32_t fourcc)
+static void test_capture(const char *name, const char *device, uint32_t fourcc, int frames)
 {
     char msg[RTE_SOURCE_MESSAGE_SIZE], detail[512];
     rte_v4l2_config c = config(device, fourcc);
@@ -117,14 +117,15 @@ static void test_capture(const char *name, const char *device, uint32_t fourcc)
     }
     int64_t t0 = now_ns();
     char why[512] = "";
-    int ok = capture(&src, 100, why, sizeof(why));
+    int ok = capture(&src, frames, why, sizeof(why));
     int64_t ms = (now_ns() - t0) / 1000000;
     rte_source_stats stats;
     rte_source_get_stats(&src, &stats);
-    ok = ok && info.fourcc == fourcc && info.timestamps_monotonic && stats.frames == 100;
+    ok = ok && info.fourcc == fourcc && info.timestamps_monotonic &&
+         stats.frames == (uint64_t)frames;
     snprintf(detail, sizeof(detail),
-             "%s; 100 frames in %lld ms, driver drops %llu, skipped %llu, monotonic %d; %s", msg,
-             (long long)ms, (unsigned long long)stats.driver_drops,
+             "%s; %d frames in %lld ms, driver drops %llu, skipped %llu, monotonic %d; %s", msg,
+             frames, (long long)ms, (unsigned long long)stats.driver_drops,
              (unsigned long long)stats.skipped, info.timestamps_monotonic, why);
     result(ok, name, detail);
     rte_source_close(&src);
@@ -346,8 +347,10 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *device = argv[1];
-    test_capture("vivid-yuyv", device, V4L2_PIX_FMT_YUYV);
-    test_capture("vivid-grey", "vivid", V4L2_PIX_FMT_GREY); /* by card name */
+    test_capture("vivid-yuyv", device, V4L2_PIX_FMT_YUYV, 100);
+    test_capture("vivid-grey", "vivid", V4L2_PIX_FMT_GREY, 100); /* by card name */
+    test_capture("vivid-uyvy", device, V4L2_PIX_FMT_UYVY, 20);
+    test_capture("vivid-nv12", device, V4L2_PIX_FMT_NV12, 20);
     test_drops(device);
     test_buf_error(device);
     test_fatal(device, 0);
