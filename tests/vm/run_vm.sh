@@ -136,26 +136,27 @@ for applet in $applets; do
 done
 install -m 755 "$here/init.sh" "$root/init"
 
-# Modules: vivid and vimc with what modules.dep says they need.
-rm -rf "$work/modules"
-mkdir -p "$work/modules/lib/modules/$kver"
-cp -a "$modroot/kernel" "$modroot"/modules.{order,builtin} "$work/modules/lib/modules/$kver/" 2>/dev/null
+# Modules: vivid and vimc with what modules.dep says they need (the
+# kernel tree's modules.dep is made once, with vimc.ko in extra/).
 wanted=(vivid)
 if [ -n "$vm_libcamera" ]; then
-    mkdir -p "$work/modules/lib/modules/$kver/extra"
-    cp "vimc-$kver/vimc.ko" "$work/modules/lib/modules/$kver/extra/"
     wanted+=(vimc)
+    if [ ! -f "$modroot/extra/vimc.ko" ]; then
+        mkdir -p "$modroot/extra"
+        cp "vimc-$kver/vimc.ko" "$modroot/extra/"
+        rm -f "$modroot/modules.dep"
+    fi
 fi
-"$busybox" depmod -b "$work/modules" "$kver" || fail "depmod"
+if [ ! -f "$modroot/modules.dep" ]; then
+    "$busybox" depmod -b "$work/kernel-$kver" "$kver" || fail "depmod"
+fi
 for m in "${wanted[@]}"; do
-    line=$(grep -E "(^|/)$m\.ko:" "$work/modules/lib/modules/$kver/modules.dep") ||
-        fail "$m.ko is not in modules.dep"
+    line=$(grep -E "(^|/)$m\.ko:" "$modroot/modules.dep") || fail "$m.ko is not in modules.dep"
     for f in ${line/:/}; do
         mkdir -p "$root/lib/modules/$kver/$(dirname "$f")"
-        cp "$work/modules/lib/modules/$kver/$f" "$root/lib/modules/$kver/$f"
+        cp "$modroot/$f" "$root/lib/modules/$kver/$f"
     done
 done
-rm -rf "$work/modules"
 "$busybox" depmod -b "$root" "$kver" || fail "depmod in the initramfs"
 
 # Programs with their shared libraries (flat in one directory, found
