@@ -255,6 +255,8 @@ static void gaussian_scratch_size_is_enough_and_checked(void **state)
         rte_arena_init(&a, arena_memory + offset, need);
         assert_int_equal(rte_gaussian_blur_u8(&src, &dst, &k, &a), RTE_OK);
         assert_int_equal(a.used, 0);
+        assert_int_equal(rte_gaussian_blur_u8(&dst, &dst, &k, &a), RTE_OK); /* in place needs most */
+        assert_int_equal(a.used, 0);
         assert_true(a.high_water <= need);
     }
     /* too small: an error, the arena and the destination untouched */
