@@ -66,9 +66,13 @@ static rte_status print_features(const rte_point *pts, int32_t n, feature_buffer
     printf(",\"perimeter\":");
     cli_print_q16(s.perimeter_q16);
     printf(",\"centroid\":");
-    if (m.s00 > 0)
-        print_q8_pair((m.cx_q16 + 128) >> 8, (m.cy_q16 + 128) >> 8);
-    else
+    if (m.s00 > 0) {
+        printf("[");
+        cli_print_q16(m.cx_q16);
+        printf(",");
+        cli_print_q16(m.cy_q16);
+        printf("]");
+    } else
         printf("null");
     printf(",\"bbox\":[%d,%d,%d,%d]", (int)s.bounds.x, (int)s.bounds.y, (int)s.bounds.width,
            (int)s.bounds.height);
