@@ -96,7 +96,8 @@ typedef struct rte_grasp_result {
     int32_t dropped_objects;   /* objects that passed the filters but exceeded max_objects */
     int32_t dropped_contours;  /* contours beyond max_contours / max_points */
     int32_t threshold;         /* the threshold used (-1 in canny-close mode) */
-    rte_grasp_polarity polarity; /* DARK or BRIGHT as applied (AUTO resolved) */
+    rte_grasp_polarity polarity; /* DARK or BRIGHT as applied (AUTO resolved; BRIGHT for
+                                  * canny-close, where the closed edges are the objects) */
     const rte_contours *contours; /* the external contours of the frame */
     const rte_image_u8 *binary;   /* the binary image the contours came from */
     rte_grasp_timing timing;

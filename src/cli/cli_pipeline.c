@@ -180,7 +180,7 @@ void cli_overlay_box(rte_image_u8c3 *canvas, const int32_t corners_q8[4][2], rte
 rte_draw_color cli_overlay_color(int32_t i)
 {
     static const rte_draw_color palette[] = {
-        {0, 0, 255}, {0, 200, 0}, {255, 0, 0}, {0, 200, 255}, {255, 0, 255}, {255, 255, 0}, {0, 128, 255}, {128, 0, 255},
+        {0, 0, 255}, {0, 200, 0}, {255, 160, 0}, {0, 200, 255}, {255, 0, 255}, {255, 255, 0}, {0, 128, 255}, {128, 0, 255},
     };
     return palette[(uint32_t)i % (sizeof palette / sizeof palette[0])];
 }
