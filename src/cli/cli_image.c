@@ -78,22 +78,30 @@ void *cli_new_arena(const char *command, size_t bytes, rte_arena *arena)
     return mem;
 }
 
-int cli_save_gray(const char *command, const char *path, const rte_image_u8 *img)
+/* The end of every writer: the message on failure. */
+static int saved(const char *command, rte_status st, const char *msg)
 {
-    char msg[RTE_IO_MESSAGE_SIZE];
-    if (rte_image_write_gray(path, img, msg, sizeof msg) != RTE_OK) {
+    if (st != RTE_OK) {
         cli_error(command, "%s", msg);
         return CLI_EXIT_FAILURE;
     }
     return CLI_EXIT_OK;
 }
 
+int cli_save_gray(const char *command, const char *path, const rte_image_u8 *img)
+{
+    char msg[RTE_IO_MESSAGE_SIZE];
+    return saved(command, rte_image_write_gray(path, img, msg, sizeof msg), msg);
+}
+
 int cli_save_s16(const char *command, const char *path, const rte_image_s16 *img)
 {
     char msg[RTE_IO_MESSAGE_SIZE];
-    if (rte_image_write_s16(path, img, msg, sizeof msg) != RTE_OK) {
-        cli_error(command, "%s", msg);
-        return CLI_EXIT_FAILURE;
-    }
-    return CLI_EXIT_OK;
+    return saved(command, rte_image_write_s16(path, img, msg, sizeof msg), msg);
+}
+
+int cli_save_bgr(const char *command, const char *path, const rte_image_u8c3 *img)
+{
+    char msg[RTE_IO_MESSAGE_SIZE];
+    return saved(command, rte_image_write_bgr(path, img, msg, sizeof msg), msg);
 }

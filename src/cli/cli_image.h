@@ -32,5 +32,7 @@ void *cli_new_arena(const char *command, size_t bytes, rte_arena *arena);
  * Returns CLI_EXIT_OK or CLI_EXIT_FAILURE after printing the problem. */
 int cli_save_gray(const char *command, const char *path, const rte_image_u8 *img);
 int cli_save_s16(const char *command, const char *path, const rte_image_s16 *img);
+/* A BGR image (.png, .ppm, .npy), e.g. an overlay. */
+int cli_save_bgr(const char *command, const char *path, const rte_image_u8c3 *img);
 
 #endif

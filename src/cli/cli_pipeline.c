@@ -5,7 +5,6 @@
 #include <string.h>
 
 #include "rtedge/blur.h"
-#include "rtedge/imageio.h"
 #include "rtedge/morphology.h"
 
 const char *const cli_polarities[] = {"auto", "dark", "bright", NULL};
@@ -183,14 +182,4 @@ rte_draw_color cli_overlay_color(int32_t i)
         {0, 0, 255}, {0, 200, 0}, {255, 160, 0}, {0, 200, 255}, {255, 0, 255}, {255, 255, 0}, {0, 128, 255}, {128, 0, 255},
     };
     return palette[(uint32_t)i % (sizeof palette / sizeof palette[0])];
-}
-
-int cli_overlay_save(const char *command, const char *path, const rte_image_u8c3 *canvas)
-{
-    char msg[RTE_IO_MESSAGE_SIZE];
-    if (rte_image_write_bgr(path, canvas, msg, sizeof msg) != RTE_OK) {
-        cli_error(command, "%s", msg);
-        return CLI_EXIT_FAILURE;
-    }
-    return CLI_EXIT_OK;
 }

@@ -45,7 +45,5 @@ void cli_overlay_label(rte_image_u8c3 *canvas, int32_t x, int32_t y, const char 
 void cli_overlay_box(rte_image_u8c3 *canvas, const int32_t corners_q8[4][2], rte_draw_color c);
 /* A distinct colour for object i. */
 rte_draw_color cli_overlay_color(int32_t i);
-/* Writes the canvas (.png, .ppm); CLI_EXIT_FAILURE after a message. */
-int cli_overlay_save(const char *command, const char *path, const rte_image_u8c3 *canvas);
 
 #endif

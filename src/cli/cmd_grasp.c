@@ -94,7 +94,7 @@ static int overlay(grasp_run *run, void (*draw_object)(rte_image_u8c3 *, const g
     /* largest last, so small objects inside big ones stay visible */
     for (int32_t i = run->result.n_objects - 1; i >= 0; i--)
         draw_object(&canvas, run, i);
-    int rc = cli_overlay_save(run->name, run->overlay, &canvas);
+    int rc = cli_save_bgr(run->name, run->overlay, &canvas);
     free(mem);
     return rc;
 }
