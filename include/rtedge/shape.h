@@ -175,8 +175,11 @@ typedef struct rte_shape_info {
  *  - area below 16 px or solidity below 0.80: other
  *  - v == 3: triangle
  *  - v == 4, or c < 0.813 (a quadrilateral or triangle whose noisy edge
- *    kept an extra vertex): triangle when c < 0.70 and a < 1.3, else square
- *    when a <= 1.15 (the square tolerance), else rectangle
+ *    kept an extra vertex): triangle when c < 0.70 and a < 1.3, or when the
+ *    shape fills less than 0.70 of its minimum-area rectangle (a triangle
+ *    with a rounded corner: about 0.5; squares and rectangles, even
+ *    hand-drawn: 0.9 and more); else square when a <= 1.15 (the square
+ *    tolerance), else rectangle
  *  - v > 6 and roundness >= 0.904 (circularity confirming): circle
  *  - v <= 8: hexagon when roundness >= 0.858, else pentagon, where the
  *    vertex count with 0.04 x perimeter (which drops most vertices that

@@ -53,6 +53,12 @@ static int32_t circle_fill(int64_t area2, int32_t r_q8)
     return q > INT32_MAX ? INT32_MAX : (int32_t)q;
 }
 
+/* area / area of the minimum-area rectangle, Q16 */
+static int32_t box_fill(const rte_shape_info *s)
+{
+    return ratio_q16(s->area2 * 32768, (int64_t)s->box.length_q8 * s->box.width_q8);
+}
+
 static rte_shape_class classify(const rte_shape_info *s)
 {
     const int32_t v = s->vertices, c = s->hull_circularity_q16, a = s->aspect_q16;
@@ -62,6 +68,11 @@ static rte_shape_class classify(const rte_shape_info *s)
         return RTE_SHAPE_TRIANGLE;
     if (v == 4 || c < Q16(813, 1000)) {
         if (c < Q16(70, 100) && a < Q16(130, 100))
+            return RTE_SHAPE_TRIANGLE;
+        /* A triangle with a rounded or blunt corner keeps a fourth vertex;
+         * it still fills only about half of its minimum-area box, where a
+         * square or rectangle, however hand-drawn, fills most of it. */
+        if (box_fill(s) < Q16(70, 100))
             return RTE_SHAPE_TRIANGLE;
         return a <= RTE_SHAPE_SQUARE_ASPECT_Q16 ? RTE_SHAPE_SQUARE : RTE_SHAPE_RECTANGLE;
     }
