@@ -22,18 +22,6 @@ struct rte_publisher {
     rte_publish_stats stats;
 };
 
-static void msgf(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-
-static void msgf(char *msg, size_t size, const char *fmt, ...)
-{
-    if (!msg || size == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, size, fmt, ap);
-    va_end(ap);
-}
-
 /* ---- sizing: the generated _encoded_size of worst-case messages ---- */
 
 /* The worst-case messages' arrays, zeroed (sizes do not depend on values,
@@ -132,7 +120,7 @@ static rte_status parse_file_url(const char *url, char *path, size_t capacity, i
     const char *q = strchr(p, '?');
     size_t len = q ? (size_t)(q - p) : strlen(p);
     if (len == 0 || len >= capacity) {
-        msgf(msg, msg_size, "%s: no file name, or one too long", url);
+        rte_lcm_msgf(msg, msg_size, "%s: no file name, or one too long", url);
         return RTE_ERR_ARGUMENT;
     }
     memcpy(path, p, len);
@@ -142,7 +130,7 @@ static rte_status parse_file_url(const char *url, char *path, size_t capacity, i
         if (strcmp(q, "?mode=a") == 0)
             *append = 1;
         else if (strcmp(q, "?mode=w") != 0) {
-            msgf(msg, msg_size, "%s: the only option is mode=w or mode=a", url);
+            rte_lcm_msgf(msg, msg_size, "%s: the only option is mode=w or mode=a", url);
             return RTE_ERR_ARGUMENT;
         }
     }
@@ -162,17 +150,17 @@ rte_status rte_publisher_create(rte_publisher **out, const char *url,
                                 const rte_publish_limits *limits, char *msg, size_t msg_size)
 {
     if (!out || !url || !limits) {
-        msgf(msg, msg_size, "publisher: missing argument");
+        rte_lcm_msgf(msg, msg_size, "publisher: missing argument");
         return RTE_ERR_ARGUMENT;
     }
     *out = NULL;
     if (!limits_ok(limits)) {
-        msgf(msg, msg_size, "publisher: limits out of range");
+        rte_lcm_msgf(msg, msg_size, "publisher: limits out of range");
         return RTE_ERR_ARGUMENT;
     }
     rte_publisher *pub = calloc(1, sizeof *pub);
     if (!pub) {
-        msgf(msg, msg_size, "publisher: no memory");
+        rte_lcm_msgf(msg, msg_size, "publisher: no memory");
         return RTE_ERR_NO_MEMORY;
     }
     pub->log.fd = -1;
@@ -180,7 +168,7 @@ rte_status rte_publisher_create(rte_publisher **out, const char *url,
     pub->capacity = worst_case_size(limits);
     pub->buf = pub->capacity ? malloc(pub->capacity) : NULL;
     if (!pub->buf) {
-        msgf(msg, msg_size, "publisher: no memory for a %zu-byte buffer", pub->capacity);
+        rte_lcm_msgf(msg, msg_size, "publisher: no memory for a %zu-byte buffer", pub->capacity);
         rte_publisher_destroy(pub);
         return RTE_ERR_NO_MEMORY;
     }
@@ -194,7 +182,7 @@ rte_status rte_publisher_create(rte_publisher **out, const char *url,
     } else {
         pub->lcm = lcm_create(url);
         if (!pub->lcm) {
-            msgf(msg, msg_size, "%s: liblcm cannot open it", url);
+            rte_lcm_msgf(msg, msg_size, "%s: liblcm cannot open it", url);
             st = RTE_ERR_IO;
         }
     }
@@ -202,7 +190,7 @@ rte_status rte_publisher_create(rte_publisher **out, const char *url,
         rte_publisher_destroy(pub);
         return st;
     }
-    msgf(msg, msg_size, "%s", "");
+    rte_lcm_msgf(msg, msg_size, "%s", "");
     *out = pub;
     return RTE_OK;
 }
@@ -276,7 +264,7 @@ static rte_status send_encoded(rte_publisher *pub, const char *channel, int len,
     }
     pub->stats.messages++;
     pub->stats.bytes += (uint64_t)len;
-    msgf(msg, msg_size, "%s", "");
+    rte_lcm_msgf(msg, msg_size, "%s", "");
     return RTE_OK;
 }
 
