@@ -13,6 +13,7 @@
 
 #include <cmocka.h>
 
+#include "heapcount.h"
 #include "rtedge/imageio.h"
 #include "rtedge/pacer.h"
 #include "rtedge/publish.h"
@@ -473,6 +474,78 @@ static void test_lcm_log_images(void **state)
     assert_null(src.ops);
 }
 
+/* ---- no heap calls per frame ---- */
+
+/* Heap calls of `frames` next() calls after the first, with a rewind at the
+ * end of the recording. */
+static uint64_t heap_calls_per_run(rte_source *src, int frames)
+{
+    rte_source_frame f;
+    char msg[RTE_SOURCE_MESSAGE_SIZE];
+    assert_int_equal(rte_source_next(src, &f, 0, msg, sizeof msg), RTE_OK);
+    heapcount_reset();
+    for (int i = 0; i < frames; i++) {
+        rte_status st = rte_source_next(src, &f, 0, msg, sizeof msg);
+        if (st == RTE_ERR_END) {
+            assert_int_equal(rte_recorded_source_rewind(src), RTE_OK);
+            st = rte_source_next(src, &f, 0, msg, sizeof msg);
+        }
+        assert_int_equal(st, RTE_OK);
+    }
+    heapcount_counts c;
+    heapcount_get(&c);
+    rte_source_close(src);
+    return heapcount_calls(&c);
+}
+
+static void test_no_heap_calls_per_frame(void **state)
+{
+    (void)state;
+    if (!heapcount_active()) {
+        print_message("heapcount is not interposed (sanitizer build?): not counted\n");
+        skip();
+    }
+    char path[700], url[800], msg[RTE_SOURCE_MESSAGE_SIZE];
+    rte_source src;
+    tmp_path(path, sizeof path, "heap.y4m");
+    write_y4m(path, "YUV4MPEG2 W64 H48 C420\n", 64, 48, 0, 4, NULL, 0);
+    assert_int_equal(rte_y4m_source_open(&src, path, msg, sizeof msg), RTE_OK);
+    assert_int_equal(heap_calls_per_run(&src, 10), 0);
+
+    tmp_path(path, sizeof path, "heap.raw");
+    static uint8_t raw[3 * 64 * 48 * 3];
+    write_file(path, raw, sizeof raw);
+    rte_raw_source_config rc = {path, RTE_PIXEL_BGR24, 64, 48, 0, 0};
+    assert_int_equal(rte_raw_source_open(&src, &rc, msg, sizeof msg), RTE_OK);
+    assert_int_equal(heap_calls_per_run(&src, 10), 0);
+
+    tmp_path(path, sizeof path, "heap.lcmlog");
+    snprintf(url, sizeof url, "file://%s", path);
+    rte_publish_limits limits = {32, 0, 0, 0, 0, 64 * 48, 1};
+    rte_publisher *pub;
+    assert_int_equal(rte_publisher_create(&pub, url, &limits, msg, sizeof msg), RTE_OK);
+    rtedge_image_t img = {0, 64, 48, 64, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, 64 * 48, raw, 0, NULL};
+    for (int k = 0; k < 3; k++)
+        assert_int_equal(rte_publish_image(pub, "CAM", &img, msg, sizeof msg), RTE_OK);
+    rte_publisher_destroy(pub);
+    rte_lcm_source_config lc = {path, "CAM", 0, 0, 0};
+    assert_int_equal(rte_lcm_log_source_open(&src, &lc, msg, sizeof msg), RTE_OK);
+    assert_int_equal(heap_calls_per_run(&src, 10), 0);
+
+    /* Image files: the codecs' and stdio's own (documented in imageio.h). */
+    char dir[600];
+    tmp_path(dir, sizeof dir, "heapimages");
+    mkdir(dir, 0755);
+    snprintf(path, sizeof path, "%s/a.pgm", dir);
+    write_gray(path, 64, 48, 1);
+    snprintf(path, sizeof path, "%s/b.png", dir);
+    write_gray(path, 64, 48, 2);
+    rte_images_source_config ic = {dir, RTE_PIXEL_GREY, 0, 0, 0, 0};
+    assert_int_equal(rte_images_source_open(&src, &ic, msg, sizeof msg), RTE_OK);
+    print_message("images source, 10 frames of PGM and PNG: %llu heap calls (fopen, libspng)\n",
+                  (unsigned long long)heap_calls_per_run(&src, 10));
+}
+
 /* ---- pacing on a fake clock ---- */
 
 #define MS 1000000LL
@@ -559,6 +632,7 @@ int main(void)
         cmocka_unit_test(test_y4m_from_ffmpeg),
         cmocka_unit_test(test_raw_frames),
         cmocka_unit_test(test_lcm_log_images),
+        cmocka_unit_test(test_no_heap_calls_per_frame),
         cmocka_unit_test(test_pacer_recorded),
         cmocka_unit_test(test_pacer_fps_and_fast),
     };
