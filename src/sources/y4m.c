@@ -310,11 +310,8 @@ rte_status rte_y4m_source_open(rte_source *source, const char *path, char *msg, 
         return st;
     }
     rte_recording_init(&s->rec, rte_recording_frame_ns(1, s->fps_num, s->fps_den), y4m_rewind);
-    source->ops = &rte_y4m_source_ops;
-    source->impl = s;
-    source->max_width = s->width;
-    source->max_height = s->height;
-    source->format = s->mono ? RTE_PIXEL_GREY : RTE_PIXEL_NV12;
+    rte_recording_attach(source, &rte_y4m_source_ops, s, s->width, s->height,
+                         s->mono ? RTE_PIXEL_GREY : RTE_PIXEL_NV12);
     rte_source_msgf(msg, msg_size, "%s: %dx%d %s at %d/%d fps", s->path_name, s->width,
                     s->height, s->mono ? "mono" : "4:2:0", s->fps_num, s->fps_den);
     return RTE_OK;

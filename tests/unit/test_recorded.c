@@ -65,6 +65,14 @@ static void write_gray(const char *path, int32_t w, int32_t h, uint8_t value)
     free(buf);
 }
 
+/* write_gray into dir/name; the path is left in path. */
+static void write_gray_in(char *path, size_t size, const char *dir, const char *name, int32_t w,
+                          int32_t h, uint8_t value)
+{
+    snprintf(path, size, "%s/%s", dir, name);
+    write_gray(path, w, h, value);
+}
+
 static void expect_stats(const rte_source *src, uint64_t frames, uint64_t bad,
                          rte_source_state state)
 {
@@ -83,18 +91,14 @@ static void test_images_directory_with_corrupt_png(void **state)
     char dir[600], path[700];
     tmp_path(dir, sizeof dir, "images");
     mkdir(dir, 0755);
-    snprintf(path, sizeof path, "%s/a.pgm", dir);
-    write_gray(path, 8, 6, 10);
-    snprintf(path, sizeof path, "%s/b.png", dir);
-    write_gray(path, 8, 6, 20);
+    write_gray_in(path, sizeof path, dir, "a.pgm", 8, 6, 10);
+    write_gray_in(path, sizeof path, dir, "b.png", 8, 6, 20);
     /* c.png: a PNG cut in the middle of its data */
-    snprintf(path, sizeof path, "%s/c.png", dir);
-    write_gray(path, 8, 6, 30);
+    write_gray_in(path, sizeof path, dir, "c.png", 8, 6, 30);
     struct stat sb;
     assert_int_equal(stat(path, &sb), 0);
     assert_int_equal(truncate(path, sb.st_size / 2), 0);
-    snprintf(path, sizeof path, "%s/d.PNG", dir);
-    write_gray(path, 5, 4, 40);
+    write_gray_in(path, sizeof path, dir, "d.PNG", 5, 4, 40);
     snprintf(path, sizeof path, "%s/notes.txt", dir);
     write_file(path, "x", 1);
 
@@ -536,10 +540,8 @@ static void test_no_heap_calls_per_frame(void **state)
     char dir[600];
     tmp_path(dir, sizeof dir, "heapimages");
     mkdir(dir, 0755);
-    snprintf(path, sizeof path, "%s/a.pgm", dir);
-    write_gray(path, 64, 48, 1);
-    snprintf(path, sizeof path, "%s/b.png", dir);
-    write_gray(path, 64, 48, 2);
+    write_gray_in(path, sizeof path, dir, "a.pgm", 64, 48, 1);
+    write_gray_in(path, sizeof path, dir, "b.png", 64, 48, 2);
     rte_images_source_config ic = {dir, RTE_PIXEL_GREY, 0, 0, 0, 0};
     assert_int_equal(rte_images_source_open(&src, &ic, msg, sizeof msg), RTE_OK);
     print_message("images source, 10 frames of PGM and PNG: %llu heap calls (fopen, libspng)\n",
