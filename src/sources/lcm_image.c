@@ -306,14 +306,17 @@ typedef struct lcm_live_source {
     size_t capacity;
     int32_t size;       /* of the message in buf; -1: it did not fit */
     int pending;        /* buf holds a message not handed out yet */
+    uint32_t replaced;  /* messages replaced by newer ones since the last frame */
 } lcm_live_source;
 
 static void on_image(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     (void)channel;
     lcm_live_source *s = user;
-    if (s->pending)
+    if (s->pending) {
         s->rec.stats.skipped++; /* a newer one replaces it */
+        s->replaced++;
+    }
     s->pending = 1;
     if (rbuf->data_size > s->capacity) {
         s->size = -1;
@@ -354,6 +357,8 @@ static rte_status lcm_live_next(void *impl, rte_source_frame *out, int32_t timeo
     if (st != RTE_OK)
         return rte_recording_bad(&s->rec, st);
     rte_recording_deliver(&s->rec, out, &frame, utime * 1000);
+    out->dropped = s->replaced;
+    s->replaced = 0;
     return RTE_OK;
 }
 

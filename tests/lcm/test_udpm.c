@@ -248,6 +248,7 @@ static void test_live_lcm_source(void **state)
     assert_int_equal(rte_source_next(&src, &f, 1000, msg, sizeof msg), RTE_OK);
     assert_int_equal(f.frame.plane[0][0], 3);
     assert_int_equal(f.recorded_ns, 3000 * 1000);
+    assert_int_equal(f.dropped, 2);
     rte_source_stats stats;
     rte_source_get_stats(&src, &stats);
     assert_int_equal(stats.skipped, 2);
@@ -272,6 +273,7 @@ static void test_live_lcm_source(void **state)
         if (k > 0)
             calls += heapcount_calls(&c);
         assert_int_equal(f.frame.plane[0][0], 100 + k);
+        assert_int_equal(f.dropped, 0);
     }
     if (counting) {
         print_message("live lcm source: %llu heap calls in 19 frames\n",

@@ -99,6 +99,16 @@ static void test_images_directory_with_corrupt_png(void **state)
     assert_int_equal(stat(path, &sb), 0);
     assert_int_equal(truncate(path, sb.st_size / 2), 0);
     write_gray_in(path, sizeof path, dir, "d.PNG", 5, 4, 40);
+    /* e.png: whole, but a byte of its image data flipped (CRC mismatch) */
+    write_gray_in(path, sizeof path, dir, "e.png", 8, 6, 50);
+    assert_int_equal(stat(path, &sb), 0);
+    int fd = open(path, O_RDWR);
+    assert_true(fd >= 0);
+    uint8_t byte;
+    assert_int_equal(pread(fd, &byte, 1, sb.st_size - 20), 1);
+    byte ^= 0x55;
+    assert_int_equal(pwrite(fd, &byte, 1, sb.st_size - 20), 1);
+    close(fd);
     snprintf(path, sizeof path, "%s/notes.txt", dir);
     write_file(path, "x", 1);
 
@@ -112,13 +122,13 @@ static void test_images_directory_with_corrupt_png(void **state)
     assert_int_equal(src.format, RTE_PIXEL_GREY);
 
     rte_source_frame f;
-    const uint8_t firsts[] = {10, 20, 0, 40};
+    const uint8_t firsts[] = {10, 20, 0, 40, 0};
     for (int pass = 0; pass < 2; pass++) {
-        for (int i = 0; i < 4; i++) {
+        for (int i = 0; i < 5; i++) {
             rte_status st = rte_source_next(&src, &f, 0, msg, sizeof msg);
-            if (i == 2) {
-                assert_int_not_equal(st, RTE_OK);
-                assert_non_null(strstr(msg, "c.png"));
+            if (i == 2 || i == 4) {
+                assert_int_equal(st, i == 2 ? RTE_ERR_TRUNCATED : RTE_ERR_CORRUPT);
+                assert_non_null(strstr(msg, i == 2 ? "c.png" : "e.png"));
                 continue;
             }
             assert_int_equal(st, RTE_OK);
@@ -126,13 +136,13 @@ static void test_images_directory_with_corrupt_png(void **state)
             assert_int_equal(f.frame.width, i == 3 ? 5 : 8);
             assert_int_equal(f.frame.plane[0][0], firsts[i]);
             assert_int_equal(f.frame.plane[0][f.frame.stride[0] + 2], firsts[i] + 3);
-            assert_int_equal(f.sequence, (uint64_t)(pass * 4 + i));
-            /* 30 fps by default; the second pass goes on after the first */
+            assert_int_equal(f.sequence, (uint64_t)(pass * 5 + i));
+            /* 30 fps by default; after the rewind, one frame after d.PNG */
             assert_int_equal(f.recorded_ns, (int64_t)(pass * 4 + i) * 1000000000 / 30);
         }
         assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_ERR_END);
         assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_ERR_END);
-        expect_stats(&src, (uint64_t)(pass + 1) * 3, (uint64_t)pass + 1, RTE_SOURCE_ENDED);
+        expect_stats(&src, (uint64_t)(pass + 1) * 3, (uint64_t)(pass + 1) * 2, RTE_SOURCE_ENDED);
         assert_int_equal(rte_recorded_source_rewind(&src), RTE_OK);
     }
     rte_source_close(&src);
