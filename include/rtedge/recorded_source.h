@@ -87,7 +87,13 @@ typedef struct rte_lcm_source_config {
 rte_status rte_lcm_log_source_open(rte_source *source, const rte_lcm_source_config *config,
                                    char *msg, size_t msg_size);
 /* Live: next() waits with lcm_handle_timeout and delivers the newest image
- * that has arrived (older ones pending are counted as skipped). Never ends. */
+ * that has arrived (older ones pending are counted as skipped and in the
+ * frame's `dropped`). Never ends. The image is copied into the source's
+ * buffer (liblcm's is valid only during its callback). Heap: none of
+ * rtedge's; liblcm itself makes none for a message that fits one UDP
+ * datagram, but reassembles a larger (fragmented) one in a buffer its
+ * receive thread allocates and lcm_handle frees: measured 2 allocations
+ * and 3 frees per 76800-byte image (tests/lcm/test_udpm.c). */
 rte_status rte_lcm_live_source_open(rte_source *source, const rte_lcm_source_config *config,
                                     char *msg, size_t msg_size);
 

@@ -30,13 +30,19 @@ void *valloc(size_t size);
 void *pvalloc(size_t size);
 
 static uint64_t n_malloc, n_calloc, n_realloc, n_free, n_bytes;
+/* The calling thread's own counts. initial-exec: the general TLS model may
+ * allocate on a thread's first access, which would recurse into malloc. */
+static __thread heapcount_counts thread_counts __attribute__((tls_model("initial-exec")));
 
 #define COUNT(var, k) __atomic_fetch_add(&(var), (k), __ATOMIC_RELAXED)
+#define COUNT_THREAD(field, k) (thread_counts.field += (k))
 
 void *malloc(size_t size)
 {
     COUNT(n_malloc, 1);
     COUNT(n_bytes, size);
+    COUNT_THREAD(malloc_calls, 1);
+    COUNT_THREAD(bytes, size);
     return __libc_malloc(size);
 }
 
@@ -44,6 +50,8 @@ void *calloc(size_t n, size_t size)
 {
     COUNT(n_calloc, 1);
     COUNT(n_bytes, n * size);
+    COUNT_THREAD(calloc_calls, 1);
+    COUNT_THREAD(bytes, n * size);
     return __libc_calloc(n, size);
 }
 
@@ -51,12 +59,15 @@ void *realloc(void *p, size_t size)
 {
     COUNT(n_realloc, 1);
     COUNT(n_bytes, size);
+    COUNT_THREAD(realloc_calls, 1);
+    COUNT_THREAD(bytes, size);
     return __libc_realloc(p, size);
 }
 
 void free(void *p)
 {
     COUNT(n_free, 1);
+    COUNT_THREAD(free_calls, 1);
     __libc_free(p);
 }
 
@@ -64,6 +75,8 @@ void *memalign(size_t alignment, size_t size)
 {
     COUNT(n_malloc, 1);
     COUNT(n_bytes, size);
+    COUNT_THREAD(malloc_calls, 1);
+    COUNT_THREAD(bytes, size);
     return __libc_memalign(alignment, size);
 }
 
@@ -105,8 +118,14 @@ void heapcount_get(heapcount_counts *c)
     c->bytes = LOAD(n_bytes);
 }
 
+void heapcount_get_thread(heapcount_counts *c)
+{
+    *c = thread_counts;
+}
+
 void heapcount_reset(void)
 {
+    thread_counts = (heapcount_counts){0, 0, 0, 0, 0};
     CLEAR(n_malloc);
     CLEAR(n_calloc);
     CLEAR(n_realloc);

@@ -31,8 +31,12 @@ typedef struct heapcount_counts {
     uint64_t bytes;          /* requested by malloc/calloc/realloc/aligned */
 } heapcount_counts;
 
-/* The counts since the last reset. */
+/* The process's counts since the last reset. */
 void heapcount_get(heapcount_counts *counts);
+/* The calling thread's counts since its last reset (other threads, such as
+ * liblcm's receive thread, excluded). */
+void heapcount_get_thread(heapcount_counts *counts);
+/* Resets the process's counts and the calling thread's. */
 void heapcount_reset(void);
 /* Allocating calls: malloc + calloc + realloc (+ aligned); free excluded. */
 uint64_t heapcount_allocations(const heapcount_counts *counts);

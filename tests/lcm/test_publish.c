@@ -388,6 +388,31 @@ static void test_heap_calls_file(void **state)
     assert_int_equal(c.calloc_calls, 10);
     assert_int_equal(c.free_calls, 10);
     lcm_destroy(lcm);
+
+    /* Reading: lcm_eventlog allocates every event it returns; rtedge's
+     * reader (the lcm-log source's) reads into its own buffer. */
+    lcm_eventlog_t *log = lcm_eventlog_create(path, "r");
+    assert_non_null(log);
+    lcm_eventlog_free_event(lcm_eventlog_read_next_event(log));
+    heapcount_reset();
+    for (int i = 0; i < 5; i++)
+        lcm_eventlog_free_event(lcm_eventlog_read_next_event(log));
+    heapcount_get(&c);
+    print_message("lcm_eventlog_read_next_event, 5 events: %llu calloc, %llu free\n",
+                  (unsigned long long)c.calloc_calls, (unsigned long long)c.free_calls);
+    assert_true(heapcount_allocations(&c) >= 5);
+    lcm_eventlog_destroy(log);
+    rte_lcm_log_reader r;
+    rte_lcm_log_event ev;
+    char msg[256];
+    assert_int_equal(rte_lcm_log_reader_open(&r, path, 65536, msg, sizeof msg), RTE_OK);
+    assert_int_equal(rte_lcm_log_read(&r, &ev, msg, sizeof msg), RTE_OK);
+    heapcount_reset();
+    for (int i = 0; i < 5; i++)
+        assert_int_equal(rte_lcm_log_read(&r, &ev, msg, sizeof msg), RTE_OK);
+    heapcount_get(&c);
+    assert_int_equal(heapcount_calls(&c), 0);
+    rte_lcm_log_reader_close(&r);
     unlink(path);
 }
 

@@ -112,6 +112,36 @@ static void test_udpm_round_trip_without_heap_calls(void **state)
                 assert_true(lcm_handle_timeout(sub_lcm, 2000) > 0);
             check_bytes(i, &s, got.channel, got.data, got.size);
         }
+    /* An image over 64 KB: liblcm sends it in fragments, still from the
+     * caller's buffer. */
+    static uint8_t big[90000];
+    for (size_t i = 0; i < sizeof big; i++)
+        big[i] = (uint8_t)(i * 13);
+    rtedge_image_t img = {7, 300, 300, 300, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, (int32_t)sizeof big,
+                          big, 0, NULL};
+    for (int round = 0; round < 3; round++) {
+        got.count = 0;
+        heapcount_reset();
+        assert_int_equal(rte_publish_image(pub, "BIG", &img, msg, sizeof msg), RTE_OK);
+        /* This thread's calls: liblcm's receive thread, reassembling the
+         * fragments for the subscriber in this process, allocates. */
+        heapcount_counts c;
+        heapcount_get_thread(&c);
+        if (counting && round > 0)
+            assert_int_equal(heapcount_calls(&c), 0);
+        while (got.count == 0)
+            assert_true(lcm_handle_timeout(sub_lcm, 2000) > 0);
+        assert_string_equal(got.channel, "BIG");
+        rtedge_image_t d;
+        assert_int_equal(rtedge_image_t_decode(got.data, 0, got.size, &d), got.size);
+        assert_int_equal(d.size, (int32_t)sizeof big);
+        assert_memory_equal(d.data, big, sizeof big);
+        rtedge_image_t_decode_cleanup(&d);
+        heapcount_get(&c);
+        if (counting && round == 2)
+            print_message("a fragmented image over udpm: publishing thread 0 heap calls, "
+                          "process (receiving) %llu\n", (unsigned long long)heapcount_calls(&c));
+    }
     if (!counting)
         print_message("heapcount is not interposed: heap calls not counted\n");
     lcm_unsubscribe(sub_lcm, sub);
@@ -283,6 +313,38 @@ static void test_live_lcm_source(void **state)
     rte_source_get_stats(&src, &stats);
     assert_int_equal(stats.frames, 21);
     assert_int_equal(stats.bad_frames, 1);
+    rte_source_close(&src);
+
+    /* Images over 64 KB arrive in fragments: liblcm's receive thread
+     * allocates a reassembly buffer per message and lcm_handle frees it
+     * (liblcm's, not rtedge's: measured and reported). */
+    rte_lcm_source_config big_cfg = {URL, "BIG", RTE_PIXEL_GREY, 320, 240};
+    assert_int_equal(rte_lcm_live_source_open(&src, &big_cfg, msg, sizeof msg), RTE_OK);
+    static uint8_t big[320 * 240];
+    rtedge_image_t big_img = {0, 320, 240, 320, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
+                              (int32_t)sizeof big, big, 0, NULL};
+    for (int k = 0; k < 4; k++) {
+        big[0] = (uint8_t)k;
+        heapcount_reset();
+        assert_int_equal(rte_publish_image(pub, "BIG", &big_img, msg, sizeof msg), RTE_OK);
+        assert_int_equal(rte_source_next(&src, &f, 1000, msg, sizeof msg), RTE_OK);
+        heapcount_counts process, self;
+        heapcount_get(&process);
+        heapcount_get_thread(&self);
+        assert_int_equal(f.frame.plane[0][0], k);
+        if (counting && k > 0) {
+            /* The caller only frees what the receive thread allocated. */
+            assert_int_equal(heapcount_allocations(&self), 0);
+            assert_true(self.free_calls <= 1);
+            if (k == 3)
+                print_message("live lcm source, a %zu-byte image: %llu heap calls in all, "
+                              "%llu allocations in liblcm's receive thread, %llu free in "
+                              "lcm_handle (the caller's thread)\n",
+                              sizeof big, (unsigned long long)heapcount_calls(&process),
+                              (unsigned long long)heapcount_allocations(&process),
+                              (unsigned long long)self.free_calls);
+        }
+    }
     rte_publisher_destroy(pub);
     rte_source_close(&src);
 }
