@@ -232,7 +232,8 @@ static void check_y4m_frame(const rte_source_frame *f, int32_t w, int32_t h, int
     assert_int_equal(rte_frame_check(&f->frame), RTE_OK);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++)
-            assert_int_equal(f->frame.plane[0][y * f->frame.stride[0] + x], (uint8_t)(y * w + x + k));
+            assert_int_equal(f->frame.plane[0][y * f->frame.stride[0] + x],
+                             (uint8_t)(y * w + x + k));
     if (mono)
         return;
     int32_t cw = (w + 1) / 2, ch = (h + 1) / 2;
