@@ -57,8 +57,8 @@ rte_status rte_lcm_log_write(rte_lcm_log_writer *w, int64_t utime, const char *c
 {
     size_t channel_len = strlen(channel);
     if (channel_len == 0 || channel_len > RTE_LCM_LOG_MAX_CHANNEL || size > INT32_MAX) {
-        rte_source_msgf(msg, msg_size, "log event: channel of %zu bytes or data of %zu bytes", channel_len,
-             size);
+        rte_source_msgf(msg, msg_size, "log event: channel of %zu bytes or data of %zu bytes",
+                        channel_len, size);
         return RTE_ERR_ARGUMENT;
     }
     uint8_t header[RTE_LCM_LOG_HEADER_SIZE];
@@ -193,8 +193,8 @@ rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *
     int64_t at = r->offset;
     if (n >= 4 && get_be32(h) != RTE_LCM_LOG_SYNC) {
         r->offset = resync(r->fd, at);
-        rte_source_msgf(msg, msg_size, "log offset %lld: no sync word, skipped to %lld", (long long)at,
-             (long long)r->offset);
+        rte_source_msgf(msg, msg_size, "log offset %lld: no sync word, skipped to %lld",
+                        (long long)at, (long long)r->offset);
         return RTE_ERR_CORRUPT;
     }
     if (n < (ssize_t)sizeof h) {
@@ -228,8 +228,8 @@ rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *
             return RTE_ERR_TRUNCATED;
         }
         r->offset = end;
-        rte_source_msgf(msg, msg_size, "log event %lld on %s: %u bytes, more than %zu", (long long)ev->eventnum,
-             ev->channel, size, r->capacity);
+        rte_source_msgf(msg, msg_size, "log event %lld on %s: %u bytes, more than %zu",
+                        (long long)ev->eventnum, ev->channel, size, r->capacity);
         return RTE_ERR_TOO_LARGE;
     }
     n = read_at(r->fd, r->buf, size, at + (int64_t)sizeof h + channel_len);

@@ -305,7 +305,11 @@ static rte_status check_channel(rte_publisher *pub, const char *channel, const v
     return RTE_OK;
 }
 
-#define MAX_INT (int)(pub->capacity > INT32_MAX ? INT32_MAX : pub->capacity)
+/* The maxlen argument of lcm-gen's _encode: the buffer, as an int. */
+static int encode_limit(const rte_publisher *pub)
+{
+    return pub->capacity > INT32_MAX ? INT32_MAX : (int)pub->capacity;
+}
 
 rte_status rte_publish_lane(rte_publisher *pub, const char *channel,
                             const rtedge_lane_detection_t *m, char *msg, size_t msg_size)
@@ -318,8 +322,8 @@ rte_status rte_publish_lane(rte_publisher *pub, const char *channel,
     if (!count_ok(m->nsegments, m->segments, pub->limits.max_segments))
         return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d segments, at most %d",
                       channel, m->nsegments, pub->limits.max_segments);
-    return send_encoded(pub, channel, rtedge_lane_detection_t_encode(pub->buf, 0, MAX_INT, m),
-                        msg, msg_size);
+    int len = rtedge_lane_detection_t_encode(pub->buf, 0, encode_limit(pub), m);
+    return send_encoded(pub, channel, len, msg, msg_size);
 }
 
 rte_status rte_publish_grasp(rte_publisher *pub, const char *channel,
@@ -333,8 +337,8 @@ rte_status rte_publish_grasp(rte_publisher *pub, const char *channel,
     if (!count_ok(m->nobjects, m->objects, pub->limits.max_objects))
         return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d objects, at most %d",
                       channel, m->nobjects, pub->limits.max_objects);
-    return send_encoded(pub, channel, rtedge_grasp_detection_t_encode(pub->buf, 0, MAX_INT, m),
-                        msg, msg_size);
+    int len = rtedge_grasp_detection_t_encode(pub->buf, 0, encode_limit(pub), m);
+    return send_encoded(pub, channel, len, msg, msg_size);
 }
 
 rte_status rte_publish_status(rte_publisher *pub, const char *channel, const rtedge_status_t *m,
@@ -347,8 +351,8 @@ rte_status rte_publish_status(rte_publisher *pub, const char *channel, const rte
         return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
                       "%s: source_id missing or longer than %d bytes", channel,
                       pub->limits.max_text);
-    return send_encoded(pub, channel, rtedge_status_t_encode(pub->buf, 0, MAX_INT, m), msg,
-                        msg_size);
+    int len = rtedge_status_t_encode(pub->buf, 0, encode_limit(pub), m);
+    return send_encoded(pub, channel, len, msg, msg_size);
 }
 
 rte_status rte_publish_image(rte_publisher *pub, const char *channel, const rtedge_image_t *m,
@@ -368,8 +372,8 @@ rte_status rte_publish_image(rte_publisher *pub, const char *channel, const rted
             !count_ok(m->metadata[i].n, m->metadata[i].value, l->max_text))
             return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
                           "%s: metadata %d over %d bytes", channel, i, l->max_text);
-    return send_encoded(pub, channel, rtedge_image_t_encode(pub->buf, 0, MAX_INT, m), msg,
-                        msg_size);
+    int len = rtedge_image_t_encode(pub->buf, 0, encode_limit(pub), m);
+    return send_encoded(pub, channel, len, msg, msg_size);
 }
 
 rte_status rte_publish_params(rte_publisher *pub, const char *channel, const rtedge_params_t *m,
@@ -386,6 +390,6 @@ rte_status rte_publish_params(rte_publisher *pub, const char *channel, const rte
             return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
                           "%s: parameter %d's name missing or over %d bytes", channel, i,
                           pub->limits.max_text);
-    return send_encoded(pub, channel, rtedge_params_t_encode(pub->buf, 0, MAX_INT, m), msg,
-                        msg_size);
+    int len = rtedge_params_t_encode(pub->buf, 0, encode_limit(pub), m);
+    return send_encoded(pub, channel, len, msg, msg_size);
 }

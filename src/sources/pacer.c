@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "recorded.h"
+
 rte_status rte_pacer_init(rte_pacer *pacer, const rte_pacer_config *config)
 {
     if (!pacer || !config)
@@ -28,13 +30,6 @@ void rte_pacer_restart(rte_pacer *pacer)
     pacer->frames = 0;
 }
 
-/* Offset of frame `frames` from the origin at fps_num/fps_den. */
-static int64_t fps_offset_ns(uint64_t frames, int32_t num, int32_t den)
-{
-    uint64_t q = frames * (uint64_t)den;
-    return (int64_t)(q / (uint64_t)num * 1000000000u + q % (uint64_t)num * 1000000000u / (uint64_t)num);
-}
-
 rte_pace_action rte_pacer_decide(rte_pacer *pacer, int64_t recorded_ns, int64_t now_ns,
                                  int64_t *wait_ns)
 {
@@ -51,7 +46,7 @@ rte_pace_action rte_pacer_decide(rte_pacer *pacer, int64_t recorded_ns, int64_t 
     }
     int64_t offset;
     if (c->mode == RTE_PACE_FPS) {
-        offset = fps_offset_ns(pacer->frames, c->fps_num, c->fps_den);
+        offset = rte_recording_frame_ns(pacer->frames, c->fps_num, c->fps_den);
     } else {
         /* A recording that goes back in time (a new log appended) is due
          * at once, not in the past. */

@@ -163,7 +163,8 @@ __attribute__((destructor)) static void heapcount_report(void)
     heapcount_counts c;
     heapcount_get(&c);
     char line[256];
-    int n = snprintf(line, sizeof line, "malloc %llu calloc %llu realloc %llu free %llu bytes %llu\n",
+    int n = snprintf(line, sizeof line,
+                     "malloc %llu calloc %llu realloc %llu free %llu bytes %llu\n",
                      (unsigned long long)c.malloc_calls, (unsigned long long)c.calloc_calls,
                      (unsigned long long)c.realloc_calls, (unsigned long long)c.free_calls,
                      (unsigned long long)c.bytes);

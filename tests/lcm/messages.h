@@ -5,11 +5,7 @@
 
 #include <stdint.h>
 
-#include "rtedge_grasp_detection_t.h"
-#include "rtedge_image_t.h"
-#include "rtedge_lane_detection_t.h"
-#include "rtedge_params_t.h"
-#include "rtedge_status_t.h"
+#include "rtedge/publish.h"
 
 #define SAMPLE_SEGMENTS 7
 #define SAMPLE_OBJECTS 3
@@ -158,6 +154,24 @@ static inline void samples_fill(samples *s, uint32_t seed)
     s->image = (rtedge_image_t){1700000000000001LL, SAMPLE_IMAGE_W, SAMPLE_IMAGE_H,
                                 SAMPLE_IMAGE_W, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
                                 SAMPLE_IMAGE_W * SAMPLE_IMAGE_H, s->pixels, 1, s->metadata};
+}
+
+/* The channels the samples go on, in sample_publish's order. */
+static const char *const sample_channels[5] = {"LANES", "GRASP", "STATUS", "PARAMS", "IMAGE"};
+
+/* Publishes sample message i (0..4: lane, grasp, status, params, image) on
+ * sample_channels[i]. */
+static inline rte_status sample_publish(rte_publisher *pub, int i, const samples *s, char *msg,
+                                        size_t msg_size)
+{
+    const char *ch = sample_channels[i];
+    switch (i) {
+    case 0: return rte_publish_lane(pub, ch, &s->lane, msg, msg_size);
+    case 1: return rte_publish_grasp(pub, ch, &s->grasp, msg, msg_size);
+    case 2: return rte_publish_status(pub, ch, &s->status, msg, msg_size);
+    case 3: return rte_publish_params(pub, ch, &s->paramset, msg, msg_size);
+    default: return rte_publish_image(pub, ch, &s->image, msg, msg_size);
+    }
 }
 
 #endif

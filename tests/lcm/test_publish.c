@@ -78,19 +78,15 @@ static rte_publisher *create(const char *url)
 static void publish_all(rte_publisher *pub, const samples *s)
 {
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
-    assert_int_equal(rte_publish_lane(pub, "LANES", &s->lane, msg, sizeof msg), RTE_OK);
-    assert_int_equal(rte_publish_grasp(pub, "GRASP", &s->grasp, msg, sizeof msg), RTE_OK);
-    assert_int_equal(rte_publish_status(pub, "STATUS", &s->status, msg, sizeof msg), RTE_OK);
-    assert_int_equal(rte_publish_params(pub, "PARAMS", &s->paramset, msg, sizeof msg), RTE_OK);
-    assert_int_equal(rte_publish_image(pub, "IMAGE", &s->image, msg, sizeof msg), RTE_OK);
+    for (int i = 0; i < 5; i++)
+        assert_int_equal(sample_publish(pub, i, s, msg, sizeof msg), RTE_OK);
 }
 
 /* The five messages in publish_all's order. */
 static void check_message(int index, const char *channel, const uint8_t *data, int size,
                           const samples *s)
 {
-    static const char *const channels[] = {"LANES", "GRASP", "STATUS", "PARAMS", "IMAGE"};
-    assert_string_equal(channel, channels[index]);
+    assert_string_equal(channel, sample_channels[index]);
     switch (index) {
     case 0: {
         CHECK_ROUND_TRIP(rtedge_lane_detection_t, &s->lane, data, size);
@@ -138,13 +134,7 @@ static void test_memq_round_trip(void **state)
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
     for (int i = 0; i < 5; i++) {
         got.count = 0;
-        switch (i) {
-        case 0: assert_int_equal(rte_publish_lane(pub, "LANES", &s.lane, msg, sizeof msg), RTE_OK); break;
-        case 1: assert_int_equal(rte_publish_grasp(pub, "GRASP", &s.grasp, msg, sizeof msg), RTE_OK); break;
-        case 2: assert_int_equal(rte_publish_status(pub, "STATUS", &s.status, msg, sizeof msg), RTE_OK); break;
-        case 3: assert_int_equal(rte_publish_params(pub, "PARAMS", &s.paramset, msg, sizeof msg), RTE_OK); break;
-        default: assert_int_equal(rte_publish_image(pub, "IMAGE", &s.image, msg, sizeof msg), RTE_OK); break;
-        }
+        assert_int_equal(sample_publish(pub, i, &s, msg, sizeof msg), RTE_OK);
         assert_true(lcm_handle_timeout(lcm, 1000) > 0);
         assert_int_equal(got.count, 1);
         check_message(i, got.channel, got.data, got.size, &s);

@@ -32,21 +32,11 @@ static const rte_publish_limits limits = {
     .max_params = 4, .max_image_bytes = 100000, .max_metadata = 2,
 };
 
-static const char *const channels[] = {"LANES", "GRASP", "STATUS", "PARAMS", "IMAGE"};
-
 static void publish_one(rte_publisher *pub, int i, const samples *s)
 {
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
-    rte_status st;
-    switch (i) {
-    case 0: st = rte_publish_lane(pub, channels[i], &s->lane, msg, sizeof msg); break;
-    case 1: st = rte_publish_grasp(pub, channels[i], &s->grasp, msg, sizeof msg); break;
-    case 2: st = rte_publish_status(pub, channels[i], &s->status, msg, sizeof msg); break;
-    case 3: st = rte_publish_params(pub, channels[i], &s->paramset, msg, sizeof msg); break;
-    default: st = rte_publish_image(pub, channels[i], &s->image, msg, sizeof msg); break;
-    }
-    if (st != RTE_OK)
-        fail_msg("publish %s: %s", channels[i], msg);
+    if (sample_publish(pub, i, s, msg, sizeof msg) != RTE_OK)
+        fail_msg("publish %s: %s", sample_channels[i], msg);
 }
 
 /* The encoding of sample message i, for comparing with what arrived. */
@@ -65,7 +55,7 @@ static void check_bytes(int i, const samples *s, const char *channel, const void
 {
     static uint8_t expect[131072];
     int n = encode_sample(i, s, expect, sizeof expect);
-    assert_string_equal(channel, channels[i]);
+    assert_string_equal(channel, sample_channels[i]);
     assert_int_equal(size, n);
     assert_memory_equal(data, expect, (size_t)n);
 }
@@ -106,7 +96,7 @@ static void test_udpm_round_trip_without_heap_calls(void **state)
             heapcount_get(&c);
             /* The first message may set things up; after it, none. */
             if (counting && round > 0 && heapcount_calls(&c) != 0)
-                fail_msg("publishing %s over udpm made %llu heap calls", channels[i],
+                fail_msg("publishing %s over udpm made %llu heap calls", sample_channels[i],
                          (unsigned long long)heapcount_calls(&c));
             while (got.count == 0)
                 assert_true(lcm_handle_timeout(sub_lcm, 2000) > 0);
@@ -266,6 +256,7 @@ static void test_live_lcm_source(void **state)
                           NULL};
     rte_source_frame f;
     assert_int_equal(rte_source_next(&src, &f, 50, msg, sizeof msg), RTE_ERR_TIMEOUT);
+    assert_int_equal(rte_recorded_source_rewind(&src), RTE_ERR_UNSUPPORTED); /* live */
 
     /* Three images before next(): it hands out the newest. The receive
      * thread takes them in turn, so wait until all three are there. */

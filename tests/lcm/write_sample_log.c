@@ -4,7 +4,6 @@
 #include <stdio.h>
 
 #include "messages.h"
-#include "rtedge/publish.h"
 
 int main(int argc, char **argv)
 {
@@ -19,16 +18,8 @@ int main(int argc, char **argv)
     snprintf(url, sizeof url, "file://%s", argv[1]);
     rte_publisher *pub;
     rte_status st = rte_publisher_create(&pub, url, &limits, msg, sizeof msg);
-    if (st == RTE_OK)
-        st = rte_publish_lane(pub, "LANES", &s.lane, msg, sizeof msg);
-    if (st == RTE_OK)
-        st = rte_publish_grasp(pub, "GRASP", &s.grasp, msg, sizeof msg);
-    if (st == RTE_OK)
-        st = rte_publish_status(pub, "STATUS", &s.status, msg, sizeof msg);
-    if (st == RTE_OK)
-        st = rte_publish_params(pub, "PARAMS", &s.paramset, msg, sizeof msg);
-    if (st == RTE_OK)
-        st = rte_publish_image(pub, "IMAGE", &s.image, msg, sizeof msg);
+    for (int i = 0; i < 5 && st == RTE_OK; i++)
+        st = sample_publish(pub, i, &s, msg, sizeof msg);
     if (st != RTE_OK) {
         fprintf(stderr, "write_sample_log: %s\n", msg);
         return 1;

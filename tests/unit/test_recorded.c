@@ -232,7 +232,8 @@ static void check_y4m_frame(const rte_source_frame *f, int32_t w, int32_t h, int
     assert_int_equal(rte_frame_check(&f->frame), RTE_OK);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++)
-            assert_int_equal(f->frame.plane[0][y * f->frame.stride[0] + x], (uint8_t)(y * w + x + k));
+            assert_int_equal(f->frame.plane[0][y * f->frame.stride[0] + x],
+                             (uint8_t)(y * w + x + k));
     if (mono)
         return;
     int32_t cw = (w + 1) / 2, ch = (h + 1) / 2;
@@ -360,6 +361,53 @@ static void test_y4m_from_ffmpeg(void **state)
     }
     assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_ERR_END);
     rte_source_close(&src);
+}
+
+/* ffmpeg's 4:2:0 Y4M of a picture (odd size) and ffmpeg's repacking of that
+ * Y4M into raw NV12: the Y4M source (I420 interleaved on reading) and the
+ * raw source deliver the same bytes. */
+static void test_y4m_420_and_raw_nv12_from_ffmpeg(void **state)
+{
+    (void)state;
+    if (system("command -v ffmpeg >/dev/null 2>&1") != 0) {
+        print_message("ffmpeg not installed\n");
+        skip();
+    }
+    char ppm[700], y4m[700], nv12[700], cmd[3000], msg[RTE_SOURCE_MESSAGE_SIZE];
+    tmp_path(ppm, sizeof ppm, "ff.ppm");
+    tmp_path(y4m, sizeof y4m, "ff420.y4m");
+    tmp_path(nv12, sizeof nv12, "ff.nv12");
+    enum { W = 33, H = 17 };
+    static uint8_t bgr[W * H * 3];
+    uint32_t r = 12345;
+    for (size_t i = 0; i < sizeof bgr; i++) {
+        r ^= r << 13;
+        r ^= r >> 17;
+        r ^= r << 5;
+        bgr[i] = (uint8_t)r;
+    }
+    rte_image_u8c3 img = {W, H, W * 3, bgr};
+    assert_int_equal(rte_image_write_bgr(ppm, &img, msg, sizeof msg), RTE_OK);
+    snprintf(cmd, sizeof cmd,
+             "ffmpeg -loglevel error -y -i '%s' -pix_fmt yuv420p '%s' && "
+             "ffmpeg -loglevel error -y -i '%s' -f rawvideo -pix_fmt nv12 '%s'",
+             ppm, y4m, y4m, nv12);
+    assert_int_equal(system(cmd), 0);
+    rte_source a, b;
+    rte_source_frame fa, fb;
+    assert_int_equal(rte_y4m_source_open(&a, y4m, msg, sizeof msg), RTE_OK);
+    rte_raw_source_config rc = {nv12, RTE_PIXEL_NV12, W, H, 0, 0};
+    assert_int_equal(rte_raw_source_open(&b, &rc, msg, sizeof msg), RTE_OK);
+    assert_int_equal(rte_source_next(&a, &fa, 0, msg, sizeof msg), RTE_OK);
+    assert_int_equal(rte_source_next(&b, &fb, 0, msg, sizeof msg), RTE_OK);
+    assert_int_equal(fa.frame.format, RTE_PIXEL_NV12);
+    size_t size = rte_frame_packed_size(RTE_PIXEL_NV12, W, H);
+    assert_int_equal(fa.frame.plane[1] - fa.frame.plane[0], W * H);
+    assert_memory_equal(fa.frame.plane[0], fb.frame.plane[0], size);
+    assert_int_equal(rte_source_next(&a, &fa, 0, msg, sizeof msg), RTE_ERR_END);
+    assert_int_equal(rte_source_next(&b, &fb, 0, msg, sizeof msg), RTE_ERR_END);
+    rte_source_close(&a);
+    rte_source_close(&b);
 }
 
 /* ---- raw dumps ---- */
@@ -642,6 +690,7 @@ int main(void)
         cmocka_unit_test(test_y4m_mono_and_420),
         cmocka_unit_test(test_y4m_damaged),
         cmocka_unit_test(test_y4m_from_ffmpeg),
+        cmocka_unit_test(test_y4m_420_and_raw_nv12_from_ffmpeg),
         cmocka_unit_test(test_raw_frames),
         cmocka_unit_test(test_lcm_log_images),
         cmocka_unit_test(test_no_heap_calls_per_frame),
