@@ -2,12 +2,13 @@
 # missing ones (apt-get update once, then install). Sourced by tools/test,
 # tools/bench and tools/demo.
 RTE_BUILD_PACKAGES=(meson ninja-build gcc g++ pkg-config binutils
-    libspng-dev libturbojpeg0-dev)
-RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}" libcmocka-dev libopencv-dev
-    python3-opencv python3-numpy)
-RTE_TEST_PACKAGES+=(linux-libc-dev libcamera-dev libcamera-tools v4l-utils qemu-system-x86 busybox-static make xz-utils)  # camera: V4L2 headers, VM suite
-RTE_BUILD_PACKAGES+=(liblcm-dev liblcm-bin libglib2.0-dev)  # daemon: LCM (lcm-gen; lcm.pc needs glib)
-RTE_TEST_PACKAGES+=(liblcm-dev liblcm-bin libglib2.0-dev liblcm-java default-jdk-headless iproute2 util-linux)  # daemon: Java LCM types, udpm tests in a network namespace
+    libspng-dev libturbojpeg0-dev          # image files
+    liblcm-dev liblcm-bin libglib2.0-dev   # LCM: lcm-gen; lcm.pc needs glib
+    linux-libc-dev libcamera-dev)          # cameras: V4L2 headers, libcamera
+RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}"
+    libcmocka-dev libopencv-dev python3-opencv python3-numpy  # unit and oracle suites
+    liblcm-java default-jdk-headless iproute2 util-linux ffmpeg  # LCM: Java types, udpm in a netns, Y4M
+    libcamera-tools v4l-utils qemu-system-x86 busybox-static make xz-utils)  # the camera VM suite
 
 rte_install_packages() {
     local missing=() p
