@@ -16,7 +16,14 @@
 #include "hough_internal.h"
 
 /* Mask states of a pixel. */
-enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2 };
+enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2, PX_USED = 3 };
+/* PX_USED: consumed by a reported segment. A later walk crosses such pixels
+ * without counting a gap (OpenCV counts them as missing, which cuts lines
+ * where they cross), but they neither extend nor fit the new segment. */
+static inline int live(uint8_t m) { return m == PX_EDGE || m == PX_VOTED; }
+
+/* How far across the line a continuing run of edge pixels is consumed. */
+#define CONSUME_REACH 3
 
 /* Fitted or quantised line: a point on it (Q16) and a unit direction (Q16). */
 typedef struct line_q16 {
@@ -27,8 +34,9 @@ typedef struct line_q16 {
 typedef struct walk_ctx {
     uint8_t *mask;
     int32_t w, h, max_gap;
-    uint32_t *hits; /* packed (y << 16) | x */
+    uint32_t *hits; /* packed (2y << 16) | 2x: run centres in half pixels */
     int32_t nhits;
+    int32_t end2[4]; /* the hits at the extreme steps (half pixels) */
 } walk_ctx;
 
 static int32_t rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h)
@@ -73,7 +81,7 @@ static stepper make_stepper(const line_q16 *l, int32_t start_x, int32_t start_y)
     int32_t umaj = s.major_x ? l->ux : l->uy, umin = s.major_x ? l->uy : l->ux;
     int32_t amaj = umaj < 0 ? -umaj : umaj;
     s.dmaj = umaj < 0 ? -1 : 1;
-    s.dmin_q16 = ((int64_t)umin * 65536 * s.dmaj) / amaj;
+    s.dmin_q16 = ((int64_t)umin * 65536) / amaj;
     /* Start at the point of the line whose major coordinate is the start
      * pixel's: minor = p_min + (start_maj - p_maj) * umin / umaj. */
     int64_t pmaj = s.major_x ? l->px : l->py, pmin = s.major_x ? l->py : l->px;
@@ -92,26 +100,34 @@ static inline void stepper_at(const stepper *s, int32_t k, int32_t *x, int32_t *
     *y = s->major_x ? mn : maj;
 }
 
-/* The pixel hit at step k: the pixel on the line, else its neighbours across
- * the line. Returns 0 when none is an edge. */
-static int probe(const walk_ctx *c, const stepper *s, int32_t k, int32_t *hx, int32_t *hy)
+/* The edge pixels hit at step k: the pixel on the line, else a neighbour
+ * across the line, extended to the whole run of edge pixels across the
+ * line (up to CONSUME_REACH). Returns 1 and the run's centre in half
+ * pixels (doubled coordinates, so fits of thick edges follow their middle),
+ * 2 when only consumed pixels are there, 0 when nothing is. */
+static int probe(const walk_ctx *c, const stepper *s, int32_t k, int32_t *hx2, int32_t *hy2)
 {
     int32_t x, y;
     stepper_at(s, k, &x, &y);
     int32_t ox = s->major_x ? 0 : 1, oy = s->major_x ? 1 : 0;
-    if (mask_at(c, x, y)) {
-        *hx = x, *hy = y;
-        return 1;
-    }
-    if (mask_at(c, x - ox, y - oy)) {
-        *hx = x - ox, *hy = y - oy;
-        return 1;
-    }
-    if (mask_at(c, x + ox, y + oy)) {
-        *hx = x + ox, *hy = y + oy;
-        return 1;
-    }
-    return 0;
+    uint8_t m0 = mask_at(c, x, y), mlo = mask_at(c, x - ox, y - oy), mhi = mask_at(c, x + ox, y + oy);
+    int32_t lo;
+    if (live(m0))
+        lo = 0;
+    else if (live(mlo))
+        lo = -1;
+    else if (live(mhi))
+        lo = 1;
+    else
+        return (m0 | mlo | mhi) ? 2 : 0; /* 2: only consumed pixels, a bridge */
+    int32_t hi = lo;
+    while (lo > -CONSUME_REACH && live(mask_at(c, x + (lo - 1) * ox, y + (lo - 1) * oy)))
+        lo--;
+    while (hi < CONSUME_REACH && live(mask_at(c, x + (hi + 1) * ox, y + (hi + 1) * oy)))
+        hi++;
+    *hx2 = 2 * x + (lo + hi) * ox;
+    *hy2 = 2 * y + (lo + hi) * oy;
+    return 1;
 }
 
 static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t k)
@@ -124,27 +140,62 @@ static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t k)
 }
 
 /* Follows the line both ways from step 0 until more than max_gap steps in a
- * row miss; records the hits and returns the extreme steps reached. */
+ * row miss; returns the extreme steps with hits (kmin > kmax when there is
+ * none), their hits in c->end2 and records the hits between them. Beyond a
+ * gap, the end only moves on once two steps in a row hit, so a stray pixel
+ * past the end of a line does not lengthen it. */
 static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
 {
     c->nhits = 0;
-    *kmin = *kmax = 0;
+    *kmin = INT32_MAX;
+    *kmax = INT32_MIN;
     for (int32_t dir = 1; dir >= -1; dir -= 2) {
-        int32_t gap = 0;
+        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits;
         for (int32_t k = dir == 1 ? 0 : -1; in_image(c, s, k); k += dir) {
-            int32_t hx, hy;
-            if (probe(c, s, k, &hx, &hy)) {
+            int32_t hx2, hy2;
+            int hit = probe(c, s, k, &hx2, &hy2);
+            if (hit == 1) {
                 gap = 0;
-                c->hits[c->nhits++] = ((uint32_t)hy << 16) | (uint32_t)hx;
-                if (dir == 1)
-                    *kmax = k;
-                else
-                    *kmin = k;
-            } else if (++gap > c->max_gap) {
-                break;
+                run++;
+                c->hits[c->nhits++] = ((uint32_t)hy2 << 16) | (uint32_t)hx2;
+                if (seed_run || run >= 2) {
+                    kept = c->nhits;
+                    if (k > *kmax) {
+                        *kmax = k;
+                        c->end2[2] = hx2, c->end2[3] = hy2;
+                    }
+                    if (k < *kmin) {
+                        *kmin = k;
+                        c->end2[0] = hx2, c->end2[1] = hy2;
+                    }
+                }
+                continue;
             }
+            run = 0;
+            seed_run = 0;
+            if (hit == 2)
+                gap = 0;
+            else if (++gap > c->max_gap)
+                break;
         }
+        c->nhits = kept;
     }
+}
+
+/* floor(v / 65536 + 1/2) for any sign */
+static inline int32_t round_q16(int64_t v)
+{
+    v += 32768;
+    return (int32_t)(v >= 0 ? v >> 16 : -((-v + 65535) >> 16));
+}
+
+/* The hit (half pixels) projected onto the line, rounded to a pixel. */
+static void project(const line_q16 *l, int32_t hx2, int32_t hy2, int32_t *x, int32_t *y)
+{
+    int64_t dx = ((int64_t)hx2 << 15) - l->px, dy = ((int64_t)hy2 << 15) - l->py;
+    int64_t t = (dx * l->ux + dy * l->uy) / 65536; /* Q16 pixels along the line */
+    *x = round_q16(l->px + t * l->ux / 65536);
+    *y = round_q16(l->py + t * l->uy / 65536);
 }
 
 /* Principal axis of the hits (integer): the direction (r + a, b) with
@@ -159,12 +210,13 @@ static int fit_line(const walk_ctx *c, line_q16 *l)
         sx += c->hits[i] & 0xFFFF;
         sy += c->hits[i] >> 16;
     }
-    /* Centroid in Q4; coordinates relative to it stay below 2^20, squares
-     * below 2^40, sums of up to 2^17 of them below 2^57. */
-    int64_t mx = (sx * 16 + n / 2) / n, my = (sy * 16 + n / 2) / n;
+    /* Centroid in Q4 (the hits are in half pixels); coordinates relative to
+     * it stay below 2^20, squares below 2^40, sums of up to 2^17 of them
+     * below 2^57. */
+    int64_t mx = (sx * 8 + n / 2) / n, my = (sy * 8 + n / 2) / n;
     int64_t cxx = 0, cyy = 0, cxy = 0;
     for (int32_t i = 0; i < n; i++) {
-        int64_t dx = (int64_t)(c->hits[i] & 0xFFFF) * 16 - mx, dy = (int64_t)(c->hits[i] >> 16) * 16 - my;
+        int64_t dx = (int64_t)(c->hits[i] & 0xFFFF) * 8 - mx, dy = (int64_t)(c->hits[i] >> 16) * 8 - my;
         cxx += dx * dx;
         cyy += dy * dy;
         cxy += dx * dy;
@@ -271,7 +323,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     const int32_t shift = cfg->trig_shift;
     const int32_t bias = (int32_t)(((int64_t)((numrho - 1) / 2) << shift) + (shift ? (1 << (shift - 1)) : 0));
     const int64_t min_len2 = (int64_t)params->min_length * params->min_length;
-    walk_ctx wc = { mask, w, h, params->max_gap, hits, 0 };
+    walk_ctx wc = { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 } };
     int32_t nseg = 0;
 
     for (int32_t i = 0; i < npts; i++) {
@@ -312,28 +364,38 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
             continue;
         }
 
+        /* Ends: the outermost hits projected onto the line. */
         int32_t x0, y0, x1, y1;
-        stepper_at(&s, kmin, &x0, &y0);
-        stepper_at(&s, kmax, &x1, &y1);
+        project(&l, wc.end2[0], wc.end2[1], &x0, &y0);
+        project(&l, wc.end2[2], wc.end2[3], &x1, &y1);
         int64_t ddx = x1 - x0, ddy = y1 - y0;
         int good = ddx * ddx + ddy * ddy >= min_len2;
 
-        /* Consume the pixels along the segment (one pixel either side of
-         * the line); un-vote those that voted. */
+        /* Consume the pixels along the segment: one pixel either side of
+         * the line, and further out (up to CONSUME_REACH) while the edge run
+         * across the line continues, so thick edges go in one piece.
+         * Un-vote the pixels that voted. */
         int32_t ox = s.major_x ? 0 : 1, oy = s.major_x ? 1 : 0;
         for (int32_t k = kmin; k <= kmax; k++) {
             int32_t px, py;
             stepper_at(&s, k, &px, &py);
-            for (int32_t o = -1; o <= 1; o++) {
-                int32_t qx = px + o * ox, qy = py + o * oy;
-                if ((uint32_t)qx >= (uint32_t)w || (uint32_t)qy >= (uint32_t)h)
-                    continue;
-                uint8_t *q = mask + (size_t)qy * w + qx;
-                if (*q == PX_VOTED && good) {
-                    int32_t bn, bv;
-                    vote(acc, idx, cfg, numangle, numrho, bias, qx, qy, -1, &bn, &bv);
+            for (int32_t dir = -1; dir <= 1; dir += 2) {
+                for (int32_t o = dir == 1 ? 0 : -1; o >= -CONSUME_REACH && o <= CONSUME_REACH; o += dir) {
+                    int32_t qx = px + o * ox, qy = py + o * oy;
+                    if ((uint32_t)qx >= (uint32_t)w || (uint32_t)qy >= (uint32_t)h)
+                        break;
+                    uint8_t *q = mask + (size_t)qy * w + qx;
+                    if (!live(*q)) {
+                        if (o > 1 || o < -1)
+                            break;
+                        continue;
+                    }
+                    if (*q == PX_VOTED && good) {
+                        int32_t bn, bv;
+                        vote(acc, idx, cfg, numangle, numrho, bias, qx, qy, -1, &bn, &bv);
+                    }
+                    *q = good ? PX_USED : PX_NONE;
                 }
-                *q = PX_NONE;
             }
         }
         if (!good)
@@ -342,8 +404,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
             *truncated = 1;
             break;
         }
-        /* Endpoints: the line's points at the extreme steps, clamped into
-         * the image (the stepper may sit one pixel outside). */
+        /* The projection can fall a fraction outside the image. */
         x0 = x0 < 0 ? 0 : x0 >= w ? w - 1 : x0;
         x1 = x1 < 0 ? 0 : x1 >= w ? w - 1 : x1;
         y0 = y0 < 0 ? 0 : y0 >= h ? h - 1 : y0;
