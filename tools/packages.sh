@@ -5,6 +5,7 @@ RTE_BUILD_PACKAGES=(meson ninja-build gcc g++ pkg-config binutils
     libspng-dev libturbojpeg0-dev)
 RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}" libcmocka-dev libopencv-dev
     python3-opencv python3-numpy)
+RTE_TEST_PACKAGES+=(linux-libc-dev libcamera-dev libcamera-tools v4l-utils qemu-system-x86 busybox-static make xz-utils)  # camera: V4L2 headers, VM suite
 
 rte_install_packages() {
     local missing=() p

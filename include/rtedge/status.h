@@ -17,7 +17,13 @@ typedef enum rte_status {
     RTE_ERR_UNSUPPORTED = 7,  /* valid, but a variant rtedge does not handle */
     RTE_ERR_TOO_LARGE = 8,    /* sizes beyond the configured or absolute maxima */
     RTE_ERR_CORRUPT = 9,      /* the data fails its own checks (CRC, markers) */
+    RTE_ERR_TIMEOUT = 10,     /* nothing arrived within the time allowed */
+    RTE_ERR_END = 11,         /* a recording or stream has no more frames */
+    RTE_ERR_DEVICE = 12,      /* a device failed or disappeared (errno has the cause) */
 } rte_status;
+
+/* The last code, for tables and tests. */
+#define RTE_STATUS_LAST RTE_ERR_DEVICE
 
 /* A short English description of the status, never NULL. */
 const char *rte_status_message(rte_status status);

@@ -13,6 +13,9 @@ const char *rte_status_message(rte_status status)
     case RTE_ERR_UNSUPPORTED: return "unsupported variant";
     case RTE_ERR_TOO_LARGE: return "size exceeds the allowed maximum";
     case RTE_ERR_CORRUPT: return "data is corrupt";
+    case RTE_ERR_TIMEOUT: return "timed out";
+    case RTE_ERR_END: return "end of stream";
+    case RTE_ERR_DEVICE: return "device failed or disappeared";
     }
     return "unknown status";
 }

@@ -1,0 +1,254 @@
+/* Canny edge detector (see include/rtedge/canny.h), integer only.
+ *
+ * One pass over the rows: for row i the Sobel derivatives and magnitude are
+ * computed, then row i-1 is suppressed against rows i-2, i-1 and i, so only
+ * three magnitude rows and two derivative rows are alive. Suppression writes
+ * an edge map with a 1-pixel frame: 1 = not an edge, 0 = maybe (a local
+ * maximum above low), 2 = edge. Seeds (local maxima above high) go on a
+ * stack, and the flood through 8-connected "maybe" pixels follows when all
+ * rows are done. Each pixel is pushed at most once (when it becomes 2), so a
+ * stack of width*height entries cannot overflow. */
+#include <stdint.h>
+#include <string.h>
+
+#include "rtedge/canny.h"
+
+#include "gradient_rows.h"
+
+/* tan(22.5 deg) in Q15, OpenCV's sector boundary. */
+#define TG22_Q15 13573
+
+static size_t map_bytes(int32_t w, int32_t h) { return ((size_t)w + 2) * ((size_t)h + 2); }
+static size_t stack_bytes(int32_t w, int32_t h) { return (size_t)w * (size_t)h * sizeof(int32_t); }
+static size_t mag_row_bytes(int32_t w) { return ((size_t)w + 2) * sizeof(int32_t); }
+static size_t column_row_bytes(int32_t w)
+{
+    return ((size_t)w + 2 * (RTE_GRAD_MAX_TAPS / 2)) * sizeof(int16_t);
+}
+static size_t deriv_row_bytes(int32_t w) { return (size_t)w * sizeof(int16_t); }
+
+size_t rte_canny_scratch_size(int32_t max_width, int32_t max_height, int32_t aperture)
+{
+    if (max_width <= 0 || max_height <= 0)
+        return 0;
+    /* Where size_t is 32 bits, the largest images do not fit at all. */
+    if ((uint64_t)max_width * (uint64_t)max_height * 8u > (uint64_t)(SIZE_MAX / 2))
+        return SIZE_MAX;
+    return rte_arena_piece_size(map_bytes(max_width, max_height)) +
+           rte_arena_piece_size(stack_bytes(max_width, max_height)) +
+           3 * rte_arena_piece_size(mag_row_bytes(max_width)) +
+           2 * rte_arena_piece_size(column_row_bytes(max_width)) +
+           4 * rte_arena_piece_size(deriv_row_bytes(max_width));
+}
+
+static void magnitude_row(const int16_t *restrict dx, const int16_t *restrict dy,
+                          int32_t *restrict mag, int32_t w, bool l2)
+{
+    if (l2) {
+        /* 32-bit wrap-around as OpenCV's (only -32768 in both can wrap). */
+        for (int32_t x = 0; x < w; x++)
+            mag[x] = (int32_t)((uint32_t)(dx[x] * dx[x]) + (uint32_t)(dy[x] * dy[x]));
+    } else {
+        for (int32_t x = 0; x < w; x++)
+            mag[x] = (dx[x] < 0 ? -dx[x] : dx[x]) + (dy[x] < 0 ? -dy[x] : dy[x]);
+    }
+    mag[-1] = mag[w] = 0;
+}
+
+/* Non-maximum suppression of one row into map codes 0/1/2 (see top). The
+ * gradient direction picks the two neighbours across the edge: horizontal
+ * when |dy| < |dx| tan 22.5, vertical when |dy| > |dx| tan 67.5, else the
+ * diagonal whose slope has the sign of dx*dy. Ties go to the later pixel
+ * along the row or column (>=), strictly on diagonals, as OpenCV. */
+static void suppress_row(const int32_t *restrict up, const int32_t *restrict cur,
+                         const int32_t *restrict down, const int16_t *restrict dx,
+                         const int16_t *restrict dy, uint8_t *restrict map, int32_t w,
+                         int32_t low, int32_t high)
+{
+    for (int32_t x = 0; x < w; x++) {
+        const int32_t m = cur[x];
+        const int32_t xs = dx[x], ys = dy[x];
+        const int32_t ax = xs < 0 ? -xs : xs;
+        const int32_t ay = (ys < 0 ? -ys : ys) << 15;
+        const int32_t tg22 = ax * TG22_Q15;
+        /* tan 67.5 = tan 22.5 + 2; wraps in 32 bits as OpenCV's for |dx| > 27145. */
+        const int32_t tg67 = (int32_t)((uint32_t)tg22 + ((uint32_t)ax << 16));
+        /* All neighbours are loaded, then selected: no branches, so the
+         * loop vectorises. */
+        const int32_t ul = up[x - 1], uc = up[x], ur = up[x + 1];
+        const int32_t cl = cur[x - 1], cr = cur[x + 1];
+        const int32_t dl = down[x - 1], dc = down[x], dr = down[x + 1];
+        const int32_t same_sign = (xs ^ ys) >= 0;
+        const int32_t diag_a = same_sign ? ul : ur;
+        const int32_t diag_b = same_sign ? dr : dl;
+        const int32_t keep_h = (m > cl) & (m >= cr);
+        const int32_t keep_v = (m > uc) & (m >= dc);
+        const int32_t keep_d = (m > diag_a) & (m > diag_b);
+        /* Horizontal is tested first: with a wrapped tg67 both tests can hold. */
+        const int32_t horizontal = ay < tg22;
+        const int32_t vertical = !horizontal & (ay > tg67);
+        const int32_t keep = ((horizontal & keep_h) | (vertical & keep_v) |
+                              (!horizontal & !vertical & keep_d)) &
+                             (m > low);
+        map[x] = (uint8_t)(keep ? ((m > high) << 1) : 1);
+    }
+}
+
+/* Pushes the offsets of the seeds (code 2) of a map row. Seeds are sparse:
+ * 8 codes at a time are skipped when none has bit 1 set. The stack never
+ * holds more entries than pixels seen so far. */
+static int32_t push_seeds(const uint8_t *mrow, int32_t w, int32_t base, int32_t *restrict stack,
+                          int32_t top)
+{
+    int32_t x = 0;
+    for (; x + 8 <= w; x += 8) {
+        uint64_t codes;
+        memcpy(&codes, mrow + x, sizeof codes);
+        if (!(codes & 0x0202020202020202u))
+            continue;
+        for (int32_t k = x; k < x + 8; k++) {
+            stack[top] = base + k;
+            top += mrow[k] == 2;
+        }
+    }
+    for (; x < w; x++) {
+        stack[top] = base + x;
+        top += mrow[x] == 2;
+    }
+    return top;
+}
+
+/* dx or dy rows come from src (Sobel, BORDER_REPLICATE) or from gx, gy. */
+static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
+                            const rte_image_s16 *gy, rte_image_u8 *dst,
+                            const rte_canny_params *params, rte_arena *scratch)
+{
+    const int32_t w = dst->width, h = dst->height;
+    const ptrdiff_t ms = (ptrdiff_t)w + 2;
+    const size_t mark = rte_arena_mark(scratch);
+    uint8_t *map = rte_arena_alloc(scratch, map_bytes(w, h));
+    int32_t *stack = rte_arena_alloc(scratch, stack_bytes(w, h));
+    int32_t *ring[3];
+    for (int k = 0; k < 3; k++)
+        ring[k] = rte_arena_alloc(scratch, mag_row_bytes(w));
+    int16_t *vs = NULL, *vd = NULL, *dxb[2] = { NULL, NULL }, *dyb[2] = { NULL, NULL };
+    if (src) {
+        vs = rte_arena_alloc(scratch, column_row_bytes(w));
+        vd = rte_arena_alloc(scratch, column_row_bytes(w));
+        for (int k = 0; k < 2; k++) {
+            dxb[k] = rte_arena_alloc(scratch, deriv_row_bytes(w));
+            dyb[k] = rte_arena_alloc(scratch, deriv_row_bytes(w));
+        }
+    }
+    if (!map || !stack || !ring[0] || !ring[1] || !ring[2] ||
+        (src && (!vs || !vd || !dxb[0] || !dxb[1] || !dyb[0] || !dyb[1]))) {
+        rte_arena_reset(scratch, mark);
+        return RTE_ERR_NO_MEMORY;
+    }
+
+    const int32_t ap = params->aperture;
+    /* Apertures 3 and 5 stay inside int16 (|dx| <= 255 * 6 * 16); OpenCV
+     * scales aperture 7 by 1/16 (exactly, in float, then rounds to even). */
+    const rte_row_mode row_mode = ap == 7 ? RTE_ROW_ROUND_DIV16 : RTE_ROW_FITS;
+    int16_t smooth[RTE_GRAD_MAX_TAPS], deriv[RTE_GRAD_MAX_TAPS];
+    if (src) {
+        rte_sobel_taps(0, ap, smooth);
+        rte_sobel_taps(1, ap, deriv);
+        vs += RTE_GRAD_MAX_TAPS / 2;
+        vd += RTE_GRAD_MAX_TAPS / 2;
+    }
+
+    memset(map, 1, (size_t)ms);
+    memset(map + (ptrdiff_t)(h + 1) * ms, 1, (size_t)ms);
+    memset(ring[2], 0, mag_row_bytes(w)); /* row -1: magnitudes outside are 0 */
+    int32_t top = 0;
+
+    /* Magnitude row r lives in ring[r % 3]; row y is suppressed once row
+     * y + 1 exists. */
+    for (int32_t i = 0; i <= h; i++) {
+        int32_t *next = ring[i % 3] + 1;
+        if (i < h) {
+            const int16_t *dxr, *dyr;
+            if (src) {
+                rte_grad_column_pass(src, i, smooth, ap, RTE_BORDER_REPLICATE, vs, ap / 2);
+                rte_grad_column_pass(src, i, deriv, ap, RTE_BORDER_REPLICATE, vd, ap / 2);
+                rte_grad_row_pass(vs, deriv, ap, dxb[i & 1], w, row_mode);
+                rte_grad_row_pass(vd, smooth, ap, dyb[i & 1], w, row_mode);
+                dxr = dxb[i & 1];
+                dyr = dyb[i & 1];
+            } else {
+                dxr = rte_s16_row(gx, i);
+                dyr = rte_s16_row(gy, i);
+            }
+            magnitude_row(dxr, dyr, next, w, params->l2_gradient);
+        } else {
+            memset(next - 1, 0, mag_row_bytes(w));
+        }
+        if (i == 0)
+            continue;
+
+        const int32_t y = i - 1;
+        const int16_t *dxr = src ? dxb[y & 1] : rte_s16_row(gx, y);
+        const int16_t *dyr = src ? dyb[y & 1] : rte_s16_row(gy, y);
+        uint8_t *mrow = map + (ptrdiff_t)(y + 1) * ms + 1;
+        mrow[-1] = mrow[w] = 1;
+        suppress_row(ring[(y + 2) % 3] + 1, ring[y % 3] + 1, next, dxr, dyr, mrow, w,
+                     params->low, params->high);
+        top = push_seeds(mrow, w, (int32_t)((y + 1) * ms + 1), stack, top);
+    }
+
+    /* Hysteresis: grow the edges through "maybe" pixels; the frame of 1s
+     * stops the flood at the image border. */
+    const ptrdiff_t nb[8] = { -ms - 1, -ms, -ms + 1, -1, 1, ms - 1, ms, ms + 1 };
+    while (top > 0) {
+        const int32_t p = stack[--top];
+        for (int k = 0; k < 8; k++) {
+            uint8_t *q = map + p + nb[k];
+            if (*q == 0) {
+                *q = 2;
+                stack[top++] = (int32_t)(p + nb[k]);
+            }
+        }
+    }
+
+    for (int32_t y = 0; y < h; y++) {
+        const uint8_t *restrict mrow = map + (ptrdiff_t)(y + 1) * ms + 1;
+        uint8_t *restrict d = rte_u8_row(dst, y);
+        for (int32_t x = 0; x < w; x++)
+            d[x] = (uint8_t)(mrow[x] == 2 ? 255 : 0);
+    }
+    rte_arena_reset(scratch, mark);
+    return RTE_OK;
+}
+
+rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_canny_params *params,
+                        rte_arena *scratch)
+{
+    if (!params || !scratch ||
+        (params->aperture != 3 && params->aperture != 5 && params->aperture != 7))
+        return RTE_ERR_ARGUMENT;
+    rte_status st = rte_image_u8_check_pair(src, dst);
+    if (st != RTE_OK)
+        return st;
+    return canny_run(src, NULL, NULL, dst, params, scratch);
+}
+
+rte_status rte_canny_from_gradient_u8(const rte_image_s16 *dx, const rte_image_s16 *dy,
+                                      rte_image_u8 *dst, const rte_canny_params *params,
+                                      rte_arena *scratch)
+{
+    /* Aperture-7 params hold thresholds divided by 16: not for given dx, dy. */
+    if (!params || !scratch || (params->aperture != 3 && params->aperture != 5))
+        return RTE_ERR_ARGUMENT;
+    rte_status st = rte_image_s16_check(dx);
+    if (st == RTE_OK)
+        st = rte_image_s16_check(dy);
+    if (st == RTE_OK)
+        st = rte_image_u8_check(dst);
+    if (st != RTE_OK)
+        return st;
+    if (dx->width != dst->width || dx->height != dst->height || dy->width != dst->width ||
+        dy->height != dst->height)
+        return RTE_ERR_SIZE;
+    return canny_run(NULL, dx, dy, dst, params, scratch);
+}

@@ -1,0 +1,239 @@
+/* Per-frame Gaussian blur, bit-exact with OpenCV 4.6's fixed-point path for
+ * 8-bit images (GaussianBlurFixedPoint): integers only.
+ *
+ * OpenCV computes out = (sum_j ty_j * sum_i tx_i * p(i, j) + 2^15) >> 16 with
+ * Q8 taps summing to 256. Every partial sum is exact, so the passes may run
+ * in either order; this one runs the column pass first because its input is
+ * u8 and needs no intermediate rows, only the ksize_y source rows:
+ *  - Column pass: v = sum_j ty_j * src(y - ry + j) for one output row, at
+ *    most 255 * 256, so u16. Rows beyond the edges reflect (BORDER_REFLECT_101).
+ *  - Row pass: out = (sum_i tx_i * v(x - rx + i) + 2^15) >> 16. That sum needs
+ *    24 bits; to keep the arithmetic in u16 lanes (twice as many per vector
+ *    as u32) v is stored as two planes, v >> 8 and v & 255, each padded
+ *    with reflected columns, and summed separately (see row_taps).
+ * Narrow path: when the taps of both axes share power-of-two factors worth
+ * 8 bits together (OpenCV's sigma-0 kernels of size 3 and 5, any axis of
+ * size 1), dividing them out leaves a sum of at most 255 * 256 and the
+ * whole filter runs on one u16 plane, about half the work.
+ * No intermediate image: per output row only one padded line of scratch, plus
+ * (when working in place) copies of the source rows still needed. */
+#include <string.h>
+
+#include "blur_rows.h"
+#include "rtedge/blur.h"
+
+/* Scratch rows are padded to whole 64-byte lines so each starts aligned. */
+static size_t line_elems(int32_t width, size_t elem_size)
+{
+    return ((size_t)width * elem_size + 63) / 64 * 64 / elem_size;
+}
+
+static int kernel_is_valid(const rte_gaussian_kernel *k)
+{
+    const int32_t sizes[2] = { k->ksize_x, k->ksize_y };
+    const uint16_t *taps[2] = { k->taps_x, k->taps_y };
+    for (int a = 0; a < 2; a++) {
+        int32_t n = sizes[a];
+        if (n < 1 || n > RTE_GAUSSIAN_MAX_KSIZE || (n & 1) == 0)
+            return 0;
+        /* The overflow-free u16 sums need taps summing to 256; both passes
+         * fold symmetric taps together. */
+        uint32_t sum = 0;
+        for (int32_t i = 0; i < n; i++) {
+            if (taps[a][i] != taps[a][n - 1 - i])
+                return 0;
+            sum += taps[a][i];
+        }
+        if (sum != 256)
+            return 0;
+    }
+    return 1;
+}
+
+/* Scratch: the two planes of one padded line, and for in-place calls a ring
+ * of ksize_y source rows. */
+static size_t plane_elems(int32_t width, int32_t rx)
+{
+    return line_elems(width + 2 * rx, sizeof(uint16_t));
+}
+
+size_t rte_gaussian_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
+                                         const rte_gaussian_kernel *kernel)
+{
+    if (!kernel || !kernel_is_valid(kernel) || max_width < 1 || max_width > RTE_MAX_SIDE ||
+        max_height < 1 || max_height > RTE_MAX_SIDE)
+        return 0;
+    return rte_arena_piece_size(2 * plane_elems(max_width, kernel->ksize_x / 2) * sizeof(uint16_t)) +
+           rte_arena_piece_size((size_t)kernel->ksize_y * line_elems(max_width, 1));
+}
+
+/* v = sum_j taps[j] * rows[j][x] (taps symmetric). Split: stored as
+ * hi = v >> 8 and lo = v & 255; otherwise v goes to hi as it is. The radius
+ * r and `split` are constants in each caller so the tap loop unrolls and the
+ * x loop vectorises in u16 lanes. */
+static inline void column_taps(const uint8_t *const *rows, uint16_t *restrict hi,
+                               uint16_t *restrict lo, int32_t width, const uint16_t *restrict taps,
+                               int32_t r, int split)
+{
+    const uint8_t *restrict mid = rows[r];
+    for (int32_t x = 0; x < width; x++) {
+        uint16_t s = (uint16_t)(taps[r] * mid[x]);
+        for (int32_t j = 0; j < r; j++)
+            s = (uint16_t)(s + taps[j] * (uint16_t)(rows[j][x] + rows[2 * r - j][x]));
+        if (split) {
+            hi[x] = (uint16_t)(s >> 8);
+            lo[x] = (uint16_t)(s & 255);
+        } else {
+            hi[x] = s;
+        }
+    }
+}
+
+/* dst[x] = (sum_i taps[i] * v(x + i) + 2^15) >> 16 over the padded planes,
+ * v = 256 * hi + lo. With H = sum taps * hi and L = sum taps * lo (each at
+ * most 255 * 256, so u16):
+ *   sum = 256 * H + L  and  (sum + 2^15) >> 16 = (H + (L >> 8) + 128) >> 8,
+ * where H + (L >> 8) <= 255 * 256 (as sum <= 255 * 2^16): no overflow. */
+static inline void row_taps(const uint16_t *restrict hi, const uint16_t *restrict lo,
+                            uint8_t *restrict dst, int32_t width, const uint16_t *restrict taps,
+                            int32_t r)
+{
+    for (int32_t x = 0; x < width; x++) {
+        uint16_t hs = (uint16_t)(taps[r] * hi[x + r]);
+        uint16_t ls = (uint16_t)(taps[r] * lo[x + r]);
+        for (int32_t i = 0; i < r; i++) {
+            hs = (uint16_t)(hs + taps[i] * (uint16_t)(hi[x + i] + hi[x + 2 * r - i]));
+            ls = (uint16_t)(ls + taps[i] * (uint16_t)(lo[x + i] + lo[x + 2 * r - i]));
+        }
+        dst[x] = (uint8_t)((uint16_t)(hs + (ls >> 8) + 128) >> 8);
+    }
+}
+
+/* Narrow path: dst[x] = (sum_i taps[i] * v(x + i) + 128) >> 8 where the
+ * scaled-down taps keep the sum within 255 * 256. */
+static inline void row_taps_narrow(const uint16_t *restrict v, uint8_t *restrict dst, int32_t width,
+                                   const uint16_t *restrict taps, int32_t r)
+{
+    for (int32_t x = 0; x < width; x++) {
+        uint16_t s = (uint16_t)(taps[r] * v[x + r]);
+        for (int32_t i = 0; i < r; i++)
+            s = (uint16_t)(s + taps[i] * (uint16_t)(v[x + i] + v[x + 2 * r - i]));
+        dst[x] = (uint8_t)((uint16_t)(s + 128) >> 8);
+    }
+}
+
+/* Calls STEP(r) with the radius as a constant, so each pass is compiled once
+ * per kernel size with its tap loop unrolled. */
+#define DISPATCH_RADIUS(radius, STEP) \
+    switch (radius) {                 \
+    case 0: STEP(0); break;           \
+    case 1: STEP(1); break;           \
+    case 2: STEP(2); break;           \
+    case 3: STEP(3); break;           \
+    case 4: STEP(4); break;           \
+    case 5: STEP(5); break;           \
+    case 6: STEP(6); break;           \
+    default: STEP(7); break;          \
+    }
+
+/* The same for the split (two-plane) or narrow (one-plane) variant. */
+#define DISPATCH(split, radius, SPLIT_STEP, NARROW_STEP) \
+    do {                                                 \
+        if (split) {                                     \
+            DISPATCH_RADIUS(radius, SPLIT_STEP)          \
+        } else {                                         \
+            DISPATCH_RADIUS(radius, NARROW_STEP)         \
+        }                                                \
+    } while (0)
+
+static void column_pass(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo, int32_t width,
+                        const uint16_t *taps, int32_t ksize, int split)
+{
+#define COLUMN_SPLIT(r) column_taps(rows, hi, lo, width, taps, r, 1)
+#define COLUMN_NARROW(r) column_taps(rows, hi, lo, width, taps, r, 0)
+    DISPATCH(split, ksize / 2, COLUMN_SPLIT, COLUMN_NARROW);
+}
+
+static void row_pass(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
+                     const uint16_t *taps, int32_t ksize, int split)
+{
+#define ROW_SPLIT(r) row_taps(hi, lo, dst, width, taps, r)
+#define ROW_NARROW(r) row_taps_narrow(hi, dst, width, taps, r)
+    DISPATCH(split, ksize / 2, ROW_SPLIT, ROW_NARROW);
+}
+
+/* Power-of-two factor shared by all n taps, as a shift, at most `limit`. */
+static int32_t common_shift(const uint16_t *taps, int32_t n, int32_t limit)
+{
+    uint32_t all = 0;
+    for (int32_t i = 0; i < n; i++)
+        all |= taps[i];
+    int32_t shift = 0;
+    while (shift < limit && ((all >> shift) & 1) == 0)
+        shift++;
+    return shift;
+}
+
+rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                const rte_gaussian_kernel *kernel, rte_arena *arena)
+{
+    rte_status st = rte_blur_check_views(src, dst);
+    if (st != RTE_OK)
+        return st;
+    if (!kernel || !arena || !kernel_is_valid(kernel))
+        return RTE_ERR_ARGUMENT;
+
+    const int32_t width = src->width, height = src->height;
+    const int32_t kx = kernel->ksize_x, ky = kernel->ksize_y;
+    const int32_t rx = kx / 2, ry = ky / 2;
+    const size_t plane = plane_elems(width, rx);
+    const int in_place = src->buf == dst->buf;
+    const size_t ring_stride = line_elems(width, 1);
+
+    const size_t mark = rte_arena_mark(arena);
+    uint16_t *hi = rte_arena_alloc(arena, 2 * plane * sizeof(uint16_t));
+    uint8_t *ring = in_place ? rte_arena_alloc(arena, (size_t)ky * ring_stride) : NULL;
+    if (!hi || (in_place && !ring)) {
+        rte_arena_reset(arena, mark);
+        return RTE_ERR_NO_MEMORY;
+    }
+    uint16_t *lo = hi + plane;
+
+    /* Narrow path when 8 bits of power-of-two factors can be divided out of
+     * the taps (the sum then never exceeds 255 * 256; see the top). */
+    uint16_t taps_x[RTE_GAUSSIAN_MAX_KSIZE], taps_y[RTE_GAUSSIAN_MAX_KSIZE];
+    const int32_t shift_y = common_shift(kernel->taps_y, ky, 8);
+    const int32_t shift_x = common_shift(kernel->taps_x, kx, 8 - shift_y);
+    const int split = shift_x + shift_y < 8;
+    for (int32_t i = 0; i < kx; i++)
+        taps_x[i] = split ? kernel->taps_x[i] : (uint16_t)(kernel->taps_x[i] >> shift_x);
+    for (int32_t j = 0; j < ky; j++)
+        taps_y[j] = split ? kernel->taps_y[j] : (uint16_t)(kernel->taps_y[j] >> shift_y);
+
+    /* In place, source row y is copied into ring slot (y % ky) before the
+     * first output row that needs it, and dst row y is written after copying
+     * row y + ry: an output row reads source rows within ry of it only
+     * (reflection stays inside that window). */
+    int32_t copied = 0;
+    for (int32_t y = 0; y < height; y++) {
+        const uint8_t *rows[RTE_GAUSSIAN_MAX_KSIZE];
+        if (in_place) {
+            int32_t last = y + ry < height ? y + ry : height - 1;
+            for (; copied <= last; copied++)
+                memcpy(ring + (size_t)(copied % ky) * ring_stride, rte_u8_row(src, copied),
+                       (size_t)width);
+        }
+        for (int32_t j = 0; j < ky; j++) {
+            int32_t sy = rte_blur_reflect101(y - ry + j, height);
+            rows[j] = in_place ? ring + (size_t)(sy % ky) * ring_stride : rte_u8_row(src, sy);
+        }
+        column_pass(rows, hi + rx, lo + rx, width, taps_y, ky, split);
+        rte_blur_reflect101_borders_u16(hi, width, rx);
+        if (split)
+            rte_blur_reflect101_borders_u16(lo, width, rx);
+        row_pass(hi, lo, rte_u8_row(dst, y), width, taps_x, kx, split);
+    }
+
+    rte_arena_reset(arena, mark);
+    return RTE_OK;
+}

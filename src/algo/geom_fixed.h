@@ -1,0 +1,71 @@
+/* Integer helpers shared by the contour feature files (internal). */
+#ifndef RTEDGE_ALGO_GEOM_FIXED_H
+#define RTEDGE_ALGO_GEOM_FIXED_H
+
+#include <stdint.h>
+
+#include "rtedge/arena.h"
+#include "rtedge/contours.h"
+#include "rtedge/status.h"
+
+__extension__ typedef __int128 rte_i128;
+__extension__ typedef unsigned __int128 rte_u128;
+
+/* floor(sqrt(v)) for any 64-bit v: Newton's iteration from above. */
+static inline uint64_t rte_isqrt64(uint64_t v)
+{
+    if (v < 2)
+        return v;
+    int bits = 64 - __builtin_clzll(v);
+    uint64_t r = (uint64_t)1 << ((bits + 1) / 2); /* >= sqrt(v) */
+    for (;;) {
+        uint64_t y = (r + v / r) / 2;
+        if (y >= r)
+            return r;
+        r = y;
+    }
+}
+
+/* floor(sqrt(v)) for a 128-bit v. */
+static inline rte_u128 rte_isqrt128(rte_u128 v)
+{
+    rte_u128 r = 0, bit = (rte_u128)1 << 126;
+    while (bit > v)
+        bit >>= 2;
+    while (bit) {
+        if (v >= r + bit) {
+            v -= r + bit;
+            r = (r >> 1) + bit;
+        } else {
+            r >>= 1;
+        }
+        bit >>= 2;
+    }
+    return r;
+}
+
+/* sqrt(v) rounded to nearest (v < 2^62). */
+static inline uint64_t rte_isqrt64_round(uint64_t v)
+{
+    uint64_t r = rte_isqrt64(v);
+    /* round up when v >= (r + 0.5)^2 = r^2 + r + 0.25 */
+    return v > r * r + r ? r + 1 : r;
+}
+
+/* n / d rounded to nearest, ties away from zero; d > 0. */
+static inline rte_i128 rte_div_round128(rte_i128 n, rte_i128 d)
+{
+    return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
+}
+
+/* The convex hull of pts as points, in a piece of `scratch` that stays
+ * taken (the caller resets the arena to its own mark). */
+rte_status rte_shape_hull_in_arena(const rte_point *pts, int32_t n, rte_arena *scratch,
+                                   rte_point **hull, int32_t *n_hull);
+
+static inline int64_t rte_cross(rte_point o, rte_point a, rte_point b)
+{
+    return (int64_t)(a.x - o.x) * (b.y - o.y) - (int64_t)(a.y - o.y) * (b.x - o.x);
+}
+
+#endif

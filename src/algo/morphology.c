@@ -1,0 +1,428 @@
+/* Erosion and dilation with flat structuring elements (per frame, integer
+ * only). See include/rtedge/morphology.h.
+ *
+ * Pixels outside the image never win (OpenCV's default border), so rows
+ * outside the image are simply left out and each loaded row is padded on
+ * both sides with the neutral value (255 for min, 0 for max).
+ *
+ * Long horizontal windows use doubling tables: level k of a padded row
+ * holds the min (max) of 2^k consecutive pixels, and any run of length len
+ * is the min of two overlapping level-k windows with 2^k <= len < 2^(k+1).
+ * Short windows are reduced tap by tap, up to five rows (or shifted
+ * views of one row) per pass over the output.
+ *  - A full rectangle is separable: the column window straight from the
+ *    source rows into a padded row, then the row window into dst.
+ *  - Any other element: every source row's padded copy and its levels
+ *    stream through a ring of `height` slots; each output row combines,
+ *    for every run, two reads of the levels of the run's source row.
+ * dst == src is safe: the ring (for the separable path, a ring of plain
+ * row copies, used only then) takes each source row before the output row
+ * that overwrites it. */
+#include "rtedge/morphology.h"
+
+#include <stdbool.h>
+#include <string.h>
+
+/* Widest row window and tallest column window reduced tap by tap; wider
+ * rows use the doubling levels, taller columns van Herk / Gil-Werman
+ * (three passes per row whatever the height). */
+#define DIRECT_TAPS 6
+#define DIRECT_ROWS 7
+
+/* Largest k with 2^k <= n (n >= 1). */
+static int32_t floor_log2(int32_t n)
+{
+    int32_t k = 0;
+    while ((2 << k) <= n)
+        k++;
+    return k;
+}
+
+static size_t round_up64(size_t n) { return (n + 63) & ~(size_t)63; }
+
+/* What one pass needs: the effective window and the ring geometry. */
+typedef struct morph_plan {
+    int32_t kw, kh, ax, ay; /* effective element size and anchor */
+    int32_t levels;         /* doubling levels kept per padded row */
+    bool separable;         /* full rectangle: column window, then row window */
+    bool blocks;            /* separable with a tall window: van Herk / Gil-Werman columns */
+    size_t padded;          /* bytes per padded row, rounded up */
+    size_t slot;            /* bytes per ring slot */
+} morph_plan;
+
+static morph_plan make_plan(int32_t width, const rte_morph_element *e, int32_t iterations)
+{
+    morph_plan p;
+    p.separable = e->full != 0;
+    if (p.separable) {
+        /* OpenCV's rule for iterated rectangles: one rectangle of
+         * k + (n - 1)(k - 1) with the anchor scaled by n; iterating the
+         * small one gives the same pixels. */
+        p.kw = e->width + (iterations - 1) * (e->width - 1);
+        p.kh = e->height + (iterations - 1) * (e->height - 1);
+        p.ax = e->anchor_x * iterations;
+        p.ay = e->anchor_y * iterations;
+        p.levels = floor_log2(p.kw) + 1;
+    } else {
+        p.kw = e->width;
+        p.kh = e->height;
+        p.ax = e->anchor_x;
+        p.ay = e->anchor_y;
+        p.levels = floor_log2(e->max_run) + 1;
+    }
+    p.padded = round_up64((size_t)width + (size_t)p.kw - 1);
+    p.blocks = p.separable && p.kh > DIRECT_ROWS;
+    /* separable: raw source rows (only used in place); otherwise the levels */
+    p.slot = p.separable ? round_up64((size_t)width) : p.padded * (size_t)p.levels;
+    return p;
+}
+
+/* Separable: a padded row and two rows for its levels, and for tall
+ * windows one block of suffix rows, a prefix row and a neutral row. */
+static size_t work_bytes(const morph_plan *p)
+{
+    if (!p->separable)
+        return 0;
+    return 3 * p->padded + (p->blocks ? ((size_t)p->kh + 2) * p->slot : 0);
+}
+
+/* The ring plus the work rows. */
+static size_t plan_bytes(const morph_plan *p)
+{
+    size_t bytes = rte_arena_piece_size(p->slot * (size_t)p->kh);
+    if (p->separable)
+        bytes += rte_arena_piece_size(work_bytes(p));
+    return bytes;
+}
+
+/* The element is caller memory: check every field the passes index with. */
+static bool valid_element(const rte_morph_element *e)
+{
+    if (!e || e->width < 1 || e->width > RTE_MORPH_MAX_KSIZE || e->height < 1 ||
+        e->height > RTE_MORPH_MAX_KSIZE || e->anchor_x < 0 || e->anchor_x >= e->width ||
+        e->anchor_y < 0 || e->anchor_y >= e->height || e->run_count < 1 ||
+        e->run_count > (int32_t)(sizeof e->runs / sizeof e->runs[0]) || e->max_run < 1 ||
+        e->max_run > e->width)
+        return false;
+    for (int32_t i = 0; i < e->run_count; i++) {
+        const rte_morph_run r = e->runs[i];
+        if (r.dy < 0 || r.dy >= e->height || r.dx < 0 || r.len < 1 || r.len > e->max_run ||
+            r.dx + r.len > e->width)
+            return false;
+    }
+    return true;
+}
+
+/* Iterated rectangles grow; keep every size inside int32_t arithmetic. */
+#define MAX_ITERATIONS 1000
+
+size_t rte_morphology_scratch_size(int32_t max_width, int32_t max_height,
+                                   const rte_morph_element *element, int32_t iterations)
+{
+    if (!valid_element(element) || max_width < 1 || max_height < 1 || iterations < 1 ||
+        iterations > MAX_ITERATIONS)
+        return 0;
+    morph_plan p = make_plan(max_width, element, iterations);
+    return plan_bytes(&p);
+}
+
+/* d = op(a, b) elementwise. d may be a. */
+static void row_op2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max)
+{
+    if (is_max)
+        for (int32_t x = 0; x < n; x++)
+            d[x] = a[x] > b[x] ? a[x] : b[x];
+    else
+        for (int32_t x = 0; x < n; x++)
+            d[x] = a[x] < b[x] ? a[x] : b[x];
+}
+
+/* d = op(d, op(a, b)) elementwise. */
+static void row_acc2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max)
+{
+    if (is_max)
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t v = a[x] > b[x] ? a[x] : b[x];
+            d[x] = d[x] > v ? d[x] : v;
+        }
+    else
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t v = a[x] < b[x] ? a[x] : b[x];
+            d[x] = d[x] < v ? d[x] : v;
+        }
+}
+
+/* d = op(a, b, c) elementwise. */
+static void row_op3(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, int32_t n, bool is_max)
+{
+    if (is_max)
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t v = a[x] > b[x] ? a[x] : b[x];
+            d[x] = v > c[x] ? v : c[x];
+        }
+    else
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t v = a[x] < b[x] ? a[x] : b[x];
+            d[x] = v < c[x] ? v : c[x];
+        }
+}
+
+#define MIN8(u, v) ((u) < (v) ? (u) : (v))
+#define MAX8(u, v) ((u) > (v) ? (u) : (v))
+
+/* d = op(a, b, c, e) elementwise: four rows in one pass. */
+static void row_op4(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, const uint8_t *e,
+                    int32_t n, bool is_max)
+{
+    if (is_max)
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t u = MAX8(a[x], b[x]), v = MAX8(c[x], e[x]);
+            d[x] = MAX8(u, v);
+        }
+    else
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t u = MIN8(a[x], b[x]), v = MIN8(c[x], e[x]);
+            d[x] = MIN8(u, v);
+        }
+}
+
+/* d = op(a, b, c, e, f) elementwise: five rows in one pass. */
+static void row_op5(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, const uint8_t *e,
+                    const uint8_t *f, int32_t n, bool is_max)
+{
+    if (is_max)
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t u = MAX8(a[x], b[x]), v = MAX8(c[x], e[x]);
+            u = MAX8(u, f[x]);
+            d[x] = MAX8(u, v);
+        }
+    else
+        for (int32_t x = 0; x < n; x++) {
+            uint8_t u = MIN8(a[x], b[x]), v = MIN8(c[x], e[x]);
+            u = MIN8(u, f[x]);
+            d[x] = MIN8(u, v);
+        }
+}
+
+/* d = op of the `count` rows r[0..count-1], or of d and them when
+ * `accumulate` is set: up to five rows in the first pass, then two per
+ * pass. */
+static void reduce_rows(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate, int32_t n,
+                        bool is_max)
+{
+    int32_t i = 0;
+    if (!accumulate) {
+        if (count == 1) {
+            memcpy(d, r[0], (size_t)n);
+            return;
+        }
+        /* an even remainder after the first pass keeps the pairs whole */
+        int32_t head = count <= 5 ? count : 5 - (count - 5) % 2;
+        if (head == 2)
+            row_op2(d, r[0], r[1], n, is_max);
+        else if (head == 3)
+            row_op3(d, r[0], r[1], r[2], n, is_max);
+        else if (head == 4)
+            row_op4(d, r[0], r[1], r[2], r[3], n, is_max);
+        else
+            row_op5(d, r[0], r[1], r[2], r[3], r[4], n, is_max);
+        i = head;
+    }
+    for (; i + 1 < count; i += 2)
+        row_acc2(d, r[i], r[i + 1], n, is_max);
+    if (i < count)
+        row_op2(d, d, r[i], n, is_max);
+}
+
+/* Copies a source row into `pad` with p->ax neutral pixels before it and
+ * kw - 1 - ax after it. */
+static void load_padded(uint8_t *pad, const uint8_t *row, int32_t width, const morph_plan *p,
+                        uint8_t neutral)
+{
+    memset(pad, neutral, (size_t)p->ax);
+    memcpy(pad + p->ax, row, (size_t)width);
+    memset(pad + p->ax + width, neutral, (size_t)(p->kw - 1 - p->ax));
+}
+
+/* Level k from level k - 1 of a padded row of n pixels: valid for x <= n - 2^k. */
+static void next_level(uint8_t *dst, const uint8_t *prev, int32_t n, int32_t k, bool is_max)
+{
+    int32_t half = 1 << (k - 1);
+    row_op2(dst, prev, prev + half, n - 2 * half + 1, is_max);
+}
+
+/* Full rectangle, separable: the column window first, straight from the
+ * source rows (or from copies of them when dst == src, so that rows still
+ * needed are not lost), into the middle of a padded row; then the row
+ * window from there into dst. */
+static void separable_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph_plan *p,
+                           uint8_t *ring, uint8_t *work, bool is_max)
+{
+    const int32_t w = src->width, h = src->height, kh = p->kh;
+    const int32_t n = w + p->kw - 1;
+    const uint8_t neutral = is_max ? 0 : 255;
+    const bool in_place = src->buf == dst->buf;
+    uint8_t *pad = work, *lv_a = work + p->padded, *lv_b = work + 2 * p->padded;
+    uint8_t *suffix = work + 3 * p->padded, *prefix = suffix + (size_t)kh * p->slot;
+    uint8_t *neutral_row = prefix + p->slot;
+    memset(pad, neutral, (size_t)n); /* the margins stay neutral; the middle is rewritten per row */
+    if (p->blocks)
+        memset(neutral_row, neutral, (size_t)w);
+    /* Source row v of the column window: rows outside the image are neutral. */
+#define SRC_ROW(v) ((v) < 0 || (v) >= h ? neutral_row \
+                    : in_place ? ring + (size_t)((v) % kh) * p->slot : rte_u8_row(src, (v)))
+    int32_t loaded = 0;
+    for (int32_t y = 0; y < h; y++) {
+        const int32_t v0 = y - p->ay; /* the column window is v0 .. v0 + kh - 1 */
+        int32_t r0 = v0 < 0 ? 0 : v0;
+        int32_t last = v0 + kh - 1 > h - 1 ? h - 1 : v0 + kh - 1;
+        if (in_place)
+            for (; loaded <= last; loaded++)
+                memcpy(ring + (size_t)(loaded % kh) * p->slot, rte_u8_row(src, loaded), (size_t)w);
+        uint8_t *d = rte_u8_row(dst, y);
+        uint8_t *column = p->kw == 1 ? d : pad + p->ax;
+        if (p->blocks) {
+            /* Windows start at v0 = y - ay; blocks of kh windows share one
+             * suffix table of their first window's rows, and the rows past
+             * it accumulate in a running prefix. */
+            const int32_t o = y % kh;
+            if (o == 0) {
+                memcpy(suffix + (size_t)(kh - 1) * p->slot, SRC_ROW(v0 + kh - 1), (size_t)w);
+                for (int32_t j = kh - 2; j >= 1; j--)
+                    row_op2(suffix + (size_t)j * p->slot, SRC_ROW(v0 + j), suffix + (size_t)(j + 1) * p->slot,
+                            w, is_max);
+                row_op2(column, SRC_ROW(v0), suffix + p->slot, w, is_max);
+            } else {
+                const uint8_t *entering = SRC_ROW(v0 + kh - 1);
+                if (o == 1)
+                    memcpy(prefix, entering, (size_t)w);
+                else
+                    row_op2(prefix, prefix, entering, w, is_max);
+                row_op2(column, suffix + (size_t)o * p->slot, prefix, w, is_max);
+            }
+        } else {
+            const uint8_t *rows[DIRECT_ROWS];
+            for (int32_t v = r0; v <= last; v++)
+                rows[v - r0] = SRC_ROW(v);
+            reduce_rows(column, rows, last - r0 + 1, false, w, is_max);
+        }
+        if (p->kw == 1)
+            continue;
+        if (p->kw <= DIRECT_TAPS) {
+            const uint8_t *taps[DIRECT_TAPS];
+            for (int32_t i = 0; i < p->kw; i++)
+                taps[i] = pad + i;
+            reduce_rows(d, taps, p->kw, false, w, is_max);
+            continue;
+        }
+        const uint8_t *level = pad;
+        for (int32_t k = 1; k < p->levels; k++) {
+            uint8_t *next = level == lv_a ? lv_b : lv_a;
+            next_level(next, level, n, k, is_max);
+            level = next;
+        }
+        row_op2(d, level, level + p->kw - (1 << (p->levels - 1)), w, is_max);
+    }
+#undef SRC_ROW
+}
+
+/* Any other element: per source row, the doubling levels of its padded
+ * copy in the ring; per output row, two reads per run. */
+static void general_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph_plan *p,
+                         const rte_morph_element *e, uint8_t *ring, bool is_max)
+{
+    const int32_t w = src->width, h = src->height;
+    const int32_t n = w + p->kw - 1;
+    const uint8_t neutral = is_max ? 0 : 255;
+    int32_t loaded = 0; /* next source row to bring into the ring */
+    for (int32_t y = 0; y < h; y++) {
+        int32_t last = y - p->ay + p->kh - 1 > h - 1 ? h - 1 : y - p->ay + p->kh - 1;
+        for (; loaded <= last; loaded++) {
+            uint8_t *slot = ring + (size_t)(loaded % p->kh) * p->slot;
+            load_padded(slot, rte_u8_row(src, loaded), w, p, neutral);
+            for (int32_t k = 1; k < p->levels; k++)
+                next_level(slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n, k, is_max);
+        }
+        /* Every run gives one or two rows of the levels; they are reduced
+         * a chunk at a time. */
+        uint8_t *d = rte_u8_row(dst, y);
+        const uint8_t *taps[64];
+        int32_t count = 0;
+        bool any = false;
+        for (int32_t i = 0; i < e->run_count; i++) {
+            const rte_morph_run run = e->runs[i];
+            int32_t r = y + run.dy - p->ay;
+            if (r < 0 || r >= h)
+                continue;
+            int32_t k = floor_log2(run.len);
+            const uint8_t *level = ring + (size_t)(r % p->kh) * p->slot + (size_t)k * p->padded;
+            taps[count++] = level + run.dx;
+            if (run.len != 1 << k)
+                taps[count++] = level + run.dx + run.len - (1 << k);
+            if (count >= 62) {
+                reduce_rows(d, taps, count, any, w, is_max);
+                any = true;
+                count = 0;
+            }
+        }
+        if (count) {
+            reduce_rows(d, taps, count, any, w, is_max);
+            any = true;
+        }
+        if (!any) /* every run's row is outside the image */
+            memset(d, neutral, (size_t)w);
+    }
+}
+
+rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_morph_op op,
+                             const rte_morph_element *element, int32_t iterations,
+                             rte_arena *arena)
+{
+    rte_status st = rte_image_u8_check_pair(src, dst);
+    if (st != RTE_OK)
+        return st;
+    if (!valid_element(element) || !arena || (unsigned)op > RTE_MORPH_CLOSE || iterations < 1 ||
+        iterations > MAX_ITERATIONS)
+        return RTE_ERR_ARGUMENT;
+
+    const size_t mark = rte_arena_mark(arena);
+    morph_plan p = make_plan(src->width, element, iterations);
+    uint8_t *ring = (uint8_t *)rte_arena_alloc(arena, p.slot * (size_t)p.kh);
+    uint8_t *work = p.separable ? (uint8_t *)rte_arena_alloc(arena, work_bytes(&p)) : NULL;
+    if (!ring || (p.separable && !work)) {
+        rte_arena_reset(arena, mark);
+        return RTE_ERR_NO_MEMORY;
+    }
+
+    /* Passes: the rectangle covers all iterations in one pass per operation. */
+    const int32_t repeat = p.separable ? 1 : iterations;
+    bool first_max = op == RTE_MORPH_DILATE || op == RTE_MORPH_CLOSE;
+    int32_t stages = (op == RTE_MORPH_OPEN || op == RTE_MORPH_CLOSE) ? 2 : 1;
+    const rte_image_u8 *in = src;
+    for (int32_t s = 0; s < stages; s++) {
+        bool is_max = s == 0 ? first_max : !first_max;
+        for (int32_t i = 0; i < repeat; i++) {
+            if (p.separable)
+                separable_pass(in, dst, &p, ring, work, is_max);
+            else
+                general_pass(in, dst, &p, element, ring, is_max);
+            in = dst;
+        }
+    }
+    rte_arena_reset(arena, mark);
+    return RTE_OK;
+}
+
+rte_status rte_morphology_erode_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                   const rte_morph_element *element, int32_t iterations,
+                                   rte_arena *arena)
+{
+    return rte_morphology_u8(src, dst, RTE_MORPH_ERODE, element, iterations, arena);
+}
+
+rte_status rte_morphology_dilate_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                    const rte_morph_element *element, int32_t iterations,
+                                    rte_arena *arena)
+{
+    return rte_morphology_u8(src, dst, RTE_MORPH_DILATE, element, iterations, arena);
+}

@@ -1,0 +1,249 @@
+/* Thresholding, histogram, Otsu and automatic Canny thresholds (per frame,
+ * integer only). See include/rtedge/threshold.h. */
+#include "rtedge/threshold.h"
+
+#include <string.h>
+
+#include "binary64.h"
+
+rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256])
+{
+    rte_status st = rte_image_u8_check(src);
+    if (st != RTE_OK)
+        return st;
+    if (!hist)
+        return RTE_ERR_ARGUMENT;
+    /* Four partial histograms: consecutive equal pixels would otherwise
+     * serialise on one counter's load-increment-store. */
+    uint32_t part[4][256];
+    memset(part, 0, sizeof part);
+    for (int32_t y = 0; y < src->height; y++) {
+        const uint8_t *row = rte_u8_row(src, y);
+        int32_t x = 0;
+        for (; x + 8 <= src->width; x += 8) {
+            /* one 8-byte load instead of eight (byte order cannot matter here) */
+            uint64_t v;
+            memcpy(&v, row + x, sizeof v);
+            part[0][v & 0xFF]++;
+            part[1][(v >> 8) & 0xFF]++;
+            part[2][(v >> 16) & 0xFF]++;
+            part[3][(v >> 24) & 0xFF]++;
+            part[0][(v >> 32) & 0xFF]++;
+            part[1][(v >> 40) & 0xFF]++;
+            part[2][(v >> 48) & 0xFF]++;
+            part[3][v >> 56]++;
+        }
+        for (; x < src->width; x++)
+            part[0][row[x]]++;
+    }
+    for (int32_t v = 0; v < 256; v++)
+        hist[v] = part[0][v] + part[1][v] + part[2][v] + part[3][v];
+    return RTE_OK;
+}
+
+/* FLT_EPSILON (2^-23) and 1 - FLT_EPSILON as binary64 bit patterns. */
+#define F64_FLT_EPSILON UINT64_C(0x3E80000000000000)
+#define F64_ONE_MINUS_FLT_EPSILON UINT64_C(0x3FEFFFFFC0000000)
+
+rte_status rte_threshold_otsu_histogram(const uint32_t hist[256], int32_t *thresh)
+{
+    if (!hist || !thresh)
+        return RTE_ERR_ARGUMENT;
+    uint64_t total = 0, moment = 0;
+    for (uint32_t v = 0; v < 256; v++) {
+        total += hist[v];
+        moment += (uint64_t)v * hist[v];
+    }
+    if (total == 0)
+        return RTE_ERR_ARGUMENT;
+
+    /* The same double operations, in the same order, as OpenCV 4.6's
+     * getThreshVal_Otsu_8u: mu is a sum of exact integer products, so one
+     * conversion of the integer sum gives the identical double. Note that
+     * OpenCV multiplies mu1 by q1 before the skip test and only divides it
+     * again on bins that are not skipped; that order is kept. */
+    const rte_f64 scale = rte_f64_div(RTE_F64_ONE, rte_f64_from_u64(total));
+    const rte_f64 mu = rte_f64_mul(rte_f64_from_u64(moment), scale);
+    rte_f64 mu1 = 0, q1 = 0, max_sigma = 0;
+    int32_t best = 0;
+    for (uint32_t i = 0; i < 256; i++) {
+        rte_f64 p_i = rte_f64_mul(rte_f64_from_u64(hist[i]), scale);
+        mu1 = rte_f64_mul(mu1, q1);
+        q1 = rte_f64_add(q1, p_i);
+        rte_f64 q2 = rte_f64_sub(RTE_F64_ONE, q1);
+        /* min(q1, q2) < FLT_EPSILON || max(q1, q2) > 1 - FLT_EPSILON */
+        if (rte_f64_lt(q1, F64_FLT_EPSILON) || rte_f64_lt(q2, F64_FLT_EPSILON) ||
+            rte_f64_lt(F64_ONE_MINUS_FLT_EPSILON, q1) || rte_f64_lt(F64_ONE_MINUS_FLT_EPSILON, q2))
+            continue;
+        mu1 = rte_f64_div(rte_f64_add(mu1, rte_f64_mul(rte_f64_from_u64(i), p_i)), q1);
+        rte_f64 mu2 = rte_f64_div(rte_f64_sub(mu, rte_f64_mul(q1, mu1)), q2);
+        rte_f64 d = rte_f64_sub(mu1, mu2);
+        rte_f64 sigma = rte_f64_mul(rte_f64_mul(rte_f64_mul(q1, q2), d), d);
+        if (rte_f64_lt(max_sigma, sigma)) { /* strictly greater: ties keep the lowest bin */
+            max_sigma = sigma;
+            best = (int32_t)i;
+        }
+    }
+    *thresh = best;
+    return RTE_OK;
+}
+
+rte_status rte_threshold_otsu_u8(const rte_image_u8 *src, int32_t *thresh)
+{
+    uint32_t hist[256];
+    rte_status st = rte_histogram_u8(src, hist);
+    if (st != RTE_OK)
+        return st;
+    return rte_threshold_otsu_histogram(hist, thresh);
+}
+
+/* Row kernels: plain loops over bytes without branches, so the compiler
+ * can turn them into vector compares and selects. No restrict: s == d
+ * (in place) is allowed. */
+static void row_binary(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t,
+                       uint8_t hi, uint8_t lo)
+{
+    for (int32_t x = 0; x < n; x++)
+        d[x] = s[x] > t ? hi : lo;
+}
+
+static void row_trunc(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
+{
+    for (int32_t x = 0; x < n; x++)
+        d[x] = s[x] > t ? t : s[x];
+}
+
+static void row_tozero(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
+{
+    for (int32_t x = 0; x < n; x++)
+        d[x] = s[x] > t ? s[x] : 0;
+}
+
+static void row_tozero_inv(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
+{
+    for (int32_t x = 0; x < n; x++)
+        d[x] = s[x] > t ? 0 : s[x];
+}
+
+static void fill_rows(rte_image_u8 *dst, uint8_t v)
+{
+    for (int32_t y = 0; y < dst->height; y++)
+        memset(rte_u8_row(dst, y), v, (size_t)dst->width);
+}
+
+static void copy_rows(const rte_image_u8 *src, rte_image_u8 *dst)
+{
+    if (src->buf == dst->buf && src->stride == dst->stride)
+        return;
+    for (int32_t y = 0; y < src->height; y++)
+        memmove(rte_u8_row(dst, y), rte_u8_row(src, y), (size_t)src->width);
+}
+
+rte_status rte_threshold_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                            const rte_threshold_params *params, int32_t *used_thresh)
+{
+    rte_status st = rte_image_u8_check_pair(src, dst);
+    if (st != RTE_OK)
+        return st;
+    if (!params || (uint32_t)params->type > RTE_THRESH_TOZERO_INV)
+        return RTE_ERR_ARGUMENT;
+    /* In place is fine (each pixel is read before it is written); other
+     * overlaps between src and dst are not. */
+    int32_t t = params->thresh;
+    if (params->otsu) {
+        st = rte_threshold_otsu_u8(src, &t);
+        if (st != RTE_OK)
+            return st;
+    }
+    if (used_thresh)
+        *used_thresh = t;
+    const rte_threshold_type type = params->type;
+    const uint8_t maxval = (uint8_t)(params->maxval < 0 ? 0 : params->maxval > 255 ? 255 : params->maxval);
+
+    if (t < 0 || t >= 255) {
+        /* Every pixel is on one side of t: OpenCV fills or copies. */
+        bool above = t < 0; /* every pixel is > t */
+        switch (type) {
+        case RTE_THRESH_BINARY: fill_rows(dst, above ? maxval : 0); break;
+        case RTE_THRESH_BINARY_INV: fill_rows(dst, above ? 0 : maxval); break;
+        case RTE_THRESH_TRUNC: /* min(src, t) */
+            if (above)
+                fill_rows(dst, 0); /* OpenCV saturates t < 0 to 0 */
+            else
+                copy_rows(src, dst);
+            break;
+        case RTE_THRESH_TOZERO:
+            if (above)
+                copy_rows(src, dst);
+            else
+                fill_rows(dst, 0);
+            break;
+        case RTE_THRESH_TOZERO_INV:
+            if (above)
+                fill_rows(dst, 0);
+            else
+                copy_rows(src, dst);
+            break;
+        }
+        return RTE_OK;
+    }
+
+    const uint8_t t8 = (uint8_t)t;
+    for (int32_t y = 0; y < src->height; y++) {
+        const uint8_t *s = rte_u8_row(src, y);
+        uint8_t *d = rte_u8_row(dst, y);
+        switch (type) {
+        case RTE_THRESH_BINARY: row_binary(s, d, src->width, t8, maxval, 0); break;
+        case RTE_THRESH_BINARY_INV: row_binary(s, d, src->width, t8, 0, maxval); break;
+        case RTE_THRESH_TRUNC: row_trunc(s, d, src->width, t8); break;
+        case RTE_THRESH_TOZERO: row_tozero(s, d, src->width, t8); break;
+        case RTE_THRESH_TOZERO_INV: row_tozero_inv(s, d, src->width, t8); break;
+        }
+    }
+    return RTE_OK;
+}
+
+/* The value at 0-based rank `k` of the sorted pixels. */
+static int32_t value_at_rank(const uint32_t hist[256], uint64_t k)
+{
+    uint64_t seen = 0;
+    for (int32_t v = 0; v < 256; v++) {
+        seen += hist[v];
+        if (seen > k)
+            return v;
+    }
+    return 255;
+}
+
+rte_status rte_threshold_auto_canny_median(const uint32_t hist[256], int32_t sigma_permille,
+                                           int32_t *low, int32_t *high)
+{
+    if (!hist || !low || !high || sigma_permille < 0 || sigma_permille > 10000)
+        return RTE_ERR_ARGUMENT;
+    uint64_t total = 0;
+    for (int32_t v = 0; v < 256; v++)
+        total += hist[v];
+    if (total == 0)
+        return RTE_ERR_ARGUMENT;
+    /* twice numpy's median: the two middle values (the same one for an odd count) */
+    int32_t median2 = value_at_rank(hist, (total - 1) / 2) + value_at_rank(hist, total / 2);
+    /* (1 -/+ s) * m = (1000 -/+ sigma_permille) * median2 / 2000, floored */
+    int32_t lo = sigma_permille >= 1000 ? 0 : (1000 - sigma_permille) * median2 / 2000;
+    int32_t hi = (1000 + sigma_permille) * median2 / 2000;
+    *low = lo;
+    *high = hi > 255 ? 255 : hi;
+    return RTE_OK;
+}
+
+rte_status rte_threshold_auto_canny_otsu(const uint32_t hist[256], int32_t *low, int32_t *high)
+{
+    if (!low || !high)
+        return RTE_ERR_ARGUMENT;
+    int32_t t;
+    rte_status st = rte_threshold_otsu_histogram(hist, &t);
+    if (st != RTE_OK)
+        return st;
+    *high = t;
+    *low = t / 2;
+    return RTE_OK;
+}

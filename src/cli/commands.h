@@ -1,0 +1,33 @@
+/* The table of rtedge subcommands and the functions behind them. */
+#ifndef RTEDGE_CLI_COMMANDS_H
+#define RTEDGE_CLI_COMMANDS_H
+
+typedef struct cli_entry cli_entry;
+struct cli_entry {
+    const char *name;
+    const char *summary;
+    int (*run)(const cli_entry *self, int argc, char **argv);
+};
+
+/* Terminated by an entry with name == NULL. */
+extern const cli_entry cli_commands[];
+
+/* cmd_filters.c: the image kernels of librtedge. */
+int cmd_gray(const cli_entry *self, int argc, char **argv);
+int cmd_blur(const cli_entry *self, int argc, char **argv);
+int cmd_median(const cli_entry *self, int argc, char **argv);
+int cmd_sobel(const cli_entry *self, int argc, char **argv);
+int cmd_scharr(const cli_entry *self, int argc, char **argv);
+int cmd_laplacian(const cli_entry *self, int argc, char **argv);
+int cmd_log(const cli_entry *self, int argc, char **argv);
+int cmd_canny(const cli_entry *self, int argc, char **argv);
+int cmd_threshold(const cli_entry *self, int argc, char **argv);
+int cmd_morphology(const cli_entry *self, int argc, char **argv);
+int cmd_mask(const cli_entry *self, int argc, char **argv);
+
+/* cmd_contours.c, cmd_grasp.c: contours, shape features, the grasp path. */
+int cmd_contours(const cli_entry *self, int argc, char **argv);
+int cmd_shapes(const cli_entry *self, int argc, char **argv);
+int cmd_grasp(const cli_entry *self, int argc, char **argv);
+
+#endif

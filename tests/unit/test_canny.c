@@ -1,0 +1,251 @@
+/* Canny: threshold conversion, hand-checked edges (steps, hysteresis,
+ * 1xN / Nx1 / 1x1), arena sizing and argument errors. */
+#include <math.h>
+
+#include "unit.h"
+
+#include "rtedge/arena.h"
+#include "rtedge/canny.h"
+
+static uint8_t arena_memory[1 << 17];
+
+static rte_arena make_arena(void)
+{
+    rte_arena a;
+    rte_arena_init(&a, arena_memory, sizeof arena_memory);
+    return a;
+}
+
+static void params_convert_thresholds(void **state)
+{
+    rte_canny_params p;
+    assert_int_equal(rte_canny_params_init(&p, 100, 50, 3, false), RTE_OK); /* swapped */
+    assert_int_equal(p.low, 50);
+    assert_int_equal(p.high, 100);
+    assert_int_equal(p.aperture, 3);
+    assert_false(p.l2_gradient);
+    assert_int_equal(rte_canny_params_init(&p, 20.7, 60.2, 5, false), RTE_OK); /* floored */
+    assert_int_equal(p.low, 20);
+    assert_int_equal(p.high, 60);
+    assert_int_equal(rte_canny_params_init(&p, 10.5, 40000, 3, true), RTE_OK);
+    assert_int_equal(p.low, 110);           /* floor(10.5^2) */
+    assert_int_equal(p.high, 32767 * 32767); /* clamped, then squared */
+    assert_int_equal(rte_canny_params_init(&p, -5.5, 0, 3, true), RTE_OK);
+    assert_int_equal(p.low, -6); /* negative: not squared */
+    assert_int_equal(p.high, 0);
+    /* Beyond int32: OpenCV's x86-64 floor gives INT32_MIN above, INT32_MAX below. */
+    assert_int_equal(rte_canny_params_init(&p, -1e10, 1e10, 3, false), RTE_OK);
+    assert_int_equal(p.low, INT32_MAX);
+    assert_int_equal(p.high, INT32_MIN);
+    assert_int_equal(rte_canny_params_init(&p, 1, 2, 4, false), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_params_init(&p, 1, 2, 9, false), RTE_ERR_ARGUMENT);
+    /* Aperture 7: thresholds divided by 16 first (OpenCV scales that Sobel by 1/16). */
+    assert_int_equal(rte_canny_params_init(&p, 160, 50, 7, true), RTE_OK);
+    assert_int_equal(p.low, 9);   /* floor((50/16)^2) = floor(9.77) */
+    assert_int_equal(p.high, 100); /* (160/16)^2 */
+    assert_int_equal(rte_canny_params_init(&p, NAN, 2, 3, false), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_params_init(NULL, 1, 2, 3, false), RTE_ERR_ARGUMENT);
+}
+
+static void assert_edges(const rte_image_u8 *dst, const char *const *rows)
+{
+    for (int y = 0; y < dst->height; y++)
+        for (int x = 0; x < dst->width; x++)
+            assert_int_equal(dst->buf[y * dst->stride + x], rows[y][x] == '#' ? 255 : 0);
+    unit_assert_padding_u8(dst);
+}
+
+/* A vertical step 0 | 200: |dx| = 4 * 200 on both sides of the step; the
+ * left one wins (m > left, m >= right). */
+static void step_edge_is_one_pixel_wide(void **state)
+{
+    rte_arena a = make_arena();
+    for (int ap = 3; ap <= 7; ap += 2) {
+        rte_image_u8 src = unit_image_u8(10, 8, 3, 0);
+        for (int y = 0; y < 8; y++)
+            memset(src.buf + y * src.stride + 5, 200, 5);
+        rte_image_u8 dst = unit_image_u8(10, 8, 2, 0x11);
+        rte_canny_params p;
+        assert_int_equal(rte_canny_params_init(&p, 100, 200, ap, ap == 5), RTE_OK);
+        assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
+        static const char *const want[8] = { "....#.....", "....#.....", "....#.....", "....#.....",
+                                             "....#.....", "....#.....", "....#.....", "....#....." };
+        assert_edges(&dst, want);
+        assert_int_equal(rte_arena_mark(&a), 0);
+        test_free(src.buf);
+        test_free(dst.buf);
+    }
+}
+
+/* A weak step (|dx| = 160, between the thresholds) is kept only where it
+ * connects to a strong part (row 0: 60 instead of 40 gives 240 > 200). */
+static void hysteresis_follows_weak_edges_from_seeds(void **state)
+{
+    rte_arena a = make_arena();
+    rte_image_u8 src = unit_image_u8(10, 8, 1, 0);
+    for (int y = 0; y < 8; y++)
+        memset(src.buf + y * src.stride + 5, 40, 5);
+    rte_image_u8 dst = unit_image_u8(10, 8, 0, 0);
+    rte_canny_params p;
+    assert_int_equal(rte_canny_params_init(&p, 100, 200, 3, false), RTE_OK);
+    assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
+    static const char *const none[8] = { "..........", "..........", "..........", "..........",
+                                         "..........", "..........", "..........", ".........." };
+    assert_edges(&dst, none);
+
+    memset(src.buf + 5, 60, 5);
+    assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
+    static const char *const chain[8] = { ".....#....", ".....#....", "....#.....", "....#.....",
+                                          "....#.....", "....#.....", "....#.....", "....#....." };
+    assert_edges(&dst, chain);
+    test_free(src.buf);
+    test_free(dst.buf);
+}
+
+static void thin_images(void **state)
+{
+    rte_arena a = make_arena();
+    rte_canny_params p;
+    assert_int_equal(rte_canny_params_init(&p, 100, 200, 3, false), RTE_OK);
+    /* 1x6 row: |dx| = 800 at x = 2 and 3, dy = 0; x = 2 wins. */
+    static const uint8_t row[6] = { 0, 0, 0, 200, 200, 200 };
+    rte_image_u8 src = unit_image_u8(6, 1, 4, 0);
+    memcpy(src.buf, row, 6);
+    rte_image_u8 dst = unit_image_u8(6, 1, 4, 0);
+    assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
+    static const char *const want_row[1] = { "..#..." };
+    assert_edges(&dst, want_row);
+    test_free(src.buf);
+    test_free(dst.buf);
+
+    /* 6x1 column: the same along y. */
+    src = unit_image_u8(1, 6, 2, 0);
+    dst = unit_image_u8(1, 6, 3, 0);
+    for (int y = 0; y < 6; y++)
+        src.buf[y * src.stride] = row[y];
+    assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
+    static const char *const want_col[6] = { ".", ".", "#", ".", ".", "." };
+    assert_edges(&dst, want_col);
+    test_free(src.buf);
+    test_free(dst.buf);
+
+    /* 1x1 and flat images: no gradient, no edges, even with thresholds 0. */
+    assert_int_equal(rte_canny_params_init(&p, 0, 0, 5, true), RTE_OK);
+    static const uint8_t levels[3] = { 0, 255, 90 };
+    for (int l = 0; l < 3; l++)
+        for (int w = 1; w <= 67; w += 11) {
+            src = unit_image_u8(w, w / 3 + 1, 5, levels[l]);
+            dst = unit_image_u8(w, w / 3 + 1, 1, 0x33);
+            assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
+            for (int y = 0; y < dst.height; y++)
+                for (int x = 0; x < w; x++)
+                    assert_int_equal(dst.buf[y * dst.stride + x], 0);
+            unit_assert_padding_u8(&dst);
+            test_free(src.buf);
+            test_free(dst.buf);
+        }
+}
+
+/* From given derivatives: a single strong pixel is an edge; its weak
+ * 8-neighbours that are local maxima join it. */
+static void from_gradient(void **state)
+{
+    rte_arena a = make_arena();
+    rte_image_s16 dx = unit_image_s16(7, 5, 2), dy = unit_image_s16(7, 5, 0);
+    for (int y = 0; y < 5; y++)
+        for (int x = 0; x < 7; x++) {
+            dx.buf[y * dx.stride + x] = 0;
+            dy.buf[y * dy.stride + x] = 0;
+        }
+    /* Column 3 holds a vertical ridge of horizontal gradient: weak 60, one strong 300. */
+    for (int y = 0; y < 5; y++)
+        dx.buf[y * dx.stride + 3] = -60;
+    dx.buf[2 * dx.stride + 3] = 300;
+    rte_image_u8 dst = unit_image_u8(7, 5, 2, 0);
+    rte_canny_params p;
+    assert_int_equal(rte_canny_params_init(&p, 50, 200, 3, false), RTE_OK);
+    assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &dst, &p, &a), RTE_OK);
+    static const char *const want[5] = { "...#...", "...#...", "...#...", "...#...", "...#..." };
+    assert_edges(&dst, want);
+    /* Raise low above 60: only the seed remains. */
+    assert_int_equal(rte_canny_params_init(&p, 61, 200, 3, false), RTE_OK);
+    assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &dst, &p, &a), RTE_OK);
+    static const char *const seed[5] = { ".......", ".......", "...#...", ".......", "......." };
+    assert_edges(&dst, seed);
+    /* L2 with the same thresholds: 60^2 > 50^2, 300^2 > 200^2. */
+    assert_int_equal(rte_canny_params_init(&p, 50, 200, 3, true), RTE_OK);
+    assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &dst, &p, &a), RTE_OK);
+    assert_edges(&dst, want);
+
+    rte_image_u8 wrong = unit_image_u8(6, 5, 0, 0);
+    assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &wrong, &p, &a), RTE_ERR_SIZE);
+    assert_int_equal(rte_canny_from_gradient_u8(&dx, NULL, &dst, &p, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_params_init(&p, 50, 200, 7, false), RTE_OK);
+    assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &dst, &p, &a), RTE_ERR_ARGUMENT);
+    test_free(wrong.buf);
+    test_free(dx.buf);
+    test_free(dy.buf);
+    test_free(dst.buf);
+}
+
+/* Noise: every edge pixel is 255, the rest 0, padding untouched, and the
+ * stated arena size is enough at any alignment while half of it fails. */
+static void arena_size_and_arguments(void **state)
+{
+    static uint8_t mem[1 << 16];
+    uint32_t rng = 99;
+    rte_image_u8 src = unit_image_u8(67, 23, 3, 0);
+    for (int y = 0; y < 23; y++)
+        for (int x = 0; x < 67; x++)
+            src.buf[y * src.stride + x] = (uint8_t)unit_rand(&rng);
+    rte_image_u8 dst = unit_image_u8(67, 23, 5, 0);
+    rte_canny_params p;
+    assert_int_equal(rte_canny_params_init(&p, 30, 90, 5, false), RTE_OK);
+    size_t need = rte_canny_scratch_size(67, 23, 5);
+    assert_true(need <= sizeof mem - RTE_ARENA_ALIGN);
+    int edges = 0;
+    for (size_t off = 0; off < RTE_ARENA_ALIGN; off += 13) {
+        rte_arena a;
+        rte_arena_init(&a, mem + off, need);
+        assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
+        assert_int_equal(a.used, 0);
+        for (int y = 0; y < 23; y++)
+            for (int x = 0; x < 67; x++) {
+                uint8_t v = dst.buf[y * dst.stride + x];
+                assert_true(v == 0 || v == 255);
+                edges += v == 255;
+            }
+        unit_assert_padding_u8(&dst);
+    }
+    assert_true(edges > 0);
+    rte_arena a;
+    rte_arena_init(&a, mem, need / 2); /* the flood stack alone is half */
+    assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_ERR_NO_MEMORY);
+    assert_int_equal(a.used, 0);
+
+    rte_arena_init(&a, mem, sizeof mem);
+    rte_image_u8 other = unit_image_u8(66, 23, 0, 0);
+    assert_int_equal(rte_canny_u8(&src, &other, &p, &a), RTE_ERR_SIZE);
+    assert_int_equal(rte_canny_u8(&src, &dst, NULL, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_u8(&src, &dst, &p, NULL), RTE_ERR_ARGUMENT);
+    rte_canny_params bad = p;
+    bad.aperture = 9;
+    assert_int_equal(rte_canny_u8(&src, &dst, &bad, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_scratch_size(0, 10, 3), 0);
+    test_free(other.buf);
+    test_free(src.buf);
+    test_free(dst.buf);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(params_convert_thresholds),
+        cmocka_unit_test(step_edge_is_one_pixel_wide),
+        cmocka_unit_test(hysteresis_follows_weak_edges_from_seeds),
+        cmocka_unit_test(thin_images),
+        cmocka_unit_test(from_gradient),
+        cmocka_unit_test(arena_size_and_arguments),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,46 @@
+// tools/bench: rtedge against OpenCV 4.6 on the same frames, in one process.
+//
+// A benchmark case names a stage and gives two closures that process one
+// prepared frame: one with rtedge, one with OpenCV (single-threaded). The
+// driver runs them interleaved on every frame, many rounds, and reports the
+// median time of each and their ratio.
+#ifndef RTEDGE_TOOLS_BENCH_HPP
+#define RTEDGE_TOOLS_BENCH_HPP
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace bench {
+
+// One frame at one size, in the forms the cases need.
+struct Frame {
+    std::string name;
+    cv::Mat bgr;  // CV_8UC3
+    cv::Mat gray; // CV_8UC1, = cvtColor(bgr, BGR2GRAY)
+};
+
+// A runner works on one frame; `prepare` is called once per frame before
+// timing (outside the timed region) and returns the two timed closures.
+struct Runners {
+    std::function<void()> rtedge;
+    std::function<void()> opencv;
+};
+
+struct Case {
+    std::string group; // e.g. "kernels"
+    std::string name;  // e.g. "gaussian 5x5"
+    std::function<Runners(const Frame &)> prepare;
+};
+
+// Cases register themselves from the bench_*.cpp files at start-up.
+std::vector<Case> &registry();
+struct Register {
+    Register(std::string group, std::string name, std::function<Runners(const Frame &)> prepare);
+};
+
+} // namespace bench
+
+#endif
