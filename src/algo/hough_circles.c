@@ -91,8 +91,8 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx, co
             /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
             uint64_t mag_q10 = rte_hough_isqrt64(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
             int64_t den = (int64_t)mag_q10 * dp_q8;
-            int32_t sx = (int32_t)div_round((int64_t)vx << 28, den);
-            int32_t sy = (int32_t)div_round((int64_t)vy << 28, den);
+            int32_t sx = (int32_t)div_round((int64_t)vx * (1 << 28), den);
+            int32_t sy = (int32_t)div_round((int64_t)vy * (1 << 28), den);
             int32_t x0 = (int32_t)div_round((int64_t)x << 18, dp_q8);
             int32_t y0 = (int32_t)div_round((int64_t)y << 18, dp_q8);
             for (int k = 0; k < 2; k++) {

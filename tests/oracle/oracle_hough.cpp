@@ -308,7 +308,7 @@ void synthetic_lines(Runner &run)
     const int W = 400, H = 300;
     const double theta_res = CV_PI / 180;
     rte_hough_config cfg = make_config(W, H, 1.0, theta_res);
-    long truth = 0, found = 0;
+    long truth = 0, found = 0, ocv_found = 0;
     for (int img = 0; img < 20; img++) {
         cv::Mat e = cv::Mat::zeros(H, W, CV_8U);
         std::vector<std::pair<double, double>> gt; // rho, theta
@@ -332,16 +332,44 @@ void synthetic_lines(Runner &run)
             e.at<uint8_t>((int)uni(0, H), (int)uni(0, W)) = 255;
         int trunc = 0;
         auto lines = lines_of(run, "synthetic lines " + std::to_string(img), cfg, e, 80, 20, &trunc);
+        std::vector<cv::Vec2f> ocv;
+        cv::HoughLines(e, ocv, 1, theta_res, 80);
+        if (ocv.size() > 20)
+            ocv.resize(20);
         for (const auto &l : gt) {
             truth++;
-            long tb = std::lround(l.second / theta_res), rb = std::lround(l.first);
+            // A true angle between two bins peaks at the neighbouring bins
+            // with rho shifted by (distance of the visible chord from the
+            // foot of the normal) * (angle error), up to several pixels. So
+            // the rho a detection should have is the true line's rho AT THE
+            // DETECTED ANGLE, through the middle of its visible chord.
+            double th = l.second, dx = -std::sin(th), dy = std::cos(th);
+            double fx = l.first * std::cos(th), fy = l.first * std::sin(th);
+            cv::Point p1((int)std::lround(fx - 2000 * dx), (int)std::lround(fy - 2000 * dy));
+            cv::Point p2((int)std::lround(fx + 2000 * dx), (int)std::lround(fy + 2000 * dy));
+            cv::clipLine(cv::Size(W, H), p1, p2);
+            double mx = (p1.x + p2.x) / 2.0, my = (p1.y + p2.y) / 2.0;
+            auto near = [&](double rho_bin, double theta_bin) {
+                double td = theta_bin * theta_res;
+                return std::fabs(theta_bin - th / theta_res) <= 1.0 &&
+                       std::fabs(rho_bin - std::round(mx * std::cos(td) + my * std::sin(td))) <= 1.0;
+            };
+            bool hit = false, ohit = false;
             for (const auto &d : lines)
-                if (std::labs(d.theta_bin - tb) <= 1 && std::labs(d.rho_bin - rb) <= 1) {
-                    found++;
-                    break;
-                }
+                hit = hit || near(d.rho_bin, d.theta_bin);
+            for (const auto &d : ocv)
+                ohit = ohit || near(d[0], std::lround(d[1] / theta_res));
+            found += hit;
+            ocv_found += ohit;
+            if (!hit && getenv("DBG")) {
+                std::printf("missed rho %.2f theta %.4f mid %.1f %.1f; got", l.first, l.second, mx, my);
+                for (const auto &d : lines)
+                    std::printf(" (%d %d %d)", d.rho_bin, d.theta_bin, d.votes);
+                std::printf("\n");
+            }
         }
     }
+    std::printf("synthetic lines (OpenCV HoughLines: %ld of %ld)\n", ocv_found, truth);
     std::printf("synthetic lines: %ld of %ld found within one rho and one theta bin\n", found, truth);
     check(found == truth, "synthetic lines found %g of %g", found, truth);
 }
