@@ -89,7 +89,7 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx, co
                 continue;
             pts[n++] = ((uint32_t)y << 16) | (uint32_t)x;
             /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
-            uint64_t mag_q10 = rte_hough_isqrt64(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
+            uint64_t mag_q10 = rte_isqrt64(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
             int64_t den = (int64_t)mag_q10 * dp_q8;
             int32_t sx = (int32_t)div_round((int64_t)vx * (1 << 28), den);
             int32_t sy = (int32_t)div_round((int64_t)vy * (1 << 28), den);
@@ -130,7 +130,7 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
         int64_t d2 = ddx * ddx + ddy * ddy;
         if (d2 < rmin2 || d2 > rmax2)
             continue;
-        int32_t b = (int32_t)rte_hough_isqrt64((uint64_t)d2) - g->min_r * 16;
+        int32_t b = (int32_t)rte_isqrt64((uint64_t)d2) - g->min_r * 16;
         bins[b < 0 ? 0 : b >= g->nbins ? g->nbins - 1 : b]++;
         any = 1;
     }

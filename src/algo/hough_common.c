@@ -1,23 +1,29 @@
-/* Integer square root and a bounded top-k selection shared by the Hough
- * transforms: candidates are ranked without allocating and without qsort
+/* Argument checks, rho bins and a bounded top-k selection shared by the
+ * Hough transforms: candidates are ranked without allocating and without qsort
  * (whose scratch and order on ties differ between C libraries). */
 #include "hough_internal.h"
 
-uint32_t rte_hough_isqrt64(uint64_t v)
+int32_t rte_hough_rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h)
 {
-    uint64_t r = 0, bit = (uint64_t)1 << 62;
-    while (bit > v)
-        bit >>= 2;
-    while (bit) {
-        if (v >= r + bit) {
-            v -= r + bit;
-            r = (r >> 1) + bit;
-        } else {
-            r >>= 1;
-        }
-        bit >>= 2;
-    }
-    return (uint32_t)r;
+    int64_t n = ((int64_t)(2 * (w + h) + 1) * cfg->inv_rho_q16 + 32768) >> 16;
+    return n < 1 ? 1 : (int32_t)n;
+}
+
+rte_status rte_hough_begin(const rte_hough_config *cfg, const rte_image_u8 *edges, int32_t *count,
+                           int *truncated)
+{
+    if (!cfg || cfg->num_angles < 1 || cfg->num_angles > RTE_HOUGH_MAX_ANGLES || cfg->trig_shift < 0 ||
+        cfg->trig_shift > 30 || cfg->inv_rho_q16 <= 0 || cfg->max_width < 1 || cfg->max_height < 1 ||
+        cfg->max_width > RTE_MAX_SIDE || cfg->max_height > RTE_MAX_SIDE)
+        return RTE_ERR_ARGUMENT;
+    rte_status st = rte_image_u8_check(edges);
+    if (st != RTE_OK)
+        return st;
+    if (edges->width > cfg->max_width || edges->height > cfg->max_height)
+        return RTE_ERR_TOO_LARGE;
+    *count = 0;
+    *truncated = 0;
+    return RTE_OK;
 }
 
 static void sift_down(uint64_t *h, int32_t n, int32_t i)

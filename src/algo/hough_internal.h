@@ -4,8 +4,27 @@
 
 #include <stdint.h>
 
-/* floor(sqrt(v)), exact for every 64-bit value. */
-uint32_t rte_hough_isqrt64(uint64_t v);
+#include "rtedge/hough.h"
+
+#include "geom_fixed.h" /* rte_isqrt64 */
+
+/* Rho bins for a w x h map: round((2 * (w + h) + 1) / rho), as OpenCV. */
+int32_t rte_hough_rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h);
+
+/* The checks lines and segments share: a usable configuration (as
+ * rte_hough_config_init leaves it), a valid edge map no larger than the
+ * configured maximum; clears *count and *truncated. */
+rte_status rte_hough_begin(const rte_hough_config *cfg, const rte_image_u8 *edges, int32_t *count,
+                           int *truncated);
+
+/* Offset added to x * rho_cos + y * rho_sin so that >> trig_shift gives the
+ * rounded rho bin with bin 0 at rho = -(numrho - 1) / 2, never negative (a
+ * right shift of a negative value is not portable C). */
+static inline int32_t rte_hough_rho_bias(const rte_hough_config *cfg, int32_t numrho)
+{
+    const int32_t shift = cfg->trig_shift;
+    return (int32_t)(((int64_t)((numrho - 1) / 2) << shift) + (shift ? (1 << (shift - 1)) : 0));
+}
 
 /* Keeps the `capacity` largest of a stream of distinct 64-bit keys in a
  * min-heap; `seen` counts every key offered, so seen > capacity means some

@@ -7,16 +7,9 @@
 
 #include "hough_internal.h"
 
-/* Rho bins for a w x h map: round((2 * (w + h) + 1) / rho), as OpenCV. */
-static int32_t rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h)
-{
-    int64_t n = ((int64_t)(2 * (w + h) + 1) * cfg->inv_rho_q16 + 32768) >> 16;
-    return n < 1 ? 1 : (int32_t)n;
-}
-
 static size_t accum_cells(const rte_hough_config *cfg)
 {
-    return (size_t)(cfg->num_angles + 2) * (size_t)(rho_bins(cfg, cfg->max_width, cfg->max_height) + 2);
+    return (size_t)(cfg->num_angles + 2) * (size_t)(rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height) + 2);
 }
 
 size_t rte_hough_lines_scratch_size(const rte_hough_config *cfg, int32_t max_lines)
@@ -39,32 +32,19 @@ int64_t rte_hough_line_theta_q16(const rte_hough_config *cfg, const rte_hough_li
     return (int64_t)cfg->theta0_q16 + (int64_t)line->theta_bin * cfg->theta_q16;
 }
 
-static int config_ok(const rte_hough_config *cfg)
-{
-    return cfg && cfg->num_angles >= 1 && cfg->num_angles <= RTE_HOUGH_MAX_ANGLES &&
-           cfg->trig_shift >= 0 && cfg->trig_shift <= 30 && cfg->inv_rho_q16 > 0 &&
-           cfg->max_width >= 1 && cfg->max_height >= 1 &&
-           cfg->max_width <= RTE_MAX_SIDE && cfg->max_height <= RTE_MAX_SIDE;
-}
-
 rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edges,
                            int32_t threshold, rte_arena *arena,
                            rte_hough_line *lines, int32_t max_lines,
                            int32_t *count, int *truncated)
 {
-    if (!config_ok(cfg) || !arena || !count || !truncated || threshold < 0 || max_lines < 0 ||
-        (max_lines > 0 && !lines))
+    if (!arena || !count || !truncated || threshold < 0 || max_lines < 0 || (max_lines > 0 && !lines))
         return RTE_ERR_ARGUMENT;
-    rte_status st = rte_image_u8_check(edges);
+    rte_status st = rte_hough_begin(cfg, edges, count, truncated);
     if (st != RTE_OK)
         return st;
     const int32_t w = edges->width, h = edges->height;
-    if (w > cfg->max_width || h > cfg->max_height)
-        return RTE_ERR_TOO_LARGE;
-    *count = 0;
-    *truncated = 0;
 
-    const int32_t numrho = rho_bins(cfg, w, h), numangle = cfg->num_angles;
+    const int32_t numrho = rte_hough_rho_bins(cfg, w, h), numangle = cfg->num_angles;
     const int32_t astep = numrho + 2;
     const size_t pixels = (size_t)w * (size_t)h;
     const size_t mark = rte_arena_mark(arena);
@@ -90,9 +70,7 @@ rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edge
     for (size_t i = 0; i < (size_t)(numangle + 2) * astep; i++)
         acc[i] = 0;
     const int32_t shift = cfg->trig_shift;
-    /* Offset so that bin 0 is rho = -(numrho - 1) / 2 and the sum is never
-     * negative (a right shift of a negative value is not portable C). */
-    const int32_t bias = (int32_t)(((int64_t)((numrho - 1) / 2) << shift) + (shift ? (1 << (shift - 1)) : 0));
+    const int32_t bias = rte_hough_rho_bias(cfg, numrho);
     for (int32_t n = 0; n < numangle; n++) {
         int32_t *restrict arow = acc + (size_t)(n + 1) * astep + 1;
         const int32_t c = cfg->rho_cos[n], s = cfg->rho_sin[n];

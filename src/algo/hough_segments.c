@@ -39,18 +39,12 @@ typedef struct walk_ctx {
     int32_t end2[4]; /* the hits at the extreme steps (half pixels) */
 } walk_ctx;
 
-static int32_t rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h)
-{
-    int64_t n = ((int64_t)(2 * (w + h) + 1) * cfg->inv_rho_q16 + 32768) >> 16;
-    return n < 1 ? 1 : (int32_t)n;
-}
-
 size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
 {
     if (!cfg)
         return 0;
     size_t pixels = (size_t)cfg->max_width * (size_t)cfg->max_height;
-    size_t cells = (size_t)cfg->num_angles * (size_t)rho_bins(cfg, cfg->max_width, cfg->max_height);
+    size_t cells = (size_t)cfg->num_angles * (size_t)rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height);
     size_t side = (size_t)(cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height);
     return rte_arena_piece_size(pixels * sizeof(uint32_t)) + rte_arena_piece_size(pixels) +
            rte_arena_piece_size(cells * sizeof(int32_t)) +
@@ -226,11 +220,11 @@ static int fit_line(const walk_ctx *c, line_q16 *l)
         a /= 2;
         b /= 2;
     }
-    int64_t r = rte_hough_isqrt64((uint64_t)(a * a + b * b));
+    int64_t r = rte_isqrt64((uint64_t)(a * a + b * b));
     int64_t vx = r + a, vy = b;
     if (vx == 0 && vy == 0)
         return 0; /* no elongation: keep the quantised direction */
-    uint64_t len = rte_hough_isqrt64((uint64_t)(vx * vx + vy * vy));
+    uint64_t len = rte_isqrt64((uint64_t)(vx * vx + vy * vy));
     if (len == 0)
         return 0;
     l->ux = (int32_t)(vx * 65536 / (int64_t)len);
@@ -264,22 +258,15 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
                               rte_hough_segment *segments, int32_t max_segments,
                               int32_t *count, int *truncated)
 {
-    if (!cfg || !params || !arena || !count || !truncated || max_segments < 0 ||
-        (max_segments > 0 && !segments) || cfg->num_angles < 1 ||
-        cfg->num_angles > RTE_HOUGH_MAX_ANGLES || cfg->trig_shift < 0 || cfg->trig_shift > 30 ||
-        cfg->inv_rho_q16 <= 0 || params->threshold < 1 || params->min_length < 0 ||
-        params->max_gap < 0 || params->min_length > 65535)
+    if (!params || !arena || !count || !truncated || max_segments < 0 || (max_segments > 0 && !segments) ||
+        params->threshold < 1 || params->min_length < 0 || params->max_gap < 0 || params->min_length > 65535)
         return RTE_ERR_ARGUMENT;
-    rte_status st = rte_image_u8_check(edges);
+    rte_status st = rte_hough_begin(cfg, edges, count, truncated);
     if (st != RTE_OK)
         return st;
     const int32_t w = edges->width, h = edges->height;
-    if (w > cfg->max_width || h > cfg->max_height)
-        return RTE_ERR_TOO_LARGE;
-    *count = 0;
-    *truncated = 0;
 
-    const int32_t numangle = cfg->num_angles, numrho = rho_bins(cfg, w, h);
+    const int32_t numangle = cfg->num_angles, numrho = rte_hough_rho_bins(cfg, w, h);
     const size_t pixels = (size_t)w * (size_t)h;
     const size_t side = (size_t)(w > h ? w : h);
     const size_t mark = rte_arena_mark(arena);
@@ -320,8 +307,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         pts[j] = t;
     }
 
-    const int32_t shift = cfg->trig_shift;
-    const int32_t bias = (int32_t)(((int64_t)((numrho - 1) / 2) << shift) + (shift ? (1 << (shift - 1)) : 0));
+    const int32_t bias = rte_hough_rho_bias(cfg, numrho);
     const int64_t min_len2 = (int64_t)params->min_length * params->min_length;
     walk_ctx wc = { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 } };
     int32_t nseg = 0;

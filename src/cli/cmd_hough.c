@@ -237,13 +237,17 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
     "cv2.Canny(cv2.GaussianBlur(img, (blur, blur), sigma), low, high) as `rtedge canny` makes them\n" \
     "(same options), or IN itself with --edges. theta in radians, coordinates in pixels.\n"
 
+/* The accumulator resolution options of lines and segments. */
+#define RESOLUTION_ROWS(o)                                                                    \
+    {"rho", CLI_DOUBLE, &(o).rho, 0.015625, 65536, NULL, "distance resolution, pixels", NULL}, \
+    {"theta", CLI_DOUBLE, &(o).theta, 1e-4, 3.2, NULL, "angle resolution, radians", NULL}
+
 int cmd_lines(const cli_entry *self, int argc, char **argv)
 {
     hough_run o = {.kind = HOUGH_LINES, .canny = cli_canny_defaults(), .max_out = 256, .rho = 1,
                    .theta = PI / 180, .max_theta = PI, .threshold = 100};
     cli_option extra[] = {
-        {"rho", CLI_DOUBLE, &o.rho, 0.015625, 65536, NULL, "distance resolution, pixels", NULL},
-        {"theta", CLI_DOUBLE, &o.theta, 1e-4, 3.2, NULL, "angle resolution, radians", NULL},
+        RESOLUTION_ROWS(o),
         {"min-theta", CLI_DOUBLE, &o.min_theta, -64, 64, NULL, "smallest angle, radians", NULL},
         {"max-theta", CLI_DOUBLE, &o.max_theta, -64, 64, NULL, "largest angle, radians", NULL},
         {"threshold", CLI_INT, &o.threshold, 0, 1e9, NULL, "a line needs more votes than this", NULL},
@@ -259,8 +263,7 @@ int cmd_segments(const cli_entry *self, int argc, char **argv)
     hough_run o = {.kind = HOUGH_SEGMENTS, .canny = cli_canny_defaults(), .max_out = 4096, .rho = 1,
                    .theta = PI / 180, .max_theta = PI, .threshold = 50, .min_length = 30, .max_gap = 10};
     cli_option extra[] = {
-        {"rho", CLI_DOUBLE, &o.rho, 0.015625, 65536, NULL, "distance resolution, pixels", NULL},
-        {"theta", CLI_DOUBLE, &o.theta, 1e-4, 3.2, NULL, "angle resolution, radians", NULL},
+        RESOLUTION_ROWS(o),
         {"threshold", CLI_INT, &o.threshold, 1, 1e9, NULL, "accumulator votes a line needs", NULL},
         {"min-length", CLI_INT, &o.min_length, 0, 65535, NULL, "shortest segment (Euclidean), pixels", NULL},
         {"max-gap", CLI_INT, &o.max_gap, 0, 1e6, NULL, "longest gap bridged, pixels", NULL},
