@@ -429,6 +429,12 @@ void synthetic_circles(Runner &run)
         }
         truth += (long)gt.size();
         found += std::count(used.begin(), used.end(), true);
+        if (getenv("DBG") && std::count(used.begin(), used.end(), true) < (long)gt.size()) {
+            for (const auto &c : gt)
+                std::printf("circle truth %g %g %g\n", c[0], c[1], c[2]);
+            for (const auto &c : circles)
+                std::printf("circle found %g %g %g votes %d\n", c.x_q4 / 16.0, c.y_q4 / 16.0, c.r_q4 / 16.0, c.votes);
+        }
     }
     std::printf("synthetic circles: %ld of %ld found with centre and radius within 1 px; %ld detections, "
                 "%ld correct\n", found, truth, detections, correct);
