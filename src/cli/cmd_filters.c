@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_canny.h"
 #include "cli_image.h"
 #include "commands.h"
 #include "rtedge/blur.h"
@@ -117,15 +118,6 @@ int cmd_gray(const cli_entry *self, int argc, char **argv)
 }
 
 /* --- blur, median --- */
-
-/* Gaussian blur options, shared by blur, log and canny. */
-typedef struct blur_options {
-    int ksize;
-    double sigma;
-    int ksize_y;
-    double sigma_y;
-    rte_gaussian_kernel kernel;
-} blur_options;
 
 static int blur_prepare(const char *name, void *ctx)
 {
@@ -303,14 +295,7 @@ int cmd_log(const cli_entry *self, int argc, char **argv)
 
 /* --- canny --- */
 
-typedef struct canny_options {
-    double low, high, auto_sigma;
-    int aperture, auto_rule; /* auto_rule: 0 none, 1 median, 2 otsu */
-    bool l2, blur_first;
-    blur_options blur;
-} canny_options;
-
-static int canny_prepare(const char *name, void *ctx)
+int cli_canny_prepare(const char *name, void *ctx)
 {
     canny_options *o = ctx;
     if (o->aperture != 3 && o->aperture != 5) {
@@ -321,7 +306,7 @@ static int canny_prepare(const char *name, void *ctx)
     return o->blur_first ? blur_prepare(name, &o->blur) : CLI_EXIT_OK;
 }
 
-static size_t canny_scratch(void *ctx, int32_t w, int32_t h)
+size_t cli_canny_scratch(void *ctx, int32_t w, int32_t h)
 {
     canny_options *o = ctx;
     size_t scratch = rte_canny_scratch_size(w, h, o->aperture);
@@ -330,8 +315,8 @@ static size_t canny_scratch(void *ctx, int32_t w, int32_t h)
     return scratch;
 }
 
-static rte_status canny_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                              rte_arena *arena)
+rte_status cli_canny_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                           rte_arena *arena)
 {
     canny_options *o = ctx;
     rte_status st = RTE_OK;
@@ -368,26 +353,39 @@ static void canny_report(void *ctx)
     printf("{\"low\":%g,\"high\":%g}\n", o->low, o->high);
 }
 
-int cmd_canny(const cli_entry *self, int argc, char **argv)
+canny_options cli_canny_defaults(void)
+{
+    return (canny_options){.low = 50, .high = 150, .auto_sigma = 0.33, .aperture = 3, .blur = {.ksize_y = -1}};
+}
+
+int cli_canny_option_rows(cli_option *rows, canny_options *o)
 {
     static const char *const auto_rules[] = {"none", "median", "otsu", NULL};
-    canny_options o = {.low = 50, .high = 150, .auto_sigma = 0.33, .aperture = 3, .blur = {.ksize_y = -1}};
-    cli_option options[] = {
-        {"low", CLI_DOUBLE, &o.low, -1e6, 1e6, NULL, "lower hysteresis threshold", NULL},
-        {"high", CLI_DOUBLE, &o.high, -1e6, 1e6, NULL, "upper hysteresis threshold", NULL},
-        {"aperture", CLI_INT, &o.aperture, 3, 5, NULL, "Sobel aperture: 3 or 5", NULL},
-        {"l2", CLI_FLAG, &o.l2, 0, 0, NULL, "L2 gradient magnitude (squared, as OpenCV compares it)", NULL},
-        {"blur", CLI_INT, &o.blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "Gaussian blur first with this odd size; 0 = none unless --sigma", NULL},
-        {"sigma", CLI_DOUBLE, &o.blur.sigma, 0, 100, NULL, "Gaussian sigma of that blur", NULL},
-        {"auto", CLI_CHOICE, &o.auto_rule, 0, 0, auto_rules, "thresholds from the image: median rule or Otsu rule", NULL},
-        {"auto-sigma", CLI_DOUBLE, &o.auto_sigma, 0, 1, NULL, "s of the median rule", NULL},
-        {0}};
+    const cli_option r[CLI_CANNY_OPTIONS] = {
+        {"low", CLI_DOUBLE, &o->low, -1e6, 1e6, NULL, "lower hysteresis threshold", NULL},
+        {"high", CLI_DOUBLE, &o->high, -1e6, 1e6, NULL, "upper hysteresis threshold", NULL},
+        {"aperture", CLI_INT, &o->aperture, 3, 5, NULL, "Sobel aperture: 3 or 5", NULL},
+        {"l2", CLI_FLAG, &o->l2, 0, 0, NULL, "L2 gradient magnitude (squared, as OpenCV compares it)", NULL},
+        {"blur", CLI_INT, &o->blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "Gaussian blur first with this odd size; 0 = none unless --sigma", NULL},
+        {"sigma", CLI_DOUBLE, &o->blur.sigma, 0, 100, NULL, "Gaussian sigma of that blur", NULL},
+        {"auto", CLI_CHOICE, &o->auto_rule, 0, 0, auto_rules, "thresholds from the image: median rule or Otsu rule", NULL},
+        {"auto-sigma", CLI_DOUBLE, &o->auto_sigma, 0, 1, NULL, "s of the median rule", NULL}};
+    for (int i = 0; i < CLI_CANNY_OPTIONS; i++)
+        rows[i] = r[i];
+    return CLI_CANNY_OPTIONS;
+}
+
+int cmd_canny(const cli_entry *self, int argc, char **argv)
+{
+    canny_options o = cli_canny_defaults();
+    cli_option options[CLI_CANNY_OPTIONS + 1];
+    options[cli_canny_option_rows(options, &o)] = (cli_option){0};
     filter_spec spec = {"= cv2.Canny(cv2.GaussianBlur(img, (blur, blur), sigma), low, high,\n"
                         "            apertureSize=aperture, L2gradient=l2)\n"
                         "--auto median: low = max(0, (1-s) * median), high = min(255, (1+s) * median),\n"
                         "truncated to integers; --auto otsu: high = Otsu's threshold, low = high / 2.\n"
                         "Prints the thresholds used as JSON: {\"low\":L,\"high\":H}.",
-                        options, &o, canny_prepare, canny_scratch, canny_apply, false, canny_report};
+                        options, &o, cli_canny_prepare, cli_canny_scratch, cli_canny_apply, false, canny_report};
     return filter_main(self, argc, argv, &spec);
 }
 

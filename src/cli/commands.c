@@ -20,5 +20,8 @@ const cli_entry cli_commands[] = {
     {"contours", "contours with area, moments, boxes, hull, defects, shape (= findContours + features)", cmd_contours},
     {"shapes", "shape class of each object, as a table; --overlay draws them", cmd_shapes},
     {"grasp", "grasp points: centre, approach angle, opening; --overlay draws them", cmd_grasp},
+    {"lines", "standard Hough lines of the edges (= HoughLines), JSON; --overlay", cmd_lines},
+    {"segments", "Hough line segments of the edges (~ HoughLinesP), JSON; --overlay", cmd_segments},
+    {"circles", "Hough circles (= HoughCircles HOUGH_GRADIENT), JSON; --overlay", cmd_circles},
     {NULL, NULL, NULL},
 };

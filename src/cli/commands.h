@@ -30,4 +30,9 @@ int cmd_contours(const cli_entry *self, int argc, char **argv);
 int cmd_shapes(const cli_entry *self, int argc, char **argv);
 int cmd_grasp(const cli_entry *self, int argc, char **argv);
 
+/* cmd_hough.c: Hough lines, segments and circles. */
+int cmd_lines(const cli_entry *self, int argc, char **argv);
+int cmd_segments(const cli_entry *self, int argc, char **argv);
+int cmd_circles(const cli_entry *self, int argc, char **argv);
+
 #endif

@@ -1,0 +1,243 @@
+/* Hough transforms: hand-checked geometry (a row, a column, a disc), bounds
+ * and truncation on all-255 maps, sizes 1x1..67xN with stride > width,
+ * argument errors, and that the arena is back at its mark afterwards. */
+#include "unit.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "rtedge/hough.h"
+
+#define PI 3.14159265358979323846
+
+static rte_hough_config config_of(int32_t w, int32_t h)
+{
+    rte_hough_config cfg;
+    assert_int_equal(rte_hough_config_init(&cfg, w, h, 1.0, PI / 180, 0.0, PI), RTE_OK);
+    return cfg;
+}
+
+static rte_arena arena_of(size_t bytes)
+{
+    rte_arena a;
+    rte_arena_init(&a, test_malloc(bytes + 64), bytes + 64);
+    return a;
+}
+
+static void test_config_errors(void **state)
+{
+    (void)state;
+    rte_hough_config cfg;
+    assert_int_equal(rte_hough_config_init(NULL, 8, 8, 1, 0.1, 0, 1), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_config_init(&cfg, 8, 8, 0, 0.1, 0, 1), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_config_init(&cfg, 8, 8, 1, 0, 0, 1), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_config_init(&cfg, 8, 8, 1, 0.1, 1, 0), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_config_init(&cfg, 8, 8, 1, NAN, 0, 1), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_config_init(&cfg, 8, 8, 1, PI / 4096, 0, PI), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_config_init(&cfg, 0, 8, 1, 0.1, 0, 1), RTE_ERR_SIZE);
+    assert_int_equal(rte_hough_config_init(&cfg, 8, 8, 1, PI / 180, 0, PI), RTE_OK);
+    assert_int_equal(cfg.num_angles, 180);
+}
+
+/* A row of 36 edge pixels at y = 5: the strongest line is theta = 90
+ * degrees, rho = 5, with 36 votes (a shorter one also fills the cell of 89
+ * degrees, which then wins the tie by its smaller angle, as in OpenCV). A column at x = 7: theta 0, rho 7. */
+static void test_lines_row_and_column(void **state)
+{
+    (void)state;
+    rte_hough_config cfg = config_of(40, 40);
+    rte_arena a = arena_of(rte_hough_lines_scratch_size(&cfg, 8));
+    for (int col = 0; col < 2; col++) {
+        rte_image_u8 e = unit_image_u8(40, 39, 5, 0);
+        for (int i = 2; i < 38; i++)
+            e.buf[col ? (size_t)i * e.stride + 7 : 5 * (size_t)e.stride + i] = 255;
+        rte_hough_line l[8];
+        int32_t n = -1;
+        int tr = -1;
+        assert_int_equal(rte_hough_lines(&cfg, &e, 10, &a, l, 8, &n, &tr), RTE_OK);
+        assert_true(n >= 1);
+        assert_int_equal(tr, 0);
+        assert_int_equal(l[0].theta_bin, col ? 0 : 90);
+        assert_int_equal(l[0].rho_bin, col ? 7 : 5);
+        assert_int_equal(l[0].votes, 36);
+        for (int32_t i = 1; i < n; i++)
+            assert_true(l[i].votes <= l[i - 1].votes);
+        assert_int_equal(a.used, 0);
+        unit_assert_padding_u8(&e);
+        test_free(e.buf);
+    }
+    test_free(a.base);
+}
+
+/* All-255 maps of every small size: results within bounds, truncation set
+ * when the output is too small, nothing for an all-0 map. */
+static void test_sizes_and_truncation(void **state)
+{
+    (void)state;
+    for (int32_t w = 1; w <= 67; w += 11) {
+        for (int32_t h = 1; h <= 9; h += 4) {
+            rte_hough_config cfg = config_of(w, h);
+            rte_arena a = arena_of(rte_hough_lines_scratch_size(&cfg, 2) + rte_hough_segments_scratch_size(&cfg));
+            for (int fill = 0; fill <= 255; fill += 255) {
+                rte_image_u8 e = unit_image_u8(w, h, 3, (uint8_t)fill);
+                rte_hough_line l[2];
+                rte_hough_segment s[1];
+                int32_t n = -1;
+                int tr = -1;
+                assert_int_equal(rte_hough_lines(&cfg, &e, 0, &a, l, 2, &n, &tr), RTE_OK);
+                assert_true(n >= 0 && n <= 2);
+                if (!fill)
+                    assert_int_equal(n, 0);
+                assert_int_equal(a.used, 0);
+                rte_hough_segments_params p = { 1, 0, 0 };
+                assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 1, &n, &tr), RTE_OK);
+                assert_int_equal(a.used, 0);
+                assert_int_equal(n, fill ? 1 : 0);
+                if (fill && (w > 1 && h > 2))
+                    assert_int_equal(tr, 1); /* more than one segment in a filled map */
+                for (int32_t i = 0; i < n; i++)
+                    assert_true(s[i].x0 >= 0 && s[i].x0 < w && s[i].x1 >= 0 && s[i].x1 < w && s[i].y0 >= 0 &&
+                                s[i].y0 < h && s[i].y1 >= 0 && s[i].y1 < h);
+                unit_assert_padding_u8(&e);
+                test_free(e.buf);
+            }
+            test_free(a.base);
+        }
+    }
+}
+
+/* A dashed diagonal with 3-pixel gaps: one segment end to end with
+ * max_gap 4, none longer than min_length with max_gap 2. */
+static void test_segments_gap_and_length(void **state)
+{
+    (void)state;
+    rte_hough_config cfg = config_of(64, 64);
+    rte_arena a = arena_of(rte_hough_segments_scratch_size(&cfg));
+    rte_image_u8 e = unit_image_u8(64, 64, 7, 0);
+    for (int i = 5; i <= 55; i++)
+        if (i % 10 < 7)
+            e.buf[(size_t)i * e.stride + i] = 255;
+    rte_hough_segment s[8];
+    int32_t n = -1;
+    int tr = -1;
+    rte_hough_segments_params p = { 10, 30, 4 };
+    assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
+    assert_int_equal(n, 1);
+    assert_int_equal(tr, 0);
+    int32_t lo = s[0].x0 < s[0].x1 ? 0 : 1;
+    assert_true(abs((lo ? s[0].x1 : s[0].x0) - 5) <= 1 && abs((lo ? s[0].y1 : s[0].y0) - 5) <= 1);
+    assert_true(abs((lo ? s[0].x0 : s[0].x1) - 55) <= 1 && abs((lo ? s[0].y0 : s[0].y1) - 55) <= 1);
+    p.max_gap = 2;
+    p.min_length = 12;
+    assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
+    assert_int_equal(n, 0);
+    assert_int_equal(a.used, 0);
+    unit_assert_padding_u8(&e);
+    test_free(e.buf);
+    test_free(a.base);
+}
+
+/* A disc of radius 12 at (31, 27): its boundary with the 3x3 Sobel
+ * gradient of the disc image gives one circle at the centre. */
+static void test_circle_disc(void **state)
+{
+    (void)state;
+    const int32_t w = 64, h = 56, cx = 31, cy = 27, r = 12;
+    uint8_t img[56][64];
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++)
+            img[y][x] = (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r ? 200 : 40;
+    rte_image_u8 e = unit_image_u8(w, h, 3, 0);
+    rte_image_s16 gx = unit_image_s16(w, h, 2), gy = unit_image_s16(w, h, 2);
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++) {
+            int32_t xm = x > 0 ? x - 1 : 0, xp = x < w - 1 ? x + 1 : x, ym = y > 0 ? y - 1 : 0, yp = y < h - 1 ? y + 1 : y;
+            int32_t sx = img[ym][xp] + 2 * img[y][xp] + img[yp][xp] - img[ym][xm] - 2 * img[y][xm] - img[yp][xm];
+            int32_t sy = img[yp][xm] + 2 * img[yp][x] + img[yp][xp] - img[ym][xm] - 2 * img[ym][x] - img[ym][xp];
+            gx.buf[(size_t)y * gx.stride + x] = (int16_t)sx;
+            gy.buf[(size_t)y * gy.stride + x] = (int16_t)sy;
+            /* pixels with a neighbour of the other side */
+            int v = img[y][x];
+            int border = img[ym][x] != v || img[yp][x] != v || img[y][xm] != v || img[y][xp] != v;
+            e.buf[(size_t)y * e.stride + x] = border ? 255 : 0;
+        }
+    rte_hough_circles_params p = { 256, 10, 8, 5, 30 };
+    rte_arena a = arena_of(rte_hough_circles_scratch_size(w, h, &p));
+    rte_hough_circle c[4];
+    int32_t n = -1;
+    int tr = -1;
+    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &p, &a, c, 4, &n, &tr), RTE_OK);
+    assert_int_equal(n, 1);
+    assert_int_equal(tr, 0);
+    assert_true(abs(c[0].x_q4 - cx * 16) <= 16 && abs(c[0].y_q4 - cy * 16) <= 16);
+    assert_true(abs(c[0].r_q4 - r * 16) <= 16);
+    assert_int_equal(a.used, 0);
+    /* no room: one qualifies, none written, truncated */
+    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &p, &a, c, 0, &n, &tr), RTE_OK);
+    assert_int_equal(n, 0);
+    assert_int_equal(tr, 1);
+    /* argument errors */
+    rte_hough_circles_params bad = p;
+    bad.dp_q8 = 255;
+    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &bad, &a, c, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    bad = p;
+    bad.min_dist = 0;
+    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &bad, &a, c, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &p, &a, NULL, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    gy.width = w - 1;
+    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &p, &a, c, 4, &n, &tr), RTE_ERR_SIZE);
+    gy.width = w;
+    unit_assert_padding_u8(&e);
+    test_free(e.buf);
+    test_free(gx.buf);
+    test_free(gy.buf);
+    test_free(a.base);
+}
+
+static void test_argument_errors(void **state)
+{
+    (void)state;
+    rte_hough_config cfg = config_of(16, 16);
+    rte_arena a = arena_of(rte_hough_lines_scratch_size(&cfg, 4) + rte_hough_segments_scratch_size(&cfg));
+    rte_image_u8 e = unit_image_u8(16, 16, 1, 0);
+    rte_image_u8 big = unit_image_u8(17, 16, 1, 0);
+    rte_hough_line l[4];
+    rte_hough_segment s[4];
+    int32_t n;
+    int tr;
+    rte_hough_segments_params p = { 5, 5, 2 };
+    assert_int_equal(rte_hough_lines(NULL, &e, 1, &a, l, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_lines(&cfg, &e, -1, &a, l, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_lines(&cfg, &e, 1, &a, NULL, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_lines(&cfg, &big, 1, &a, l, 4, &n, &tr), RTE_ERR_TOO_LARGE);
+    assert_int_equal(rte_hough_segments(&cfg, &big, &p, &a, s, 4, &n, &tr), RTE_ERR_TOO_LARGE);
+    assert_int_equal(rte_hough_segments(&cfg, &e, NULL, &a, s, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    p.threshold = 0;
+    assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    p.threshold = 5;
+    p.max_gap = -1;
+    assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    /* an arena too small: no memory, arena untouched */
+    rte_arena tiny = arena_of(64);
+    p.max_gap = 2;
+    assert_int_equal(rte_hough_segments(&cfg, &e, &p, &tiny, s, 4, &n, &tr), RTE_ERR_NO_MEMORY);
+    assert_int_equal(rte_hough_lines(&cfg, &e, 1, &tiny, l, 4, &n, &tr), RTE_ERR_NO_MEMORY);
+    assert_int_equal(tiny.used, 0);
+    test_free(tiny.base);
+    test_free(e.buf);
+    test_free(big.buf);
+    test_free(a.base);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_config_errors),
+        cmocka_unit_test(test_lines_row_and_column),
+        cmocka_unit_test(test_sizes_and_truncation),
+        cmocka_unit_test(test_segments_gap_and_length),
+        cmocka_unit_test(test_circle_disc),
+        cmocka_unit_test(test_argument_errors),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
