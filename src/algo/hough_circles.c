@@ -1,0 +1,260 @@
+/* Circles, cv::HoughCircles(HOUGH_GRADIENT) semantics, integer only.
+ *
+ * 1. Every edge pixel with a non-zero gradient votes along its gradient
+ *    line, both ways, at every radius in [min_radius, max_radius]; the step
+ *    is the unit gradient in Q10 (from an integer square root), as OpenCV.
+ * 2. Centres: accumulator cells above acc_threshold that are local maxima
+ *    (> left and up, >= right and down).
+ * 3. Radius: a histogram of the distances (1/16 pixel bins) from the centre
+ *    to all edge pixels in range; the densest window of dp pixels, with the
+ *    count weighed against the radius as OpenCV does, gives the radius and
+ *    the support. Circles with support > acc_threshold are kept.
+ * 4. Sorted by support, then raster order of the centre; a centre closer
+ *    than min_dist to a kept one is dropped.
+ * Edge pixels are kept in raster order with row starts, so step 3 only
+ * visits the rows within max_radius of the centre. */
+#include "rtedge/hough.h"
+
+#include "hough_internal.h"
+
+typedef struct circle_geom {
+    int32_t acols, arows, min_r, max_r, nbins, window;
+} circle_geom;
+
+static int params_ok(const rte_hough_circles_params *p)
+{
+    return p && p->dp_q8 >= 256 && p->dp_q8 <= 256 * 64 && p->min_dist >= 1 &&
+           p->acc_threshold >= 1 && p->min_radius <= RTE_MAX_SIDE && p->max_radius <= RTE_MAX_SIDE;
+}
+
+static circle_geom geometry(int32_t w, int32_t h, const rte_hough_circles_params *p)
+{
+    circle_geom g;
+    g.acols = (int32_t)(((int64_t)w * 256 + p->dp_q8 - 1) / p->dp_q8);
+    g.arows = (int32_t)(((int64_t)h * 256 + p->dp_q8 - 1) / p->dp_q8);
+    g.min_r = p->min_radius < 0 ? 0 : p->min_radius;
+    g.max_r = p->max_radius;
+    if (g.max_r <= 0)
+        g.max_r = w > h ? w : h;
+    else if (g.max_r <= g.min_r)
+        g.max_r = g.min_r + 2;
+    g.nbins = (g.max_r - g.min_r) * 16 + 1;
+    g.window = (p->dp_q8 + 8) / 16; /* dp pixels in 1/16-pixel bins */
+    return g;
+}
+
+static size_t cells_of(const circle_geom *g) { return (size_t)(g->arows + 2) * (size_t)(g->acols + 2); }
+
+static size_t candidates_of(const circle_geom *g)
+{
+    return (size_t)g->arows * (size_t)(g->acols / 2 + 1) + 1;
+}
+
+size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
+                                      const rte_hough_circles_params *params)
+{
+    if (!params_ok(params) || max_width < 1 || max_height < 1 || max_width > RTE_MAX_SIDE ||
+        max_height > RTE_MAX_SIDE)
+        return 0;
+    circle_geom g = geometry(max_width, max_height, params);
+    size_t pixels = (size_t)max_width * (size_t)max_height;
+    size_t cand = candidates_of(&g);
+    return rte_arena_piece_size(cells_of(&g) * sizeof(int32_t)) +
+           rte_arena_piece_size(pixels * sizeof(uint32_t)) +
+           rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t)) +
+           rte_arena_piece_size(cand * sizeof(int32_t)) + rte_arena_piece_size(cand * sizeof(uint64_t)) +
+           rte_arena_piece_size(cand * 2 * sizeof(int32_t)) +
+           rte_arena_piece_size((size_t)g.nbins * sizeof(int32_t));
+}
+
+/* round(num / den) for den > 0, halves away from zero. */
+static inline int64_t div_round(int64_t num, int64_t den)
+{
+    return num >= 0 ? (num + den / 2) / den : -((-num + den / 2) / den);
+}
+
+/* Step 1: votes; also lists the voting pixels (raster order) and row starts. */
+static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx, const rte_image_s16 *dy,
+                          const circle_geom *g, int32_t dp_q8, int32_t *acc, uint32_t *pts, int32_t *row_start)
+{
+    const int32_t w = edges->width, h = edges->height, astep = g->acols + 2;
+    int32_t n = 0;
+    for (int32_t y = 0; y < h; y++) {
+        const uint8_t *e = rte_u8_row(edges, y);
+        const int16_t *gx = rte_s16_row(dx, y), *gy = rte_s16_row(dy, y);
+        row_start[y] = n;
+        for (int32_t x = 0; x < w; x++) {
+            int32_t vx = gx[x], vy = gy[x];
+            if (!e[x] || (vx == 0 && vy == 0))
+                continue;
+            pts[n++] = ((uint32_t)y << 16) | (uint32_t)x;
+            /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
+            uint64_t mag_q10 = rte_hough_isqrt64(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
+            int64_t den = (int64_t)mag_q10 * dp_q8;
+            int32_t sx = (int32_t)div_round((int64_t)vx << 28, den);
+            int32_t sy = (int32_t)div_round((int64_t)vy << 28, den);
+            int32_t x0 = (int32_t)div_round((int64_t)x << 18, dp_q8);
+            int32_t y0 = (int32_t)div_round((int64_t)y << 18, dp_q8);
+            for (int k = 0; k < 2; k++) {
+                int32_t x1 = x0 + g->min_r * sx, y1 = y0 + g->min_r * sy;
+                for (int32_t r = g->min_r; r <= g->max_r; r++, x1 += sx, y1 += sy) {
+                    if (x1 < 0 || y1 < 0)
+                        break;
+                    int32_t x2 = x1 >> 10, y2 = y1 >> 10;
+                    if (x2 >= g->acols || y2 >= g->arows)
+                        break;
+                    acc[y2 * astep + x2]++;
+                }
+                sx = -sx;
+                sy = -sy;
+            }
+        }
+    }
+    row_start[h] = n;
+    return n;
+}
+
+/* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. */
+static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, int32_t h, const circle_geom *g,
+                               int32_t cx, int32_t cy, int32_t *bins, int32_t *radius_q4)
+{
+    const int64_t rmin2 = (int64_t)g->min_r * g->min_r * 256, rmax2 = (int64_t)g->max_r * g->max_r * 256;
+    int32_t y_lo = (cy >> 4) - g->max_r - 1, y_hi = (cy >> 4) + g->max_r + 1;
+    y_lo = y_lo < 0 ? 0 : y_lo;
+    y_hi = y_hi > h - 1 ? h - 1 : y_hi;
+    for (int32_t i = 0; i < g->nbins; i++)
+        bins[i] = 0;
+    int32_t any = 0;
+    for (int32_t i = row_start[y_lo]; i < row_start[y_hi + 1]; i++) {
+        int64_t ddx = (int64_t)(pts[i] & 0xFFFF) * 16 - cx, ddy = (int64_t)(pts[i] >> 16) * 16 - cy;
+        int64_t d2 = ddx * ddx + ddy * ddy;
+        if (d2 < rmin2 || d2 > rmax2)
+            continue;
+        int32_t b = (int32_t)rte_hough_isqrt64((uint64_t)d2) - g->min_r * 16;
+        bins[b < 0 ? 0 : b >= g->nbins ? g->nbins - 1 : b]++;
+        any = 1;
+    }
+    int32_t best_count = 0, best_r = 0;
+    if (!any)
+        return 0;
+    /* From the largest radius down: each non-empty bin opens a window of
+     * `window` bins; a window wins when count / radius is at least the best
+     * so far (so ties go to the smaller radius). */
+    for (int32_t j = g->nbins - 1; j >= 0; j--) {
+        if (!bins[j])
+            continue;
+        int32_t up = j, cnt = 0;
+        for (; j > up - g->window && j >= 0; j--)
+            cnt += bins[j];
+        int32_t r = g->min_r * 16 + (up + j + 1) / 2;
+        if ((int64_t)cnt * best_r >= (int64_t)best_count * r || (best_r == 0 && cnt >= best_count)) {
+            best_r = r;
+            best_count = cnt;
+        }
+        j++; /* the loop's j-- moves to the first bin below the window */
+    }
+    *radius_q4 = best_r;
+    return best_count;
+}
+
+rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
+                             const rte_image_s16 *dy, const rte_hough_circles_params *params,
+                             rte_arena *arena, rte_hough_circle *circles, int32_t max_circles,
+                             int32_t *count, int *truncated)
+{
+    if (!params_ok(params) || !arena || !count || !truncated || max_circles < 0 ||
+        (max_circles > 0 && !circles))
+        return RTE_ERR_ARGUMENT;
+    rte_status st = rte_image_u8_check(edges);
+    if (st == RTE_OK)
+        st = rte_image_s16_check(dx);
+    if (st == RTE_OK)
+        st = rte_image_s16_check(dy);
+    if (st != RTE_OK)
+        return st;
+    if (dx->width != edges->width || dy->width != edges->width || dx->height != edges->height ||
+        dy->height != edges->height)
+        return RTE_ERR_SIZE;
+    *count = 0;
+    *truncated = 0;
+
+    const int32_t w = edges->width, h = edges->height;
+    const circle_geom g = geometry(w, h, params);
+    const size_t cells = cells_of(&g), cand_cap = candidates_of(&g);
+    const size_t mark = rte_arena_mark(arena);
+    int32_t *acc = rte_arena_alloc(arena, cells * sizeof(int32_t));
+    uint32_t *pts = rte_arena_alloc(arena, (size_t)w * h * sizeof(uint32_t));
+    int32_t *row_start = rte_arena_alloc(arena, ((size_t)h + 1) * sizeof(int32_t));
+    int32_t *centres = rte_arena_alloc(arena, cand_cap * sizeof(int32_t));
+    uint64_t *keys = rte_arena_alloc(arena, cand_cap * sizeof(uint64_t));
+    int32_t *est = rte_arena_alloc(arena, cand_cap * 2 * sizeof(int32_t));
+    int32_t *bins = rte_arena_alloc(arena, (size_t)g.nbins * sizeof(int32_t));
+    if (!acc || !pts || !row_start || !centres || !keys || !est || !bins) {
+        rte_arena_reset(arena, mark);
+        return RTE_ERR_NO_MEMORY;
+    }
+    for (size_t i = 0; i < cells; i++)
+        acc[i] = 0;
+    if (accumulate(edges, dx, dy, &g, params->dp_q8, acc, pts, row_start) == 0) {
+        rte_arena_reset(arena, mark);
+        return RTE_OK;
+    }
+
+    /* Step 2: centres, in raster order of the accumulator. */
+    const int32_t astep = g.acols + 2, thr = params->acc_threshold;
+    int32_t ncent = 0;
+    for (int32_t y = 1; y < g.arows + 1; y++) {
+        const int32_t *a = acc + (size_t)y * astep;
+        for (int32_t x = 1; x < g.acols + 1; x++) {
+            int32_t v = a[x];
+            if (v > thr && v > a[x - 1] && v >= a[x + 1] && v > a[x - astep] && v >= a[x + astep])
+                centres[ncent++] = y * astep + x;
+        }
+    }
+
+    /* Step 3: radius and support of every centre. */
+    rte_hough_topk top = { keys, (int32_t)cand_cap, 0, 0 };
+    int32_t nest = 0;
+    for (int32_t i = 0; i < ncent; i++) {
+        int32_t ay = centres[i] / astep, ax = centres[i] - ay * astep;
+        /* (a + 0.5) * dp in 1/16 pixel */
+        int32_t cx = (int32_t)(((int64_t)(2 * ax + 1) * params->dp_q8 + 16) / 32);
+        int32_t cy = (int32_t)(((int64_t)(2 * ay + 1) * params->dp_q8 + 16) / 32);
+        int32_t r = 0;
+        int32_t support = estimate_radius(pts, row_start, h, &g, cx, cy, bins, &r);
+        if (support > thr) {
+            est[2 * nest] = i;
+            est[2 * nest + 1] = r;
+            rte_hough_topk_push(&top, rte_hough_key(support, (uint32_t)nest));
+            nest++;
+        }
+    }
+    rte_hough_topk_sort(&top);
+
+    /* Step 4: greedy removal of centres closer than min_dist. */
+    const int64_t min_d2 = (int64_t)params->min_dist * params->min_dist * 256;
+    int32_t nout = 0;
+    for (int32_t k = 0; k < top.size; k++) {
+        int32_t e = (int32_t)rte_hough_key_index(top.keys[k]);
+        int32_t c = centres[est[2 * e]];
+        int32_t ay = c / astep, ax = c - ay * astep;
+        int32_t cx = (int32_t)(((int64_t)(2 * ax + 1) * params->dp_q8 + 16) / 32);
+        int32_t cy = (int32_t)(((int64_t)(2 * ay + 1) * params->dp_q8 + 16) / 32);
+        int ok = 1;
+        for (int32_t j = 0; j < nout && ok; j++) {
+            int64_t ddx = cx - circles[j].x_q4, ddy = cy - circles[j].y_q4;
+            ok = ddx * ddx + ddy * ddy >= min_d2;
+        }
+        if (!ok)
+            continue;
+        if (nout == max_circles) {
+            *truncated = 1;
+            break;
+        }
+        rte_hough_circle out = { cx, cy, est[2 * e + 1], rte_hough_key_votes(top.keys[k]) };
+        circles[nout++] = out;
+    }
+    *count = nout;
+    rte_arena_reset(arena, mark);
+    return RTE_OK;
+}

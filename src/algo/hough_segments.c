@@ -1,0 +1,418 @@
+/* Line segments: the progressive probabilistic Hough transform of
+ * cv::HoughLinesP, integer only and with its known flaws fixed (see
+ * docs/hough.md):
+ *   - the point order is a Fisher-Yates shuffle driven by a fixed-seed
+ *     xorshift32, so the output is the same on every run and platform;
+ *   - a detected line is refitted (integer principal axis of the pixels
+ *     found) and followed again, so a long edge is not lost where the
+ *     quantised angle drifts off it;
+ *   - the walk accepts and consumes pixels within one pixel of the line
+ *     (not only the pixel on it), so a 2-pixel-thick or slightly jagged
+ *     edge gives one segment, not several overlapping ones;
+ *   - only points that voted are un-voted when a line is consumed;
+ *   - the minimum length is Euclidean. */
+#include "rtedge/hough.h"
+
+#include "hough_internal.h"
+
+/* Mask states of a pixel. */
+enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2, PX_USED = 3 };
+/* PX_USED: consumed by a reported segment. A later walk crosses such pixels
+ * without counting a gap (OpenCV counts them as missing, which cuts lines
+ * where they cross), but they neither extend nor fit the new segment. */
+static inline int live(uint8_t m) { return m == PX_EDGE || m == PX_VOTED; }
+
+/* How far across the line a continuing run of edge pixels is consumed. */
+#define CONSUME_REACH 3
+
+/* Fitted or quantised line: a point on it (Q16) and a unit direction (Q16). */
+typedef struct line_q16 {
+    int64_t px, py;
+    int32_t ux, uy;
+} line_q16;
+
+typedef struct walk_ctx {
+    uint8_t *mask;
+    int32_t w, h, max_gap;
+    uint32_t *hits; /* packed (2y << 16) | 2x: run centres in half pixels */
+    int32_t nhits;
+    int32_t end2[4]; /* the hits at the extreme steps (half pixels) */
+} walk_ctx;
+
+static int32_t rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h)
+{
+    int64_t n = ((int64_t)(2 * (w + h) + 1) * cfg->inv_rho_q16 + 32768) >> 16;
+    return n < 1 ? 1 : (int32_t)n;
+}
+
+size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
+{
+    if (!cfg)
+        return 0;
+    size_t pixels = (size_t)cfg->max_width * (size_t)cfg->max_height;
+    size_t cells = (size_t)cfg->num_angles * (size_t)rho_bins(cfg, cfg->max_width, cfg->max_height);
+    size_t side = (size_t)(cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height);
+    return rte_arena_piece_size(pixels * sizeof(uint32_t)) + rte_arena_piece_size(pixels) +
+           rte_arena_piece_size(cells * sizeof(int32_t)) +
+           rte_arena_piece_size((size_t)cfg->num_angles * sizeof(int32_t)) +
+           rte_arena_piece_size((2 * side + 4) * sizeof(uint32_t));
+}
+
+static inline uint8_t mask_at(const walk_ctx *c, int32_t x, int32_t y)
+{
+    return ((uint32_t)x < (uint32_t)c->w && (uint32_t)y < (uint32_t)c->h) ? c->mask[(size_t)y * c->w + x] : 0;
+}
+
+/* Steps of one pixel along the major axis of the line; the minor coordinate
+ * advances by a Q16 fraction. */
+typedef struct stepper {
+    int32_t major_x;         /* 1: x is the major axis */
+    int32_t dmaj;            /* +-1 */
+    int64_t dmin_q16;        /* minor advance per major step */
+    int32_t maj0;            /* start, major coordinate */
+    int64_t min0_q16;        /* start, minor coordinate (Q16) */
+} stepper;
+
+static stepper make_stepper(const line_q16 *l, int32_t start_x, int32_t start_y)
+{
+    stepper s;
+    int32_t ax = l->ux < 0 ? -l->ux : l->ux, ay = l->uy < 0 ? -l->uy : l->uy;
+    s.major_x = ax >= ay;
+    int32_t umaj = s.major_x ? l->ux : l->uy, umin = s.major_x ? l->uy : l->ux;
+    int32_t amaj = umaj < 0 ? -umaj : umaj;
+    s.dmaj = umaj < 0 ? -1 : 1;
+    s.dmin_q16 = ((int64_t)umin * 65536) / amaj;
+    /* Start at the point of the line whose major coordinate is the start
+     * pixel's: minor = p_min + (start_maj - p_maj) * umin / umaj. */
+    int64_t pmaj = s.major_x ? l->px : l->py, pmin = s.major_x ? l->py : l->px;
+    s.maj0 = s.major_x ? start_x : start_y;
+    s.min0_q16 = pmin + (((int64_t)s.maj0 * 65536 - pmaj) * umin) / umaj;
+    return s;
+}
+
+static inline void stepper_at(const stepper *s, int32_t k, int32_t *x, int32_t *y)
+{
+    int32_t maj = s->maj0 + k * s->dmaj;
+    int64_t mq = s->min0_q16 + (int64_t)k * s->dmin_q16 + 32768;
+    /* floor division by 65536 that is also right for negative values */
+    int32_t mn = (int32_t)(mq >= 0 ? mq >> 16 : -((-mq + 65535) >> 16));
+    *x = s->major_x ? maj : mn;
+    *y = s->major_x ? mn : maj;
+}
+
+/* The edge pixels hit at step k: the pixel on the line, else a neighbour
+ * across the line, extended to the whole run of edge pixels across the
+ * line (up to CONSUME_REACH). Returns 1 and the run's centre in half
+ * pixels (doubled coordinates, so fits of thick edges follow their middle),
+ * 2 when only consumed pixels are there, 0 when nothing is. */
+static int probe(const walk_ctx *c, const stepper *s, int32_t k, int32_t *hx2, int32_t *hy2)
+{
+    int32_t x, y;
+    stepper_at(s, k, &x, &y);
+    int32_t ox = s->major_x ? 0 : 1, oy = s->major_x ? 1 : 0;
+    uint8_t m0 = mask_at(c, x, y), mlo = mask_at(c, x - ox, y - oy), mhi = mask_at(c, x + ox, y + oy);
+    int32_t lo;
+    if (live(m0))
+        lo = 0;
+    else if (live(mlo))
+        lo = -1;
+    else if (live(mhi))
+        lo = 1;
+    else
+        return (m0 | mlo | mhi) ? 2 : 0; /* 2: only consumed pixels, a bridge */
+    int32_t hi = lo;
+    while (lo > -CONSUME_REACH && live(mask_at(c, x + (lo - 1) * ox, y + (lo - 1) * oy)))
+        lo--;
+    while (hi < CONSUME_REACH && live(mask_at(c, x + (hi + 1) * ox, y + (hi + 1) * oy)))
+        hi++;
+    *hx2 = 2 * x + (lo + hi) * ox;
+    *hy2 = 2 * y + (lo + hi) * oy;
+    return 1;
+}
+
+static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t k)
+{
+    int32_t x, y;
+    stepper_at(s, k, &x, &y);
+    /* One pixel of slack across the line so edges along the border count. */
+    return x >= -1 && y >= -1 && x <= c->w && y <= c->h &&
+           (s->major_x ? (uint32_t)x < (uint32_t)c->w : (uint32_t)y < (uint32_t)c->h);
+}
+
+/* Follows the line both ways from step 0 until more than max_gap steps in a
+ * row miss; returns the extreme steps with hits (kmin > kmax when there is
+ * none), their hits in c->end2 and records the hits between them. Beyond a
+ * gap, the end only moves on once two steps in a row hit, so a stray pixel
+ * past the end of a line does not lengthen it. */
+static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
+{
+    c->nhits = 0;
+    *kmin = INT32_MAX;
+    *kmax = INT32_MIN;
+    for (int32_t dir = 1; dir >= -1; dir -= 2) {
+        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits;
+        for (int32_t k = dir == 1 ? 0 : -1; in_image(c, s, k); k += dir) {
+            int32_t hx2, hy2;
+            int hit = probe(c, s, k, &hx2, &hy2);
+            if (hit == 1) {
+                gap = 0;
+                run++;
+                c->hits[c->nhits++] = ((uint32_t)hy2 << 16) | (uint32_t)hx2;
+                if (seed_run || run >= 2) {
+                    kept = c->nhits;
+                    if (k > *kmax) {
+                        *kmax = k;
+                        c->end2[2] = hx2, c->end2[3] = hy2;
+                    }
+                    if (k < *kmin) {
+                        *kmin = k;
+                        c->end2[0] = hx2, c->end2[1] = hy2;
+                    }
+                }
+                continue;
+            }
+            run = 0;
+            seed_run = 0;
+            if (hit == 2)
+                gap = 0;
+            else if (++gap > c->max_gap)
+                break;
+        }
+        c->nhits = kept;
+    }
+}
+
+/* floor(v / 65536 + 1/2) for any sign */
+static inline int32_t round_q16(int64_t v)
+{
+    v += 32768;
+    return (int32_t)(v >= 0 ? v >> 16 : -((-v + 65535) >> 16));
+}
+
+/* The hit (half pixels) projected onto the line, rounded to a pixel. */
+static void project(const line_q16 *l, int32_t hx2, int32_t hy2, int32_t *x, int32_t *y)
+{
+    int64_t dx = ((int64_t)hx2 << 15) - l->px, dy = ((int64_t)hy2 << 15) - l->py;
+    int64_t t = (dx * l->ux + dy * l->uy) / 65536; /* Q16 pixels along the line */
+    *x = round_q16(l->px + t * l->ux / 65536);
+    *y = round_q16(l->py + t * l->uy / 65536);
+}
+
+/* Principal axis of the hits (integer): the direction (r + a, b) with
+ * a = Cxx - Cyy, b = 2 Cxy, r = |(a, b)| halves the angle of (a, b). */
+static int fit_line(const walk_ctx *c, line_q16 *l)
+{
+    int32_t n = c->nhits;
+    if (n < 3)
+        return 0;
+    int64_t sx = 0, sy = 0;
+    for (int32_t i = 0; i < n; i++) {
+        sx += c->hits[i] & 0xFFFF;
+        sy += c->hits[i] >> 16;
+    }
+    /* Centroid in Q4 (the hits are in half pixels); coordinates relative to
+     * it stay below 2^20, squares below 2^40, sums of up to 2^17 of them
+     * below 2^57. */
+    int64_t mx = (sx * 8 + n / 2) / n, my = (sy * 8 + n / 2) / n;
+    int64_t cxx = 0, cyy = 0, cxy = 0;
+    for (int32_t i = 0; i < n; i++) {
+        int64_t dx = (int64_t)(c->hits[i] & 0xFFFF) * 8 - mx, dy = (int64_t)(c->hits[i] >> 16) * 8 - my;
+        cxx += dx * dx;
+        cyy += dy * dy;
+        cxy += dx * dy;
+    }
+    int64_t a = cxx - cyy, b = 2 * cxy;
+    while (a > (1 << 30) || a < -(1 << 30) || b > (1 << 30) || b < -(1 << 30)) {
+        a /= 2;
+        b /= 2;
+    }
+    int64_t r = rte_hough_isqrt64((uint64_t)(a * a + b * b));
+    int64_t vx = r + a, vy = b;
+    if (vx == 0 && vy == 0)
+        return 0; /* no elongation: keep the quantised direction */
+    uint64_t len = rte_hough_isqrt64((uint64_t)(vx * vx + vy * vy));
+    if (len == 0)
+        return 0;
+    l->ux = (int32_t)(vx * 65536 / (int64_t)len);
+    l->uy = (int32_t)(vy * 65536 / (int64_t)len);
+    if (l->ux == 0 && l->uy == 0)
+        return 0;
+    l->px = mx * 4096;
+    l->py = my * 4096;
+    return 1;
+}
+
+static inline void vote(int32_t *restrict acc, int32_t *restrict idx, const rte_hough_config *cfg,
+                        int32_t numangle, int32_t numrho, int32_t bias, int32_t x, int32_t y, int32_t d,
+                        int32_t *best_n, int32_t *best_v)
+{
+    const int32_t shift = cfg->trig_shift;
+    for (int32_t n = 0; n < numangle; n++)
+        idx[n] = n * numrho + ((x * cfg->rho_cos[n] + y * cfg->rho_sin[n] + bias) >> shift);
+    int32_t bv = 0, bn = 0;
+    for (int32_t n = 0; n < numangle; n++) {
+        int32_t v = acc[idx[n]] += d;
+        bn = v > bv ? n : bn;
+        bv = v > bv ? v : bv;
+    }
+    *best_n = bn;
+    *best_v = bv;
+}
+
+rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
+                              const rte_hough_segments_params *params, rte_arena *arena,
+                              rte_hough_segment *segments, int32_t max_segments,
+                              int32_t *count, int *truncated)
+{
+    if (!cfg || !params || !arena || !count || !truncated || max_segments < 0 ||
+        (max_segments > 0 && !segments) || cfg->num_angles < 1 ||
+        cfg->num_angles > RTE_HOUGH_MAX_ANGLES || cfg->trig_shift < 0 || cfg->trig_shift > 30 ||
+        cfg->inv_rho_q16 <= 0 || params->threshold < 1 || params->min_length < 0 ||
+        params->max_gap < 0 || params->min_length > 65535)
+        return RTE_ERR_ARGUMENT;
+    rte_status st = rte_image_u8_check(edges);
+    if (st != RTE_OK)
+        return st;
+    const int32_t w = edges->width, h = edges->height;
+    if (w > cfg->max_width || h > cfg->max_height)
+        return RTE_ERR_TOO_LARGE;
+    *count = 0;
+    *truncated = 0;
+
+    const int32_t numangle = cfg->num_angles, numrho = rho_bins(cfg, w, h);
+    const size_t pixels = (size_t)w * (size_t)h;
+    const size_t side = (size_t)(w > h ? w : h);
+    const size_t mark = rte_arena_mark(arena);
+    uint32_t *pts = rte_arena_alloc(arena, pixels * sizeof(uint32_t));
+    uint8_t *mask = rte_arena_alloc(arena, pixels);
+    int32_t *acc = rte_arena_alloc(arena, (size_t)numangle * numrho * sizeof(int32_t));
+    int32_t *idx = rte_arena_alloc(arena, (size_t)numangle * sizeof(int32_t));
+    uint32_t *hits = rte_arena_alloc(arena, (2 * side + 4) * sizeof(uint32_t));
+    if (!pts || !mask || !acc || !idx || !hits) {
+        rte_arena_reset(arena, mark);
+        return RTE_ERR_NO_MEMORY;
+    }
+
+    int32_t npts = 0;
+    for (int32_t y = 0; y < h; y++) {
+        const uint8_t *row = rte_u8_row(edges, y);
+        uint8_t *mrow = mask + (size_t)y * w;
+        for (int32_t x = 0; x < w; x++) {
+            uint8_t e = row[x] != 0;
+            mrow[x] = e;
+            pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
+            npts += e;
+        }
+    }
+    for (size_t i = 0; i < (size_t)numangle * numrho; i++)
+        acc[i] = 0;
+
+    /* Fisher-Yates with xorshift32 and a multiply-shift range reduction:
+     * the same order everywhere. */
+    uint32_t rng = RTE_HOUGH_SEGMENTS_SEED;
+    for (int32_t i = npts - 1; i > 0; i--) {
+        rng ^= rng << 13;
+        rng ^= rng >> 17;
+        rng ^= rng << 5;
+        int32_t j = (int32_t)(((uint64_t)rng * (uint32_t)(i + 1)) >> 32);
+        uint32_t t = pts[i];
+        pts[i] = pts[j];
+        pts[j] = t;
+    }
+
+    const int32_t shift = cfg->trig_shift;
+    const int32_t bias = (int32_t)(((int64_t)((numrho - 1) / 2) << shift) + (shift ? (1 << (shift - 1)) : 0));
+    const int64_t min_len2 = (int64_t)params->min_length * params->min_length;
+    walk_ctx wc = { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 } };
+    int32_t nseg = 0;
+
+    for (int32_t i = 0; i < npts; i++) {
+        const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
+        uint8_t *m = mask + (size_t)y * w + x;
+        if (*m != PX_EDGE)
+            continue; /* consumed by an earlier line */
+        *m = PX_VOTED;
+        int32_t best_n, best_v;
+        vote(acc, idx, cfg, numangle, numrho, bias, x, y, 1, &best_n, &best_v);
+        if (best_v < params->threshold)
+            continue;
+
+        /* The line of the winning cell through this point: direction
+         * (-sin, cos). Follow it, refit, follow the refitted line. */
+        line_q16 l = { (int64_t)x << 16, (int64_t)y << 16, -cfg->unit_sin[best_n], cfg->unit_cos[best_n] };
+        stepper s = make_stepper(&l, x, y);
+        int32_t kmin, kmax;
+        follow(&wc, &s, &kmin, &kmax);
+        for (int iter = 0; iter < 2; iter++) {
+            line_q16 f = l;
+            if (!fit_line(&wc, &f))
+                break;
+            stepper s2 = make_stepper(&f, x, y);
+            int32_t kmin2, kmax2;
+            follow(&wc, &s2, &kmin2, &kmax2);
+            s = s2;
+            l = f;
+            if (kmin2 == kmin && kmax2 == kmax)
+                break;
+            kmin = kmin2;
+            kmax = kmax2;
+        }
+        if (wc.nhits == 0) {
+            /* The refitted line missed its own pixels (degenerate fit):
+             * consume the seed so it is not tried again. */
+            *m = PX_NONE;
+            continue;
+        }
+
+        /* Ends: the outermost hits projected onto the line. */
+        int32_t x0, y0, x1, y1;
+        project(&l, wc.end2[0], wc.end2[1], &x0, &y0);
+        project(&l, wc.end2[2], wc.end2[3], &x1, &y1);
+        int64_t ddx = x1 - x0, ddy = y1 - y0;
+        int good = ddx * ddx + ddy * ddy >= min_len2;
+
+        /* Consume the pixels along the segment: one pixel either side of
+         * the line, and further out (up to CONSUME_REACH) while the edge run
+         * across the line continues, so thick edges go in one piece.
+         * Un-vote the pixels that voted. */
+        int32_t ox = s.major_x ? 0 : 1, oy = s.major_x ? 1 : 0;
+        for (int32_t k = kmin; k <= kmax; k++) {
+            int32_t px, py;
+            stepper_at(&s, k, &px, &py);
+            for (int32_t dir = -1; dir <= 1; dir += 2) {
+                for (int32_t o = dir == 1 ? 0 : -1; o >= -CONSUME_REACH && o <= CONSUME_REACH; o += dir) {
+                    int32_t qx = px + o * ox, qy = py + o * oy;
+                    if ((uint32_t)qx >= (uint32_t)w || (uint32_t)qy >= (uint32_t)h)
+                        break;
+                    uint8_t *q = mask + (size_t)qy * w + qx;
+                    if (!live(*q)) {
+                        if (o > 1 || o < -1)
+                            break;
+                        continue;
+                    }
+                    if (*q == PX_VOTED && good) {
+                        int32_t bn, bv;
+                        vote(acc, idx, cfg, numangle, numrho, bias, qx, qy, -1, &bn, &bv);
+                    }
+                    *q = good ? PX_USED : PX_NONE;
+                }
+            }
+        }
+        if (!good)
+            continue;
+        if (nseg == max_segments) {
+            *truncated = 1;
+            break;
+        }
+        /* The projection can fall a fraction outside the image. */
+        x0 = x0 < 0 ? 0 : x0 >= w ? w - 1 : x0;
+        x1 = x1 < 0 ? 0 : x1 >= w ? w - 1 : x1;
+        y0 = y0 < 0 ? 0 : y0 >= h ? h - 1 : y0;
+        y1 = y1 < 0 ? 0 : y1 >= h ? h - 1 : y1;
+        rte_hough_segment seg = { x0, y0, x1, y1 };
+        segments[nseg++] = seg;
+    }
+    *count = nseg;
+    rte_arena_reset(arena, mark);
+    return RTE_OK;
+}
