@@ -9,7 +9,8 @@
  * of scratch from the caller's arena (no intermediate image).
  *
  * Both kernels work in place: dst may be the same view as src (same buf and
- * stride). Any other overlap of src and dst is not allowed. */
+ * stride; the same buf with another stride is refused, RTE_ERR_ARGUMENT).
+ * Any other overlap of src and dst is not allowed. */
 #ifndef RTEDGE_BLUR_H
 #define RTEDGE_BLUR_H
 

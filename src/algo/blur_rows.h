@@ -7,6 +7,18 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "rtedge/image.h"
+
+/* Valid, equally sized views; working in place is allowed only on the very
+ * same view (same buf and stride), which both kernels support. */
+static inline rte_status rte_blur_check_views(const rte_image_u8 *src, const rte_image_u8 *dst)
+{
+    rte_status st = rte_image_u8_check_pair(src, dst);
+    if (st == RTE_OK && src->buf == dst->buf && src->stride != dst->stride)
+        return RTE_ERR_ARGUMENT;
+    return st;
+}
+
 /* OpenCV's borderInterpolate for BORDER_REFLECT_101 (gfedcb|abcdefgh|gfedcba):
  * reflects repeatedly, so it also works when i is more than n away; n == 1
  * always gives 0. */

@@ -177,7 +177,7 @@ static int32_t common_shift(const uint16_t *taps, int32_t n, int32_t limit)
 rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,
                                 const rte_gaussian_kernel *kernel, rte_arena *arena)
 {
-    rte_status st = rte_image_u8_check_pair(src, dst);
+    rte_status st = rte_blur_check_views(src, dst);
     if (st != RTE_OK)
         return st;
     if (!kernel || !arena || !kernel_is_valid(kernel))

@@ -158,7 +158,7 @@ static void median5_row(const uint8_t *const *rows, uint8_t *restrict dst, int32
 rte_status rte_median_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst, int32_t ksize,
                               rte_arena *arena)
 {
-    rte_status st = rte_image_u8_check_pair(src, dst);
+    rte_status st = rte_blur_check_views(src, dst);
     if (st != RTE_OK)
         return st;
     if (!arena || (ksize != 1 && ksize != 3 && ksize != 5))

@@ -255,6 +255,8 @@ static void gaussian_scratch_size_is_enough_and_checked(void **state)
         rte_arena_init(&a, arena_memory + offset, need);
         assert_int_equal(rte_gaussian_blur_u8(&src, &dst, &k, &a), RTE_OK);
         assert_int_equal(a.used, 0);
+        assert_int_equal(rte_gaussian_blur_u8(&dst, &dst, &k, &a), RTE_OK); /* in place needs most */
+        assert_int_equal(a.used, 0);
         assert_true(a.high_water <= need);
     }
     /* too small: an error, the arena and the destination untouched */
@@ -281,6 +283,8 @@ static void gaussian_rejects_bad_arguments(void **state)
     assert_int_equal(rte_gaussian_blur_u8(NULL, &b8, &k, &a), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_gaussian_blur_u8(&a8, &other, &k, &a), RTE_ERR_SIZE);
     assert_int_equal(rte_gaussian_blur_u8(&a8, &b8, NULL, &a), RTE_ERR_ARGUMENT);
+    rte_image_u8 same_buf = rte_image_u8_view(px, 8, 4, 9); /* same memory, another stride */
+    assert_int_equal(rte_gaussian_blur_u8(&a8, &same_buf, &k, &a), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_gaussian_blur_u8(&a8, &b8, &k, NULL), RTE_ERR_ARGUMENT);
     rte_gaussian_kernel bad = k;
     bad.taps_x[0] = 17; /* asymmetric and no longer summing to 256 */
@@ -421,6 +425,8 @@ static void median_scratch_and_arguments(void **state)
     assert_int_equal(rte_median_blur_u8(&a8, &b8, 3, NULL), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_median_blur_u8(&a8, &other, 3, &a), RTE_ERR_SIZE);
     assert_int_equal(rte_median_blur_u8(&a8, NULL, 3, &a), RTE_ERR_ARGUMENT);
+    rte_image_u8 same_buf = rte_image_u8_view(px, 8, 4, 9); /* same memory, another stride */
+    assert_int_equal(rte_median_blur_u8(&a8, &same_buf, 3, &a), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_median_blur_u8_scratch_size(8, 4, 7), 0);
     assert_int_equal(rte_median_blur_u8_scratch_size(0, 4, 3), 0);
 
