@@ -17,5 +17,6 @@ const cli_entry cli_commands[] = {
     {"open", "opening: erode then dilate (= morphologyEx MORPH_OPEN)", cmd_morphology},
     {"close", "closing: dilate then erode (= morphologyEx MORPH_CLOSE)", cmd_morphology},
     {"mask", "polygon region of interest (= fillPoly then bitwise_and)", cmd_mask},
+    {"lanes", "lane detection and tracking on an image or a sequence (JSON)", cmd_lanes},
     {NULL, NULL, NULL},
 };

@@ -25,4 +25,7 @@ int cmd_threshold(const cli_entry *self, int argc, char **argv);
 int cmd_morphology(const cli_entry *self, int argc, char **argv);
 int cmd_mask(const cli_entry *self, int argc, char **argv);
 
+/* cmd_lanes.c: the lane pipeline. */
+int cmd_lanes(const cli_entry *self, int argc, char **argv);
+
 #endif
