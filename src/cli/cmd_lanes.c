@@ -336,14 +336,14 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
 
 int cmd_lanes(const cli_entry *self, int argc, char **argv)
 {
-    lanes_options o = {NULL, NULL, NULL, -1, -1, 0, 0, false, -1, -1, -1, -1, -1, 5, 512};
+    lanes_options o = {NULL, NULL, NULL, -1, -1, 1, 0, false, -1, -1, -1, -1, -1, 5, 512};
     cli_option options[] = {
         {"overlay", CLI_STRING, &o.overlay, 0, 0, NULL, "write IN with the lanes drawn (left blue, right red)", NULL},
         {"sequence", CLI_STRING, &o.sequence, 0, 0, NULL, "track over a directory of images or a .y4m file", NULL},
         {"roi", CLI_STRING, &o.roi, 0, 0, NULL, "ROI polygon 'x,y;x,y;...' in fractions (default: trapezoid)", NULL},
         {"canny-low", CLI_INT, &o.canny_low, -1, 2040, NULL, "Canny low threshold, -1 = 50", NULL},
         {"canny-high", CLI_INT, &o.canny_high, -1, 2040, NULL, "Canny high threshold, -1 = 150", NULL},
-        {"auto-canny", CLI_CHOICE, &o.auto_canny, 0, 0, auto_choices, "automatic thresholds from the ROI", NULL},
+        {"auto-canny", CLI_CHOICE, &o.auto_canny, 0, 0, auto_choices, "thresholds from the ROI histogram (none: --canny-low/high)", NULL},
         {"fit", CLI_CHOICE, &o.fit, 0, 0, fit_choices, "per-side line fit", NULL},
         {"no-color", CLI_FLAG, &o.no_color, 0, 0, NULL, "ignore colour (grey edges only)", NULL},
         {"hough-threshold", CLI_INT, &o.hough_threshold, -1, 100000, NULL, "segment votes, -1 = by height", NULL},

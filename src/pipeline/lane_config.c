@@ -20,7 +20,7 @@ void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height
                                {one * 55 / 100, one * 60 / 100}, {one, one}};
     memcpy(p->roi, roi, sizeof roi);
     p->roi_count = 4;
-    p->canny_mode = RTE_LANE_CANNY_FIXED;
+    p->canny_mode = RTE_LANE_CANNY_MEDIAN; /* robust to exposure: see docs/lanes.md */
     p->canny_low = 50;
     p->canny_high = 150;
     p->auto_sigma_permille = RTE_AUTO_CANNY_SIGMA_PERMILLE;
