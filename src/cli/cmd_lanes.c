@@ -27,6 +27,7 @@ typedef struct lanes_options {
     bool no_color;
     int hough_threshold, min_length, max_gap;
     int hold, gate, blur;
+    int alpha, beta;
     int max_segments;
 } lanes_options;
 
@@ -88,6 +89,10 @@ static int lanes_config(const char *name, const lanes_options *o, int32_t w, int
         p->hold_frames = o->hold;
     if (o->gate >= 0)
         p->gate_px = o->gate;
+    if (o->alpha > 0)
+        p->alpha_q8 = o->alpha;
+    if (o->beta >= 0)
+        p->beta_q8 = o->beta;
     cfg->blur_ksize = o->blur;
     cfg->max_segments = o->max_segments;
     return CLI_EXIT_OK;
@@ -336,7 +341,7 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
 
 int cmd_lanes(const cli_entry *self, int argc, char **argv)
 {
-    lanes_options o = {NULL, NULL, NULL, -1, -1, 1, 0, false, -1, -1, -1, -1, -1, 5, 512};
+    lanes_options o = {NULL, NULL, NULL, -1, -1, 1, 0, false, -1, -1, -1, -1, -1, 5, -1, -1, 512};
     cli_option options[] = {
         {"overlay", CLI_STRING, &o.overlay, 0, 0, NULL, "write IN with the lanes drawn (left blue, right red)", NULL},
         {"sequence", CLI_STRING, &o.sequence, 0, 0, NULL, "track over a directory of images or a .y4m file", NULL},
@@ -351,6 +356,8 @@ int cmd_lanes(const cli_entry *self, int argc, char **argv)
         {"max-gap", CLI_INT, &o.max_gap, -1, 100000, NULL, "longest gap bridged, -1 = by height", NULL},
         {"hold", CLI_INT, &o.hold, -1, 1000, NULL, "frames a lost lane is predicted, -1 = 5", NULL},
         {"gate", CLI_INT, &o.gate, -1, 10000, NULL, "segment gate around tracked lanes (px), -1 = by height", NULL},
+        {"alpha", CLI_INT, &o.alpha, -1, 256, NULL, "tracker: share of a measurement taken, /256 (256 = no smoothing)", NULL},
+        {"beta", CLI_INT, &o.beta, -1, 256, NULL, "tracker: share of the innovation into the velocity, /256", NULL},
         {"blur", CLI_INT, &o.blur, 1, 31, NULL, "Gaussian kernel size (odd)", NULL},
         {"max-segments", CLI_INT, &o.max_segments, 1, RTE_LANE_MAX_SEGMENTS, NULL, "segments kept per frame", NULL},
         {0}};

@@ -323,10 +323,14 @@ static int64_t fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, lane
     int32_t kept = n;
     int passes = ctx->params.fit == RTE_LANE_FIT_LEAST_SQUARES ? 2 : 1;
     for (int pass = 0; pass < passes; pass++) {
+        /* The median start sits on one edge of a marking: the first pass
+         * is twice as tolerant so the marking's other edge stays in and the
+         * least-squares line moves to the marking's centre. */
+        const int64_t pass_tol = pass == 0 && passes > 1 ? 2 * tol : tol;
         kept = 0;
         for (int32_t i = 0; i < n; i++) {
             rte_lane_segment *s = &segs[members[i]];
-            if (seg_residual_q8(line, s) <= tol) {
+            if (seg_residual_q8(line, s) <= pass_tol) {
                 s->use = use;
                 members[kept++] = members[i];
             } else {
@@ -395,21 +399,29 @@ static void lane_track_update(rte_lane_context *ctx, int side, bool seen, const 
         const int64_t pb = (int64_t)t->x_bottom_q8 + t->v_bottom_q8;
         const int64_t pt = (int64_t)t->x_top_q8 + t->v_top_q8;
         if (seen) {
+            /* A measurement resting on little paint (one short dash) moves
+             * the state less: full weight from half the lane's length of
+             * support, a quarter at least. */
+            const int64_t dxl = (mt - mb) / 256, dyl = out->y_bottom - out->y_top;
+            const int64_t len = (int64_t)lane_isqrt((uint64_t)(dxl * dxl + dyl * dyl)) + 1;
+            const int64_t share = clamp32(support * 256 / len, 32, 256); /* /256 */
+            const int64_t alpha = (int64_t)p->alpha_q8 * share >> 8;
             const int64_t step = (int64_t)p->max_step_px * 256;
             const int64_t rb = clamp32(mb - pb, -step, step), rt = clamp32(mt - pt, -step, step);
-            t->x_bottom_q8 = clamp32(pb + ((rb * p->alpha_q8) >> 8), -lim, lim);
-            t->x_top_q8 = clamp32(pt + ((rt * p->alpha_q8) >> 8), -lim, lim);
+            t->x_bottom_q8 = clamp32(pb + ((rb * alpha) >> 8), -lim, lim);
+            t->x_top_q8 = clamp32(pt + ((rt * alpha) >> 8), -lim, lim);
             t->v_bottom_q8 = clamp32(t->v_bottom_q8 + ((rb * p->beta_q8) >> 8), -step, step);
             t->v_top_q8 = clamp32(t->v_top_q8 + ((rt * p->beta_q8) >> 8), -step, step);
             t->lost = 0;
         } else if (++t->lost > p->hold_frames) {
             t->valid = false;
         } else {
-            /* Held as predicted; the velocity fades so a held lane settles. */
+            /* Held as predicted; the velocity fades (by 1/8 a frame) so a
+             * lane held for long settles instead of drifting away. */
             t->x_bottom_q8 = clamp32(pb, -lim, lim);
             t->x_top_q8 = clamp32(pt, -lim, lim);
-            t->v_bottom_q8 /= 2;
-            t->v_top_q8 /= 2;
+            t->v_bottom_q8 -= t->v_bottom_q8 / 8;
+            t->v_top_q8 -= t->v_top_q8 / 8;
         }
     }
     out->found = t->valid;

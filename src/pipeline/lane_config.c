@@ -39,7 +39,7 @@ void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height
     p->right_min_slope_q8 = 128;
     p->right_max_slope_q8 = 2560;
     p->fit = RTE_LANE_FIT_LEAST_SQUARES;
-    p->outlier_px = 12 * s / 540 > 3 ? 12 * s / 540 : 3;
+    p->outlier_px = 20 * s / 540 > 4 ? 20 * s / 540 : 4;
     p->min_support_px = 30 * s / 540 > 8 ? 30 * s / 540 : 8;
     p->gate_px = 40 * s / 540 > 8 ? 40 * s / 540 : 8;
     p->hold_frames = 5;
