@@ -476,10 +476,12 @@ static void lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, i
     }
 }
 
+/* gray_ns: time already spent making `gray` (counted in the grey stage). */
 static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, const uint8_t *color,
-                           int32_t color_stride, bool rgb, int64_t t_ns, rte_lane_result *out)
+                           int32_t color_stride, bool rgb, int64_t t_ns, int64_t gray_ns,
+                           rte_lane_result *out)
 {
-    int64_t t0 = lane_now_ns(), t1;
+    int64_t t0 = lane_now_ns() - gray_ns, t1;
     const int32_t w = gray->width, h = gray->height;
     memset(out, 0, sizeof *out);
     out->t_ns = t_ns;
@@ -497,7 +499,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
         src = cue;
     }
     t1 = lane_now_ns();
-    out->stage_ns[RTE_LANE_STAGE_GRAY] += t1 - t0;
+    out->stage_ns[RTE_LANE_STAGE_GRAY] = t1 - t0;
     t0 = t1;
 
     rte_image_u8 blurred = lane_view(&ctx->blurred, 0, 0, cw, ch);
@@ -596,7 +598,7 @@ rte_status rte_lane_process_gray(rte_lane_context *ctx, const rte_image_u8 *gray
     if (bgr && (!bgr->buf || bgr->width != gray->width || bgr->height != gray->height ||
                 bgr->stride < 3 * bgr->width))
         return RTE_ERR_SIZE;
-    return lane_run(ctx, gray, bgr ? bgr->buf : NULL, bgr ? bgr->stride : 0, false, t_ns, out);
+    return lane_run(ctx, gray, bgr ? bgr->buf : NULL, bgr ? bgr->stride : 0, false, t_ns, 0, out);
 }
 
 rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64_t t_ns,
@@ -609,11 +611,12 @@ rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64
         return st;
     rte_image_u8 gray;
     if (rte_frame_gray_view(frame, &gray) == RTE_OK)
-        return lane_run(ctx, &gray, NULL, 0, false, t_ns, out);
+        return lane_run(ctx, &gray, NULL, 0, false, t_ns, 0, out);
+    const int64_t t0 = lane_now_ns();
     gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
     if ((st = rte_frame_to_gray(frame, &gray)) != RTE_OK)
         return st;
     const bool colour = frame->format == RTE_PIXEL_BGR24 || frame->format == RTE_PIXEL_RGB24;
     return lane_run(ctx, &gray, colour ? frame->plane[0] : NULL, frame->stride[0],
-                    frame->format == RTE_PIXEL_RGB24, t_ns, out);
+                    frame->format == RTE_PIXEL_RGB24, t_ns, lane_now_ns() - t0, out);
 }
