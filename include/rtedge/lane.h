@@ -63,7 +63,7 @@ typedef struct rte_lane_params {
     rte_vertex roi[RTE_LANE_MAX_ROI_VERTICES];
     int32_t roi_count;
     /* Edges */
-    rte_lane_canny_mode canny_mode;
+    rte_lane_canny_mode canny_mode;    /* default: RTE_LANE_CANNY_MEDIAN */
     int32_t canny_low, canny_high;     /* fixed thresholds on |dx|+|dy| (3x3 Sobel) */
     int32_t auto_sigma_permille;       /* median rule's sigma */
     /* Colour cue, used when the frame has colour: marking-coloured pixels

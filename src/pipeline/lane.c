@@ -4,6 +4,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "../algo/geom_fixed.h"
 #include "lane_internal.h"
 #include "rtedge/color.h"
 #include "rtedge/polygon_mask.h"
@@ -163,27 +164,10 @@ static int64_t lane_abs64(int64_t v)
     return v < 0 ? -v : v;
 }
 
-static uint32_t lane_isqrt(uint64_t v)
-{
-    uint64_t r = 0, bit = (uint64_t)1 << 62;
-    while (bit > v)
-        bit >>= 2;
-    while (bit) {
-        if (v >= r + bit) {
-            v -= r + bit;
-            r = (r >> 1) + bit;
-        } else {
-            r >>= 1;
-        }
-        bit >>= 2;
-    }
-    return (uint32_t)r;
-}
-
 static int32_t seg_length(const rte_lane_segment *s)
 {
     const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0;
-    return (int32_t)lane_isqrt((uint64_t)(dx * dx + dy * dy));
+    return (int32_t)rte_isqrt64((uint64_t)(dx * dx + dy * dy));
 }
 
 /* num * 65536 / den (den > 0), without overflow for any 62-bit inputs. */
@@ -403,7 +387,7 @@ static void lane_track_update(rte_lane_context *ctx, int side, bool seen, const 
              * the state less: full weight from half the lane's length of
              * support, a quarter at least. */
             const int64_t dxl = (mt - mb) / 256, dyl = out->y_bottom - out->y_top;
-            const int64_t len = (int64_t)lane_isqrt((uint64_t)(dxl * dxl + dyl * dyl)) + 1;
+            const int64_t len = (int64_t)rte_isqrt64((uint64_t)(dxl * dxl + dyl * dyl)) + 1;
             const int64_t share = clamp32(support * 256 / len, 32, 256); /* /256 */
             const int64_t alpha = (int64_t)p->alpha_q8 * share >> 8;
             const int64_t step = (int64_t)p->max_step_px * 256;
@@ -433,7 +417,7 @@ static void lane_track_update(rte_lane_context *ctx, int side, bool seen, const 
         out->x_top_q8 = t->x_top_q8;
         const int64_t dx = ((int64_t)t->x_top_q8 - t->x_bottom_q8) / 256;
         const int64_t dy = out->y_bottom - out->y_top;
-        const int64_t len = lane_isqrt((uint64_t)(dx * dx + dy * dy));
+        const int64_t len = rte_isqrt64((uint64_t)(dx * dx + dy * dy));
         out->confidence_permille = len > 0 ? clamp32(support * 1000 / len, 0, 1000) : 0;
     }
 }
