@@ -117,19 +117,27 @@ static rte_status lane_roi(rte_lane_context *ctx, int32_t w, int32_t h)
 static void lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, const uint8_t *bgr,
                            int32_t bgr_stride, bool rgb, rte_image_u8 *dst)
 {
-    const int32_t wm = p->white_min, ym = p->yellow_rg_min, yb = p->yellow_b_margin, dim = p->dim_q8;
+    /* 8-bit comparisons (16 pixels per vector): a threshold of 256 can
+     * never be reached, so it disables its test. */
+    const uint8_t wm = (uint8_t)(p->white_min > 255 ? 255 : p->white_min);
+    const uint8_t white_on = p->white_min <= 255 ? 0xFF : 0;
+    const uint8_t ym = (uint8_t)(p->yellow_rg_min > 255 ? 255 : p->yellow_rg_min);
+    const uint8_t yellow_on = p->yellow_rg_min <= 255 ? 0xFF : 0;
+    const uint8_t yb = (uint8_t)p->yellow_b_margin;
+    const uint16_t dim = (uint16_t)p->dim_q8;
     const int bi = rgb ? 2 : 0, ri = rgb ? 0 : 2;
     for (int32_t y = 0; y < dst->height; y++) {
         const uint8_t *restrict g = rte_u8_row(gray, y);
         const uint8_t *restrict c = bgr + (size_t)y * (size_t)bgr_stride;
         uint8_t *restrict d = rte_u8_row(dst, y);
         for (int32_t x = 0; x < dst->width; x++) {
-            const int32_t b = c[3 * x + bi], gg = c[3 * x + 1], r = c[3 * x + ri];
-            const int32_t mn = r < gg ? r : gg;
-            const int32_t white = (b >= wm) & (gg >= wm) & (r >= wm);
-            const int32_t yellow = (mn >= ym) & (b + yb <= mn);
-            const int32_t paint = -(white | yellow); /* all ones or 0 */
-            d[x] = (uint8_t)((paint & 255) | (~paint & ((g[x] * dim) >> 8)));
+            const uint8_t b = c[3 * x + bi], gg = c[3 * x + 1], r = c[3 * x + ri];
+            const uint8_t mn = r < gg ? r : gg;
+            const uint8_t mb = mn > yb ? (uint8_t)(mn - yb) : 0; /* B may be at most this */
+            const uint8_t white = (uint8_t)(-(uint8_t)((b >= wm) & (gg >= wm) & (r >= wm)) & white_on);
+            const uint8_t yellow = (uint8_t)(-(uint8_t)((mn >= ym) & (mn >= yb) & (b <= mb)) & yellow_on);
+            const uint8_t paint = white | yellow; /* 0xFF or 0 */
+            d[x] = (uint8_t)(paint | (~paint & (uint8_t)((g[x] * dim) >> 8)));
         }
     }
 }
