@@ -1,5 +1,9 @@
 /* Subcommands that run one librtedge kernel on an image file: read IN (grey,
- * or colour converted to grey as OpenCV does), run the kernel, write OUT. */
+ * or colour converted to grey as OpenCV does), run the kernel, write OUT.
+ *
+ * Each subcommand is a filter_spec: its options, a check of them that runs
+ * before the input is read (so usage errors come first), its scratch size
+ * and the kernel call. filter_main() does the rest the same way for all. */
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,154 +19,27 @@
 #include "rtedge/polygon_mask.h"
 #include "rtedge/threshold.h"
 
-/* One run of a filter subcommand: the input, the u8 output, scratch. */
-typedef struct filter_run {
-    const char *name;
-    const char *paths[2]; /* IN, OUT */
-    cli_image in;
-    rte_image_u8 out;
-    void *out_memory;
-    rte_arena arena;
-    void *arena_memory;
-} filter_run;
+typedef struct filter_spec {
+    const char *details;   /* after the common input/output text */
+    cli_option *options;
+    void *ctx;             /* the subcommand's option values and tables */
+    /* Checks the options and builds tables (configuration time); returns an
+     * exit code (CLI_EXIT_USAGE after a message). NULL: nothing to check. */
+    int (*prepare)(const char *name, void *ctx);
+    size_t (*scratch)(void *ctx, int32_t width, int32_t height);
+    /* The kernel: `gray` in, `out` (u8) or, for int16 results, `d` out. */
+    rte_status (*apply)(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                        rte_arena *arena);
+    bool int16;            /* the result is int16 (written to .npy, or |d| to an image) */
+    void (*report)(void *ctx); /* prints what the run found, after OUT is written; may be NULL */
+} filter_spec;
 
-/* Parses the command line. Returns CLI_EXIT_OK to go on, -1 after --help
- * (exit 0), or an exit code. */
-static int filter_parse(filter_run *run, const cli_command *cmd, int argc, char **argv)
-{
-    memset(run, 0, sizeof *run);
-    run->name = cmd->name;
-    return cli_parse(cmd, argc, argv, run->paths);
-}
-
-/* Reads IN (after the options were checked, so usage errors come first). */
-static int filter_load(filter_run *run)
-{
-    return cli_load(run->name, run->paths[0], &run->in);
-}
-
-/* Allocates the u8 output (same size as the input) and `scratch` bytes of arena. */
-static int filter_buffers(filter_run *run, size_t scratch)
-{
-    run->out_memory = cli_new_u8(run->name, run->in.gray.width, run->in.gray.height, &run->out);
-    run->arena_memory = cli_new_arena(run->name, scratch, &run->arena);
-    return run->out_memory && run->arena_memory ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
-}
-
-/* Reports a kernel's status, writes OUT on success (the int16 image `s16`
- * when given, else the u8 output), frees everything. */
-static int filter_end_s16(filter_run *run, rte_status st, const rte_image_s16 *s16)
-{
-    int rc = CLI_EXIT_OK;
-    if (st != RTE_OK) {
-        cli_error(run->name, "%s", rte_status_message(st));
-        rc = CLI_EXIT_FAILURE;
-    } else if (s16) {
-        rc = cli_save_s16(run->name, run->paths[1], s16);
-    } else {
-        rc = cli_save_gray(run->name, run->paths[1], &run->out);
-    }
-    cli_image_free(&run->in);
-    free(run->out_memory);
-    free(run->arena_memory);
-    return rc;
-}
-
-static int filter_end(filter_run *run, rte_status st)
-{
-    return filter_end_s16(run, st, NULL);
-}
-
-#define FILTER_USAGE "IN OUT"
-#define FILTER_DETAILS \
-    "IN: PGM/PPM (P2, P3, P5, P6), PNG or JPEG; colour is converted to grey as\n" \
-    "cv2.cvtColor(cv2.imread(IN), cv2.COLOR_BGR2GRAY) does. OUT: .pgm, .png or .npy."
-
-int cmd_gray(const cli_entry *self, int argc, char **argv)
-{
-    cli_option options[] = {{0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary, FILTER_DETAILS, options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    rc = cli_save_gray(run.name, run.paths[1], &run.in.gray);
-    cli_image_free(&run.in);
-    return rc;
-}
-
-/* Gaussian blur options shared by blur, log and canny. */
-typedef struct blur_options {
-    int ksize;
-    double sigma;
-    int ksize_y;
-    double sigma_y;
-} blur_options;
-
-/* Builds the Gaussian kernel; CLI_EXIT_USAGE after a message when the
- * options do not make one. */
-static int blur_kernel(const char *name, const blur_options *o, rte_gaussian_kernel *k)
-{
-    rte_status st = rte_gaussian_kernel_init(k, o->ksize, o->ksize_y < 0 ? o->ksize : o->ksize_y,
-                                             o->sigma, o->sigma_y);
-    if (st != RTE_OK) {
-        cli_error(name, "Gaussian kernel size %d, sigma %g: %s", o->ksize, o->sigma,
-                  rte_status_message(st));
-        return CLI_EXIT_USAGE;
-    }
-    return CLI_EXIT_OK;
-}
-
-int cmd_blur(const cli_entry *self, int argc, char **argv)
-{
-    blur_options b = {5, 0.0, -1, 0.0};
-    cli_option options[] = {
-        {"ksize", CLI_INT, &b.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "odd kernel size, 0 = from --sigma", NULL},
-        {"sigma", CLI_DOUBLE, &b.sigma, 0, 100, NULL, "sigma, 0 = from the kernel size", NULL},
-        {"ksize-y", CLI_INT, &b.ksize_y, -1, RTE_GAUSSIAN_MAX_KSIZE, NULL, "vertical size, -1 = --ksize", NULL},
-        {"sigma-y", CLI_DOUBLE, &b.sigma_y, 0, 100, NULL, "vertical sigma, 0 = --sigma", NULL},
-        {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       FILTER_DETAILS "\n= cv2.GaussianBlur(img, (ksize, ksize-y), sigma, sigmaY=sigma-y)",
-                       options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    rte_gaussian_kernel k;
-    if ((rc = blur_kernel(self->name, &b, &k)) != CLI_EXIT_OK || (rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    rte_status st;
-    size_t scratch = rte_gaussian_blur_u8_scratch_size(run.in.gray.width, run.in.gray.height, &k);
-    if ((rc = filter_buffers(&run, scratch)) == CLI_EXIT_OK)
-        st = rte_gaussian_blur_u8(&run.in.gray, &run.out, &k, &run.arena);
-    return filter_end(&run, rc == CLI_EXIT_OK ? st : RTE_ERR_NO_MEMORY);
-}
-
-int cmd_median(const cli_entry *self, int argc, char **argv)
-{
-    int ksize = 3;
-    cli_option options[] = {{"ksize", CLI_INT, &ksize, 1, 5, NULL, "aperture: 1, 3 or 5", NULL}, {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       FILTER_DETAILS "\n= cv2.medianBlur(img, ksize)", options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    if (ksize % 2 == 0) {
-        cli_error(self->name, "--ksize must be 1, 3 or 5");
-        return CLI_EXIT_USAGE;
-    }
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    rte_status st = RTE_ERR_NO_MEMORY;
-    size_t scratch = rte_median_blur_u8_scratch_size(run.in.gray.width, run.in.gray.height, ksize);
-    if (filter_buffers(&run, scratch) == CLI_EXIT_OK)
-        st = rte_median_blur_u8(&run.in.gray, &run.out, ksize, &run.arena);
-    return filter_end(&run, st);
-}
+#define FILTER_DETAILS                                                                        \
+    "IN: PGM/PPM (P2, P3, P5, P6), PNG or JPEG; colour is converted to grey as\n"             \
+    "cv2.cvtColor(cv2.imread(IN), cv2.COLOR_BGR2GRAY) does. OUT: .pgm, .png or .npy.\n"
+#define INT16_DETAILS                                                                         \
+    "OUT .npy holds the int16 result; .pgm/.png its saturated absolute value\n"                \
+    "(cv2.convertScaleAbs).\n"
 
 static bool has_extension(const char *path, const char *ext)
 {
@@ -175,256 +52,458 @@ static bool has_extension(const char *path, const char *ext)
     return true;
 }
 
-/* An int16 result goes to OUT as is when OUT is .npy, otherwise as its
- * saturated absolute value (cv2.convertScaleAbs) in an 8-bit image. */
-static int derivative_end(filter_run *run, rte_status st, rte_image_s16 *d, void *d_memory)
+static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
+
+static int filter_main(const cli_entry *self, int argc, char **argv, const filter_spec *spec)
 {
-    bool npy = has_extension(run->paths[1], ".npy");
-    if (st == RTE_OK && !npy)
-        st = rte_abs_s16_u8(d, &run->out);
-    int rc = filter_end_s16(run, st, npy ? d : NULL);
+    char details[1024];
+    snprintf(details, sizeof details, "%s%s%s", FILTER_DETAILS, spec->int16 ? INT16_DETAILS : "",
+             spec->details);
+    cli_command cmd = {self->name, "IN OUT", self->summary, details, spec->options, 2};
+    const char *paths[2];
+    int rc = cli_parse(&cmd, argc, argv, paths);
+    if (rc != CLI_EXIT_OK)
+        return rc < 0 ? CLI_EXIT_OK : rc;
+    if (spec->prepare && (rc = spec->prepare(self->name, spec->ctx)) != CLI_EXIT_OK)
+        return rc;
+
+    cli_image in;
+    if ((rc = cli_load(self->name, paths[0], &in)) != CLI_EXIT_OK)
+        return rc;
+    int32_t w = in.gray.width, h = in.gray.height;
+    rte_image_u8 out;
+    rte_image_s16 d = {0};
+    rte_arena arena;
+    void *out_memory = cli_new_u8(self->name, w, h, &out);
+    void *d_memory = spec->int16 ? cli_new_s16(self->name, w, h, &d) : NULL;
+    void *arena_memory = cli_new_arena(self->name, spec->scratch ? spec->scratch(spec->ctx, w, h) : 0, &arena);
+    rte_status st = RTE_ERR_NO_MEMORY;
+    if (out_memory && arena_memory && (d_memory || !spec->int16))
+        st = spec->apply(spec->ctx, &in.gray, &out, &d, &arena);
+
+    bool npy = spec->int16 && has_extension(paths[1], ".npy");
+    if (st == RTE_OK && spec->int16 && !npy)
+        st = rte_abs_s16_u8(&d, &out);
+    if (st != RTE_OK) {
+        cli_error(self->name, "%s", rte_status_message(st));
+        rc = CLI_EXIT_FAILURE;
+    } else {
+        rc = npy ? cli_save_s16(self->name, paths[1], &d) : cli_save_gray(self->name, paths[1], &out);
+        if (rc == CLI_EXIT_OK && spec->report)
+            spec->report(spec->ctx);
+    }
+    cli_image_free(&in);
+    free(out_memory);
     free(d_memory);
+    free(arena_memory);
     return rc;
 }
 
-/* Buffers of a derivative run: u8 output, s16 result, scratch. */
-static void *derivative_buffers(filter_run *run, size_t scratch, rte_image_s16 *d)
+/* --- gray --- */
+
+static rte_status gray_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                             rte_arena *arena)
 {
-    void *d_memory = cli_new_s16(run->name, run->in.gray.width, run->in.gray.height, d);
-    if (filter_buffers(run, scratch) != CLI_EXIT_OK) {
-        free(d_memory);
-        return NULL;
-    }
-    return d_memory;
+    for (int32_t y = 0; y < gray->height; y++)
+        memcpy(rte_u8_row(out, y), rte_u8_row(gray, y), (size_t)gray->width);
+    return RTE_OK;
 }
 
-#define DERIVATIVE_DETAILS \
-    FILTER_DETAILS "\nOUT .npy holds the int16 result; .pgm/.png its saturated absolute value\n" \
-    "(cv2.convertScaleAbs)."
+int cmd_gray(const cli_entry *self, int argc, char **argv)
+{
+    cli_option options[] = {{0}};
+    filter_spec spec = {.details = "", .options = options, .apply = gray_apply};
+    return filter_main(self, argc, argv, &spec);
+}
+
+/* --- blur, median --- */
+
+/* Gaussian blur options, shared by blur, log and canny. */
+typedef struct blur_options {
+    int ksize;
+    double sigma;
+    int ksize_y;
+    double sigma_y;
+    rte_gaussian_kernel kernel;
+} blur_options;
+
+static int blur_prepare(const char *name, void *ctx)
+{
+    blur_options *o = ctx;
+    rte_status st = rte_gaussian_kernel_init(&o->kernel, o->ksize, o->ksize_y < 0 ? o->ksize : o->ksize_y,
+                                             o->sigma, o->sigma_y);
+    if (st != RTE_OK) {
+        cli_error(name, "Gaussian kernel size %d, sigma %g: %s", o->ksize, o->sigma, rte_status_message(st));
+        return CLI_EXIT_USAGE;
+    }
+    return CLI_EXIT_OK;
+}
+
+static size_t blur_scratch(void *ctx, int32_t w, int32_t h)
+{
+    return rte_gaussian_blur_u8_scratch_size(w, h, &((blur_options *)ctx)->kernel);
+}
+
+static rte_status blur_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                             rte_arena *arena)
+{
+    return rte_gaussian_blur_u8(gray, out, &((blur_options *)ctx)->kernel, arena);
+}
+
+int cmd_blur(const cli_entry *self, int argc, char **argv)
+{
+    blur_options b = {.ksize = 5, .ksize_y = -1};
+    cli_option options[] = {
+        {"ksize", CLI_INT, &b.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "odd kernel size, 0 = from --sigma", NULL},
+        {"sigma", CLI_DOUBLE, &b.sigma, 0, 100, NULL, "sigma, 0 = from the kernel size", NULL},
+        {"ksize-y", CLI_INT, &b.ksize_y, -1, RTE_GAUSSIAN_MAX_KSIZE, NULL, "vertical size, -1 = --ksize", NULL},
+        {"sigma-y", CLI_DOUBLE, &b.sigma_y, 0, 100, NULL, "vertical sigma, 0 = --sigma", NULL},
+        {0}};
+    filter_spec spec = {"= cv2.GaussianBlur(img, (ksize, ksize-y), sigma, sigmaY=sigma-y)", options, &b,
+                        blur_prepare, blur_scratch, blur_apply, false, NULL};
+    return filter_main(self, argc, argv, &spec);
+}
+
+static int median_prepare(const char *name, void *ctx)
+{
+    if (*(int *)ctx % 2 == 0) {
+        cli_error(name, "--ksize must be 1, 3 or 5");
+        return CLI_EXIT_USAGE;
+    }
+    return CLI_EXIT_OK;
+}
+
+static size_t median_scratch(void *ctx, int32_t w, int32_t h)
+{
+    return rte_median_blur_u8_scratch_size(w, h, *(int *)ctx);
+}
+
+static rte_status median_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                               rte_arena *arena)
+{
+    return rte_median_blur_u8(gray, out, *(int *)ctx, arena);
+}
+
+int cmd_median(const cli_entry *self, int argc, char **argv)
+{
+    int ksize = 3;
+    cli_option options[] = {{"ksize", CLI_INT, &ksize, 1, 5, NULL, "aperture: 1, 3 or 5", NULL}, {0}};
+    filter_spec spec = {"= cv2.medianBlur(img, ksize)", options, &ksize,
+                        median_prepare, median_scratch, median_apply, false, NULL};
+    return filter_main(self, argc, argv, &spec);
+}
+
+/* --- sobel, scharr, laplacian, log: int16 results --- */
+
+typedef enum derivative_kind { DERIV_SOBEL, DERIV_SCHARR, DERIV_LAPLACIAN } derivative_kind;
+
+typedef struct derivative_options {
+    derivative_kind kind;
+    int dx, dy, ksize;
+    bool blur_first;   /* log: Gaussian blur, then the Laplacian */
+    blur_options blur;
+} derivative_options;
+
+static int derivative_prepare(const char *name, void *ctx)
+{
+    derivative_options *o = ctx;
+    const char *problem = NULL;
+    if (o->kind == DERIV_SOBEL && (o->ksize % 2 == 0 || o->dx + o->dy == 0))
+        problem = "--ksize must be odd and dx + dy at least 1";
+    else if (o->kind == DERIV_SCHARR && o->dx + o->dy != 1)
+        problem = "exactly one of --dx 1 and --dy 1";
+    else if (o->kind == DERIV_LAPLACIAN && o->ksize == 2)
+        problem = "--ksize must be 1 or 3";
+    if (problem) {
+        cli_error(name, "%s", problem);
+        return CLI_EXIT_USAGE;
+    }
+    return o->blur_first ? blur_prepare(name, &o->blur) : CLI_EXIT_OK;
+}
+
+static size_t derivative_scratch(void *ctx, int32_t w, int32_t h)
+{
+    derivative_options *o = ctx;
+    switch (o->kind) {
+    case DERIV_SOBEL: return rte_sobel_scratch_size(w, h, o->ksize);
+    case DERIV_SCHARR: return rte_scharr_scratch_size(w, h);
+    case DERIV_LAPLACIAN: break;
+    }
+    size_t scratch = rte_laplacian_scratch_size(w, h, o->ksize);
+    if (o->blur_first) /* the blurred image lives in `out` */
+        scratch = max_size(scratch, blur_scratch(&o->blur, w, h));
+    return scratch;
+}
+
+static rte_status derivative_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                                   rte_arena *arena)
+{
+    derivative_options *o = ctx;
+    switch (o->kind) {
+    case DERIV_SOBEL: return rte_sobel_s16(gray, d, o->dx, o->dy, o->ksize, arena);
+    case DERIV_SCHARR: return rte_scharr_s16(gray, d, o->dx, o->dy, arena);
+    case DERIV_LAPLACIAN: break;
+    }
+    if (o->blur_first) {
+        rte_status st = rte_gaussian_blur_u8(gray, out, &o->blur.kernel, arena);
+        if (st != RTE_OK)
+            return st;
+        gray = out;
+    }
+    return rte_laplacian_s16(gray, d, o->ksize, arena);
+}
+
+static int derivative_main(const cli_entry *self, int argc, char **argv, derivative_options *o,
+                           cli_option *options, const char *details)
+{
+    filter_spec spec = {details, options, o, derivative_prepare, derivative_scratch, derivative_apply, true, NULL};
+    return filter_main(self, argc, argv, &spec);
+}
 
 int cmd_sobel(const cli_entry *self, int argc, char **argv)
 {
-    int dx = 1, dy = 0, ksize = 3;
+    derivative_options o = {.kind = DERIV_SOBEL, .dx = 1, .dy = 0, .ksize = 3};
     cli_option options[] = {
-        {"dx", CLI_INT, &dx, 0, 2, NULL, "order of the x derivative", NULL},
-        {"dy", CLI_INT, &dy, 0, 2, NULL, "order of the y derivative", NULL},
-        {"ksize", CLI_INT, &ksize, 1, 7, NULL, "aperture: 1, 3, 5 or 7", NULL},
+        {"dx", CLI_INT, &o.dx, 0, 2, NULL, "order of the x derivative", NULL},
+        {"dy", CLI_INT, &o.dy, 0, 2, NULL, "order of the y derivative", NULL},
+        {"ksize", CLI_INT, &o.ksize, 1, 7, NULL, "aperture: 1, 3, 5 or 7", NULL},
         {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       DERIVATIVE_DETAILS "\n= cv2.Sobel(img, cv2.CV_16S, dx, dy, ksize=ksize)", options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    if (ksize % 2 == 0 || dx + dy == 0 || (ksize == 1 && (dx > 2 || dy > 2))) {
-        cli_error(self->name, "--ksize must be odd and dx + dy at least 1");
-        return CLI_EXIT_USAGE;
-    }
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    rte_image_s16 d;
-    void *d_memory = derivative_buffers(&run, rte_sobel_scratch_size(run.in.gray.width, run.in.gray.height, ksize), &d);
-    rte_status st = d_memory ? rte_sobel_s16(&run.in.gray, &d, dx, dy, ksize, &run.arena) : RTE_ERR_NO_MEMORY;
-    return derivative_end(&run, st, &d, d_memory);
+    return derivative_main(self, argc, argv, &o, options, "= cv2.Sobel(img, cv2.CV_16S, dx, dy, ksize=ksize)");
 }
 
 int cmd_scharr(const cli_entry *self, int argc, char **argv)
 {
-    int dx = 1, dy = 0;
+    derivative_options o = {.kind = DERIV_SCHARR, .dx = 1, .dy = 0};
     cli_option options[] = {
-        {"dx", CLI_INT, &dx, 0, 1, NULL, "x derivative (dx + dy = 1)", NULL},
-        {"dy", CLI_INT, &dy, 0, 1, NULL, "y derivative", NULL},
+        {"dx", CLI_INT, &o.dx, 0, 1, NULL, "x derivative (dx + dy = 1)", NULL},
+        {"dy", CLI_INT, &o.dy, 0, 1, NULL, "y derivative", NULL},
         {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       DERIVATIVE_DETAILS "\n= cv2.Scharr(img, cv2.CV_16S, dx, dy)", options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    if (dx + dy != 1) {
-        cli_error(self->name, "exactly one of --dx 1 and --dy 1");
-        return CLI_EXIT_USAGE;
-    }
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    rte_image_s16 d;
-    void *d_memory = derivative_buffers(&run, rte_scharr_scratch_size(run.in.gray.width, run.in.gray.height), &d);
-    rte_status st = d_memory ? rte_scharr_s16(&run.in.gray, &d, dx, dy, &run.arena) : RTE_ERR_NO_MEMORY;
-    return derivative_end(&run, st, &d, d_memory);
+    return derivative_main(self, argc, argv, &o, options, "= cv2.Scharr(img, cv2.CV_16S, dx, dy)");
 }
 
 int cmd_laplacian(const cli_entry *self, int argc, char **argv)
 {
-    int ksize = 1;
-    cli_option options[] = {{"ksize", CLI_INT, &ksize, 1, 3, NULL, "aperture: 1 or 3", NULL}, {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       DERIVATIVE_DETAILS "\n= cv2.Laplacian(img, cv2.CV_16S, ksize=ksize)", options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    if (ksize == 2) {
-        cli_error(self->name, "--ksize must be 1 or 3");
-        return CLI_EXIT_USAGE;
-    }
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    rte_image_s16 d;
-    void *d_memory = derivative_buffers(&run, rte_laplacian_scratch_size(run.in.gray.width, run.in.gray.height, ksize), &d);
-    rte_status st = d_memory ? rte_laplacian_s16(&run.in.gray, &d, ksize, &run.arena) : RTE_ERR_NO_MEMORY;
-    return derivative_end(&run, st, &d, d_memory);
+    derivative_options o = {.kind = DERIV_LAPLACIAN, .ksize = 1};
+    cli_option options[] = {{"ksize", CLI_INT, &o.ksize, 1, 3, NULL, "aperture: 1 or 3", NULL}, {0}};
+    return derivative_main(self, argc, argv, &o, options, "= cv2.Laplacian(img, cv2.CV_16S, ksize=ksize)");
 }
-
-static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
 
 int cmd_log(const cli_entry *self, int argc, char **argv)
 {
-    blur_options b = {3, 0.0, -1, 0.0};
-    int ksize = 1;
+    derivative_options o = {.kind = DERIV_LAPLACIAN, .ksize = 1, .blur_first = true,
+                            .blur = {.ksize = 3, .ksize_y = -1}};
     cli_option options[] = {
-        {"blur", CLI_INT, &b.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "Gaussian kernel size, 0 = from --sigma", NULL},
-        {"sigma", CLI_DOUBLE, &b.sigma, 0, 100, NULL, "Gaussian sigma, 0 = from the size", NULL},
-        {"ksize", CLI_INT, &ksize, 1, 3, NULL, "Laplacian aperture: 1 or 3", NULL},
+        {"blur", CLI_INT, &o.blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "Gaussian kernel size, 0 = from --sigma", NULL},
+        {"sigma", CLI_DOUBLE, &o.blur.sigma, 0, 100, NULL, "Gaussian sigma, 0 = from the size", NULL},
+        {"ksize", CLI_INT, &o.ksize, 1, 3, NULL, "Laplacian aperture: 1 or 3", NULL},
         {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       DERIVATIVE_DETAILS "\n= cv2.Laplacian(cv2.GaussianBlur(img, (blur, blur), sigma), cv2.CV_16S, ksize=ksize)",
-                       options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    rte_gaussian_kernel k;
-    if (ksize == 2) {
-        cli_error(self->name, "--ksize must be 1 or 3");
+    return derivative_main(self, argc, argv, &o, options,
+                           "= cv2.Laplacian(cv2.GaussianBlur(img, (blur, blur), sigma), cv2.CV_16S, ksize=ksize)");
+}
+
+/* --- canny --- */
+
+typedef struct canny_options {
+    double low, high, auto_sigma;
+    int aperture, auto_rule; /* auto_rule: 0 none, 1 median, 2 otsu */
+    bool l2, blur_first;
+    blur_options blur;
+} canny_options;
+
+static int canny_prepare(const char *name, void *ctx)
+{
+    canny_options *o = ctx;
+    if (o->aperture != 3 && o->aperture != 5) {
+        cli_error(name, "--aperture must be 3 or 5");
         return CLI_EXIT_USAGE;
     }
-    if ((rc = blur_kernel(self->name, &b, &k)) != CLI_EXIT_OK || (rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    int32_t w = run.in.gray.width, h = run.in.gray.height;
-    rte_image_s16 d;
-    void *d_memory = derivative_buffers(&run, max_size(rte_gaussian_blur_u8_scratch_size(w, h, &k),
-                                                       rte_laplacian_scratch_size(w, h, ksize)), &d);
-    rte_status st = RTE_ERR_NO_MEMORY;
-    if (d_memory) {
-        /* The blurred image lives in run.out until the Laplacian has read it. */
-        st = rte_gaussian_blur_u8(&run.in.gray, &run.out, &k, &run.arena);
-        if (st == RTE_OK)
-            st = rte_laplacian_s16(&run.out, &d, ksize, &run.arena);
+    o->blur_first = o->blur.ksize > 0 || o->blur.sigma > 0;
+    return o->blur_first ? blur_prepare(name, &o->blur) : CLI_EXIT_OK;
+}
+
+static size_t canny_scratch(void *ctx, int32_t w, int32_t h)
+{
+    canny_options *o = ctx;
+    size_t scratch = rte_canny_scratch_size(w, h, o->aperture);
+    if (o->blur_first) /* the blurred image, then the larger of the two kernels' needs */
+        scratch = rte_arena_piece_size((size_t)w * (size_t)h) + max_size(scratch, blur_scratch(&o->blur, w, h));
+    return scratch;
+}
+
+static rte_status canny_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                              rte_arena *arena)
+{
+    canny_options *o = ctx;
+    rte_status st = RTE_OK;
+    rte_image_u8 blurred;
+    if (o->blur_first) {
+        void *mem = rte_arena_alloc(arena, (size_t)gray->width * (size_t)gray->height);
+        if (!mem)
+            return RTE_ERR_NO_MEMORY;
+        blurred = rte_image_u8_view(mem, gray->width, gray->height, 0);
+        if ((st = rte_gaussian_blur_u8(gray, &blurred, &o->blur.kernel, arena)) != RTE_OK)
+            return st;
+        gray = &blurred;
     }
-    return derivative_end(&run, st, &d, d_memory);
+    if (o->auto_rule) {
+        uint32_t hist[256];
+        int32_t low = 0, high = 0;
+        st = rte_histogram_u8(gray, hist);
+        if (st == RTE_OK && o->auto_rule == 1)
+            st = rte_threshold_auto_canny_median(hist, (int32_t)(o->auto_sigma * 1000 + 0.5), &low, &high);
+        else if (st == RTE_OK)
+            st = rte_threshold_auto_canny_otsu(hist, &low, &high);
+        o->low = low;
+        o->high = high;
+    }
+    rte_canny_params params;
+    if (st == RTE_OK)
+        st = rte_canny_params_init(&params, o->low, o->high, o->aperture, o->l2);
+    return st == RTE_OK ? rte_canny_u8(gray, out, &params, arena) : st;
+}
+
+static void canny_report(void *ctx)
+{
+    canny_options *o = ctx;
+    printf("{\"low\":%g,\"high\":%g}\n", o->low, o->high);
 }
 
 int cmd_canny(const cli_entry *self, int argc, char **argv)
 {
     static const char *const auto_rules[] = {"none", "median", "otsu", NULL};
-    double low = 50, high = 150, auto_sigma = 0.33;
-    int aperture = 3, auto_rule = 0;
-    bool l2 = false;
-    blur_options b = {0, 0.0, -1, 0.0};
+    canny_options o = {.low = 50, .high = 150, .auto_sigma = 0.33, .aperture = 3, .blur = {.ksize_y = -1}};
     cli_option options[] = {
-        {"low", CLI_DOUBLE, &low, -1e6, 1e6, NULL, "lower hysteresis threshold", NULL},
-        {"high", CLI_DOUBLE, &high, -1e6, 1e6, NULL, "upper hysteresis threshold", NULL},
-        {"aperture", CLI_INT, &aperture, 3, 5, NULL, "Sobel aperture: 3 or 5", NULL},
-        {"l2", CLI_FLAG, &l2, 0, 0, NULL, "L2 gradient magnitude (squared, as OpenCV compares it)", NULL},
-        {"blur", CLI_INT, &b.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "Gaussian blur first with this odd size; 0 = none unless --sigma", NULL},
-        {"sigma", CLI_DOUBLE, &b.sigma, 0, 100, NULL, "Gaussian sigma of that blur", NULL},
-        {"auto", CLI_CHOICE, &auto_rule, 0, 0, auto_rules, "thresholds from the image: median rule or Otsu rule", NULL},
-        {"auto-sigma", CLI_DOUBLE, &auto_sigma, 0, 1, NULL, "s of the median rule", NULL},
+        {"low", CLI_DOUBLE, &o.low, -1e6, 1e6, NULL, "lower hysteresis threshold", NULL},
+        {"high", CLI_DOUBLE, &o.high, -1e6, 1e6, NULL, "upper hysteresis threshold", NULL},
+        {"aperture", CLI_INT, &o.aperture, 3, 5, NULL, "Sobel aperture: 3 or 5", NULL},
+        {"l2", CLI_FLAG, &o.l2, 0, 0, NULL, "L2 gradient magnitude (squared, as OpenCV compares it)", NULL},
+        {"blur", CLI_INT, &o.blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "Gaussian blur first with this odd size; 0 = none unless --sigma", NULL},
+        {"sigma", CLI_DOUBLE, &o.blur.sigma, 0, 100, NULL, "Gaussian sigma of that blur", NULL},
+        {"auto", CLI_CHOICE, &o.auto_rule, 0, 0, auto_rules, "thresholds from the image: median rule or Otsu rule", NULL},
+        {"auto-sigma", CLI_DOUBLE, &o.auto_sigma, 0, 1, NULL, "s of the median rule", NULL},
         {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       FILTER_DETAILS "\n= cv2.Canny(cv2.GaussianBlur(img, (blur, blur), sigma), low, high,\n"
-                       "            apertureSize=aperture, L2gradient=l2)\n"
-                       "--auto median: low = max(0, (1-s) * median), high = min(255, (1+s) * median),\n"
-                       "truncated to integers; --auto otsu: high = Otsu's threshold, low = high / 2.\n"
-                       "Prints the thresholds used as JSON.",
-                       options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    if (aperture != 3 && aperture != 5) {
-        cli_error(self->name, "--aperture must be 3 or 5");
+    filter_spec spec = {"= cv2.Canny(cv2.GaussianBlur(img, (blur, blur), sigma), low, high,\n"
+                        "            apertureSize=aperture, L2gradient=l2)\n"
+                        "--auto median: low = max(0, (1-s) * median), high = min(255, (1+s) * median),\n"
+                        "truncated to integers; --auto otsu: high = Otsu's threshold, low = high / 2.\n"
+                        "Prints the thresholds used as JSON: {\"low\":L,\"high\":H}.",
+                        options, &o, canny_prepare, canny_scratch, canny_apply, false, canny_report};
+    return filter_main(self, argc, argv, &spec);
+}
+
+/* --- threshold --- */
+
+typedef struct threshold_options {
+    double value, maxval;
+    int type;
+    bool otsu;
+    rte_threshold_params params;
+    int32_t used;
+} threshold_options;
+
+static int threshold_prepare(const char *name, void *ctx)
+{
+    threshold_options *o = ctx;
+    rte_status st = rte_threshold_params_init(&o->params, (rte_threshold_type)o->type, o->value, o->maxval, o->otsu);
+    if (st != RTE_OK) {
+        cli_error(name, "%s", rte_status_message(st));
         return CLI_EXIT_USAGE;
     }
-    bool blur = b.ksize > 0 || b.sigma > 0;
-    rte_gaussian_kernel k;
-    if (blur && (rc = blur_kernel(self->name, &b, &k)) != CLI_EXIT_OK)
-        return rc;
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    int32_t w = run.in.gray.width, h = run.in.gray.height;
-    rte_image_u8 blurred = {0};
-    void *blurred_memory = blur ? cli_new_u8(self->name, w, h, &blurred) : NULL;
-    size_t scratch = rte_canny_scratch_size(w, h, aperture);
-    if (blur)
-        scratch = max_size(scratch, rte_gaussian_blur_u8_scratch_size(w, h, &k));
-    rte_status st = RTE_ERR_NO_MEMORY;
-    if ((!blur || blurred_memory) && filter_buffers(&run, scratch) == CLI_EXIT_OK) {
-        const rte_image_u8 *src = &run.in.gray;
-        st = RTE_OK;
-        if (blur) {
-            st = rte_gaussian_blur_u8(src, &blurred, &k, &run.arena);
-            src = &blurred;
-        }
-        if (st == RTE_OK && auto_rule) {
-            uint32_t hist[256];
-            int32_t lo = 0, hi = 0;
-            st = rte_histogram_u8(src, hist);
-            if (st == RTE_OK && auto_rule == 1)
-                st = rte_threshold_auto_canny_median(hist, (int32_t)(auto_sigma * 1000 + 0.5), &lo, &hi);
-            else if (st == RTE_OK)
-                st = rte_threshold_auto_canny_otsu(hist, &lo, &hi);
-            low = lo;
-            high = hi;
-        }
-        rte_canny_params params;
-        if (st == RTE_OK)
-            st = rte_canny_params_init(&params, low, high, aperture, l2);
-        if (st == RTE_OK)
-            st = rte_canny_u8(src, &run.out, &params, &run.arena);
-        if (st == RTE_OK)
-            printf("{\"low\":%g,\"high\":%g}\n", low, high);
-    }
-    free(blurred_memory);
-    return filter_end(&run, st);
+    return CLI_EXIT_OK;
+}
+
+static rte_status threshold_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                                  rte_arena *arena)
+{
+    threshold_options *o = ctx;
+    return rte_threshold_u8(gray, out, &o->params, &o->used);
+}
+
+static void threshold_report(void *ctx)
+{
+    printf("{\"threshold\":%d}\n", ((threshold_options *)ctx)->used);
 }
 
 int cmd_threshold(const cli_entry *self, int argc, char **argv)
 {
     static const char *const types[] = {"binary", "binary_inv", "trunc", "tozero", "tozero_inv", NULL};
-    double value = 127, maxval = 255;
-    int type = 0;
-    bool otsu = false;
+    threshold_options o = {.value = 127, .maxval = 255};
     cli_option options[] = {
-        {"value", CLI_DOUBLE, &value, -1e6, 1e6, NULL, "threshold (ignored with --otsu)", NULL},
-        {"maxval", CLI_DOUBLE, &maxval, -1e6, 1e6, NULL, "value for binary and binary_inv", NULL},
-        {"type", CLI_CHOICE, &type, 0, 0, types, "threshold type", NULL},
-        {"otsu", CLI_FLAG, &otsu, 0, 0, NULL, "Otsu's threshold from the image's histogram", NULL},
+        {"value", CLI_DOUBLE, &o.value, -1e6, 1e6, NULL, "threshold (ignored with --otsu)", NULL},
+        {"maxval", CLI_DOUBLE, &o.maxval, -1e6, 1e6, NULL, "value for binary and binary_inv", NULL},
+        {"type", CLI_CHOICE, &o.type, 0, 0, types, "threshold type", NULL},
+        {"otsu", CLI_FLAG, &o.otsu, 0, 0, NULL, "Otsu's threshold from the image's histogram", NULL},
         {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       FILTER_DETAILS "\n= cv2.threshold(img, value, maxval, type [+ cv2.THRESH_OTSU]);\n"
-                       "prints the threshold used as JSON: {\"threshold\":T}.",
-                       options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    rte_threshold_params params;
-    rte_status st = rte_threshold_params_init(&params, (rte_threshold_type)type, value, maxval, otsu);
+    filter_spec spec = {"= cv2.threshold(img, value, maxval, type [+ cv2.THRESH_OTSU]);\n"
+                        "prints the threshold used as JSON: {\"threshold\":T}.",
+                        options, &o, threshold_prepare, NULL, threshold_apply, false, threshold_report};
+    return filter_main(self, argc, argv, &spec);
+}
+
+/* --- erode, dilate, open, close: the subcommand's name is the operation --- */
+
+typedef struct morphology_options {
+    const char *name;
+    int shape, ksize, ksize_y, iterations;
+    rte_morph_op op;
+    rte_morph_element element;
+} morphology_options;
+
+static int morphology_prepare(const char *name, void *ctx)
+{
+    static const char *const ops[] = {"erode", "dilate", "open", "close"};
+    morphology_options *o = ctx;
+    for (int i = 0; i < 4; i++)
+        if (strcmp(ops[i], name) == 0)
+            o->op = (rte_morph_op)i;
+    int h = o->ksize_y ? o->ksize_y : o->ksize;
+    rte_status st = rte_morphology_element_init(&o->element, (rte_morph_shape)o->shape, o->ksize, h);
     if (st != RTE_OK) {
-        cli_error(self->name, "%s", rte_status_message(st));
+        cli_error(name, "element %dx%d: %s", o->ksize, h, rte_status_message(st));
         return CLI_EXIT_USAGE;
     }
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    int32_t used = 0;
-    st = RTE_ERR_NO_MEMORY;
-    if (filter_buffers(&run, 0) == CLI_EXIT_OK)
-        st = rte_threshold_u8(&run.in.gray, &run.out, &params, &used);
-    if (st == RTE_OK)
-        printf("{\"threshold\":%d}\n", used);
-    return filter_end(&run, st);
+    return CLI_EXIT_OK;
 }
+
+static size_t morphology_scratch(void *ctx, int32_t w, int32_t h)
+{
+    morphology_options *o = ctx;
+    return rte_morphology_scratch_size(w, h, &o->element, o->iterations);
+}
+
+static rte_status morphology_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                                   rte_arena *arena)
+{
+    morphology_options *o = ctx;
+    return rte_morphology_u8(gray, out, o->op, &o->element, o->iterations, arena);
+}
+
+int cmd_morphology(const cli_entry *self, int argc, char **argv)
+{
+    static const char *const shapes[] = {"rect", "cross", "ellipse", NULL};
+    morphology_options o = {.shape = RTE_MORPH_RECT, .ksize = 3, .iterations = 1};
+    cli_option options[] = {
+        {"shape", CLI_CHOICE, &o.shape, 0, 0, shapes, "structuring element", NULL},
+        {"ksize", CLI_INT, &o.ksize, 1, RTE_MORPH_MAX_KSIZE, NULL, "element width", NULL},
+        {"ksize-y", CLI_INT, &o.ksize_y, 0, RTE_MORPH_MAX_KSIZE, NULL, "element height, 0 = --ksize", NULL},
+        {"iterations", CLI_INT, &o.iterations, 1, 100, NULL, "times applied", NULL},
+        {0}};
+    filter_spec spec = {"= cv2.erode / cv2.dilate / cv2.morphologyEx(MORPH_OPEN / MORPH_CLOSE) with\n"
+                        "cv2.getStructuringElement(shape, (ksize, ksize-y)) and iterations.",
+                        options, &o, morphology_prepare, morphology_scratch, morphology_apply, false, NULL};
+    return filter_main(self, argc, argv, &spec);
+}
+
+/* --- mask --- */
+
+enum { MASK_MAX_VERTICES = 256 };
+
+typedef struct mask_options {
+    const char *polygon;
+    bool mask_only;
+    rte_vertex vertex[MASK_MAX_VERTICES];
+    int32_t count;
+} mask_options;
 
 /* Parses "x,y;x,y;..." into at most `max` vertices; returns the count, or -1. */
 static int parse_polygon(const char *text, rte_vertex *v, int max)
@@ -449,79 +528,42 @@ static int parse_polygon(const char *text, rte_vertex *v, int max)
     return n;
 }
 
-int cmd_mask(const cli_entry *self, int argc, char **argv)
+static int mask_prepare(const char *name, void *ctx)
 {
-    enum { MAX_VERTICES = 256 };
-    const char *polygon = NULL;
-    bool mask_only = false;
-    cli_option options[] = {
-        {"polygon", CLI_STRING, &polygon, 0, 0, NULL, "vertices in pixels: \"x,y;x,y;...\" (required)", NULL},
-        {"mask-only", CLI_FLAG, &mask_only, 0, 0, NULL, "write the 0/255 mask instead of the masked image", NULL},
-        {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       FILTER_DETAILS "\n= mask = zeros; cv2.fillPoly(mask, [pts], 255); cv2.bitwise_and(img, mask)\n"
-                       "Example (the lane tutorial's trapezoid on 960x540):\n"
-                       "  rtedge mask road.jpg roi.png --polygon \"0,540;460,310;500,310;960,540\"",
-                       options, 2};
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    rte_vertex vertices[MAX_VERTICES];
-    int count = polygon ? parse_polygon(polygon, vertices, MAX_VERTICES) : -1;
-    if (count < 1) {
-        cli_error(self->name, "--polygon needs \"x,y;x,y;...\": 1 to %d integer vertices within +-%d",
-                  MAX_VERTICES, RTE_POLYGON_MAX_COORD);
+    mask_options *o = ctx;
+    o->count = o->polygon ? parse_polygon(o->polygon, o->vertex, MASK_MAX_VERTICES) : -1;
+    if (o->count < 1) {
+        cli_error(name, "--polygon needs \"x,y;x,y;...\": 1 to %d integer vertices within +-%d",
+                  MASK_MAX_VERTICES, RTE_POLYGON_MAX_COORD);
         return CLI_EXIT_USAGE;
     }
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    rte_polygon poly = {vertices, count};
-    rte_status st = RTE_ERR_NO_MEMORY;
-    if (filter_buffers(&run, rte_polygon_mask_scratch_size(count)) == CLI_EXIT_OK) {
-        st = rte_polygon_mask_build(&run.out, &poly, 1, &run.arena);
-        if (st == RTE_OK && !mask_only)
-            st = rte_polygon_mask_apply(&run.in.gray, &run.out, &run.out);
-    }
-    return filter_end(&run, st);
+    return CLI_EXIT_OK;
 }
 
-/* erode, dilate, open and close: the subcommand's name is the operation. */
-int cmd_morphology(const cli_entry *self, int argc, char **argv)
+static size_t mask_scratch(void *ctx, int32_t w, int32_t h)
 {
-    static const char *const shapes[] = {"rect", "cross", "ellipse", NULL};
-    static const char *const ops[] = {"erode", "dilate", "open", "close", NULL};
-    int shape = RTE_MORPH_RECT, ksize = 3, ksize_y = 0, iterations = 1;
+    return rte_polygon_mask_scratch_size(((mask_options *)ctx)->count);
+}
+
+static rte_status mask_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
+                             rte_arena *arena)
+{
+    mask_options *o = ctx;
+    rte_polygon poly = {o->vertex, o->count};
+    rte_status st = rte_polygon_mask_build(out, &poly, 1, arena);
+    return st == RTE_OK && !o->mask_only ? rte_polygon_mask_apply(gray, out, out) : st;
+}
+
+int cmd_mask(const cli_entry *self, int argc, char **argv)
+{
+    mask_options o = {0};
     cli_option options[] = {
-        {"shape", CLI_CHOICE, &shape, 0, 0, shapes, "structuring element", NULL},
-        {"ksize", CLI_INT, &ksize, 1, RTE_MORPH_MAX_KSIZE, NULL, "element width", NULL},
-        {"ksize-y", CLI_INT, &ksize_y, 0, RTE_MORPH_MAX_KSIZE, NULL, "element height, 0 = --ksize", NULL},
-        {"iterations", CLI_INT, &iterations, 1, 100, NULL, "times applied", NULL},
+        {"polygon", CLI_STRING, &o.polygon, 0, 0, NULL, "vertices in pixels: \"x,y;x,y;...\" (required)", NULL},
+        {"mask-only", CLI_FLAG, &o.mask_only, 0, 0, NULL, "write the 0/255 mask instead of the masked image", NULL},
         {0}};
-    cli_command cmd = {self->name, FILTER_USAGE, self->summary,
-                       FILTER_DETAILS "\n= cv2.erode / cv2.dilate / cv2.morphologyEx(MORPH_OPEN / MORPH_CLOSE) with\n"
-                       "cv2.getStructuringElement(shape, (ksize, ksize-y)) and iterations.",
-                       options, 2};
-    int op = 0;
-    while (ops[op] && strcmp(ops[op], self->name) != 0)
-        op++;
-    filter_run run;
-    int rc = filter_parse(&run, &cmd, argc, argv);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    rte_morph_element element;
-    rte_status st = rte_morphology_element_init(&element, (rte_morph_shape)shape, ksize,
-                                                ksize_y ? ksize_y : ksize);
-    if (st != RTE_OK) {
-        cli_error(self->name, "element %s %dx%d: %s", shapes[shape], ksize, ksize_y ? ksize_y : ksize,
-                  rte_status_message(st));
-        return CLI_EXIT_USAGE;
-    }
-    if ((rc = filter_load(&run)) != CLI_EXIT_OK)
-        return rc;
-    size_t scratch = rte_morphology_scratch_size(run.in.gray.width, run.in.gray.height, &element, iterations);
-    st = RTE_ERR_NO_MEMORY;
-    if (filter_buffers(&run, scratch) == CLI_EXIT_OK)
-        st = rte_morphology_u8(&run.in.gray, &run.out, (rte_morph_op)op, &element, iterations, &run.arena);
-    return filter_end(&run, st);
+    filter_spec spec = {"= mask = zeros; cv2.fillPoly(mask, [pts], 255); cv2.bitwise_and(img, mask)\n"
+                        "Example (the lane tutorial's trapezoid on 960x540):\n"
+                        "  rtedge mask road.jpg roi.png --polygon \"0,540;460,310;500,310;960,540\"",
+                        options, &o, mask_prepare, mask_scratch, mask_apply, false, NULL};
+    return filter_main(self, argc, argv, &spec);
 }

@@ -215,6 +215,51 @@ void Tally::add(const std::string &what, const cv::Mat &expected, const cv::Mat 
     differing += diff(what, expected, actual);
 }
 
+// The padding value blank_u8 / blank_s16 fill with.
+static bool padding_intact(const rte_image_u8 &img)
+{
+    for (int y = 0; y < img.height; y++)
+        for (int x = img.width; x < img.stride; x++)
+            if (img.buf[(size_t)y * img.stride + x] != 0xA5)
+                return false;
+    return true;
+}
+
+static bool padding_intact(const rte_image_s16 &img)
+{
+    for (int y = 0; y < img.height; y++)
+        for (int x = img.width; x < img.stride; x++)
+            if (img.buf[(size_t)y * img.stride + x] != (int16_t)0x5AA5)
+                return false;
+    return true;
+}
+
+template <typename Image>
+static void check_call(Tally &t, const std::string &what, int status, const rte_arena *arena, size_t mark,
+                       const cv::Mat &expected, const Image &dst)
+{
+    if (status != RTE_OK)
+        t.call_failed(what, status);
+    else if (arena && rte_arena_mark(arena) != mark)
+        t.call_failed(what + " (arena not reset)", -1);
+    else if (!padding_intact(dst))
+        t.call_failed(what + " (wrote into padding)", -1);
+    else
+        t.add(what, expected, to_mat(dst));
+}
+
+void Tally::check(const std::string &what, int status, const rte_arena *arena, size_t mark,
+                  const cv::Mat &expected, const rte_image_u8 &dst)
+{
+    check_call(*this, what, status, arena, mark, expected, dst);
+}
+
+void Tally::check(const std::string &what, int status, const rte_arena *arena, size_t mark,
+                  const cv::Mat &expected, const rte_image_s16 &dst)
+{
+    check_call(*this, what, status, arena, mark, expected, dst);
+}
+
 void Tally::call_failed(const std::string &what, int status)
 {
     cases++;

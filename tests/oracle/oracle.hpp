@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 extern "C" {
+#include "rtedge/arena.h"
 #include "rtedge/image.h"
 }
 
@@ -63,6 +64,13 @@ struct Tally {
     long failed_calls = 0;
     explicit Tally(std::string s) : suite(std::move(s)) {}
     void add(const std::string &what, const cv::Mat &expected, const cv::Mat &actual);
+    // One kernel call into a blank_u8/blank_s16 destination: its status,
+    // that the arena is back at `mark` (arena may be NULL), the pixels
+    // against OpenCV's, and that the destination's row padding is untouched.
+    void check(const std::string &what, int status, const rte_arena *arena, size_t mark,
+               const cv::Mat &expected, const rte_image_u8 &dst);
+    void check(const std::string &what, int status, const rte_arena *arena, size_t mark,
+               const cv::Mat &expected, const rte_image_s16 &dst);
     void call_failed(const std::string &what, int status);
     int finish() const;
 };
