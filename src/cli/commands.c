@@ -23,5 +23,6 @@ const cli_entry cli_commands[] = {
     {"lines", "standard Hough lines of the edges (= HoughLines), JSON; --overlay", cmd_lines},
     {"segments", "Hough line segments of the edges (~ HoughLinesP), JSON; --overlay", cmd_segments},
     {"circles", "Hough circles (= HoughCircles HOUGH_GRADIENT), JSON; --overlay", cmd_circles},
+    {"lanes", "lane detection and tracking on an image or a sequence (JSON)", cmd_lanes},
     {NULL, NULL, NULL},
 };

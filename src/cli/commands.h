@@ -34,5 +34,7 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv);
 int cmd_lines(const cli_entry *self, int argc, char **argv);
 int cmd_segments(const cli_entry *self, int argc, char **argv);
 int cmd_circles(const cli_entry *self, int argc, char **argv);
+/* cmd_lanes.c: the lane pipeline. */
+int cmd_lanes(const cli_entry *self, int argc, char **argv);
 
 #endif

@@ -1,0 +1,44 @@
+/* YUV4MPEG2 (.y4m) recordings: a small reader for 8-bit streams, giving
+ * each frame's Y plane as a grey image (what the lane and tag pipelines
+ * need). Chroma tags C420* (jpeg, paldv, mpeg2 and plain 420), C422, C444
+ * and Cmono are understood; a missing C tag means 420, as the format says.
+ * Part of rtedge_io (memory is allocated once, at open). */
+#ifndef RTEDGE_Y4M_H
+#define RTEDGE_Y4M_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rtedge/image.h"
+#include "rtedge/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct rte_y4m_reader rte_y4m_reader;
+
+typedef struct rte_y4m_info {
+    int32_t width, height;
+    int32_t fps_num, fps_den;   /* F tag (0/0 when absent) */
+    int32_t chroma_bytes;       /* bytes of chroma after each Y plane */
+    char chroma[16];            /* the C tag's value, e.g. "420jpeg", "mono" */
+} rte_y4m_info;
+
+/* Opens `path` and reads its header. RTE_ERR_FORMAT for a file that is not
+ * YUV4MPEG2 or has no size, RTE_ERR_UNSUPPORTED for interlacing other than
+ * progressive/unknown or chroma of more than 8 bits, RTE_ERR_TOO_LARGE when
+ * the size exceeds max_width x max_height (<= 0: RTE_MAX_SIDE). */
+rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
+                        rte_y4m_reader **reader, rte_y4m_info *info, char *msg, size_t msg_size);
+/* The next frame's Y plane into dst (of the stream's size). RTE_ERR_END
+ * after the last frame, RTE_ERR_TRUNCATED for a frame cut short,
+ * RTE_ERR_FORMAT for a missing FRAME marker. */
+rte_status rte_y4m_read_gray(rte_y4m_reader *reader, const rte_image_u8 *dst, char *msg,
+                             size_t msg_size);
+void rte_y4m_close(rte_y4m_reader *reader);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,179 @@
+/* YUV4MPEG2 reader: header "YUV4MPEG2 W.. H.. [F..] [I..] [A..] [C..] [X..]",
+ * then per frame "FRAME[ params]\n", the Y plane and the chroma planes. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rtedge/y4m.h"
+
+struct rte_y4m_reader {
+    FILE *file;
+    rte_y4m_info info;
+};
+
+static rte_status y4m_fail(rte_status st, char *msg, size_t msg_size, const char *what,
+                           const char *path)
+{
+    if (msg && msg_size)
+        snprintf(msg, msg_size, "%s: %s", path ? path : "y4m", what);
+    return st;
+}
+
+/* Reads one line (without '\n') of at most cap-1 bytes. 0 on success, -1 at
+ * end of file before any byte, -2 when the line is too long or cut short. */
+static int y4m_line(FILE *f, char *buf, size_t cap)
+{
+    size_t n = 0;
+    int c;
+    while ((c = getc(f)) != EOF && c != '\n') {
+        if (n + 1 >= cap)
+            return -2;
+        buf[n++] = (char)c;
+    }
+    buf[n] = 0;
+    if (c == EOF)
+        return n == 0 ? -1 : -2;
+    return 0;
+}
+
+/* Chroma bytes per frame for a C tag value; -1 when not supported. */
+static int64_t y4m_chroma_bytes(const char *tag, int64_t w, int64_t h)
+{
+    if (strcmp(tag, "mono") == 0)
+        return 0;
+    if (strncmp(tag, "420", 3) == 0 && (tag[3] == 0 || strcmp(tag + 3, "jpeg") == 0 ||
+                                        strcmp(tag + 3, "paldv") == 0 || strcmp(tag + 3, "mpeg2") == 0))
+        return 2 * ((w + 1) / 2) * ((h + 1) / 2);
+    if (strcmp(tag, "422") == 0)
+        return 2 * ((w + 1) / 2) * h;
+    if (strcmp(tag, "444") == 0)
+        return 2 * w * h;
+    return -1;
+}
+
+rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
+                        rte_y4m_reader **reader, rte_y4m_info *info, char *msg, size_t msg_size)
+{
+    if (msg && msg_size)
+        msg[0] = 0;
+    if (!path || !reader)
+        return RTE_ERR_ARGUMENT;
+    *reader = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return y4m_fail(RTE_ERR_IO, msg, msg_size, "cannot open", path);
+    char line[512];
+    rte_y4m_info in = {0};
+    strcpy(in.chroma, "420jpeg");
+    rte_status st = RTE_OK;
+    const char *why = NULL;
+    if (y4m_line(f, line, sizeof line) != 0 || strncmp(line, "YUV4MPEG2", 9) != 0 ||
+        (line[9] != ' ' && line[9] != 0)) {
+        st = RTE_ERR_FORMAT;
+        why = "not a YUV4MPEG2 file";
+    }
+    for (char *tok = st == RTE_OK ? strtok(line + 9, " ") : NULL; tok && st == RTE_OK;
+         tok = strtok(NULL, " ")) {
+        char *end;
+        long a, b;
+        switch (tok[0]) {
+        case 'W':
+        case 'H':
+            a = strtol(tok + 1, &end, 10);
+            if (*end || a < 1 || a > RTE_MAX_SIDE) {
+                st = RTE_ERR_FORMAT;
+                why = "bad frame size";
+            } else if (tok[0] == 'W') {
+                in.width = (int32_t)a;
+            } else {
+                in.height = (int32_t)a;
+            }
+            break;
+        case 'F':
+            a = strtol(tok + 1, &end, 10);
+            b = *end == ':' ? strtol(end + 1, &end, 10) : 0;
+            if (!*end && a > 0 && b > 0 && a <= INT32_MAX && b <= INT32_MAX) {
+                in.fps_num = (int32_t)a;
+                in.fps_den = (int32_t)b;
+            }
+            break;
+        case 'I':
+            if (tok[1] != 'p' && tok[1] != '?') {
+                st = RTE_ERR_UNSUPPORTED;
+                why = "interlaced streams are not supported";
+            }
+            break;
+        case 'C':
+            if (strlen(tok + 1) >= sizeof in.chroma) {
+                st = RTE_ERR_UNSUPPORTED;
+                why = "unknown chroma";
+            } else {
+                strcpy(in.chroma, tok + 1);
+            }
+            break;
+        default: break; /* A (aspect), X (extensions) */
+        }
+    }
+    if (st == RTE_OK && (in.width == 0 || in.height == 0)) {
+        st = RTE_ERR_FORMAT;
+        why = "no frame size";
+    }
+    int64_t chroma = st == RTE_OK ? y4m_chroma_bytes(in.chroma, in.width, in.height) : 0;
+    if (st == RTE_OK && chroma < 0) {
+        st = RTE_ERR_UNSUPPORTED;
+        why = "chroma format not supported (8-bit 420, 422, 444 and mono are)";
+    }
+    if (st == RTE_OK && ((max_width > 0 && in.width > max_width) ||
+                         (max_height > 0 && in.height > max_height))) {
+        st = RTE_ERR_TOO_LARGE;
+        why = "frame larger than allowed";
+    }
+    rte_y4m_reader *r = st == RTE_OK ? calloc(1, sizeof *r) : NULL;
+    if (st == RTE_OK && !r) {
+        st = RTE_ERR_NO_MEMORY;
+        why = "out of memory";
+    }
+    if (st != RTE_OK) {
+        fclose(f);
+        return y4m_fail(st, msg, msg_size, why, path);
+    }
+    in.chroma_bytes = (int32_t)chroma;
+    r->file = f;
+    r->info = in;
+    if (info)
+        *info = in;
+    *reader = r;
+    return RTE_OK;
+}
+
+rte_status rte_y4m_read_gray(rte_y4m_reader *r, const rte_image_u8 *dst, char *msg, size_t msg_size)
+{
+    if (msg && msg_size)
+        msg[0] = 0;
+    if (!r || !dst || !dst->buf)
+        return RTE_ERR_ARGUMENT;
+    if (dst->width != r->info.width || dst->height != r->info.height || dst->stride < dst->width)
+        return RTE_ERR_SIZE;
+    char line[256];
+    int rc = y4m_line(r->file, line, sizeof line);
+    if (rc == -1)
+        return RTE_ERR_END;
+    if (rc != 0 || strncmp(line, "FRAME", 5) != 0 || (line[5] != 0 && line[5] != ' '))
+        return y4m_fail(rc == -2 && strncmp(line, "FRAME", 5) == 0 ? RTE_ERR_TRUNCATED : RTE_ERR_FORMAT,
+                        msg, msg_size, "missing FRAME marker", NULL);
+    for (int32_t y = 0; y < dst->height; y++)
+        if (fread(dst->buf + (size_t)y * (size_t)dst->stride, 1, (size_t)dst->width, r->file) !=
+            (size_t)dst->width)
+            return y4m_fail(RTE_ERR_TRUNCATED, msg, msg_size, "frame cut short", NULL);
+    if (r->info.chroma_bytes > 0 && fseek(r->file, r->info.chroma_bytes, SEEK_CUR) != 0)
+        return y4m_fail(RTE_ERR_IO, msg, msg_size, "cannot skip chroma", NULL);
+    return RTE_OK;
+}
+
+void rte_y4m_close(rte_y4m_reader *r)
+{
+    if (!r)
+        return;
+    fclose(r->file);
+    free(r);
+}

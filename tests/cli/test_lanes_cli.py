@@ -1,0 +1,95 @@
+#!/usr/bin/python3
+"""rtedge lanes end to end: JSON on a photo, the overlay, sequences (a Y4M
+file and a directory of images), usage and input errors.
+
+usage: test_lanes_cli.py RTEDGE FIXTURES_DIR SHARED_DATA_DIR"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import cv2
+import numpy as np
+
+RTEDGE, FIXTURES, SHARED = sys.argv[1:4]
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def run(*args):
+    p = subprocess.run([RTEDGE, "lanes", *args], capture_output=True, text=True)
+    return p.returncode, p.stdout, p.stderr
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    photo = os.path.join(SHARED, "lanes", "solidWhiteRight.jpg")
+    overlay = os.path.join(tmp, "overlay.png")
+    rc, out, err = run(photo, "--overlay", overlay)
+    check(rc == 0, "lanes on a photo exits 0 (%s)" % err)
+    d = json.loads(out)
+    for side in ("left", "right"):
+        lane = d[side]
+        check(lane["found"] and lane["y1"] == 539 and lane["y2"] < lane["y1"], side + " lane found, y1 on the bottom row")
+        check(0 < lane["confidence"] <= 1, side + " confidence in (0, 1]")
+    check(d["left"]["x2"] > d["left"]["x1"] and d["right"]["x2"] < d["right"]["x1"], "slope signs")
+    check(abs(d["left"]["x1"] - 153) < 38 and abs(d["right"]["x1"] - 852) < 38, "bottom-row x near the eye's")
+    check(isinstance(d["offset_px"], float) and d["segments"] and len(d["segments"][0]) == 5, "offset and segments")
+    img = cv2.imread(overlay)
+    check(img is not None and img.shape == (540, 960, 3), "overlay written at the photo's size")
+    if img is not None:
+        blue = np.all(img == (255, 0, 0), axis=2).sum()
+        red = np.all(img == (0, 0, 255), axis=2).sum()
+        check(blue > 300 and red > 300, "overlay: left lane blue, right lane red (%d, %d px)" % (blue, red))
+        # the blue line is on the left half, the red on the right
+        ys, xs = np.nonzero(np.all(img == (255, 0, 0), axis=2))
+        check(xs.mean() < 480, "blue on the left")
+
+    # grey input works too (no colour cue)
+    gray = os.path.join(FIXTURES, "solidWhiteCurve_gray.pgm")
+    rc, out, _ = run(gray)
+    check(rc == 0 and json.loads(out)["left"]["found"], "grey photo")
+
+    # a Y4M sequence: one line per frame
+    rc, out, err = run("--sequence", os.path.join(FIXTURES, "solidWhiteRight_clip.y4m"))
+    lines = out.splitlines()
+    check(rc == 0 and len(lines) == 22, "Y4M sequence: 22 JSON lines (%d, %s)" % (len(lines), err))
+    frames = [json.loads(line) for line in lines]
+    check(all(f["left"]["found"] and f["right"]["found"] for f in frames), "Y4M: both lanes in every frame")
+    check([f["frame"] for f in frames] == list(range(22)), "Y4M: frame numbers")
+
+    # a directory of images, in name order, with a frame where the paint is gone
+    seq = os.path.join(tmp, "seq")
+    os.mkdir(seq)
+    base = cv2.imread(photo)
+    blank = base.copy()
+    blank[330:, 480:] = base[330:, 480:].mean(axis=(0, 1)).astype(np.uint8)  # right marking painted over
+    for i, im in enumerate([base, base, blank, blank, base]):
+        cv2.imwrite(os.path.join(seq, "f%02d.png" % i), im)
+    rc, out, err = run("--sequence", seq)
+    frames = [json.loads(line) for line in out.splitlines()]
+    check(rc == 0 and len(frames) == 5, "directory sequence: 5 lines (%s)" % err)
+    if len(frames) == 5:
+        check(not frames[1]["right"]["predicted"] and frames[2]["right"]["predicted"]
+              and frames[3]["right"]["predicted"] and not frames[4]["right"]["predicted"],
+              "directory sequence: painted-over lane held as predicted")
+
+    # errors
+    check(run()[0] == 2, "no input: usage error")
+    check(run(photo, "--blur", "4")[0] == 2, "even blur: usage error")
+    check(run(photo, "--roi", "0,1;1,1")[0] == 2, "ROI of 2 points: usage error")
+    check(run(photo, "--canny-low", "200", "--canny-high", "100", "--auto-canny", "none")[0] == 2, "low > high")
+    check(run(os.path.join(tmp, "missing.png"))[0] == 3, "missing file: input error")
+    bad = os.path.join(tmp, "bad.y4m")
+    with open(bad, "wb") as f:
+        f.write(b"YUV4MPEG2 W4 H4 Cmono\nFRAME\n\x00\x01")
+    check(run("--sequence", bad)[0] == 3, "truncated Y4M: input error")
+    check(run("--sequence", os.path.join(tmp, "nothing"))[0] == 3, "missing sequence: input error")
+
+print("lanes cli: %d failures" % len(failures))
+sys.exit(1 if failures else 0)

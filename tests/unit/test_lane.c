@@ -1,0 +1,702 @@
+/* Lane pipeline (include/rtedge/lane.h) and the Y4M reader it is fed from.
+ *
+ * Small drawn roads check the geometry, the colour cue, the tracker and the
+ * runtime parameters; the synthetic sequences of tools/make_road_fixtures.py
+ * (generated into the build directory, passed as argv[1]) check accuracy
+ * and tracking against their known lines; the 17 real road photos check the
+ * bottom-row x of each lane against values read by eye. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "unit.h"
+
+#include "rtedge/color.h"
+#include "rtedge/imageio.h"
+#include "rtedge/lane.h"
+#include "rtedge/y4m.h"
+
+static const char *g_roads_dir = ".";
+
+/* ---- drawn roads ---- */
+
+/* A road of w x h (stride w + pad, padding 0xEE): background `road`, lane
+ * markings from (xl, h-1) and (xr, h-1) to (xlt, yt) and (xrt, yt), `half`
+ * pixels either side of the centre line at the bottom, narrowing to 1. */
+typedef struct drawn_lane {
+    int32_t xb, xt; /* centre x at the bottom row and at row yt */
+    bool present;
+} drawn_lane;
+
+static void draw_road(rte_image_u8 *img, uint8_t road, uint8_t paint, int32_t yt, const drawn_lane *l,
+                      int32_t nl)
+{
+    const int32_t h = img->height;
+    for (int32_t y = 0; y < h; y++) {
+        uint8_t *row = rte_u8_row(img, y);
+        memset(row, road, (size_t)img->width);
+        if (y < yt - 10)
+            continue;
+        for (int32_t i = 0; i < nl; i++) {
+            if (!l[i].present)
+                continue;
+            /* centre x at row y in 1/256 px, half width 1..4 px */
+            const int64_t num = (int64_t)(l[i].xt - l[i].xb) * (h - 1 - y);
+            const int64_t xc = (int64_t)l[i].xb * 256 + num * 256 / (h - 1 - yt);
+            const int32_t hw = 1 + 3 * y / h;
+            const int32_t x0 = (int32_t)((xc >> 8) - hw), x1 = (int32_t)((xc >> 8) + hw);
+            for (int32_t x = x0 < 0 ? 0 : x0; x <= x1 && x < img->width; x++)
+                row[x] = paint;
+        }
+    }
+}
+
+static rte_lane_context *make_ctx(int32_t w, int32_t h, rte_lane_config *cfg)
+{
+    rte_lane_config local;
+    if (!cfg)
+        cfg = &local;
+    rte_lane_config_default(cfg, w, h);
+    rte_lane_context *ctx = rte_lane_create(cfg);
+    assert_non_null(ctx);
+    return ctx;
+}
+
+static void assert_lane_near(const rte_lane *l, double xb, double xt, double tol_b, double tol_t)
+{
+    assert_true(l->found);
+    const double b = l->x_bottom_q8 / 256.0, t = l->x_top_q8 / 256.0;
+    if (b < xb - tol_b || b > xb + tol_b || t < xt - tol_t || t > xt + tol_t)
+        fail_msg("lane at %.2f..%.2f, expected %.2f..%.2f", b, t, xb, xt);
+}
+
+static void test_arguments(void **state)
+{
+    (void)state;
+    rte_lane_config cfg;
+    assert_null(rte_lane_create(NULL));
+    rte_lane_config_default(&cfg, 64, 48);
+    cfg.max_width = 0;
+    assert_null(rte_lane_create(&cfg));
+    rte_lane_config_default(&cfg, 64, 48);
+    cfg.max_segments = 0;
+    assert_null(rte_lane_create(&cfg));
+    rte_lane_config_default(&cfg, 64, 48);
+    cfg.blur_ksize = 4;
+    assert_null(rte_lane_create(&cfg));
+    rte_lane_config_default(&cfg, 64, 48);
+    cfg.params.roi_count = 2;
+    assert_null(rte_lane_create(&cfg));
+
+    rte_lane_context *ctx = make_ctx(64, 48, &cfg);
+    rte_lane_params p = cfg.params;
+    p.canny_low = 200;
+    p.canny_high = 100;
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    p = cfg.params;
+    p.alpha_q8 = 0;
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    p = cfg.params;
+    p.left_max_slope_q8 = p.left_min_slope_q8 - 1;
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_lane_set_params(NULL, &p), RTE_ERR_ARGUMENT);
+
+    rte_lane_result r;
+    rte_image_u8 big = unit_image_u8(65, 48, 0, 0);
+    assert_int_equal(rte_lane_process_gray(ctx, &big, NULL, 0, &r), RTE_ERR_SIZE);
+    test_free(big.buf);
+    rte_image_u8 g = unit_image_u8(64, 48, 3, 90);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, NULL), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_lane_process_gray(NULL, &g, NULL, 0, &r), RTE_ERR_ARGUMENT);
+    uint8_t bgrbuf[64 * 3 * 47];
+    rte_image_u8c3 bgr = {64, 47, 64 * 3, bgrbuf};
+    assert_int_equal(rte_lane_process_gray(ctx, &g, &bgr, 0, &r), RTE_ERR_SIZE);
+    /* An ROI entirely outside the frame. */
+    p = cfg.params;
+    for (int i = 0; i < p.roi_count; i++)
+        p.roi[i].x += 2 * RTE_POLYGON_FRACTION_ONE;
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_ERR_ARGUMENT);
+    unit_assert_padding_u8(&g);
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+    rte_lane_destroy(NULL);
+}
+
+/* Tiny and thin frames: a clean status, no lanes, nothing written outside. */
+static void test_tiny_frames(void **state)
+{
+    (void)state;
+    rte_lane_context *ctx = make_ctx(67, 67, NULL);
+    const int32_t sizes[][2] = {{1, 1}, {1, 9}, {9, 1}, {2, 2}, {3, 3}, {67, 1}, {1, 67}, {5, 67}, {67, 5}};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        rte_image_u8 g = unit_image_u8(sizes[i][0], sizes[i][1], 5, 255);
+        rte_lane_result r;
+        rte_status st = rte_lane_process_gray(ctx, &g, NULL, 0, &r);
+        assert_true(st == RTE_OK || st == RTE_ERR_ARGUMENT);
+        if (st == RTE_OK) {
+            assert_false(r.lane[0].found);
+            assert_false(r.lane[1].found);
+        }
+        unit_assert_padding_u8(&g);
+        test_free(g.buf);
+    }
+    rte_lane_destroy(ctx);
+}
+
+/* Two drawn lanes on a 320x180 frame (stride > width). */
+static void test_drawn_lanes(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 180, yt = 108; /* default ROI top: 0.6 * 180 */
+    rte_lane_config cfg;
+    rte_lane_context *ctx = make_ctx(w, h, &cfg);
+    rte_image_u8 g = unit_image_u8(w, h, 13, 0);
+    const drawn_lane lanes[2] = {{40, 150, true}, {300, 175, true}};
+    draw_road(&g, 70, 230, yt, lanes, 2);
+    rte_lane_result r;
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 1234, &r), RTE_OK);
+    assert_int_equal(r.t_ns, 1234);
+    assert_lane_near(&r.lane[RTE_LANE_LEFT], 40, 150, 2, 2);
+    assert_lane_near(&r.lane[RTE_LANE_RIGHT], 300, 175, 2, 2);
+    assert_int_equal(r.lane[0].y_bottom, h - 1);
+    assert_int_equal(r.lane[0].y_top, yt);
+    assert_false(r.lane[0].predicted);
+    assert_true(r.lane[0].confidence_permille > 500);
+    /* lane centre 170 vs image centre 159.5: positive offset, lane width 260 */
+    assert_true(r.centre_valid);
+    assert_true(r.offset_q8 > 9 * 256 && r.offset_q8 < 12 * 256);
+    assert_true(r.offset_permille > 30 && r.offset_permille < 47);
+    /* the centre line leans right going up: (162.5 - 170) is left, negative */
+    assert_true(r.heading_mrad < 0 && r.heading_tan_q16 < 0);
+    int32_t left = 0, right = 0;
+    for (int32_t i = 0; i < r.segment_count; i++) {
+        left += r.segments[i].use == RTE_LANE_SEG_LEFT;
+        right += r.segments[i].use == RTE_LANE_SEG_RIGHT;
+    }
+    assert_true(left > 0 && right > 0);
+    assert_false(r.truncated);
+    for (int i = 0; i < RTE_LANE_STAGES; i++)
+        assert_true(r.stage_ns[i] >= 0);
+
+    /* Mirrored: the offset changes sign. */
+    rte_lane_reset(ctx);
+    const drawn_lane mirrored[2] = {{319 - 300, 319 - 175, true}, {319 - 40, 319 - 150, true}};
+    draw_road(&g, 70, 230, yt, mirrored, 2);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_lane_near(&r.lane[RTE_LANE_LEFT], 19, 144, 2, 2);
+    assert_lane_near(&r.lane[RTE_LANE_RIGHT], 279, 169, 2, 2);
+    assert_true(r.offset_q8 < -9 * 256 && r.heading_mrad > 0);
+
+    /* The Theil-Sen fit finds them too (within a marking's half width). */
+    rte_lane_params p = cfg.params;
+    p.fit = RTE_LANE_FIT_THEIL_SEN;
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
+    rte_lane_reset(ctx);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_lane_near(&r.lane[RTE_LANE_LEFT], 19, 144, 4, 3);
+    assert_lane_near(&r.lane[RTE_LANE_RIGHT], 279, 169, 4, 3);
+
+    /* Few segments allowed: the list is cut and says so. */
+    rte_lane_destroy(ctx);
+    cfg.max_segments = 1;
+    ctx = rte_lane_create(&cfg);
+    assert_non_null(ctx);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_int_equal(r.segment_count, 1);
+    assert_true(r.truncated);
+    unit_assert_padding_u8(&g);
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+}
+
+/* Near-horizontal lines and lines with the wrong slope sign for their side
+ * are rejected. */
+static void test_slope_filter(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 180;
+    rte_lane_context *ctx = make_ctx(w, h, NULL);
+    rte_image_u8 g = unit_image_u8(w, h, 0, 70);
+    /* a near-horizontal bar (slope 0.1) across the lower half */
+    for (int32_t x = 20; x < 300; x++)
+        for (int32_t t = -2; t <= 2; t++)
+            rte_u8_row(&g, 150 + (x - 20) / 10 + t)[x] = 230;
+    /* a right-leaning line on the left half: positive slope, wrong side */
+    const drawn_lane wrong[1] = {{150, 60, true}};
+    rte_image_u8 tmp = unit_image_u8(w, h, 0, 70);
+    draw_road(&tmp, 70, 230, 108, wrong, 1);
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++)
+            if (rte_u8_row(&tmp, y)[x] == 230)
+                rte_u8_row(&g, y)[x] = 230;
+    rte_lane_result r;
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_false(r.lane[0].found);
+    assert_false(r.lane[1].found);
+    assert_true(r.segment_count > 0);
+    for (int32_t i = 0; i < r.segment_count; i++)
+        assert_int_equal(r.segments[i].use, RTE_LANE_SEG_REJECTED_SLOPE);
+    test_free(tmp.buf);
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+}
+
+/* A yellow line whose grey equals the road's is invisible in grey; the
+ * colour cue finds it, and rte_lane_process gives the same for BGR24 and
+ * RGB24 frames. */
+static void test_color_cue(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 180;
+    rte_lane_context *ctx = make_ctx(w, h, NULL);
+    /* yellow B=0 G=185 R=205: grey (19235*185 + 9798*205 + 16384) >> 15 = 170 */
+    const uint8_t yellow[3] = {0, 185, 205}, road[3] = {170, 170, 170}, white[3] = {255, 255, 255};
+    rte_image_u8 mark = unit_image_u8(w, h, 0, 0);
+    const drawn_lane lanes[2] = {{40, 150, true}, {300, 175, false}};
+    const drawn_lane right[2] = {{40, 150, false}, {300, 175, true}};
+    draw_road(&mark, 0, 1, 108, lanes, 2);
+    rte_image_u8 mark_r = unit_image_u8(w, h, 0, 0);
+    draw_road(&mark_r, 0, 1, 108, right, 2);
+    uint8_t *bgr = test_malloc((size_t)w * h * 3), *rgb = test_malloc((size_t)w * h * 3);
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++) {
+            const uint8_t *c = rte_u8_row(&mark, y)[x] ? yellow : rte_u8_row(&mark_r, y)[x] ? white : road;
+            uint8_t *d = bgr + ((size_t)y * w + x) * 3, *e = rgb + ((size_t)y * w + x) * 3;
+            d[0] = c[0], d[1] = c[1], d[2] = c[2];
+            e[0] = c[2], e[1] = c[1], e[2] = c[0];
+        }
+    rte_image_u8c3 bgr_img = {w, h, w * 3, bgr};
+    rte_image_u8 g = unit_image_u8(w, h, 0, 0);
+    assert_int_equal(rte_color_bgr_to_gray(&bgr_img, &g), RTE_OK);
+    rte_lane_result r;
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_false(r.lane[RTE_LANE_LEFT].found); /* grey only: nothing to see */
+    assert_true(r.lane[RTE_LANE_RIGHT].found);
+    rte_lane_reset(ctx);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, &bgr_img, 0, &r), RTE_OK);
+    assert_lane_near(&r.lane[RTE_LANE_LEFT], 40, 150, 2, 2);
+    assert_lane_near(&r.lane[RTE_LANE_RIGHT], 300, 175, 2, 2);
+    const int32_t xl = r.lane[0].x_bottom_q8, xr = r.lane[1].x_bottom_q8;
+
+    rte_frame f = {RTE_PIXEL_BGR24, w, h, {bgr, NULL}, {w * 3, 0}};
+    rte_lane_reset(ctx);
+    assert_int_equal(rte_lane_process(ctx, &f, 0, &r), RTE_OK);
+    assert_int_equal(r.lane[0].x_bottom_q8, xl);
+    assert_int_equal(r.lane[1].x_bottom_q8, xr);
+    f.format = RTE_PIXEL_RGB24;
+    f.plane[0] = rgb;
+    rte_lane_reset(ctx);
+    assert_int_equal(rte_lane_process(ctx, &f, 0, &r), RTE_OK);
+    assert_int_equal(r.lane[0].x_bottom_q8, xl);
+    assert_int_equal(r.lane[1].x_bottom_q8, xr);
+    /* A grey frame: the grey path. */
+    rte_frame fg = {RTE_PIXEL_GREY, w, h, {g.buf, NULL}, {g.stride, 0}};
+    rte_lane_reset(ctx);
+    assert_int_equal(rte_lane_process(ctx, &fg, 0, &r), RTE_OK);
+    assert_false(r.lane[RTE_LANE_LEFT].found);
+    test_free(bgr);
+    test_free(rgb);
+    test_free(g.buf);
+    test_free(mark.buf);
+    test_free(mark_r.buf);
+    rte_lane_destroy(ctx);
+}
+
+/* A lane whose marking disappears is held as predicted for hold_frames,
+ * then dropped; a jump is damped. */
+static void test_tracking(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 180;
+    rte_lane_config cfg;
+    rte_lane_context *ctx = make_ctx(w, h, &cfg);
+    rte_image_u8 g = unit_image_u8(w, h, 0, 0);
+    drawn_lane lanes[2] = {{40, 150, true}, {300, 175, true}};
+    rte_lane_result r;
+    for (int k = 0; k < 4; k++) {
+        draw_road(&g, 70, 230, 108, lanes, 2);
+        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, k, &r), RTE_OK);
+        assert_lane_near(&r.lane[1], 300, 175, 2, 2);
+    }
+    lanes[1].present = false;
+    draw_road(&g, 70, 230, 108, lanes, 2);
+    for (int k = 0; k < cfg.params.hold_frames; k++) {
+        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, k, &r), RTE_OK);
+        assert_true(r.lane[1].found);
+        assert_true(r.lane[1].predicted);
+        assert_int_equal(r.lane[1].lost_frames, k + 1);
+        assert_lane_near(&r.lane[1], 300, 175, 2, 2);
+        assert_false(r.lane[0].predicted);
+    }
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_false(r.lane[1].found);
+    assert_false(r.centre_valid);
+    /* Re-acquired, then a jump of 30 px at the bottom is taken in steps. */
+    lanes[1].present = true;
+    draw_road(&g, 70, 230, 108, lanes, 2);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_lane_near(&r.lane[1], 300, 175, 2, 2);
+    lanes[1].xb = 270;
+    draw_road(&g, 70, 230, 108, lanes, 2);
+    rte_lane_params p = cfg.params;
+    p.gate_px = 100; /* let the jumped line through the gate */
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    const double b = r.lane[1].x_bottom_q8 / 256.0;
+    assert_true(b < 298 && b > 272); /* moved towards 270, not all the way */
+    for (int k = 0; k < 20; k++)
+        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_lane_near(&r.lane[1], 270, 175, 2, 2);
+    /* Without the gate widened, a far line is ignored: segments marked. */
+    assert_int_equal(rte_lane_set_params(ctx, &cfg.params), RTE_OK);
+    lanes[1].xb = 200;
+    lanes[1].xt = 200;
+    draw_road(&g, 70, 230, 108, lanes, 2);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_true(r.lane[1].predicted);
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+}
+
+/* Thresholds and ROI change at run time. */
+static void test_runtime_params(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 180;
+    rte_lane_config cfg;
+    rte_lane_context *ctx = make_ctx(w, h, &cfg);
+    rte_image_u8 g = unit_image_u8(w, h, 0, 0);
+    const drawn_lane lanes[2] = {{40, 150, true}, {300, 175, true}};
+    draw_road(&g, 70, 230, 90, lanes, 2);
+    rte_lane_params p = cfg.params;
+    p.canny_mode = RTE_LANE_CANNY_FIXED;
+    p.canny_low = 40;
+    p.canny_high = 120;
+    const int32_t one = RTE_POLYGON_FRACTION_ONE;
+    const rte_vertex roi[4] = {{0, one}, {one * 4 / 10, one / 2}, {one * 6 / 10, one / 2}, {one, one}};
+    memcpy(p.roi, roi, sizeof roi);
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
+    rte_lane_result r;
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_int_equal(r.canny_low, 40);
+    assert_int_equal(r.canny_high, 120);
+    assert_int_equal(r.lane[0].y_top, 90);
+    assert_lane_near(&r.lane[0], 40, 150, 2, 2);
+    /* thresholds above any edge: nothing (the tracker holds the lanes) */
+    p.canny_low = p.canny_high = 2040;
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_int_equal(r.segment_count, 0);
+    assert_true(r.lane[0].predicted);
+    /* the Otsu rule */
+    p.canny_mode = RTE_LANE_CANNY_OTSU;
+    assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+    assert_true(r.canny_high > 70 && r.canny_high <= 230 && r.canny_low == r.canny_high / 2);
+    assert_false(r.lane[0].predicted);
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+}
+
+/* ---- Y4M reader ---- */
+
+static void write_file(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(data, 1, n, f), n);
+    fclose(f);
+}
+
+static void test_y4m(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/rtedge_test_y4m_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    /* 3x2, 4:2:0 (chroma 2 * 2x1 = 4 bytes per frame), two frames */
+    const char data[] = "YUV4MPEG2 W3 H2 F30:1 Ip A1:1 C420jpeg XYSCSS=420JPEG\n"
+                        "FRAME\n\x01\x02\x03\x04\x05\x06"
+                        "abcd"
+                        "FRAME Ixyz\n\x11\x12\x13\x14\x15\x16"
+                        "abcd";
+    write_file(path, data, sizeof data - 1);
+    rte_y4m_reader *rd;
+    rte_y4m_info info;
+    char msg[128];
+    assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), RTE_OK);
+    assert_int_equal(info.width, 3);
+    assert_int_equal(info.height, 2);
+    assert_int_equal(info.fps_num, 30);
+    assert_int_equal(info.chroma_bytes, 4);
+    rte_image_u8 img = unit_image_u8(3, 2, 2, 0);
+    assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_OK);
+    assert_int_equal(img.buf[0], 1);
+    assert_int_equal(img.buf[img.stride + 2], 6);
+    assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_OK);
+    assert_int_equal(img.buf[1], 0x12);
+    assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_ERR_END);
+    unit_assert_padding_u8(&img);
+    rte_y4m_close(rd);
+    assert_int_equal(rte_y4m_open(path, 2, 2, &rd, &info, msg, sizeof msg), RTE_ERR_TOO_LARGE);
+
+    /* mono, truncated second frame */
+    const char mono[] = "YUV4MPEG2 W3 H2 Cmono\nFRAME\nabcdefFRAME\nab";
+    write_file(path, mono, sizeof mono - 1);
+    assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), RTE_OK);
+    assert_int_equal(info.chroma_bytes, 0);
+    assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_OK);
+    assert_int_equal(img.buf[img.stride], 'd');
+    assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_ERR_TRUNCATED);
+    rte_y4m_close(rd);
+
+    const char *bad[] = {"YUV4MPEG W3 H2\n", "YUV4MPEG2 W3\n", "YUV4MPEG2 W3 H2 It\n",
+                         "YUV4MPEG2 W3 H2 C420p10\n", "YUV4MPEG2 W0 H2\n", "YUV4MPEG2 W3 H2"};
+    const rte_status expect[] = {RTE_ERR_FORMAT, RTE_ERR_FORMAT, RTE_ERR_UNSUPPORTED,
+                                 RTE_ERR_UNSUPPORTED, RTE_ERR_FORMAT, RTE_ERR_FORMAT};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        write_file(path, bad[i], strlen(bad[i]));
+        assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), expect[i]);
+        assert_true(msg[0] != 0);
+    }
+    /* a frame without its marker */
+    const char nomark[] = "YUV4MPEG2 W3 H2 Cmono\nFRAMX\nabcdef";
+    write_file(path, nomark, sizeof nomark - 1);
+    assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), RTE_OK);
+    assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_ERR_FORMAT);
+    rte_image_u8 wrong = unit_image_u8(2, 2, 0, 0);
+    assert_int_equal(rte_y4m_read_gray(rd, &wrong, msg, sizeof msg), RTE_ERR_SIZE);
+    rte_y4m_close(rd);
+    test_free(wrong.buf);
+    test_free(img.buf);
+    unlink(path);
+    close(fd);
+}
+
+/* ---- synthetic road sequences ---- */
+
+typedef struct truth_row {
+    double lb, lt, rb, rt;
+    int lv, rv;
+} truth_row;
+
+static void check_road(const char *name, int *total_good, int *total_measured)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/road_%s.csv", g_roads_dir, name);
+    FILE *csv = fopen(path, "r");
+    if (!csv)
+        fail_msg("%s: missing (run tools/make_road_fixtures.py)", path);
+    char line[256];
+    assert_non_null(fgets(line, sizeof line, csv)); /* header */
+    snprintf(path, sizeof path, "%s/road_%s.y4m", g_roads_dir, name);
+    rte_y4m_reader *rd;
+    rte_y4m_info info;
+    char msg[256];
+    assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), RTE_OK);
+    rte_lane_config cfg;
+    rte_lane_context *ctx = make_ctx(info.width, info.height, &cfg);
+    rte_image_u8 g = unit_image_u8(info.width, info.height, 7, 0);
+    int frames = 0, measured = 0, good = 0, held = 0, held_ok = 0, sign_ok = 0, sign_n = 0;
+    double worst_b = 0, worst_t = 0;
+    truth_row t;
+    int k;
+    while (fscanf(csv, "%d,%lf,%lf,%lf,%lf,%d,%d", &k, &t.lb, &t.lt, &t.rb, &t.rt, &t.lv, &t.rv) == 7) {
+        assert_int_equal(rte_y4m_read_gray(rd, &g, msg, sizeof msg), RTE_OK);
+        rte_lane_result r;
+        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, (int64_t)k * 33333333, &r), RTE_OK);
+        frames++;
+        const rte_lane *L = &r.lane[0], *R = &r.lane[1];
+        const double eb[2] = {fabs(L->x_bottom_q8 / 256.0 - t.lb), fabs(R->x_bottom_q8 / 256.0 - t.rb)};
+        const double et[2] = {fabs(L->x_top_q8 / 256.0 - t.lt), fabs(R->x_top_q8 / 256.0 - t.rt)};
+        if (t.lv && t.rv) {
+            measured++;
+            const bool ok = L->found && R->found && eb[0] <= 5 && eb[1] <= 5 && et[0] <= 10 && et[1] <= 10;
+            good += ok;
+            if (!ok)
+                printf("  %s frame %d: left %s %.1f/%.1f, right %s %.1f/%.1f px off\n", name, k,
+                       L->found ? "found" : "MISSING", eb[0], et[0], R->found ? "found" : "MISSING",
+                       eb[1], et[1]);
+            worst_b = fmax(worst_b, fmax(eb[0], eb[1]));
+            worst_t = fmax(worst_t, fmax(et[0], et[1]));
+        } else {
+            /* the worn marking: held as predicted, near its place */
+            const int side = t.lv ? 1 : 0;
+            const rte_lane *l = &r.lane[side];
+            held++;
+            held_ok += l->found && l->predicted && eb[side] <= 10 && et[side] <= 10;
+            if (!(l->found && l->predicted))
+                printf("  %s frame %d: worn %s lane not held\n", name, k, side ? "right" : "left");
+        }
+        if (r.centre_valid) {
+            /* offset sign: lane centre vs image centre from the truth */
+            const double truth = (t.lb + t.rb) / 2 - (info.width - 1) / 2.0;
+            sign_n++;
+            sign_ok += (truth > 0) == (r.offset_q8 > 0) || fabs(truth) < 1.0;
+        }
+    }
+    assert_int_equal(rte_y4m_read_gray(rd, &g, msg, sizeof msg), RTE_ERR_END);
+    printf("lane road %s: %d frames, both lanes within 5/10 px in %d of %d measured, worst %.1f/%.1f px; "
+           "worn marking held in %d of %d; offset sign right in %d of %d\n",
+           name, frames, good, measured, worst_b, worst_t, held_ok, held, sign_ok, sign_n);
+    assert_true(frames >= 30);
+    assert_true(held >= 3);
+    assert_int_equal(held_ok, held);
+    assert_int_equal(sign_n, frames);
+    assert_int_equal(sign_ok, sign_n);
+    *total_good += good;
+    *total_measured += measured;
+    fclose(csv);
+    rte_y4m_close(rd);
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+}
+
+/* Both sequences: both lanes found, within 5 px at the bottom row and 10
+ * px at the ROI top, in at least 98% of the frames where both markings are
+ * painted; the worn marking held (predicted) through its 3 frames; the
+ * offset sign right in every frame. */
+static void test_synthetic_roads(void **state)
+{
+    (void)state;
+    int good = 0, measured = 0;
+    check_road("straight", &good, &measured);
+    check_road("bend", &good, &measured);
+    printf("lane roads: both lanes right in %d of %d frames (%.1f%%)\n", good, measured,
+           100.0 * good / measured);
+    assert_true(good * 100 >= measured * 98);
+}
+
+/* ---- real photos ---- */
+
+/* Bottom-row x of each lane, read by eye from each photo (zoomed crops of
+ * the lower part with a pixel ruler; the lines extended over the bonnet
+ * where it hides them). known_failure: why a photo cannot pass yet (it is
+ * then reported as an expected failure; a pass is reported too). */
+typedef struct photo_case {
+    const char *name;
+    int32_t left_x, right_x;
+    const char *known_failure;
+} photo_case;
+
+static const photo_case photos[] = {
+    {"challange00101.jpg", 182, 886, NULL},
+    {"challange00111.jpg", 153, 891, NULL},
+    {"challange00136.jpg", 118, 857, NULL},
+    {"solidWhiteCurve.jpg", 180, 890, NULL},
+    {"solidWhiteRight.jpg", 153, 852, NULL},
+    {"solidYellowCurve.jpg", 158, 862, NULL},
+    {"solidYellowCurve2.jpg", 162, 868, NULL},
+    {"solidYellowLeft.jpg", 142, 858, NULL},
+    {"straight_lines1.jpg", 197, 1114, NULL},
+    {"straight_lines2.jpg", 231, 1108, NULL},
+    {"test1.jpg", 233, 1165, NULL},
+    {"test2.jpg", 278, 1149, NULL},
+    {"test3.jpg", 230, 1162, NULL},
+    {"test4.jpg", 260, 1205, NULL},
+    {"test5.jpg", 152, 1147, NULL},
+    {"test6.jpg", 245, 1170, NULL},
+    {"whiteCarLaneSwitch.jpg", 186, 884, NULL},
+};
+
+static void test_real_photos(void **state)
+{
+    (void)state;
+    const char *dir = getenv("RTE_SHARED_DATA_DIR");
+    if (!dir)
+        skip();
+    int passed = 0, unexpected = 0;
+    for (size_t i = 0; i < sizeof photos / sizeof photos[0]; i++) {
+        const photo_case *c = &photos[i];
+        char path[1024], msg[RTE_IO_MESSAGE_SIZE];
+        snprintf(path, sizeof path, "%s/lanes/%s", dir, c->name);
+        rte_image_info info;
+        assert_int_equal(rte_image_probe(path, &info, msg, sizeof msg), RTE_OK);
+        rte_image_reader *reader = rte_image_reader_create(info.width, info.height);
+        assert_non_null(reader);
+        uint8_t *mem = test_malloc((size_t)info.width * info.height * 4);
+        rte_image_u8c3 bgr = {info.width, info.height, info.width * 3, mem};
+        rte_image_u8 g = {info.width, info.height, info.width, mem + (size_t)info.width * info.height * 3};
+        assert_int_equal(rte_image_read_bgr(reader, path, &bgr, msg, sizeof msg), RTE_OK);
+        assert_int_equal(rte_color_bgr_to_gray(&bgr, &g), RTE_OK);
+        rte_lane_context *ctx = make_ctx(info.width, info.height, NULL);
+        rte_lane_result r;
+        assert_int_equal(rte_lane_process_gray(ctx, &g, &bgr, 0, &r), RTE_OK);
+        const rte_lane *L = &r.lane[0], *R = &r.lane[1];
+        const double tol = info.width * 0.04;
+        const double el = L->found ? fabs(L->x_bottom_q8 / 256.0 - c->left_x) : 1e9;
+        const double er = R->found ? fabs(R->x_bottom_q8 / 256.0 - c->right_x) : 1e9;
+        /* slope signs: the left lane rises to the right (x grows going up) */
+        const bool signs = L->found && R->found && L->x_top_q8 > L->x_bottom_q8 && R->x_top_q8 < R->x_bottom_q8;
+        const bool ok = signs && el <= tol && er <= tol;
+        printf("lane photo %-24s left %7.1f (eye %4d, %4.1f%%)  right %7.1f (eye %4d, %4.1f%%)  %s%s%s\n",
+               c->name, L->x_bottom_q8 / 256.0, c->left_x, el * 100 / info.width, R->x_bottom_q8 / 256.0,
+               c->right_x, er * 100 / info.width, ok ? "ok" : "FAIL",
+               c->known_failure ? " (known failure: " : "", c->known_failure ? c->known_failure : "");
+        if (c->known_failure)
+            printf("%s\n", ok ? "  known failure now passes: remove it from the list" : ")");
+        passed += ok;
+        unexpected += !ok && !c->known_failure;
+        rte_lane_destroy(ctx);
+        rte_image_reader_destroy(reader);
+        test_free(mem);
+    }
+    printf("lane photos: %d of %zu right (bottom-row x within 4%% of the width, slope signs)\n", passed,
+           sizeof photos / sizeof photos[0]);
+    assert_int_equal(unexpected, 0);
+}
+
+/* The real clip (fixtures/solidWhiteRight_clip.y4m, grey): both lanes in
+ * every frame, moving smoothly. */
+static void test_real_clip(void **state)
+{
+    (void)state;
+    const char *dir = getenv("RTE_FIXTURES_DIR");
+    if (!dir)
+        skip();
+    char path[1024], msg[256];
+    snprintf(path, sizeof path, "%s/solidWhiteRight_clip.y4m", dir);
+    rte_y4m_reader *rd;
+    rte_y4m_info info;
+    assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), RTE_OK);
+    rte_lane_context *ctx = make_ctx(info.width, info.height, NULL);
+    rte_image_u8 g = unit_image_u8(info.width, info.height, 0, 0);
+    rte_lane_result r;
+    int32_t prev[2] = {0, 0};
+    int frames = 0;
+    while (rte_y4m_read_gray(rd, &g, msg, sizeof msg) == RTE_OK) {
+        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+        for (int s = 0; s < 2; s++) {
+            assert_true(r.lane[s].found);
+            assert_false(r.lane[s].predicted);
+            if (frames > 0)
+                assert_true(abs(r.lane[s].x_bottom_q8 - prev[s]) <= 8 * 256);
+            prev[s] = r.lane[s].x_bottom_q8;
+        }
+        /* the camera sits a little left of the lane centre in this clip */
+        assert_true(r.offset_permille > -100 && r.offset_permille < 100);
+        frames++;
+    }
+    printf("lane clip: %d frames, both lanes found in all\n", frames);
+    assert_int_equal(frames, 22);
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+    rte_y4m_close(rd);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc > 1)
+        g_roads_dir = argv[1];
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_arguments),     cmocka_unit_test(test_tiny_frames),
+        cmocka_unit_test(test_drawn_lanes),   cmocka_unit_test(test_slope_filter),
+        cmocka_unit_test(test_color_cue),     cmocka_unit_test(test_tracking),
+        cmocka_unit_test(test_runtime_params), cmocka_unit_test(test_y4m),
+        cmocka_unit_test(test_synthetic_roads),
+        cmocka_unit_test(test_real_photos),   cmocka_unit_test(test_real_clip),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
