@@ -225,7 +225,7 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
     printf("],\"truncated\":%s}\n", truncated ? "true" : "false");
     rc = CLI_EXIT_OK;
     if (o->overlay)
-        rc = canvas_mem ? cli_overlay_save(self->name, o->overlay, &canvas) : CLI_EXIT_FAILURE;
+        rc = canvas_mem ? cli_save_bgr(self->name, o->overlay, &canvas) : CLI_EXIT_FAILURE;
     free(canvas_mem);
     free_buffers(&b);
     cli_image_free(&in);
