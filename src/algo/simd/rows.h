@@ -1,0 +1,46 @@
+/* Row kernels with SIMD variants (internal to librtedge; the unit test
+ * tests/unit/test_simd.c includes it to compare every variant with its C
+ * reference byte for byte).
+ *
+ * Each kernel has a plain C reference named *_c, kept in the family's own
+ * source file (compiled with -mgeneral-regs-only), and variants in
+ * src/algo/simd/ named after the instruction set. A *_select(features)
+ * function picks the best variant for a feature word from
+ * rte_cpu_features(); the families call it once per image. Every variant
+ * handles any width >= 1, any alignment, and writes exactly `width` bytes. */
+#ifndef RTEDGE_SIMD_ROWS_H
+#define RTEDGE_SIMD_ROWS_H
+
+#include <stdint.h>
+
+#if defined(__x86_64__) || defined(__i386__)
+#define RTE_SIMD_X86 1
+#endif
+#if defined(__aarch64__)
+#define RTE_SIMD_NEON 1
+#endif
+
+/* 3-byte pixels (B,G,R or R,G,B) to grey with BT.601 luma weights in Q15.
+ * OpenCV 4.6 has a Q14 table too, but every 8-bit BGR2GRAY/RGB2GRAY row
+ * (SIMD body and scalar tail alike) goes through these: checked on all
+ * 2^24 colours at widths 1..65 and 4096. */
+enum { RTE_GRAY_B = 3735, RTE_GRAY_G = 19235, RTE_GRAY_R = 9798, RTE_GRAY_SHIFT = 15 };
+typedef void (*rte_row_c3_to_gray_fn)(const uint8_t *src, uint8_t *dst, int32_t width);
+
+void rte_row_bgr_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_rgb_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width);
+rte_row_c3_to_gray_fn rte_row_bgr_to_gray_select(uint32_t features);
+rte_row_c3_to_gray_fn rte_row_rgb_to_gray_select(uint32_t features);
+
+#ifdef RTE_SIMD_X86
+void rte_row_bgr_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_rgb_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_bgr_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
+#endif
+#ifdef RTE_SIMD_NEON
+void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_rgb_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
+#endif
+
+#endif

@@ -1,0 +1,180 @@
+/* SIMD row kernels against their plain C references, byte for byte, on
+ * random rows (as libyuv tests its rows): every width 1..300 and random
+ * larger ones, unaligned starts, for every variant this CPU runs. Sources
+ * end exactly at the row's last byte (an over-read shows under ASan) and
+ * destinations have guard bytes after the row (an over-write shows here).
+ * Also: RTE_FORCE_C selects the C path. */
+#include "unit.h"
+
+#include "rtedge/color.h"
+#include "rtedge/cpu.h"
+
+#include "../../src/algo/simd/rows.h"
+
+enum { GUARD = 64, MAX_OFFSET = 32 };
+
+typedef struct c3_variant {
+    const char *name;
+    uint32_t needs; /* RTE_CPU_* bits */
+    rte_row_c3_to_gray_fn fn, ref;
+} c3_variant;
+
+static const c3_variant c3_variants[] = {
+#ifdef RTE_SIMD_X86
+    { "bgr_to_gray_ssse3", RTE_CPU_X86_SSSE3, rte_row_bgr_to_gray_ssse3, rte_row_bgr_to_gray_c },
+    { "rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c },
+    { "bgr_to_gray_avx2", RTE_CPU_X86_AVX2, rte_row_bgr_to_gray_avx2, rte_row_bgr_to_gray_c },
+    { "rgb_to_gray_avx2", RTE_CPU_X86_AVX2, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c },
+#endif
+#ifdef RTE_SIMD_NEON
+    { "bgr_to_gray_neon", RTE_CPU_ARM_NEON, rte_row_bgr_to_gray_neon, rte_row_bgr_to_gray_c },
+    { "rgb_to_gray_neon", RTE_CPU_ARM_NEON, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c },
+#endif
+    /* the reference against itself keeps the harness honest on any CPU */
+    { "bgr_to_gray_c", 0, rte_row_bgr_to_gray_c, rte_row_bgr_to_gray_c },
+};
+#define C3_VARIANT_COUNT (sizeof c3_variants / sizeof c3_variants[0])
+
+/* Random bytes; every 7th row uses only 0 and 255 so that the extremes
+ * (and the rounding at the top of the range) are hit often. */
+static void fill_random(uint8_t *p, size_t n, uint32_t *seed, int extremes)
+{
+    for (size_t i = 0; i < n; i++) {
+        uint32_t r = unit_rand(seed);
+        p[i] = extremes ? (uint8_t)((r & 1) ? 255 : 0) : (uint8_t)r;
+    }
+}
+
+/* One row of `width` pixels: src at byte offset `so` of its buffer and
+ * ending at the buffer's end, dst at offset `dof` with guard bytes after. */
+static void check_c3_row(const c3_variant *v, int32_t width, uint32_t *seed)
+{
+    size_t so = unit_rand(seed) % MAX_OFFSET, dof = unit_rand(seed) % MAX_OFFSET;
+    size_t src_bytes = 3 * (size_t)width;
+    uint8_t *sbuf = test_malloc(so + src_bytes);
+    uint8_t *want = test_malloc(dof + (size_t)width + GUARD);
+    uint8_t *got = test_malloc(dof + (size_t)width + GUARD);
+    fill_random(sbuf + so, src_bytes, seed, width % 7 == 0);
+    memset(want, 0xEE, dof + (size_t)width + GUARD);
+    memset(got, 0xEE, dof + (size_t)width + GUARD);
+    v->ref(sbuf + so, want + dof, width);
+    v->fn(sbuf + so, got + dof, width);
+    if (memcmp(want, got, dof + (size_t)width + GUARD) != 0) {
+        for (size_t i = 0; i < dof + (size_t)width + GUARD; i++)
+            if (want[i] != got[i])
+                fail_msg("%s width %d: byte %zd is %u, reference %u", v->name, (int)width,
+                         (ptrdiff_t)i - (ptrdiff_t)dof, got[i], want[i]);
+    }
+    test_free(sbuf);
+    test_free(want);
+    test_free(got);
+}
+
+static void c3_to_gray_rows_match_reference(void **state)
+{
+    (void)state;
+    uint32_t hw = rte_cpu_features_hw();
+    int ran = 0;
+    for (size_t i = 0; i < C3_VARIANT_COUNT; i++) {
+        const c3_variant *v = &c3_variants[i];
+        if ((hw & v->needs) != v->needs) {
+            print_message("skipping %s: not supported by this CPU\n", v->name);
+            continue;
+        }
+        uint32_t seed = 0x9E3779B9u + (uint32_t)i;
+        for (int32_t w = 1; w <= 300; w++)
+            check_c3_row(v, w, &seed);
+        for (int k = 0; k < 40; k++)
+            check_c3_row(v, 301 + (int32_t)(unit_rand(&seed) % 4000), &seed);
+        ran++;
+    }
+    assert_true(ran >= 1);
+}
+
+/* Every colour through the dispatched whole-image path: 2^24 pixels as a
+ * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
+ * value, which also checks that each row restarts at its stride. */
+static void every_colour_matches_reference(void **state)
+{
+    (void)state;
+    const int32_t w = 256, h = 256, stride = 3 * w + 5;
+    uint8_t *src = test_malloc((size_t)stride * h);
+    rte_image_u8 got = unit_image_u8(w, h, 3, 0), want = unit_image_u8(w, h, 3, 0);
+    for (int r = 0; r < 256; r++) {
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++) {
+                uint8_t *p = src + (size_t)y * stride + 3 * (size_t)x;
+                p[0] = (uint8_t)x, p[1] = (uint8_t)y, p[2] = (uint8_t)r;
+            }
+        rte_image_u8c3 img = { w, h, stride, src };
+        assert_int_equal(rte_color_bgr_to_gray(&img, &got), RTE_OK);
+        for (int32_t y = 0; y < h; y++)
+            rte_row_bgr_to_gray_c(src + (size_t)y * stride, want.buf + (size_t)y * want.stride, w);
+        assert_memory_equal(got.buf, want.buf, (size_t)want.stride * h);
+    }
+    unit_assert_padding_u8(&got);
+    test_free(src);
+    test_free(got.buf);
+    test_free(want.buf);
+}
+
+static void force_c_selects_the_reference(void **state)
+{
+    (void)state;
+    uint32_t hw = rte_cpu_features_hw();
+    assert_int_equal(unsetenv("RTE_FORCE_C"), 0);
+    assert_int_equal(rte_cpu_features(), hw);
+#ifdef RTE_SIMD_X86
+    /* x86-64 always has SSE2; the probe must see it */
+    assert_true(hw & RTE_CPU_X86_SSE2);
+    if (hw & RTE_CPU_X86_SSSE3)
+        assert_true(rte_row_bgr_to_gray_select(hw) != rte_row_bgr_to_gray_c);
+#endif
+#ifdef RTE_SIMD_NEON
+    assert_true(hw & RTE_CPU_ARM_NEON);
+    assert_true(rte_row_bgr_to_gray_select(hw) == rte_row_bgr_to_gray_neon);
+#endif
+    assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
+    assert_int_equal(rte_cpu_features(), 0);
+    assert_true(rte_row_bgr_to_gray_select(rte_cpu_features()) == rte_row_bgr_to_gray_c);
+    assert_true(rte_row_rgb_to_gray_select(rte_cpu_features()) == rte_row_rgb_to_gray_c);
+    assert_int_equal(rte_cpu_features_hw(), hw);
+    /* "0" and "" mean "not forced" */
+    assert_int_equal(setenv("RTE_FORCE_C", "0", 1), 0);
+    assert_int_equal(rte_cpu_features(), hw);
+    assert_int_equal(setenv("RTE_FORCE_C", "", 1), 0);
+    assert_int_equal(rte_cpu_features(), hw);
+    assert_int_equal(unsetenv("RTE_FORCE_C"), 0);
+}
+
+/* The same image through the public API, forced C and dispatched. */
+static void forced_and_dispatched_images_agree(void **state)
+{
+    (void)state;
+    uint32_t seed = 12345;
+    const int32_t w = 333, h = 7, stride = 3 * w + 11;
+    uint8_t *src = test_malloc((size_t)stride * h);
+    fill_random(src, (size_t)stride * h, &seed, 0);
+    rte_image_u8c3 img = { w, h, stride, src };
+    rte_image_u8 a = unit_image_u8(w, h, 9, 0), b = unit_image_u8(w, h, 9, 0);
+    assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
+    assert_int_equal(rte_color_rgb_to_gray(&img, &a), RTE_OK);
+    assert_int_equal(unsetenv("RTE_FORCE_C"), 0);
+    assert_int_equal(rte_color_rgb_to_gray(&img, &b), RTE_OK);
+    assert_memory_equal(a.buf, b.buf, (size_t)a.stride * h);
+    unit_assert_padding_u8(&b);
+    test_free(src);
+    test_free(a.buf);
+    test_free(b.buf);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(c3_to_gray_rows_match_reference),
+        cmocka_unit_test(every_colour_matches_reference),
+        cmocka_unit_test(force_c_selects_the_reference),
+        cmocka_unit_test(forced_and_dispatched_images_agree),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
