@@ -6,6 +6,7 @@
  * Also: RTE_FORCE_C selects the C path. */
 #include "unit.h"
 
+#include "rtedge/blur.h"
 #include "rtedge/color.h"
 #include "rtedge/cpu.h"
 
@@ -91,6 +92,113 @@ static void c3_to_gray_rows_match_reference(void **state)
     assert_true(ran >= 1);
 }
 
+/* Gaussian passes: each variant against the C build of the same loops. */
+typedef struct gaussian_variant {
+    const char *name;
+    uint32_t needs;
+    rte_gaussian_column_fn column;
+    rte_gaussian_row_fn row;
+} gaussian_variant;
+
+static const gaussian_variant gaussian_variants[] = {
+#ifdef RTE_SIMD_X86
+    { "gaussian_avx2", RTE_CPU_X86_AVX2, rte_gaussian_column_pass_avx2, rte_gaussian_row_pass_avx2 },
+#endif
+    { "gaussian_c", 0, rte_gaussian_column_pass_c, rte_gaussian_row_pass_c },
+};
+#define GAUSSIAN_VARIANT_COUNT (sizeof gaussian_variants / sizeof gaussian_variants[0])
+
+/* Symmetric random taps summing to 256, as rte_gaussian_kernel holds (the
+ * middle tap takes the remainder). */
+static void random_taps(uint16_t *taps, int32_t ksize, uint32_t *seed)
+{
+    int32_t r = ksize / 2, left = 256;
+    for (int32_t i = 0; i < r; i++) {
+        uint16_t t = (uint16_t)(unit_rand(seed) % (uint32_t)(left / (2 * (r - i)) + 1));
+        taps[i] = taps[ksize - 1 - i] = t;
+        left -= 2 * t;
+    }
+    taps[r] = (uint16_t)left;
+}
+
+static uint16_t *random_u16(size_t n, uint32_t *seed, uint16_t max)
+{
+    uint16_t *p = test_malloc(n * sizeof *p);
+    for (size_t i = 0; i < n; i++)
+        p[i] = (uint16_t)(unit_rand(seed) % ((uint32_t)max + 1));
+    return p;
+}
+
+static void check_gaussian(const gaussian_variant *v, int32_t width, int32_t ksize, int split,
+                           uint32_t *seed)
+{
+    uint16_t taps[RTE_GAUSSIAN_MAX_KSIZE];
+    random_taps(taps, ksize, seed);
+    /* column pass: ksize rows, each ending at its allocation's end */
+    const uint8_t *rows[RTE_GAUSSIAN_MAX_KSIZE];
+    uint8_t *row_bufs[RTE_GAUSSIAN_MAX_KSIZE];
+    for (int32_t j = 0; j < ksize; j++) {
+        row_bufs[j] = test_malloc((size_t)width);
+        fill_random(row_bufs[j], (size_t)width, seed, width % 7 == 0);
+        rows[j] = row_bufs[j];
+    }
+    size_t n = (size_t)width + GUARD;
+    uint16_t *want = test_malloc(2 * n * sizeof *want), *got = test_malloc(2 * n * sizeof *got);
+    for (size_t i = 0; i < 2 * n; i++)
+        want[i] = got[i] = 0x7EEE;
+    rte_gaussian_column_pass_c(rows, want, want + n, width, taps, ksize, split);
+    v->column(rows, got, got + n, width, taps, ksize, split);
+    if (memcmp(want, got, 2 * n * sizeof *want) != 0)
+        fail_msg("%s column pass width %d ksize %d split %d differs", v->name, (int)width,
+                 (int)ksize, split);
+    for (int32_t j = 0; j < ksize; j++)
+        test_free(row_bufs[j]);
+    test_free(want);
+    test_free(got);
+
+    /* row pass: padded planes of values the column pass can produce */
+    size_t padded = (size_t)width + 2 * (size_t)(ksize / 2);
+    uint16_t *hi = random_u16(padded, seed, split ? 255 : 65535);
+    uint16_t *lo = random_u16(padded, seed, 255);
+    uint8_t *dwant = test_malloc(n), *dgot = test_malloc(n);
+    memset(dwant, 0xEE, n);
+    memset(dgot, 0xEE, n);
+    rte_gaussian_row_pass_c(hi, lo, dwant, width, taps, ksize, split);
+    v->row(hi, lo, dgot, width, taps, ksize, split);
+    if (memcmp(dwant, dgot, n) != 0)
+        fail_msg("%s row pass width %d ksize %d split %d differs", v->name, (int)width,
+                 (int)ksize, split);
+    test_free(hi);
+    test_free(lo);
+    test_free(dwant);
+    test_free(dgot);
+}
+
+static void gaussian_passes_match_reference(void **state)
+{
+    (void)state;
+    uint32_t hw = rte_cpu_features_hw();
+    int ran = 0;
+    for (size_t i = 0; i < GAUSSIAN_VARIANT_COUNT; i++) {
+        const gaussian_variant *v = &gaussian_variants[i];
+        if ((hw & v->needs) != v->needs) {
+            print_message("skipping %s: not supported by this CPU\n", v->name);
+            continue;
+        }
+        uint32_t seed = 0xC0FFEEu + (uint32_t)i;
+        for (int32_t ksize = 1; ksize <= RTE_GAUSSIAN_MAX_KSIZE; ksize += 2)
+            for (int split = 0; split <= 1; split++) {
+                for (int32_t w = 1; w <= 80; w++)
+                    check_gaussian(v, w, ksize, split, &seed);
+                for (int k = 0; k < 4; k++)
+                    check_gaussian(v, 81 + (int32_t)(unit_rand(&seed) % 2000), ksize, split,
+                                   &seed);
+            }
+        ran++;
+    }
+    assert_true(ran >= 1);
+}
+
 /* Every colour through the dispatched whole-image path: 2^24 pixels as a
  * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
  * value, which also checks that each row restarts at its stride. */
@@ -138,6 +246,8 @@ static void force_c_selects_the_reference(void **state)
     assert_int_equal(rte_cpu_features(), 0);
     assert_true(rte_row_bgr_to_gray_select(rte_cpu_features()) == rte_row_bgr_to_gray_c);
     assert_true(rte_row_rgb_to_gray_select(rte_cpu_features()) == rte_row_rgb_to_gray_c);
+    rte_gaussian_rows g = rte_gaussian_rows_select(rte_cpu_features());
+    assert_true(g.column == rte_gaussian_column_pass_c && g.row == rte_gaussian_row_pass_c);
     assert_int_equal(rte_cpu_features_hw(), hw);
     /* "0" and "" mean "not forced" */
     assert_int_equal(setenv("RTE_FORCE_C", "0", 1), 0);
@@ -173,6 +283,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(c3_to_gray_rows_match_reference),
         cmocka_unit_test(every_colour_matches_reference),
+        cmocka_unit_test(gaussian_passes_match_reference),
         cmocka_unit_test(force_c_selects_the_reference),
         cmocka_unit_test(forced_and_dispatched_images_agree),
     };

@@ -32,7 +32,30 @@ void rte_row_rgb_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width);
 rte_row_c3_to_gray_fn rte_row_bgr_to_gray_select(uint32_t features);
 rte_row_c3_to_gray_fn rte_row_rgb_to_gray_select(uint32_t features);
 
+/* Gaussian blur (src/algo/gaussian.c, gaussian_rows.h): the column pass
+ * of ksize source rows into the u16 planes hi/lo, and the row pass of the
+ * padded planes into dst. */
+typedef void (*rte_gaussian_column_fn)(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
+                                       int32_t width, const uint16_t *taps, int32_t ksize,
+                                       int split);
+typedef void (*rte_gaussian_row_fn)(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
+                                    int32_t width, const uint16_t *taps, int32_t ksize, int split);
+typedef struct rte_gaussian_rows {
+    rte_gaussian_column_fn column;
+    rte_gaussian_row_fn row;
+} rte_gaussian_rows;
+
+void rte_gaussian_column_pass_c(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
+                                int32_t width, const uint16_t *taps, int32_t ksize, int split);
+void rte_gaussian_row_pass_c(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
+                             const uint16_t *taps, int32_t ksize, int split);
+rte_gaussian_rows rte_gaussian_rows_select(uint32_t features);
+
 #ifdef RTE_SIMD_X86
+void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
+                                   int32_t width, const uint16_t *taps, int32_t ksize, int split);
+void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
+                                int32_t width, const uint16_t *taps, int32_t ksize, int split);
 void rte_row_bgr_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_bgr_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
