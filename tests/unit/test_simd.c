@@ -6,6 +6,8 @@
  * Also: RTE_FORCE_C selects the C path. */
 #include "unit.h"
 
+#include <stdbool.h>
+
 #include "rtedge/blur.h"
 #include "rtedge/color.h"
 #include "rtedge/cpu.h"
@@ -199,6 +201,81 @@ static void gaussian_passes_match_reference(void **state)
     assert_true(ran >= 1);
 }
 
+/* Morphology rows: each variant against the C build of the same loops. */
+typedef struct morph_variant {
+    const char *name;
+    uint32_t needs;
+    rte_morph_op2_fn op2;
+    rte_morph_reduce_fn reduce;
+} morph_variant;
+
+static const morph_variant morph_variants[] = {
+#ifdef RTE_SIMD_X86
+    { "morph_avx2", RTE_CPU_X86_AVX2, rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2 },
+#endif
+    { "morph_c", 0, rte_morph_row_op2_c, rte_morph_reduce_rows_c },
+};
+#define MORPH_VARIANT_COUNT (sizeof morph_variants / sizeof morph_variants[0])
+
+enum { MORPH_MAX_ROWS = 64 };
+
+/* `count` rows as the kernels see them: shifted views into one buffer that
+ * ends where the last view ends (as the taps of one padded row), so
+ * unaligned starts and over-reads both show. */
+static void check_morph(const morph_variant *v, int32_t width, int32_t count, bool accumulate,
+                        bool is_max, uint32_t *seed)
+{
+    size_t span = (size_t)width + (size_t)count;
+    uint8_t *src = test_malloc(span);
+    fill_random(src, span, seed, width % 7 == 0);
+    const uint8_t *rows[MORPH_MAX_ROWS];
+    for (int32_t i = 0; i < count; i++)
+        rows[i] = src + unit_rand(seed) % (uint32_t)(count + 1);
+    size_t n = (size_t)width + GUARD;
+    uint8_t *want = test_malloc(n), *got = test_malloc(n);
+    fill_random(want, (size_t)width, seed, 0); /* what accumulating starts from */
+    memset(want + width, 0xEE, GUARD);
+    memcpy(got, want, n);
+    rte_morph_reduce_rows_c(want, rows, count, accumulate, width, is_max);
+    v->reduce(got, rows, count, accumulate, width, is_max);
+    if (memcmp(want, got, n) != 0)
+        fail_msg("%s reduce width %d count %d acc %d max %d differs", v->name, (int)width,
+                 (int)count, accumulate, is_max);
+    /* op2, also in place (d == a) */
+    rte_morph_row_op2_c(want, want, rows[0], width, is_max);
+    v->op2(got, got, rows[0], width, is_max);
+    if (memcmp(want, got, n) != 0)
+        fail_msg("%s op2 width %d max %d differs", v->name, (int)width, is_max);
+    test_free(src);
+    test_free(want);
+    test_free(got);
+}
+
+static void morph_rows_match_reference(void **state)
+{
+    (void)state;
+    uint32_t hw = rte_cpu_features_hw();
+    int ran = 0;
+    for (size_t i = 0; i < MORPH_VARIANT_COUNT; i++) {
+        const morph_variant *v = &morph_variants[i];
+        if ((hw & v->needs) != v->needs) {
+            print_message("skipping %s: not supported by this CPU\n", v->name);
+            continue;
+        }
+        uint32_t seed = 0xBADC0DEu + (uint32_t)i;
+        for (int32_t count = 1; count <= MORPH_MAX_ROWS; count++)
+            for (int m = 0; m < 4; m++) {
+                bool accumulate = m & 1, is_max = m & 2;
+                for (int32_t w = 1; w <= 70; w++)
+                    check_morph(v, w, count, accumulate, is_max, &seed);
+                check_morph(v, 71 + (int32_t)(unit_rand(&seed) % 2000), count, accumulate,
+                            is_max, &seed);
+            }
+        ran++;
+    }
+    assert_true(ran >= 1);
+}
+
 /* Every colour through the dispatched whole-image path: 2^24 pixels as a
  * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
  * value, which also checks that each row restarts at its stride. */
@@ -248,6 +325,8 @@ static void force_c_selects_the_reference(void **state)
     assert_true(rte_row_rgb_to_gray_select(rte_cpu_features()) == rte_row_rgb_to_gray_c);
     rte_gaussian_rows g = rte_gaussian_rows_select(rte_cpu_features());
     assert_true(g.column == rte_gaussian_column_pass_c && g.row == rte_gaussian_row_pass_c);
+    rte_morph_rows m = rte_morph_rows_select(rte_cpu_features());
+    assert_true(m.op2 == rte_morph_row_op2_c && m.reduce == rte_morph_reduce_rows_c);
     assert_int_equal(rte_cpu_features_hw(), hw);
     /* "0" and "" mean "not forced" */
     assert_int_equal(setenv("RTE_FORCE_C", "0", 1), 0);
@@ -284,6 +363,7 @@ int main(void)
         cmocka_unit_test(c3_to_gray_rows_match_reference),
         cmocka_unit_test(every_colour_matches_reference),
         cmocka_unit_test(gaussian_passes_match_reference),
+        cmocka_unit_test(morph_rows_match_reference),
         cmocka_unit_test(force_c_selects_the_reference),
         cmocka_unit_test(forced_and_dispatched_images_agree),
     };

@@ -11,6 +11,7 @@
 #ifndef RTEDGE_SIMD_ROWS_H
 #define RTEDGE_SIMD_ROWS_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -51,7 +52,27 @@ void rte_gaussian_row_pass_c(const uint16_t *hi, const uint16_t *lo, uint8_t *ds
                              const uint16_t *taps, int32_t ksize, int split);
 rte_gaussian_rows rte_gaussian_rows_select(uint32_t features);
 
+/* Morphology (src/algo/morphology.c, morphology_rows.h): d = min or max of
+ * a and b, and of `count` rows (with d's own values when accumulating). */
+typedef void (*rte_morph_op2_fn)(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
+                                 bool is_max);
+typedef void (*rte_morph_reduce_fn)(uint8_t *d, const uint8_t *const *r, int32_t count,
+                                    bool accumulate, int32_t n, bool is_max);
+typedef struct rte_morph_rows {
+    rte_morph_op2_fn op2;
+    rte_morph_reduce_fn reduce;
+} rte_morph_rows;
+
+void rte_morph_row_op2_c(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max);
+void rte_morph_reduce_rows_c(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate,
+                             int32_t n, bool is_max);
+rte_morph_rows rte_morph_rows_select(uint32_t features);
+
 #ifdef RTE_SIMD_X86
+void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
+                            bool is_max);
+void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count,
+                                bool accumulate, int32_t n, bool is_max);
 void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
                                    int32_t width, const uint16_t *taps, int32_t ksize, int split);
 void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
