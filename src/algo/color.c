@@ -1,4 +1,5 @@
 /* Camera frames to grey, bit-exact with OpenCV 4.6's cvtColor (8-bit). */
+#include <stdbool.h>
 #include <string.h>
 
 #include "rtedge/color.h"
@@ -139,36 +140,20 @@ void rte_row_rgb_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width)
     c3_row_to_gray(src, dst, width, RTE_GRAY_R, RTE_GRAY_B);
 }
 
-rte_row_c3_to_gray_fn rte_row_bgr_to_gray_select(uint32_t features)
+rte_row_c3_to_gray_fn rte_row_c3_to_gray_select(uint32_t features, bool rgb)
 {
 #ifdef RTE_SIMD_X86
     if (features & RTE_CPU_X86_AVX2)
-        return rte_row_bgr_to_gray_avx2;
+        return rgb ? rte_row_rgb_to_gray_avx2 : rte_row_bgr_to_gray_avx2;
     if (features & RTE_CPU_X86_SSSE3)
-        return rte_row_bgr_to_gray_ssse3;
+        return rgb ? rte_row_rgb_to_gray_ssse3 : rte_row_bgr_to_gray_ssse3;
 #endif
 #ifdef RTE_SIMD_NEON
     if (features & RTE_CPU_ARM_NEON)
-        return rte_row_bgr_to_gray_neon;
+        return rgb ? rte_row_rgb_to_gray_neon : rte_row_bgr_to_gray_neon;
 #endif
     (void)features;
-    return rte_row_bgr_to_gray_c;
-}
-
-rte_row_c3_to_gray_fn rte_row_rgb_to_gray_select(uint32_t features)
-{
-#ifdef RTE_SIMD_X86
-    if (features & RTE_CPU_X86_AVX2)
-        return rte_row_rgb_to_gray_avx2;
-    if (features & RTE_CPU_X86_SSSE3)
-        return rte_row_rgb_to_gray_ssse3;
-#endif
-#ifdef RTE_SIMD_NEON
-    if (features & RTE_CPU_ARM_NEON)
-        return rte_row_rgb_to_gray_neon;
-#endif
-    (void)features;
-    return rte_row_rgb_to_gray_c;
+    return rgb ? rte_row_rgb_to_gray_c : rte_row_bgr_to_gray_c;
 }
 
 /* The row kernel is chosen once per image. */
@@ -181,12 +166,12 @@ static void c3_rows_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u8
 
 static void bgr_rows_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u8 *dst)
 {
-    c3_rows_to_gray(src, src_stride, dst, rte_row_bgr_to_gray_select(rte_cpu_features()));
+    c3_rows_to_gray(src, src_stride, dst, rte_row_c3_to_gray_select(rte_cpu_features(), false));
 }
 
 static void rgb_rows_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u8 *dst)
 {
-    c3_rows_to_gray(src, src_stride, dst, rte_row_rgb_to_gray_select(rte_cpu_features()));
+    c3_rows_to_gray(src, src_stride, dst, rte_row_c3_to_gray_select(rte_cpu_features(), true));
 }
 
 /* Every second byte: the Y samples of one packed 4:2:2 row (s points at

@@ -16,6 +16,16 @@
 
 enum { GUARD = 64, MAX_OFFSET = 32 };
 
+/* Whether this CPU runs a variant that needs the RTE_CPU_* bits `needs`
+ * (the others are skipped, and say so). */
+static bool cpu_runs(const char *name, uint32_t needs)
+{
+    if ((rte_cpu_features_hw() & needs) == needs)
+        return true;
+    print_message("skipping %s: not supported by this CPU\n", name);
+    return false;
+}
+
 typedef struct c3_variant {
     const char *name;
     uint32_t needs; /* RTE_CPU_* bits */
@@ -76,14 +86,11 @@ static void check_c3_row(const c3_variant *v, int32_t width, uint32_t *seed)
 static void c3_to_gray_rows_match_reference(void **state)
 {
     (void)state;
-    uint32_t hw = rte_cpu_features_hw();
     int ran = 0;
     for (size_t i = 0; i < C3_VARIANT_COUNT; i++) {
         const c3_variant *v = &c3_variants[i];
-        if ((hw & v->needs) != v->needs) {
-            print_message("skipping %s: not supported by this CPU\n", v->name);
+        if (!cpu_runs(v->name, v->needs))
             continue;
-        }
         uint32_t seed = 0x9E3779B9u + (uint32_t)i;
         for (int32_t w = 1; w <= 300; w++)
             check_c3_row(v, w, &seed);
@@ -179,14 +186,11 @@ static void check_gaussian(const gaussian_variant *v, int32_t width, int32_t ksi
 static void gaussian_passes_match_reference(void **state)
 {
     (void)state;
-    uint32_t hw = rte_cpu_features_hw();
     int ran = 0;
     for (size_t i = 0; i < GAUSSIAN_VARIANT_COUNT; i++) {
         const gaussian_variant *v = &gaussian_variants[i];
-        if ((hw & v->needs) != v->needs) {
-            print_message("skipping %s: not supported by this CPU\n", v->name);
+        if (!cpu_runs(v->name, v->needs))
             continue;
-        }
         uint32_t seed = 0xC0FFEEu + (uint32_t)i;
         for (int32_t ksize = 1; ksize <= RTE_GAUSSIAN_MAX_KSIZE; ksize += 2)
             for (int split = 0; split <= 1; split++) {
@@ -254,14 +258,11 @@ static void check_morph(const morph_variant *v, int32_t width, int32_t count, bo
 static void morph_rows_match_reference(void **state)
 {
     (void)state;
-    uint32_t hw = rte_cpu_features_hw();
     int ran = 0;
     for (size_t i = 0; i < MORPH_VARIANT_COUNT; i++) {
         const morph_variant *v = &morph_variants[i];
-        if ((hw & v->needs) != v->needs) {
-            print_message("skipping %s: not supported by this CPU\n", v->name);
+        if (!cpu_runs(v->name, v->needs))
             continue;
-        }
         uint32_t seed = 0xBADC0DEu + (uint32_t)i;
         for (int32_t count = 1; count <= MORPH_MAX_ROWS; count++)
             for (int m = 0; m < 4; m++) {
@@ -313,16 +314,16 @@ static void force_c_selects_the_reference(void **state)
     /* x86-64 always has SSE2; the probe must see it */
     assert_true(hw & RTE_CPU_X86_SSE2);
     if (hw & RTE_CPU_X86_SSSE3)
-        assert_true(rte_row_bgr_to_gray_select(hw) != rte_row_bgr_to_gray_c);
+        assert_true(rte_row_c3_to_gray_select(hw, false) != rte_row_bgr_to_gray_c);
 #endif
 #ifdef RTE_SIMD_NEON
     assert_true(hw & RTE_CPU_ARM_NEON);
-    assert_true(rte_row_bgr_to_gray_select(hw) == rte_row_bgr_to_gray_neon);
+    assert_true(rte_row_c3_to_gray_select(hw, false) == rte_row_bgr_to_gray_neon);
 #endif
     assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
     assert_int_equal(rte_cpu_features(), 0);
-    assert_true(rte_row_bgr_to_gray_select(rte_cpu_features()) == rte_row_bgr_to_gray_c);
-    assert_true(rte_row_rgb_to_gray_select(rte_cpu_features()) == rte_row_rgb_to_gray_c);
+    assert_true(rte_row_c3_to_gray_select(rte_cpu_features(), false) == rte_row_bgr_to_gray_c);
+    assert_true(rte_row_c3_to_gray_select(rte_cpu_features(), true) == rte_row_rgb_to_gray_c);
     rte_gaussian_rows g = rte_gaussian_rows_select(rte_cpu_features());
     assert_true(g.column == rte_gaussian_column_pass_c && g.row == rte_gaussian_row_pass_c);
     rte_morph_rows m = rte_morph_rows_select(rte_cpu_features());

@@ -30,8 +30,8 @@ typedef void (*rte_row_c3_to_gray_fn)(const uint8_t *src, uint8_t *dst, int32_t 
 
 void rte_row_bgr_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width);
-rte_row_c3_to_gray_fn rte_row_bgr_to_gray_select(uint32_t features);
-rte_row_c3_to_gray_fn rte_row_rgb_to_gray_select(uint32_t features);
+/* rgb: R,G,B order, else B,G,R. */
+rte_row_c3_to_gray_fn rte_row_c3_to_gray_select(uint32_t features, bool rgb);
 
 /* Gaussian blur (src/algo/gaussian.c, gaussian_rows.h): the column pass
  * of ksize source rows into the u16 planes hi/lo, and the row pass of the
