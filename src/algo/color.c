@@ -1,12 +1,11 @@
 /* Camera frames to grey, bit-exact with OpenCV 4.6's cvtColor (8-bit). */
+#include <stdbool.h>
 #include <string.h>
 
 #include "rtedge/color.h"
+#include "rtedge/cpu.h"
+#include "simd/rows.h"
 
-/* BT.601 luma weights in Q15. OpenCV 4.6 has a Q14 table too, but every
- * 8-bit BGR2GRAY/RGB2GRAY row (SIMD body and scalar tail alike) goes through
- * these: checked on all 2^24 colours at widths 1..65 and 4096. */
-enum { GRAY_B = 3735, GRAY_G = 19235, GRAY_R = 9798, GRAY_SHIFT = 15 };
 
 /* Bytes of one row of plane 0 for a format, 0 when the format is unknown. */
 static int32_t plane0_row_bytes(rte_pixel_format format, int32_t width)
@@ -119,28 +118,60 @@ rte_pixel_format rte_pixel_format_parse(const char *name)
 }
 
 /* One interleaved 3-byte row to grey; c0/c2 are the weights of the first and
- * third byte. Inlined with constants so each order gets its own loop. */
-static inline void rgb_row_to_gray(const uint8_t *restrict src, uint8_t *restrict dst,
-                                   int32_t width, uint32_t c0, uint32_t c2)
+ * third byte. Inlined with constants so each order gets its own loop. This
+ * is the reference for the SIMD rows in simd/color_*.c and what runs when
+ * the CPU has none of them or RTE_FORCE_C is set. */
+static inline void c3_row_to_gray(const uint8_t *restrict src, uint8_t *restrict dst,
+                                  int32_t width, uint32_t c0, uint32_t c2)
 {
     for (int32_t x = 0; x < width; x++) {
-        uint32_t v = src[3 * x] * c0 + src[3 * x + 1] * (uint32_t)GRAY_G + src[3 * x + 2] * c2;
-        dst[x] = (uint8_t)((v + (1u << (GRAY_SHIFT - 1))) >> GRAY_SHIFT);
+        uint32_t v = src[3 * x] * c0 + src[3 * x + 1] * (uint32_t)RTE_GRAY_G + src[3 * x + 2] * c2;
+        dst[x] = (uint8_t)((v + (1u << (RTE_GRAY_SHIFT - 1))) >> RTE_GRAY_SHIFT);
     }
+}
+
+void rte_row_bgr_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width)
+{
+    c3_row_to_gray(src, dst, width, RTE_GRAY_B, RTE_GRAY_R);
+}
+
+void rte_row_rgb_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width)
+{
+    c3_row_to_gray(src, dst, width, RTE_GRAY_R, RTE_GRAY_B);
+}
+
+rte_row_c3_to_gray_fn rte_row_c3_to_gray_select(uint32_t features, bool rgb)
+{
+#ifdef RTE_SIMD_X86
+    if (features & RTE_CPU_X86_AVX2)
+        return rgb ? rte_row_rgb_to_gray_avx2 : rte_row_bgr_to_gray_avx2;
+    if (features & RTE_CPU_X86_SSSE3)
+        return rgb ? rte_row_rgb_to_gray_ssse3 : rte_row_bgr_to_gray_ssse3;
+#endif
+#ifdef RTE_SIMD_NEON
+    if (features & RTE_CPU_ARM_NEON)
+        return rgb ? rte_row_rgb_to_gray_neon : rte_row_bgr_to_gray_neon;
+#endif
+    (void)features;
+    return rgb ? rte_row_rgb_to_gray_c : rte_row_bgr_to_gray_c;
+}
+
+/* The row kernel is chosen once per image. */
+static void c3_rows_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u8 *dst,
+                            rte_row_c3_to_gray_fn row)
+{
+    for (int32_t y = 0; y < dst->height; y++)
+        row(src + (ptrdiff_t)y * src_stride, rte_u8_row(dst, y), dst->width);
 }
 
 static void bgr_rows_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u8 *dst)
 {
-    for (int32_t y = 0; y < dst->height; y++)
-        rgb_row_to_gray(src + (ptrdiff_t)y * src_stride, rte_u8_row(dst, y), dst->width,
-                        GRAY_B, GRAY_R);
+    c3_rows_to_gray(src, src_stride, dst, rte_row_c3_to_gray_select(rte_cpu_features(), false));
 }
 
 static void rgb_rows_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u8 *dst)
 {
-    for (int32_t y = 0; y < dst->height; y++)
-        rgb_row_to_gray(src + (ptrdiff_t)y * src_stride, rte_u8_row(dst, y), dst->width,
-                        GRAY_R, GRAY_B);
+    c3_rows_to_gray(src, src_stride, dst, rte_row_c3_to_gray_select(rte_cpu_features(), true));
 }
 
 /* Every second byte: the Y samples of one packed 4:2:2 row (s points at

@@ -23,6 +23,10 @@
 #include <stdbool.h>
 #include <string.h>
 
+#include "morphology_rows.h"
+#include "rtedge/cpu.h"
+#include "simd/rows.h"
+
 /* Widest row window and tallest column window reduced tap by tap; wider
  * rows use the doubling levels, taller columns van Herk / Gil-Werman
  * (three passes per row whatever the height). */
@@ -126,112 +130,29 @@ size_t rte_morphology_scratch_size(int32_t max_width, int32_t max_height,
     return plan_bytes(&p);
 }
 
-/* d = op(a, b) elementwise. d may be a. */
-static void row_op2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max)
+/* The row kernels, once per instruction set (see simd/rows.h). */
+void rte_morph_row_op2_c(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max)
 {
-    if (is_max)
-        for (int32_t x = 0; x < n; x++)
-            d[x] = a[x] > b[x] ? a[x] : b[x];
-    else
-        for (int32_t x = 0; x < n; x++)
-            d[x] = a[x] < b[x] ? a[x] : b[x];
+    row_op2(d, a, b, n, is_max);
 }
 
-/* d = op(d, op(a, b)) elementwise. */
-static void row_acc2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max)
+void rte_morph_reduce_rows_c(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate,
+                             int32_t n, bool is_max)
 {
-    if (is_max)
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t v = a[x] > b[x] ? a[x] : b[x];
-            d[x] = d[x] > v ? d[x] : v;
-        }
-    else
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t v = a[x] < b[x] ? a[x] : b[x];
-            d[x] = d[x] < v ? d[x] : v;
-        }
+    reduce_rows(d, r, count, accumulate, n, is_max);
 }
 
-/* d = op(a, b, c) elementwise. */
-static void row_op3(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, int32_t n, bool is_max)
+rte_morph_rows rte_morph_rows_select(uint32_t features)
 {
-    if (is_max)
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t v = a[x] > b[x] ? a[x] : b[x];
-            d[x] = v > c[x] ? v : c[x];
-        }
-    else
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t v = a[x] < b[x] ? a[x] : b[x];
-            d[x] = v < c[x] ? v : c[x];
-        }
-}
-
-#define MIN8(u, v) ((u) < (v) ? (u) : (v))
-#define MAX8(u, v) ((u) > (v) ? (u) : (v))
-
-/* d = op(a, b, c, e) elementwise: four rows in one pass. */
-static void row_op4(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, const uint8_t *e,
-                    int32_t n, bool is_max)
-{
-    if (is_max)
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t u = MAX8(a[x], b[x]), v = MAX8(c[x], e[x]);
-            d[x] = MAX8(u, v);
-        }
-    else
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t u = MIN8(a[x], b[x]), v = MIN8(c[x], e[x]);
-            d[x] = MIN8(u, v);
-        }
-}
-
-/* d = op(a, b, c, e, f) elementwise: five rows in one pass. */
-static void row_op5(uint8_t *d, const uint8_t *a, const uint8_t *b, const uint8_t *c, const uint8_t *e,
-                    const uint8_t *f, int32_t n, bool is_max)
-{
-    if (is_max)
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t u = MAX8(a[x], b[x]), v = MAX8(c[x], e[x]);
-            u = MAX8(u, f[x]);
-            d[x] = MAX8(u, v);
-        }
-    else
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t u = MIN8(a[x], b[x]), v = MIN8(c[x], e[x]);
-            u = MIN8(u, f[x]);
-            d[x] = MIN8(u, v);
-        }
-}
-
-/* d = op of the `count` rows r[0..count-1], or of d and them when
- * `accumulate` is set: up to five rows in the first pass, then two per
- * pass. */
-static void reduce_rows(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate, int32_t n,
-                        bool is_max)
-{
-    int32_t i = 0;
-    if (!accumulate) {
-        if (count == 1) {
-            memcpy(d, r[0], (size_t)n);
-            return;
-        }
-        /* an even remainder after the first pass keeps the pairs whole */
-        int32_t head = count <= 5 ? count : 5 - (count - 5) % 2;
-        if (head == 2)
-            row_op2(d, r[0], r[1], n, is_max);
-        else if (head == 3)
-            row_op3(d, r[0], r[1], r[2], n, is_max);
-        else if (head == 4)
-            row_op4(d, r[0], r[1], r[2], r[3], n, is_max);
-        else
-            row_op5(d, r[0], r[1], r[2], r[3], r[4], n, is_max);
-        i = head;
+    rte_morph_rows k = { rte_morph_row_op2_c, rte_morph_reduce_rows_c };
+#ifdef RTE_SIMD_X86
+    if (features & RTE_CPU_X86_AVX2) {
+        k.op2 = rte_morph_row_op2_avx2;
+        k.reduce = rte_morph_reduce_rows_avx2;
     }
-    for (; i + 1 < count; i += 2)
-        row_acc2(d, r[i], r[i + 1], n, is_max);
-    if (i < count)
-        row_op2(d, d, r[i], n, is_max);
+#endif
+    (void)features;
+    return k;
 }
 
 /* Copies a source row into `pad` with p->ax neutral pixels before it and
@@ -245,18 +166,19 @@ static void load_padded(uint8_t *pad, const uint8_t *row, int32_t width, const m
 }
 
 /* Level k from level k - 1 of a padded row of n pixels: valid for x <= n - 2^k. */
-static void next_level(uint8_t *dst, const uint8_t *prev, int32_t n, int32_t k, bool is_max)
+static void next_level(const rte_morph_rows *kr, uint8_t *dst, const uint8_t *prev, int32_t n,
+                       int32_t k, bool is_max)
 {
     int32_t half = 1 << (k - 1);
-    row_op2(dst, prev, prev + half, n - 2 * half + 1, is_max);
+    kr->op2(dst, prev, prev + half, n - 2 * half + 1, is_max);
 }
 
 /* Full rectangle, separable: the column window first, straight from the
  * source rows (or from copies of them when dst == src, so that rows still
  * needed are not lost), into the middle of a padded row; then the row
  * window from there into dst. */
-static void separable_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph_plan *p,
-                           uint8_t *ring, uint8_t *work, bool is_max)
+static void separable_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_image_u8 *dst,
+                           const morph_plan *p, uint8_t *ring, uint8_t *work, bool is_max)
 {
     const int32_t w = src->width, h = src->height, kh = p->kh;
     const int32_t n = w + p->kw - 1;
@@ -289,22 +211,22 @@ static void separable_pass(const rte_image_u8 *src, rte_image_u8 *dst, const mor
             if (o == 0) {
                 memcpy(suffix + (size_t)(kh - 1) * p->slot, SRC_ROW(v0 + kh - 1), (size_t)w);
                 for (int32_t j = kh - 2; j >= 1; j--)
-                    row_op2(suffix + (size_t)j * p->slot, SRC_ROW(v0 + j), suffix + (size_t)(j + 1) * p->slot,
+                    kr->op2(suffix + (size_t)j * p->slot, SRC_ROW(v0 + j), suffix + (size_t)(j + 1) * p->slot,
                             w, is_max);
-                row_op2(column, SRC_ROW(v0), suffix + p->slot, w, is_max);
+                kr->op2(column, SRC_ROW(v0), suffix + p->slot, w, is_max);
             } else {
                 const uint8_t *entering = SRC_ROW(v0 + kh - 1);
                 if (o == 1)
                     memcpy(prefix, entering, (size_t)w);
                 else
-                    row_op2(prefix, prefix, entering, w, is_max);
-                row_op2(column, suffix + (size_t)o * p->slot, prefix, w, is_max);
+                    kr->op2(prefix, prefix, entering, w, is_max);
+                kr->op2(column, suffix + (size_t)o * p->slot, prefix, w, is_max);
             }
         } else {
             const uint8_t *rows[DIRECT_ROWS];
             for (int32_t v = r0; v <= last; v++)
                 rows[v - r0] = SRC_ROW(v);
-            reduce_rows(column, rows, last - r0 + 1, false, w, is_max);
+            kr->reduce(column, rows, last - r0 + 1, false, w, is_max);
         }
         if (p->kw == 1)
             continue;
@@ -312,24 +234,25 @@ static void separable_pass(const rte_image_u8 *src, rte_image_u8 *dst, const mor
             const uint8_t *taps[DIRECT_TAPS];
             for (int32_t i = 0; i < p->kw; i++)
                 taps[i] = pad + i;
-            reduce_rows(d, taps, p->kw, false, w, is_max);
+            kr->reduce(d, taps, p->kw, false, w, is_max);
             continue;
         }
         const uint8_t *level = pad;
         for (int32_t k = 1; k < p->levels; k++) {
             uint8_t *next = level == lv_a ? lv_b : lv_a;
-            next_level(next, level, n, k, is_max);
+            next_level(kr, next, level, n, k, is_max);
             level = next;
         }
-        row_op2(d, level, level + p->kw - (1 << (p->levels - 1)), w, is_max);
+        kr->op2(d, level, level + p->kw - (1 << (p->levels - 1)), w, is_max);
     }
 #undef SRC_ROW
 }
 
 /* Any other element: per source row, the doubling levels of its padded
  * copy in the ring; per output row, two reads per run. */
-static void general_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph_plan *p,
-                         const rte_morph_element *e, uint8_t *ring, bool is_max)
+static void general_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_image_u8 *dst,
+                         const morph_plan *p, const rte_morph_element *e, uint8_t *ring,
+                         bool is_max)
 {
     const int32_t w = src->width, h = src->height;
     const int32_t n = w + p->kw - 1;
@@ -341,7 +264,7 @@ static void general_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph
             uint8_t *slot = ring + (size_t)(loaded % p->kh) * p->slot;
             load_padded(slot, rte_u8_row(src, loaded), w, p, neutral);
             for (int32_t k = 1; k < p->levels; k++)
-                next_level(slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n, k, is_max);
+                next_level(kr, slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n, k, is_max);
         }
         /* Every run gives one or two rows of the levels; they are reduced
          * a chunk at a time. */
@@ -360,13 +283,13 @@ static void general_pass(const rte_image_u8 *src, rte_image_u8 *dst, const morph
             if (run.len != 1 << k)
                 taps[count++] = level + run.dx + run.len - (1 << k);
             if (count >= 62) {
-                reduce_rows(d, taps, count, any, w, is_max);
+                kr->reduce(d, taps, count, any, w, is_max);
                 any = true;
                 count = 0;
             }
         }
         if (count) {
-            reduce_rows(d, taps, count, any, w, is_max);
+            kr->reduce(d, taps, count, any, w, is_max);
             any = true;
         }
         if (!any) /* every run's row is outside the image */
@@ -398,14 +321,15 @@ rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_mor
     const int32_t repeat = p.separable ? 1 : iterations;
     bool first_max = op == RTE_MORPH_DILATE || op == RTE_MORPH_CLOSE;
     int32_t stages = (op == RTE_MORPH_OPEN || op == RTE_MORPH_CLOSE) ? 2 : 1;
+    const rte_morph_rows kr = rte_morph_rows_select(rte_cpu_features());
     const rte_image_u8 *in = src;
     for (int32_t s = 0; s < stages; s++) {
         bool is_max = s == 0 ? first_max : !first_max;
         for (int32_t i = 0; i < repeat; i++) {
             if (p.separable)
-                separable_pass(in, dst, &p, ring, work, is_max);
+                separable_pass(&kr, in, dst, &p, ring, work, is_max);
             else
-                general_pass(in, dst, &p, element, ring, is_max);
+                general_pass(&kr, in, dst, &p, element, ring, is_max);
             in = dst;
         }
     }

@@ -1,0 +1,90 @@
+/* Row kernels with SIMD variants (internal to librtedge; the unit test
+ * tests/unit/test_simd.c includes it to compare every variant with its C
+ * reference byte for byte).
+ *
+ * Each kernel has a plain C reference named *_c, kept in the family's own
+ * source file (compiled with -mgeneral-regs-only), and variants in
+ * src/algo/simd/ named after the instruction set. A *_select(features)
+ * function picks the best variant for a feature word from
+ * rte_cpu_features(); the families call it once per image. Every variant
+ * handles any width >= 1, any alignment, and writes exactly `width` bytes. */
+#ifndef RTEDGE_SIMD_ROWS_H
+#define RTEDGE_SIMD_ROWS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#if defined(__x86_64__) || defined(__i386__)
+#define RTE_SIMD_X86 1
+#endif
+#if defined(__aarch64__)
+#define RTE_SIMD_NEON 1
+#endif
+
+/* 3-byte pixels (B,G,R or R,G,B) to grey with BT.601 luma weights in Q15.
+ * OpenCV 4.6 has a Q14 table too, but every 8-bit BGR2GRAY/RGB2GRAY row
+ * (SIMD body and scalar tail alike) goes through these: checked on all
+ * 2^24 colours at widths 1..65 and 4096. */
+enum { RTE_GRAY_B = 3735, RTE_GRAY_G = 19235, RTE_GRAY_R = 9798, RTE_GRAY_SHIFT = 15 };
+typedef void (*rte_row_c3_to_gray_fn)(const uint8_t *src, uint8_t *dst, int32_t width);
+
+void rte_row_bgr_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_rgb_to_gray_c(const uint8_t *src, uint8_t *dst, int32_t width);
+/* rgb: R,G,B order, else B,G,R. */
+rte_row_c3_to_gray_fn rte_row_c3_to_gray_select(uint32_t features, bool rgb);
+
+/* Gaussian blur (src/algo/gaussian.c, gaussian_rows.h): the column pass
+ * of ksize source rows into the u16 planes hi/lo, and the row pass of the
+ * padded planes into dst. */
+typedef void (*rte_gaussian_column_fn)(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
+                                       int32_t width, const uint16_t *taps, int32_t ksize,
+                                       int split);
+typedef void (*rte_gaussian_row_fn)(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
+                                    int32_t width, const uint16_t *taps, int32_t ksize, int split);
+typedef struct rte_gaussian_rows {
+    rte_gaussian_column_fn column;
+    rte_gaussian_row_fn row;
+} rte_gaussian_rows;
+
+void rte_gaussian_column_pass_c(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
+                                int32_t width, const uint16_t *taps, int32_t ksize, int split);
+void rte_gaussian_row_pass_c(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
+                             const uint16_t *taps, int32_t ksize, int split);
+rte_gaussian_rows rte_gaussian_rows_select(uint32_t features);
+
+/* Morphology (src/algo/morphology.c, morphology_rows.h): d = min or max of
+ * a and b, and of `count` rows (with d's own values when accumulating). */
+typedef void (*rte_morph_op2_fn)(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
+                                 bool is_max);
+typedef void (*rte_morph_reduce_fn)(uint8_t *d, const uint8_t *const *r, int32_t count,
+                                    bool accumulate, int32_t n, bool is_max);
+typedef struct rte_morph_rows {
+    rte_morph_op2_fn op2;
+    rte_morph_reduce_fn reduce;
+} rte_morph_rows;
+
+void rte_morph_row_op2_c(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max);
+void rte_morph_reduce_rows_c(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate,
+                             int32_t n, bool is_max);
+rte_morph_rows rte_morph_rows_select(uint32_t features);
+
+#ifdef RTE_SIMD_X86
+void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
+                            bool is_max);
+void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count,
+                                bool accumulate, int32_t n, bool is_max);
+void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
+                                   int32_t width, const uint16_t *taps, int32_t ksize, int split);
+void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
+                                int32_t width, const uint16_t *taps, int32_t ksize, int split);
+void rte_row_bgr_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_rgb_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_bgr_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
+#endif
+#ifdef RTE_SIMD_NEON
+void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_row_rgb_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
+#endif
+
+#endif
