@@ -18,5 +18,8 @@ const cli_entry cli_commands[] = {
     {"close", "closing: dilate then erode (= morphologyEx MORPH_CLOSE)", cmd_morphology},
     {"mask", "polygon region of interest (= fillPoly then bitwise_and)", cmd_mask},
     {"lanes", "lane detection and tracking on an image or a sequence (JSON)", cmd_lanes},
+    {"contours", "contours with area, moments, boxes, hull, defects, shape (= findContours + features)", cmd_contours},
+    {"shapes", "shape class of each object, as a table; --overlay draws them", cmd_shapes},
+    {"grasp", "grasp points: centre, approach angle, opening; --overlay draws them", cmd_grasp},
     {NULL, NULL, NULL},
 };

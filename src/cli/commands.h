@@ -27,5 +27,9 @@ int cmd_mask(const cli_entry *self, int argc, char **argv);
 
 /* cmd_lanes.c: the lane pipeline. */
 int cmd_lanes(const cli_entry *self, int argc, char **argv);
+/* cmd_contours.c, cmd_grasp.c: contours, shape features, the grasp path. */
+int cmd_contours(const cli_entry *self, int argc, char **argv);
+int cmd_shapes(const cli_entry *self, int argc, char **argv);
+int cmd_grasp(const cli_entry *self, int argc, char **argv);
 
 #endif

@@ -1,0 +1,129 @@
+/* The grasp path: graspable objects on a table seen from above.
+ *
+ *   grey -> Gaussian blur -> binary image (Otsu, a fixed threshold, or
+ *   Canny + morphological close for objects whose boundary is the only
+ *   reliable cue) -> external contours -> area filter -> features
+ *   (centroid from moments, minimum-area box, shape class, solidity)
+ *   -> grasp: the point at the centroid, the gripper closing across the
+ *   box's short side, opened as wide as that side.
+ *
+ * A context is created once for a maximum frame size and maximum counts: it
+ * holds every buffer and the scratch arena (one allocation, in
+ * rte_grasp_create). rte_grasp_process() allocates nothing and is integer
+ * only. The parameters of rte_grasp_params can be changed between frames
+ * with rte_grasp_set_params() (no allocation); the fields of
+ * rte_grasp_config outside .params fix buffer sizes and tables and cannot.
+ * A context is not thread-safe: one per thread. */
+#ifndef RTEDGE_GRASP_H
+#define RTEDGE_GRASP_H
+
+#include <stdint.h>
+
+#include "rtedge/contours.h"
+#include "rtedge/image.h"
+#include "rtedge/shape.h"
+#include "rtedge/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum rte_grasp_binarize {
+    RTE_GRASP_OTSU = 0,        /* Otsu's threshold of each frame */
+    RTE_GRASP_FIXED = 1,       /* params.threshold */
+    RTE_GRASP_CANNY_CLOSE = 2, /* Canny edges closed by an ellipse: the object's outline */
+} rte_grasp_binarize;
+
+/* Which side of the threshold the objects are (Otsu and fixed modes). */
+typedef enum rte_grasp_polarity {
+    RTE_GRASP_AUTO = 0,   /* the side the image border is not on (the border is table) */
+    RTE_GRASP_DARK = 1,   /* objects darker than the table: pixel <= threshold */
+    RTE_GRASP_BRIGHT = 2, /* objects brighter: pixel > threshold */
+} rte_grasp_polarity;
+
+/* Safe to change at run time (rte_grasp_set_params). */
+typedef struct rte_grasp_params {
+    rte_grasp_binarize binarize;
+    int32_t threshold;            /* RTE_GRASP_FIXED: 0..255 */
+    rte_grasp_polarity polarity;
+    int32_t canny_low, canny_high; /* RTE_GRASP_CANNY_CLOSE: L1 magnitude thresholds, 0..2040 */
+    int32_t min_area;             /* pixels; smaller objects are dropped (>= 0) */
+    int32_t max_area;             /* pixels; larger ones are dropped; 0 = no limit */
+    int32_t skip_border;          /* 1: drop objects touching the image border */
+    int32_t max_objects;          /* 1..config.max_objects: objects reported */
+} rte_grasp_params;
+
+typedef struct rte_grasp_config {
+    int32_t max_width, max_height; /* 1..RTE_SHAPE_MAX_COORD + 1 */
+    int32_t max_contours;          /* contours stored per frame (then truncated) */
+    int32_t max_points;            /* contour points stored per frame */
+    int32_t max_objects;           /* capacity of the object list */
+    int32_t blur_ksize;            /* odd 1..15; 1 = no blur (sigma from the size) */
+    int32_t close_ksize;           /* ellipse of the canny-close mode, odd 1..31 */
+    int32_t close_iterations;      /* 1..8 */
+    rte_grasp_params params;       /* the initial parameters */
+} rte_grasp_config;
+
+/* Defaults: 1280x720, 4096 contours, 262144 points, 64 objects, blur 5,
+ * Otsu with automatic polarity, Canny 50/150 closed by a 5x5 ellipse twice,
+ * min area 100 px, no max area, border objects kept. */
+void rte_grasp_config_default(rte_grasp_config *config);
+
+typedef struct rte_grasp_object {
+    /* Grasp: the point (centroid, Q8 px), the direction in which the
+     * gripper closes (across the short side of the minimum-area box, in
+     * degrees Q16 within (-90, 90], image coordinates, y down: positive
+     * turns clockwise on screen) and the opening (the short side, Q8 px). */
+    int32_t x_q8, y_q8;
+    int32_t angle_q16;
+    int32_t width_q8;
+    int32_t contour;          /* index into rte_grasp_result.contours */
+    int32_t touches_border;
+    rte_shape_info info;      /* area, box, class, solidity, ... */
+} rte_grasp_object;
+
+/* Nanoseconds spent per stage of the last frame (CLOCK_MONOTONIC). */
+typedef struct rte_grasp_timing {
+    int64_t blur_ns, binarize_ns, contours_ns, features_ns, total_ns;
+} rte_grasp_timing;
+
+/* Filled by rte_grasp_process; the pointers refer to the context's storage
+ * and stay valid until the next call or rte_grasp_destroy. */
+typedef struct rte_grasp_result {
+    const rte_grasp_object *objects; /* sorted by area, largest first */
+    int32_t n_objects;
+    int32_t truncated;         /* 1 when objects, contours or points were dropped for room */
+    int32_t dropped_objects;   /* objects that passed the filters but exceeded max_objects */
+    int32_t dropped_contours;  /* contours beyond max_contours / max_points */
+    int32_t threshold;         /* the threshold used (-1 in canny-close mode) */
+    rte_grasp_polarity polarity; /* DARK or BRIGHT as applied (AUTO resolved; BRIGHT for
+                                  * canny-close, where the closed edges are the objects) */
+    const rte_contours *contours; /* the external contours of the frame */
+    const rte_image_u8 *binary;   /* the binary image the contours came from */
+    rte_grasp_timing timing;
+} rte_grasp_result;
+
+typedef struct rte_grasp_ctx rte_grasp_ctx;
+
+/* RTE_OK and *ctx, or RTE_ERR_ARGUMENT (a field out of range),
+ * RTE_ERR_NO_MEMORY. */
+rte_status rte_grasp_create(const rte_grasp_config *config, rte_grasp_ctx **ctx);
+void rte_grasp_destroy(rte_grasp_ctx *ctx);
+
+/* Checks and applies new parameters (RTE_ERR_ARGUMENT leaves the old ones). */
+rte_status rte_grasp_set_params(rte_grasp_ctx *ctx, const rte_grasp_params *params);
+rte_status rte_grasp_get_params(const rte_grasp_ctx *ctx, rte_grasp_params *params);
+
+/* Bytes rte_grasp_create allocates for a configuration (0 when invalid). */
+size_t rte_grasp_memory_size(const rte_grasp_config *config);
+
+/* One frame, at most max_width x max_height (RTE_ERR_SIZE otherwise). */
+rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_grasp_result *out);
+
+/* Lower-case name of a shape class ("circle", "rectangle", ...). */
+const char *rte_grasp_shape_name(rte_shape_class shape);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,196 @@
+#include "cli_pipeline.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rtedge/blur.h"
+#include "rtedge/imageio.h"
+#include "rtedge/morphology.h"
+
+const char *const cli_polarities[] = {"auto", "dark", "bright", NULL};
+
+void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area)
+{
+    rte_grasp_config c;
+    rte_grasp_config_default(&c);
+    *o = (cli_pipeline_options){
+        .binarize = "otsu",
+        .polarity = 0,
+        .blur = blur,
+        .min_area = min_area,
+        .max_area = 0,
+        .max_objects = c.max_objects,
+        .canny_low = c.params.canny_low,
+        .canny_high = c.params.canny_high,
+        .close = c.close_ksize,
+        .close_iterations = c.close_iterations,
+        .skip_border = false,
+    };
+}
+
+int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp)
+{
+    int n = 0;
+    t[n++] = (cli_option){"binarize", CLI_STRING, &o->binarize, 0, 0, NULL,
+                          "otsu, canny (edges closed by an ellipse) or a fixed threshold 0..255", NULL};
+    t[n++] = (cli_option){"polarity", CLI_CHOICE, &o->polarity, 0, 0, cli_polarities,
+                          "objects darker or brighter than the table; auto: the image border is table", NULL};
+    t[n++] = (cli_option){"blur", CLI_INT, &o->blur, 1, RTE_GAUSSIAN_MAX_KSIZE, NULL,
+                          "odd Gaussian size before binarising (1 = none)", NULL};
+    t[n++] = (cli_option){"canny-low", CLI_INT, &o->canny_low, 0, 2040, NULL, "canny: lower threshold", NULL};
+    t[n++] = (cli_option){"canny-high", CLI_INT, &o->canny_high, 0, 2040, NULL, "canny: upper threshold", NULL};
+    t[n++] = (cli_option){"close", CLI_INT, &o->close, 1, RTE_MORPH_MAX_KSIZE, NULL,
+                          "canny: odd size of the closing ellipse", NULL};
+    t[n++] = (cli_option){"close-iterations", CLI_INT, &o->close_iterations, 1, 8, NULL,
+                          "canny: closing iterations", NULL};
+    t[n++] = (cli_option){"min-area", CLI_INT, &o->min_area, 0, 1 << 30, NULL, "smallest object, px", NULL};
+    if (grasp) {
+        t[n++] = (cli_option){"max-area", CLI_INT, &o->max_area, 0, 1 << 30, NULL,
+                              "largest object, px (0 = no limit)", NULL};
+        t[n++] = (cli_option){"skip-border", CLI_FLAG, &o->skip_border, 0, 0, NULL,
+                              "drop objects touching the image border", NULL};
+        t[n++] = (cli_option){"max-objects", CLI_INT, &o->max_objects, 1, 4096, NULL,
+                              "objects reported (the largest)", NULL};
+    }
+    t[n] = (cli_option){0};
+    return n;
+}
+
+int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int32_t w, int32_t h,
+                        rte_grasp_config *c)
+{
+    rte_grasp_config_default(c);
+    rte_grasp_params *p = &c->params;
+    if (strcmp(o->binarize, "otsu") == 0) {
+        p->binarize = RTE_GRASP_OTSU;
+    } else if (strcmp(o->binarize, "canny") == 0) {
+        p->binarize = RTE_GRASP_CANNY_CLOSE;
+    } else {
+        char *end;
+        long t = strtol(o->binarize, &end, 10);
+        if (end == o->binarize || *end || t < 0 || t > 255) {
+            cli_error(command, "--binarize must be otsu, canny or a threshold 0..255, not \"%s\"", o->binarize);
+            return CLI_EXIT_USAGE;
+        }
+        p->binarize = RTE_GRASP_FIXED;
+        p->threshold = (int32_t)t;
+    }
+    if (o->blur % 2 == 0 || o->close % 2 == 0) {
+        cli_error(command, "--blur and --close must be odd");
+        return CLI_EXIT_USAGE;
+    }
+    c->max_width = w;
+    c->max_height = h;
+    /* room for every contour and point the image can hold */
+    c->max_contours = (int32_t)(((int64_t)w * h) / 2 + 1);
+    c->max_points = (int32_t)(2 * (int64_t)w * h + 4);
+    c->max_objects = o->max_objects;
+    c->blur_ksize = o->blur;
+    c->close_ksize = o->close;
+    c->close_iterations = o->close_iterations;
+    p->polarity = (rte_grasp_polarity)o->polarity;
+    p->canny_low = o->canny_low;
+    p->canny_high = o->canny_high;
+    p->min_area = o->min_area;
+    p->max_area = o->max_area;
+    p->skip_border = o->skip_border;
+    p->max_objects = o->max_objects;
+    return CLI_EXIT_OK;
+}
+
+/* Prints v / 2^shift with `places` decimals, rounded, without trailing zeros. */
+static void print_fixed(int64_t v, int shift, int places)
+{
+    int64_t scale = 1;
+    for (int i = 0; i < places; i++)
+        scale *= 10;
+    const int neg = v < 0;
+    uint64_t a = neg ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
+    /* integer part, then the fraction rounded to `places` decimals */
+    uint64_t ip = a >> shift;
+    uint64_t fp = ((a & (((uint64_t)1 << shift) - 1)) * (uint64_t)scale + ((uint64_t)1 << (shift - 1))) >> shift;
+    if (fp == (uint64_t)scale) {
+        ip++;
+        fp = 0;
+    }
+    const uint64_t q = ip | fp;
+    printf("%s%llu", neg && q ? "-" : "", (unsigned long long)ip);
+    if (fp) {
+        char digits[24];
+        snprintf(digits, sizeof digits, "%0*llu", places, (unsigned long long)fp);
+        size_t n = strlen(digits);
+        while (n > 0 && digits[n - 1] == '0')
+            digits[--n] = '\0';
+        printf(".%s", digits);
+    }
+}
+
+void cli_print_q8(int64_t v) { print_fixed(v, 8, 2); }
+void cli_print_q16(int64_t v) { print_fixed(v, 16, 4); }
+
+void *cli_overlay_canvas(const char *command, const cli_image *in, rte_image_u8c3 *canvas)
+{
+    const int32_t w = in->gray.width, h = in->gray.height;
+    uint8_t *mem = malloc((size_t)w * (size_t)h * 3);
+    if (!mem) {
+        cli_error(command, "not enough memory for a %dx%d overlay", w, h);
+        return NULL;
+    }
+    *canvas = (rte_image_u8c3){w, h, 3 * w, mem};
+    for (int32_t y = 0; y < h; y++) {
+        uint8_t *d = mem + (size_t)y * 3 * (size_t)w;
+        if (in->bgr.buf) {
+            memcpy(d, in->bgr.buf + (size_t)y * (size_t)in->bgr.stride, (size_t)w * 3);
+        } else {
+            const uint8_t *s = rte_u8_row(&in->gray, y);
+            for (int32_t x = 0; x < w; x++)
+                d[3 * x] = d[3 * x + 1] = d[3 * x + 2] = s[x];
+        }
+    }
+    return mem;
+}
+
+void cli_overlay_label(rte_image_u8c3 *canvas, int32_t x, int32_t y, const char *text, rte_draw_color c)
+{
+    int32_t tw, th;
+    rte_draw_text_size(text, 1, &tw, &th);
+    if (x + tw + 2 > canvas->width)
+        x = canvas->width - tw - 2;
+    if (y + th + 2 > canvas->height)
+        y = canvas->height - th - 2;
+    x = x < 1 ? 1 : x;
+    y = y < 1 ? 1 : y;
+    const rte_draw_color black = {0, 0, 0};
+    for (int32_t yy = y - 1; yy <= y + th; yy++)
+        rte_draw_line(canvas, x - 1, yy, x + tw, yy, black, 1);
+    rte_draw_text(canvas, x, y, text, c, 1);
+}
+
+static int32_t round_q8(int32_t v) { return (v + 128) >> 8; }
+
+void cli_overlay_box(rte_image_u8c3 *canvas, const int32_t corners_q8[4][2], rte_draw_color c)
+{
+    rte_point p[4];
+    for (int i = 0; i < 4; i++)
+        p[i] = (rte_point){round_q8(corners_q8[i][0]), round_q8(corners_q8[i][1])};
+    rte_draw_polyline(canvas, p, 4, 1, c, 1);
+}
+
+rte_draw_color cli_overlay_color(int32_t i)
+{
+    static const rte_draw_color palette[] = {
+        {0, 0, 255}, {0, 200, 0}, {255, 160, 0}, {0, 200, 255}, {255, 0, 255}, {255, 255, 0}, {0, 128, 255}, {128, 0, 255},
+    };
+    return palette[(uint32_t)i % (sizeof palette / sizeof palette[0])];
+}
+
+int cli_overlay_save(const char *command, const char *path, const rte_image_u8c3 *canvas)
+{
+    char msg[RTE_IO_MESSAGE_SIZE];
+    if (rte_image_write_bgr(path, canvas, msg, sizeof msg) != RTE_OK) {
+        cli_error(command, "%s", msg);
+        return CLI_EXIT_FAILURE;
+    }
+    return CLI_EXIT_OK;
+}

@@ -1,0 +1,51 @@
+/* Pieces shared by the contours, shapes and grasp subcommands: the
+ * binarisation options, fixed-point printing and overlays (rtedge_draw). */
+#ifndef RTEDGE_CLI_PIPELINE_H
+#define RTEDGE_CLI_PIPELINE_H
+
+#include <stdint.h>
+
+#include "cli.h"
+#include "cli_image.h"
+#include "rtedge/draw.h"
+#include "rtedge/grasp.h"
+
+/* The grasp options of shapes and grasp (and the binarisation of contours). */
+typedef struct cli_pipeline_options {
+    const char *binarize; /* "otsu", "canny" or a threshold 0..255 */
+    int polarity;         /* index in cli_polarities: auto, dark, bright */
+    int blur, min_area, max_area, max_objects, canny_low, canny_high, close, close_iterations;
+    bool skip_border;
+} cli_pipeline_options;
+
+extern const char *const cli_polarities[];
+
+/* Defaults (blur: the default Gaussian size of the command). */
+void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area);
+
+/* Fills options[] (room for CLI_PIPELINE_OPTIONS entries) with the table
+ * entries of `o`; `grasp` adds the object options (areas, border, count). */
+#define CLI_PIPELINE_OPTIONS 12
+int cli_pipeline_option_table(cli_option *options, cli_pipeline_options *o, bool grasp);
+
+/* The grasp configuration for an image of w x h. CLI_EXIT_USAGE after a
+ * message when --binarize is not otsu, canny or 0..255. */
+int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int32_t w, int32_t h,
+                        rte_grasp_config *config);
+
+/* Q8 / Q16 fixed point as decimals in JSON (2 or 4 places, trailing zeros cut). */
+void cli_print_q8(int64_t v);
+void cli_print_q16(int64_t v);
+
+/* A BGR copy of the input to draw on (grey replicated); NULL after a message. */
+void *cli_overlay_canvas(const char *command, const cli_image *in, rte_image_u8c3 *canvas);
+/* A label with a dark box behind it, kept inside the image, at (x, y) top-left. */
+void cli_overlay_label(rte_image_u8c3 *canvas, int32_t x, int32_t y, const char *text, rte_draw_color c);
+/* The four Q8 corners of a rotated rectangle as a closed polyline. */
+void cli_overlay_box(rte_image_u8c3 *canvas, const int32_t corners_q8[4][2], rte_draw_color c);
+/* A distinct colour for object i. */
+rte_draw_color cli_overlay_color(int32_t i);
+/* Writes the canvas (.png, .ppm); CLI_EXIT_FAILURE after a message. */
+int cli_overlay_save(const char *command, const char *path, const rte_image_u8c3 *canvas);
+
+#endif

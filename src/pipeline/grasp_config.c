@@ -1,0 +1,148 @@
+/* The grasp context: configuration-time half (defaults, sizes, the one
+ * allocation, the Gaussian and ellipse tables). May use floating point. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "grasp_ctx.h"
+#include "rtedge/canny.h"
+#include "rtedge/contours.h"
+#include "rtedge/shape.h"
+
+void rte_grasp_config_default(rte_grasp_config *config)
+{
+    if (!config)
+        return;
+    *config = (rte_grasp_config){
+        .max_width = 1280,
+        .max_height = 720,
+        .max_contours = 4096,
+        .max_points = 1 << 18,
+        .max_objects = 64,
+        .blur_ksize = 5,
+        .close_ksize = 5,
+        .close_iterations = 2,
+        .params = {
+            .binarize = RTE_GRASP_OTSU,
+            .threshold = 127,
+            .polarity = RTE_GRASP_AUTO,
+            .canny_low = 50,
+            .canny_high = 150,
+            .min_area = 100,
+            .max_area = 0,
+            .skip_border = 0,
+            .max_objects = 64,
+        },
+    };
+}
+
+static int config_ok(const rte_grasp_config *c)
+{
+    return c && c->max_width >= 1 && c->max_width <= RTE_SHAPE_MAX_COORD + 1 && c->max_height >= 1 &&
+           c->max_height <= RTE_SHAPE_MAX_COORD + 1 && c->max_contours >= 1 &&
+           c->max_contours <= (1 << 20) && c->max_points >= 1 && c->max_points <= (1 << 26) &&
+           c->max_objects >= 1 && c->max_objects <= 4096 && c->blur_ksize >= 1 &&
+           c->blur_ksize <= RTE_GAUSSIAN_MAX_KSIZE && (c->blur_ksize & 1) && c->close_ksize >= 1 &&
+           c->close_ksize <= RTE_MORPH_MAX_KSIZE && (c->close_ksize & 1) && c->close_iterations >= 1 &&
+           c->close_iterations <= 8 && rte_grasp_check_params(c, &c->params) == RTE_OK;
+}
+
+static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
+
+/* The arena: the largest need of any one stage (each resets it). */
+static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k, const rte_morph_element *e)
+{
+    const int32_t w = c->max_width, h = c->max_height;
+    size_t s = rte_gaussian_blur_u8_scratch_size(w, h, k);
+    s = max_size(s, rte_canny_scratch_size(w, h, 3));
+    s = max_size(s, rte_morphology_scratch_size(w, h, e, c->close_iterations));
+    s = max_size(s, rte_contours_scratch_size(w, h, c->max_contours));
+    return max_size(s, rte_shape_classify_scratch_size(c->max_points));
+}
+
+/* The pieces of the block, in order; with base NULL only counts bytes. */
+static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *c, size_t arena_bytes)
+{
+    const size_t image = (size_t)c->max_width * (size_t)c->max_height;
+    const size_t sizes[] = {
+        image, image, image,
+        (size_t)c->max_points * sizeof(rte_point),
+        (size_t)c->max_contours * sizeof(rte_contour),
+        (size_t)c->max_objects * sizeof(grasp_candidate),
+        (size_t)c->max_objects * sizeof(rte_grasp_object),
+        arena_bytes,
+    };
+    size_t off = 0;
+    uint8_t *at[sizeof sizes / sizeof sizes[0]];
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        at[i] = base ? base + off : NULL;
+        off += rte_arena_piece_size(sizes[i]);
+    }
+    if (ctx) {
+        ctx->blurred = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[0]};
+        ctx->edges = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[1]};
+        ctx->binary = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[2]};
+        ctx->contours.points = (rte_point *)(void *)at[3];
+        ctx->contours.contours = (rte_contour *)(void *)at[4];
+        ctx->contours.max_points = c->max_points;
+        ctx->contours.max_contours = c->max_contours;
+        ctx->best = (grasp_candidate *)(void *)at[5];
+        ctx->objects = (rte_grasp_object *)(void *)at[6];
+        rte_arena_init(&ctx->arena, at[7], arena_bytes);
+    }
+    return off + RTE_ARENA_ALIGN; /* room to align the block's start */
+}
+
+static rte_status tables(const rte_grasp_config *c, rte_gaussian_kernel *k, rte_morph_element *e)
+{
+    rte_status st = rte_gaussian_kernel_init(k, c->blur_ksize, c->blur_ksize, 0.0, 0.0);
+    if (st == RTE_OK)
+        st = rte_morphology_element_init(e, RTE_MORPH_ELLIPSE, c->close_ksize, c->close_ksize);
+    return st;
+}
+
+size_t rte_grasp_memory_size(const rte_grasp_config *config)
+{
+    rte_gaussian_kernel k;
+    rte_morph_element e;
+    if (!config_ok(config) || tables(config, &k, &e) != RTE_OK)
+        return 0;
+    return sizeof(rte_grasp_ctx) + layout(NULL, NULL, config, arena_size(config, &k, &e));
+}
+
+rte_status rte_grasp_create(const rte_grasp_config *config, rte_grasp_ctx **out)
+{
+    if (!out)
+        return RTE_ERR_ARGUMENT;
+    *out = NULL;
+    if (!config_ok(config))
+        return RTE_ERR_ARGUMENT;
+    rte_grasp_ctx *ctx = calloc(1, sizeof *ctx);
+    if (!ctx)
+        return RTE_ERR_NO_MEMORY;
+    rte_status st = tables(config, &ctx->blur, &ctx->close);
+    if (st != RTE_OK) {
+        free(ctx);
+        return st;
+    }
+    const size_t arena_bytes = arena_size(config, &ctx->blur, &ctx->close);
+    const size_t bytes = layout(NULL, NULL, config, arena_bytes);
+    ctx->memory = malloc(bytes);
+    if (!ctx->memory) {
+        free(ctx);
+        return RTE_ERR_NO_MEMORY;
+    }
+    uintptr_t base = ((uintptr_t)ctx->memory + RTE_ARENA_ALIGN - 1) & ~(uintptr_t)(RTE_ARENA_ALIGN - 1);
+    layout(ctx, (uint8_t *)base, config, arena_bytes);
+    ctx->config = *config;
+    ctx->params = config->params;
+    *out = ctx;
+    return RTE_OK;
+}
+
+void rte_grasp_destroy(rte_grasp_ctx *ctx)
+{
+    if (!ctx)
+        return;
+    free(ctx->memory);
+    free(ctx);
+}

@@ -1,0 +1,32 @@
+/* The grasp context, shared by its configuration-time (grasp_config.c) and
+ * per-frame (grasp.c) halves. */
+#ifndef RTEDGE_PIPELINE_GRASP_CTX_H
+#define RTEDGE_PIPELINE_GRASP_CTX_H
+
+#include "rtedge/blur.h"
+#include "rtedge/grasp.h"
+#include "rtedge/morphology.h"
+
+/* A contour that passed the filters: its index and twice its area. */
+typedef struct grasp_candidate {
+    int64_t area2;
+    int32_t contour;
+} grasp_candidate;
+
+struct rte_grasp_ctx {
+    rte_grasp_config config; /* as created; config.params is not updated */
+    rte_grasp_params params; /* in force */
+    rte_gaussian_kernel blur;
+    rte_morph_element close;
+    rte_image_u8 blurred, edges, binary;
+    rte_contours contours;
+    grasp_candidate *best; /* config.max_objects, sorted by area */
+    rte_grasp_object *objects;
+    rte_arena arena;
+    void *memory;
+};
+
+/* Integer checks of run-time parameters against a configuration. */
+rte_status rte_grasp_check_params(const rte_grasp_config *config, const rte_grasp_params *params);
+
+#endif

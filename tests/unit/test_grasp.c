@@ -1,0 +1,449 @@
+/* The grasp path on synthetic table-top scenes with known objects: every
+ * object found, centroid within 1 px, approach angle within 2 degrees,
+ * shape class right, no phantoms; then the bounds, run-time parameters and
+ * argument errors. */
+#include "unit.h"
+
+#include <math.h>
+
+#include "rtedge/grasp.h"
+#include "rtedge/polygon_mask.h"
+
+#define PI 3.14159265358979323846
+
+typedef struct truth {
+    rte_shape_class shape;
+    double cx, cy;    /* centroid of the shape as drawn */
+    double angle;     /* closing direction (rectangles), degrees in (-90, 90] */
+    int has_angle;
+} truth;
+
+enum { MAX_TRUTH = 16 };
+
+typedef struct scene {
+    rte_image_u8 img;
+    truth t[MAX_TRUTH];
+    int n;
+} scene;
+
+static uint8_t arena_mem[1 << 16];
+
+/* Fills the polygon (integer vertices) with `value` and records its centroid. */
+static void fill_polygon(rte_image_u8 *img, const rte_vertex *v, int n, uint8_t value, truth *t)
+{
+    rte_arena a;
+    rte_arena_init(&a, arena_mem, sizeof arena_mem);
+    rte_polygon poly = {v, n};
+    assert_int_equal(rte_polygon_fill_u8(img, &poly, 1, value, &a), RTE_OK);
+    double a2 = 0, sx = 0, sy = 0;
+    for (int i = 0; i < n; i++) {
+        const double x0 = v[i].x, y0 = v[i].y, x1 = v[(i + 1) % n].x, y1 = v[(i + 1) % n].y;
+        const double c = x0 * y1 - x1 * y0;
+        a2 += c;
+        sx += (x0 + x1) * c;
+        sy += (y0 + y1) * c;
+    }
+    t->cx = sx / (3 * a2);
+    t->cy = sy / (3 * a2);
+}
+
+static void fill_disc(rte_image_u8 *img, int cx, int cy, int r, uint8_t value, truth *t)
+{
+    for (int y = cy - r; y <= cy + r; y++)
+        for (int x = cx - r; x <= cx + r; x++)
+            if (x >= 0 && y >= 0 && x < img->width && y < img->height &&
+                (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r)
+                img->buf[(size_t)y * img->stride + x] = value;
+    t->cx = cx;
+    t->cy = cy;
+}
+
+static double rnd(uint32_t *s, double lo, double hi)
+{
+    return lo + (hi - lo) * (unit_rand(s) % 100000) / 100000.0;
+}
+
+/* A regular polygon or rectangle of half sizes (hl, hw) turned by th. */
+static void rect_vertices(double cx, double cy, double hl, double hw, double th, rte_vertex *v)
+{
+    const double c = cos(th), s = sin(th);
+    const double px[4] = {-hl, hl, hl, -hl}, py[4] = {-hw, -hw, hw, hw};
+    for (int i = 0; i < 4; i++) {
+        v[i].x = (int32_t)lround(cx + px[i] * c - py[i] * s);
+        v[i].y = (int32_t)lround(cy + px[i] * s + py[i] * c);
+    }
+}
+
+/* One object of the given class centred near (cx, cy) in a cell of `cell` px. */
+static void draw_object(scene *sc, rte_shape_class shape, double cx, double cy, int cell, uint8_t value,
+                        uint32_t *rng)
+{
+    truth *t = &sc->t[sc->n++];
+    t->shape = shape;
+    t->has_angle = 0;
+    const double th = rnd(rng, 0, PI);
+    rte_vertex v[4];
+    if (shape == RTE_SHAPE_RECTANGLE) {
+        const double hl = rnd(rng, 0.28, 0.38) * cell, hw = hl / rnd(rng, 1.6, 2.6);
+        rect_vertices(cx, cy, hl, hw, th, v);
+        fill_polygon(&sc->img, v, 4, value, t);
+        /* long side from the drawn vertices; the gripper closes across it */
+        double a = atan2(v[1].y - v[0].y, v[1].x - v[0].x) * 180 / PI + 90;
+        while (a > 90)
+            a -= 180;
+        while (a <= -90)
+            a += 180;
+        t->angle = a;
+        t->has_angle = 1;
+    } else if (shape == RTE_SHAPE_SQUARE) {
+        const double h = rnd(rng, 0.18, 0.28) * cell;
+        rect_vertices(cx, cy, h, h, th, v);
+        fill_polygon(&sc->img, v, 4, value, t);
+    } else if (shape == RTE_SHAPE_TRIANGLE) {
+        const double r = rnd(rng, 0.25, 0.38) * cell;
+        for (int i = 0; i < 3; i++) {
+            v[i].x = (int32_t)lround(cx + r * cos(th + i * 2 * PI / 3));
+            v[i].y = (int32_t)lround(cy + r * sin(th + i * 2 * PI / 3));
+        }
+        fill_polygon(&sc->img, v, 3, value, t);
+    } else {
+        fill_disc(&sc->img, (int)lround(cx), (int)lround(cy), (int)lround(rnd(rng, 0.16, 0.3) * cell), value, t);
+    }
+}
+
+/* A w x h table (grey `table` +- noise) with objects in a grid of cells. */
+static scene make_scene(uint32_t seed, int32_t w, int32_t h, int pad, uint8_t table, uint8_t object)
+{
+    scene sc = {.img = unit_image_u8(w, h, pad, table)};
+    uint32_t rng = seed;
+    const int cell = 150, cols = w / cell, rows = h / cell;
+    static const rte_shape_class classes[4] = {RTE_SHAPE_RECTANGLE, RTE_SHAPE_SQUARE, RTE_SHAPE_TRIANGLE,
+                                               RTE_SHAPE_CIRCLE};
+    for (int r = 0; r < rows; r++)
+        for (int c = 0; c < cols && sc.n < MAX_TRUTH; c++) {
+            if (unit_rand(&rng) % 5 == 0)
+                continue; /* an empty cell */
+            const double cx = c * cell + cell / 2.0 + rnd(&rng, -10, 10);
+            const double cy = r * cell + cell / 2.0 + rnd(&rng, -10, 10);
+            draw_object(&sc, classes[unit_rand(&rng) % 4], cx, cy, cell, object, &rng);
+        }
+    /* sensor noise on everything */
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++) {
+            uint8_t *p = &sc.img.buf[(size_t)y * sc.img.stride + x];
+            *p = (uint8_t)(*p + (int)(unit_rand(&rng) % 17) - 8);
+        }
+    return sc;
+}
+
+static rte_grasp_ctx *new_ctx_blur(int32_t w, int32_t h, rte_grasp_binarize mode, int32_t blur)
+{
+    rte_grasp_config c;
+    rte_grasp_config_default(&c);
+    c.max_width = w;
+    c.max_height = h;
+    c.params.binarize = mode;
+    c.blur_ksize = blur;
+    rte_grasp_ctx *ctx = NULL;
+    assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
+    assert_non_null(ctx);
+    return ctx;
+}
+
+static rte_grasp_ctx *new_ctx(int32_t w, int32_t h, rte_grasp_binarize mode)
+{
+    return new_ctx_blur(w, h, mode, 5);
+}
+
+static double angle_diff(double a, double b)
+{
+    double d = fmod(fabs(a - b), 180.0);
+    return d > 90 ? 180 - d : d;
+}
+
+/* The largest errors seen, printed by the scene tests. */
+static double worst_px, worst_deg;
+
+/* Every object of the scene matches one result (and the counts agree). */
+static void check_scene(const scene *sc, const rte_grasp_result *r, double tol_px, int check_class)
+{
+    assert_int_equal(r->n_objects, sc->n);
+    assert_int_equal(r->truncated, 0);
+    int used[MAX_TRUTH] = {0};
+    for (int i = 0; i < sc->n; i++) {
+        const truth *t = &sc->t[i];
+        int best = -1;
+        double bd = 1e9;
+        for (int k = 0; k < r->n_objects; k++) {
+            const double dx = r->objects[k].x_q8 / 256.0 - t->cx, dy = r->objects[k].y_q8 / 256.0 - t->cy;
+            const double d = sqrt(dx * dx + dy * dy);
+            if (!used[k] && d < bd) {
+                bd = d;
+                best = k;
+            }
+        }
+        assert_true(best >= 0);
+        if (bd > tol_px)
+            fail_msg("object %d (class %d) at %.2f,%.2f: nearest result %.2f px away", i, t->shape, t->cx, t->cy, bd);
+        used[best] = 1;
+        worst_px = bd > worst_px ? bd : worst_px;
+        const rte_grasp_object *o = &r->objects[best];
+        if (check_class && o->info.shape != t->shape)
+            fail_msg("object %d at %.1f,%.1f: class %d, expected %d", i, t->cx, t->cy, o->info.shape, t->shape);
+        if (t->has_angle && angle_diff(o->angle_q16 / 65536.0, t->angle) > worst_deg)
+            worst_deg = angle_diff(o->angle_q16 / 65536.0, t->angle);
+        if (t->has_angle && angle_diff(o->angle_q16 / 65536.0, t->angle) > 2.0)
+            fail_msg("rectangle at %.1f,%.1f: angle %.2f, expected %.2f", t->cx, t->cy, o->angle_q16 / 65536.0,
+                     t->angle);
+    }
+    for (int k = 1; k < r->n_objects; k++) /* sorted by area */
+        assert_true(r->objects[k - 1].info.area2 >= r->objects[k].info.area2);
+}
+
+static void synthetic_scenes(void **state)
+{
+    (void)state;
+    const int32_t w = 640, h = 480;
+    rte_grasp_ctx *ctx = new_ctx(w, h, RTE_GRASP_OTSU);
+    int objects = 0;
+    worst_px = worst_deg = 0;
+    for (uint32_t seed = 1; seed <= 24; seed++) {
+        /* dark objects on a light table, then bright ones on a dark table */
+        const int dark = seed & 1;
+        scene sc = make_scene(seed * 2654435761u, w, h, (int)(seed % 3) * 7, dark ? 190 : 60, dark ? 50 : 200);
+        rte_grasp_result r;
+        assert_int_equal(rte_grasp_process(ctx, &sc.img, &r), RTE_OK);
+        assert_int_equal(r.polarity, dark ? RTE_GRASP_DARK : RTE_GRASP_BRIGHT);
+        check_scene(&sc, &r, 1.0, 1);
+        unit_assert_padding_u8(&sc.img);
+        objects += sc.n;
+        test_free(sc.img.buf);
+    }
+    assert_true(objects > 150);
+    print_message("otsu: %d objects, largest centroid error %.3f px, angle error %.3f deg\n", objects, worst_px,
+                  worst_deg);
+    rte_grasp_destroy(ctx);
+}
+
+/* Canny + close finds the same objects by their outlines. */
+static void canny_close_scenes(void **state)
+{
+    (void)state;
+    const int32_t w = 640, h = 480;
+    rte_grasp_ctx *ctx = new_ctx(w, h, RTE_GRASP_CANNY_CLOSE);
+    worst_px = worst_deg = 0;
+    for (uint32_t seed = 1; seed <= 6; seed++) {
+        scene sc = make_scene(seed * 40503u, w, h, 3, 170, 70);
+        rte_grasp_result r;
+        assert_int_equal(rte_grasp_process(ctx, &sc.img, &r), RTE_OK);
+        assert_int_equal(r.threshold, -1);
+        check_scene(&sc, &r, 1.0, 1);
+        test_free(sc.img.buf);
+    }
+    print_message("canny-close: largest centroid error %.3f px, angle error %.3f deg\n", worst_px, worst_deg);
+    rte_grasp_destroy(ctx);
+}
+
+/* Two squares sharing an edge are one blob: one object, no phantom. */
+static void touching_objects_merge(void **state)
+{
+    (void)state;
+    rte_image_u8 img = unit_image_u8(200, 120, 5, 200);
+    truth t;
+    const rte_vertex a[4] = {{40, 30}, {99, 30}, {99, 89}, {40, 89}};
+    const rte_vertex b[4] = {{100, 30}, {159, 30}, {159, 89}, {100, 89}};
+    fill_polygon(&img, a, 4, 40, &t);
+    fill_polygon(&img, b, 4, 40, &t);
+    rte_grasp_ctx *ctx = new_ctx(200, 120, RTE_GRASP_OTSU);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_int_equal(r.objects[0].info.shape, RTE_SHAPE_RECTANGLE);
+    assert_int_equal(r.objects[0].x_q8, (int32_t)(99.5 * 256));
+    assert_int_equal(r.objects[0].y_q8, (int32_t)(59.5 * 256));
+    /* a 120 x 60 block: closes vertically, opens to 59 px (pixel centres) */
+    assert_int_equal(r.objects[0].angle_q16, 90 * 65536);
+    assert_int_equal(r.objects[0].width_q8, 59 * 256);
+    rte_grasp_destroy(ctx);
+    test_free(img.buf);
+}
+
+/* Objects on the image border: kept and flagged, or skipped. Area limits. */
+static void border_and_area_filters(void **state)
+{
+    (void)state;
+    rte_image_u8 img = unit_image_u8(160, 100, 0, 210);
+    truth t;
+    const rte_vertex edge[4] = {{0, 10}, {29, 10}, {29, 49}, {0, 49}};   /* 30 x 40, on the left border */
+    const rte_vertex mid[4] = {{70, 30}, {119, 30}, {119, 69}, {70, 69}}; /* 50 x 40 */
+    const rte_vertex tiny[4] = {{140, 80}, {145, 80}, {145, 85}, {140, 85}}; /* 6 x 6 */
+    fill_polygon(&img, edge, 4, 30, &t);
+    fill_polygon(&img, mid, 4, 30, &t);
+    fill_polygon(&img, tiny, 4, 30, &t);
+    rte_grasp_ctx *ctx = new_ctx_blur(160, 100, RTE_GRASP_FIXED, 1); /* exact areas */
+    rte_grasp_params p;
+    assert_int_equal(rte_grasp_get_params(ctx, &p), RTE_OK);
+    p.threshold = 120;
+    p.polarity = RTE_GRASP_DARK;
+    p.min_area = 20;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.threshold, 120);
+    assert_int_equal(r.n_objects, 3);
+    assert_int_equal(r.objects[0].touches_border, 0);
+    assert_int_equal(r.objects[1].touches_border, 1);
+    assert_int_equal(r.objects[2].info.area2, 2 * 25);
+
+    p.skip_border = 1;
+    p.min_area = 26; /* the 6 x 6 square's contour encloses 5 x 5 */
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_int_equal(r.objects[0].x_q8, (int32_t)(94.5 * 256));
+
+    p.skip_border = 0;
+    p.max_area = 49 * 39 - 1; /* drops the middle one */
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_int_equal(r.objects[0].touches_border, 1);
+
+    /* the wrong polarity sees the table as one object touching the border */
+    p.max_area = 0;
+    p.polarity = RTE_GRASP_BRIGHT;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_int_equal(r.objects[0].touches_border, 1);
+    rte_grasp_destroy(ctx);
+    test_free(img.buf);
+}
+
+/* More objects than room: the largest are kept, the rest counted. */
+static void object_bound(void **state)
+{
+    (void)state;
+    rte_image_u8 img = unit_image_u8(400, 60, 2, 220);
+    truth t;
+    for (int i = 0; i < 10; i++) {
+        const int s = 10 + 2 * i; /* sizes 10..28 */
+        const rte_vertex v[4] = {{5 + 38 * i, 5}, {5 + 38 * i + s, 5}, {5 + 38 * i + s, 5 + s}, {5 + 38 * i, 5 + s}};
+        fill_polygon(&img, v, 4, 20, &t);
+    }
+    rte_grasp_ctx *ctx = new_ctx(400, 60, RTE_GRASP_OTSU);
+    rte_grasp_params p;
+    rte_grasp_get_params(ctx, &p);
+    p.min_area = 0;
+    p.max_objects = 3;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 3);
+    assert_int_equal(r.truncated, 1);
+    assert_int_equal(r.dropped_objects, 7);
+    assert_true(r.objects[0].info.area2 > r.objects[1].info.area2);
+    assert_true(r.objects[1].info.area2 > r.objects[2].info.area2);
+    assert_int_equal(r.objects[0].info.bounds.x, 5 + 38 * 9);
+    rte_grasp_destroy(ctx);
+    test_free(img.buf);
+}
+
+/* Tiny and degenerate images: no objects, no crash; sizes and arguments. */
+static void sizes_and_errors(void **state)
+{
+    (void)state;
+    rte_grasp_ctx *ctx = new_ctx(67, 67, RTE_GRASP_OTSU);
+    rte_grasp_result r;
+    const int32_t sizes[][2] = {{1, 1}, {1, 67}, {67, 1}, {2, 2}, {67, 67}};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        rte_image_u8 img = unit_image_u8(sizes[i][0], sizes[i][1], 3, 128);
+        assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+        assert_int_equal(r.n_objects, 0);
+        unit_assert_padding_u8(&img);
+        test_free(img.buf);
+    }
+    rte_image_u8 big = unit_image_u8(68, 10, 0, 0);
+    assert_int_equal(rte_grasp_process(ctx, &big, &r), RTE_ERR_SIZE);
+    assert_int_equal(rte_grasp_process(NULL, &big, &r), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_grasp_process(ctx, &big, NULL), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_grasp_process(ctx, NULL, &r), RTE_ERR_ARGUMENT);
+    test_free(big.buf);
+
+    rte_grasp_params p, old;
+    rte_grasp_get_params(ctx, &old);
+    p = old;
+    p.threshold = 256;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    p = old;
+    p.max_objects = 65;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    p = old;
+    p.binarize = (rte_grasp_binarize)3;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    p = old;
+    p.canny_high = 2041;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    rte_grasp_get_params(ctx, &p);
+    assert_memory_equal(&p, &old, sizeof p);
+    rte_grasp_destroy(ctx);
+    rte_grasp_destroy(NULL);
+
+    rte_grasp_config c;
+    rte_grasp_config_default(&c);
+    assert_true(rte_grasp_memory_size(&c) > 3 * 1280 * 720);
+    rte_grasp_ctx *bad = (rte_grasp_ctx *)&c;
+    c.blur_ksize = 4;
+    assert_int_equal(rte_grasp_create(&c, &bad), RTE_ERR_ARGUMENT);
+    assert_null(bad);
+    assert_int_equal(rte_grasp_memory_size(&c), 0);
+    rte_grasp_config_default(&c);
+    c.max_width = RTE_SHAPE_MAX_COORD + 2;
+    assert_int_equal(rte_grasp_create(&c, &bad), RTE_ERR_ARGUMENT);
+    rte_grasp_config_default(&c);
+    c.params.max_objects = c.max_objects + 1;
+    assert_int_equal(rte_grasp_create(&c, &bad), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_grasp_create(NULL, &bad), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_grasp_create(&c, NULL), RTE_ERR_ARGUMENT);
+    assert_string_equal(rte_grasp_shape_name(RTE_SHAPE_CIRCLE), "circle");
+    assert_string_equal(rte_grasp_shape_name((rte_shape_class)99), "other");
+}
+
+/* Too few contour slots: the result says so instead of failing. */
+static void contour_bound(void **state)
+{
+    (void)state;
+    rte_image_u8 img = unit_image_u8(100, 20, 0, 220);
+    for (int i = 0; i < 10; i++)
+        img.buf[10 * img.stride + 5 + 9 * i] = 0; /* ten dots */
+    rte_grasp_config c;
+    rte_grasp_config_default(&c);
+    c.max_width = 100;
+    c.max_height = 20;
+    c.max_contours = 4;
+    c.blur_ksize = 1;
+    c.params.min_area = 0;
+    rte_grasp_ctx *ctx = NULL;
+    assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.truncated, 1);
+    assert_int_equal(r.dropped_contours, 6);
+    assert_int_equal(r.n_objects, 4);
+    rte_grasp_destroy(ctx);
+    test_free(img.buf);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(synthetic_scenes),
+        cmocka_unit_test(canny_close_scenes),
+        cmocka_unit_test(touching_objects_merge),
+        cmocka_unit_test(border_and_area_filters),
+        cmocka_unit_test(object_bound),
+        cmocka_unit_test(sizes_and_errors),
+        cmocka_unit_test(contour_bound),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
