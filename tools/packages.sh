@@ -6,6 +6,8 @@ RTE_BUILD_PACKAGES=(meson ninja-build gcc g++ pkg-config binutils
 RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}" libcmocka-dev libopencv-dev
     python3-opencv python3-numpy)
 RTE_TEST_PACKAGES+=(linux-libc-dev libcamera-dev libcamera-tools v4l-utils qemu-system-x86 busybox-static make xz-utils)  # camera: V4L2 headers, VM suite
+RTE_BUILD_PACKAGES+=(liblcm-dev liblcm-bin libglib2.0-dev)  # daemon: LCM (lcm-gen; lcm.pc needs glib)
+RTE_TEST_PACKAGES+=(liblcm-dev liblcm-bin libglib2.0-dev liblcm-java default-jdk-headless iproute2 util-linux)  # daemon: Java LCM types, udpm tests in a network namespace
 
 rte_install_packages() {
     local missing=() p

@@ -1,0 +1,130 @@
+/* The heap-call counter: see heapcount.h. glibc exports its allocator under
+ * __libc_* names, so forwarding needs no dlsym (whose own calloc would
+ * recurse into ours). */
+#include "heapcount.h"
+
+#include <errno.h>
+#include <stddef.h>
+#include <stdint.h>
+
+void *__libc_malloc(size_t size);
+void *__libc_calloc(size_t n, size_t size);
+void *__libc_realloc(void *p, size_t size);
+void __libc_free(void *p);
+void *__libc_memalign(size_t alignment, size_t size);
+
+/* The interposed allocator (declared here only to satisfy
+ * -Wmissing-prototypes; <stdlib.h> would clash on attributes). */
+void *malloc(size_t size);
+void *calloc(size_t n, size_t size);
+void *realloc(void *p, size_t size);
+void free(void *p);
+int posix_memalign(void **out, size_t alignment, size_t size);
+void *aligned_alloc(size_t alignment, size_t size);
+void *memalign(size_t alignment, size_t size);
+void *valloc(size_t size);
+void *pvalloc(size_t size);
+
+static uint64_t n_malloc, n_calloc, n_realloc, n_free, n_bytes;
+
+#define COUNT(var, k) __atomic_fetch_add(&(var), (k), __ATOMIC_RELAXED)
+
+void *malloc(size_t size)
+{
+    COUNT(n_malloc, 1);
+    COUNT(n_bytes, size);
+    return __libc_malloc(size);
+}
+
+void *calloc(size_t n, size_t size)
+{
+    COUNT(n_calloc, 1);
+    COUNT(n_bytes, n * size);
+    return __libc_calloc(n, size);
+}
+
+void *realloc(void *p, size_t size)
+{
+    COUNT(n_realloc, 1);
+    COUNT(n_bytes, size);
+    return __libc_realloc(p, size);
+}
+
+void free(void *p)
+{
+    COUNT(n_free, 1);
+    __libc_free(p);
+}
+
+void *memalign(size_t alignment, size_t size)
+{
+    COUNT(n_malloc, 1);
+    COUNT(n_bytes, size);
+    return __libc_memalign(alignment, size);
+}
+
+int posix_memalign(void **out, size_t alignment, size_t size)
+{
+    if (alignment < sizeof(void *) || (alignment & (alignment - 1)) != 0)
+        return EINVAL;
+    void *p = memalign(alignment, size);
+    if (!p)
+        return ENOMEM;
+    *out = p;
+    return 0;
+}
+
+void *aligned_alloc(size_t alignment, size_t size)
+{
+    return memalign(alignment, size);
+}
+
+void *valloc(size_t size)
+{
+    return memalign(4096, size);
+}
+
+void *pvalloc(size_t size)
+{
+    return memalign(4096, (size + 4095) & ~(size_t)4095);
+}
+
+#define LOAD(var) __atomic_load_n(&(var), __ATOMIC_RELAXED)
+#define CLEAR(var) __atomic_store_n(&(var), 0, __ATOMIC_RELAXED)
+
+void heapcount_get(heapcount_counts *c)
+{
+    c->malloc_calls = LOAD(n_malloc);
+    c->calloc_calls = LOAD(n_calloc);
+    c->realloc_calls = LOAD(n_realloc);
+    c->free_calls = LOAD(n_free);
+    c->bytes = LOAD(n_bytes);
+}
+
+void heapcount_reset(void)
+{
+    CLEAR(n_malloc);
+    CLEAR(n_calloc);
+    CLEAR(n_realloc);
+    CLEAR(n_free);
+    CLEAR(n_bytes);
+}
+
+uint64_t heapcount_allocations(const heapcount_counts *c)
+{
+    return c->malloc_calls + c->calloc_calls + c->realloc_calls;
+}
+
+uint64_t heapcount_calls(const heapcount_counts *c)
+{
+    return heapcount_allocations(c) + c->free_calls;
+}
+
+int heapcount_active(void)
+{
+    uint64_t before = LOAD(n_malloc);
+    /* volatile: the compiler may not elide a malloc/free pair it can see */
+    void *volatile p = malloc(1);
+    free(p);
+    return LOAD(n_malloc) != before;
+}

@@ -1,0 +1,229 @@
+/* udpm:// inside a private network namespace (run by netns.sh): the
+ * publisher's messages reach a subscriber, publishing makes no heap call,
+ * lcm-logger records them into a log rtedge reads, and lcm-logplayer plays
+ * a log rtedge wrote. */
+#include <fcntl.h>
+#include <setjmp.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "heapcount.h"
+#include "lcm_log.h"
+#include "messages.h"
+#include "rtedge/publish.h"
+
+extern char **environ;
+
+#define URL "udpm://239.255.76.67:7667?ttl=0"
+
+static const rte_publish_limits limits = {
+    .max_text = 64, .max_roi_points = 8, .max_segments = 16, .max_objects = 4,
+    .max_params = 4, .max_image_bytes = 100000, .max_metadata = 2,
+};
+
+static const char *const channels[] = {"LANES", "GRASP", "STATUS", "PARAMS", "IMAGE"};
+
+static void publish_one(rte_publisher *pub, int i, const samples *s)
+{
+    char msg[RTE_PUBLISH_MESSAGE_SIZE];
+    rte_status st;
+    switch (i) {
+    case 0: st = rte_publish_lane(pub, channels[i], &s->lane, msg, sizeof msg); break;
+    case 1: st = rte_publish_grasp(pub, channels[i], &s->grasp, msg, sizeof msg); break;
+    case 2: st = rte_publish_status(pub, channels[i], &s->status, msg, sizeof msg); break;
+    case 3: st = rte_publish_params(pub, channels[i], &s->paramset, msg, sizeof msg); break;
+    default: st = rte_publish_image(pub, channels[i], &s->image, msg, sizeof msg); break;
+    }
+    if (st != RTE_OK)
+        fail_msg("publish %s: %s", channels[i], msg);
+}
+
+/* The encoding of sample message i, for comparing with what arrived. */
+static int encode_sample(int i, const samples *s, uint8_t *buf, int size)
+{
+    switch (i) {
+    case 0: return rtedge_lane_detection_t_encode(buf, 0, size, &s->lane);
+    case 1: return rtedge_grasp_detection_t_encode(buf, 0, size, &s->grasp);
+    case 2: return rtedge_status_t_encode(buf, 0, size, &s->status);
+    case 3: return rtedge_params_t_encode(buf, 0, size, &s->paramset);
+    default: return rtedge_image_t_encode(buf, 0, size, &s->image);
+    }
+}
+
+static void check_bytes(int i, const samples *s, const char *channel, const void *data, int size)
+{
+    static uint8_t expect[131072];
+    int n = encode_sample(i, s, expect, sizeof expect);
+    assert_string_equal(channel, channels[i]);
+    assert_int_equal(size, n);
+    assert_memory_equal(data, expect, (size_t)n);
+}
+
+static struct {
+    char channel[64];
+    uint8_t data[131072];
+    int size, count;
+} got;
+
+static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)user;
+    snprintf(got.channel, sizeof got.channel, "%s", channel);
+    memcpy(got.data, rbuf->data, rbuf->data_size);
+    got.size = (int)rbuf->data_size;
+    got.count++;
+}
+
+static void test_udpm_round_trip_without_heap_calls(void **state)
+{
+    (void)state;
+    samples s;
+    samples_fill(&s, 11);
+    rte_publisher *pub = NULL;
+    char msg[RTE_PUBLISH_MESSAGE_SIZE];
+    assert_int_equal(rte_publisher_create(&pub, URL, &limits, msg, sizeof msg), RTE_OK);
+    lcm_t *sub_lcm = lcm_create(URL);
+    assert_non_null(sub_lcm);
+    lcm_subscription_t *sub = lcm_subscribe(sub_lcm, ".*", on_message, NULL);
+    int counting = heapcount_active();
+    for (int round = 0; round < 3; round++)
+        for (int i = 0; i < 5; i++) {
+            got.count = 0;
+            heapcount_reset();
+            publish_one(pub, i, &s);
+            heapcount_counts c;
+            heapcount_get(&c);
+            /* The first message may set things up; after it, none. */
+            if (counting && round > 0 && heapcount_calls(&c) != 0)
+                fail_msg("publishing %s over udpm made %llu heap calls", channels[i],
+                         (unsigned long long)heapcount_calls(&c));
+            while (got.count == 0)
+                assert_true(lcm_handle_timeout(sub_lcm, 2000) > 0);
+            check_bytes(i, &s, got.channel, got.data, got.size);
+        }
+    if (!counting)
+        print_message("heapcount is not interposed: heap calls not counted\n");
+    lcm_unsubscribe(sub_lcm, sub);
+    lcm_destroy(sub_lcm);
+    rte_publisher_destroy(pub);
+}
+
+static pid_t spawn(char *const argv[])
+{
+    pid_t pid;
+    assert_int_equal(posix_spawnp(&pid, argv[0], NULL, NULL, argv, environ), 0);
+    return pid;
+}
+
+static void sleep_ms(int ms)
+{
+    struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000};
+    nanosleep(&ts, NULL);
+}
+
+/* lcm-logger records what rtedge publishes; rtedge reads its log. */
+static void test_lcm_logger_records_our_messages(void **state)
+{
+    (void)state;
+    samples s;
+    samples_fill(&s, 12);
+    char path[512], msg[RTE_PUBLISH_MESSAGE_SIZE];
+    snprintf(path, sizeof path, "%s/logger.%d.lcmlog", getenv("RTE_TEST_TMP"), (int)getpid());
+    char *argv[] = {(char *)"lcm-logger", (char *)"-f", (char *)"--lcm-url=" URL, path, NULL};
+    pid_t logger = spawn(argv);
+    rte_publisher *pub = NULL;
+    assert_int_equal(rte_publisher_create(&pub, URL, &limits, msg, sizeof msg), RTE_OK);
+    /* Until the logger has subscribed: publish pings until one is in its log. */
+    rte_lcm_log_reader r;
+    rte_lcm_log_event ev;
+    int ready = 0;
+    for (int tries = 0; tries < 100 && !ready; tries++) {
+        publish_one(pub, 2, &s);
+        sleep_ms(100);
+        if (rte_lcm_log_reader_open(&r, path, 131072, msg, sizeof msg) == RTE_OK) {
+            ready = rte_lcm_log_read(&r, &ev, msg, sizeof msg) == RTE_OK;
+            rte_lcm_log_reader_close(&r);
+        }
+    }
+    assert_true(ready);
+    for (int i = 0; i < 5; i++)
+        publish_one(pub, i, &s);
+    sleep_ms(500); /* the logger flushes every 100 ms */
+    kill(logger, SIGINT);
+    int status;
+    assert_int_equal(waitpid(logger, &status, 0), logger);
+    rte_publisher_destroy(pub);
+
+    assert_int_equal(rte_lcm_log_reader_open(&r, path, 131072, msg, sizeof msg), RTE_OK);
+    int found = 0;
+    for (;;) {
+        rte_status st = rte_lcm_log_read(&r, &ev, msg, sizeof msg);
+        if (st == RTE_ERR_END)
+            break;
+        assert_int_equal(st, RTE_OK);
+        /* pings (STATUS) first, then the five in order */
+        if (found == 0 && strcmp(ev.channel, "LANES") != 0)
+            continue;
+        assert_true(found < 5);
+        check_bytes(found, &s, ev.channel, ev.data, ev.size);
+        found++;
+    }
+    assert_int_equal(found, 5);
+    rte_lcm_log_reader_close(&r);
+    unlink(path);
+}
+
+/* lcm-logplayer plays a log rtedge wrote. */
+static void test_lcm_logplayer_plays_our_log(void **state)
+{
+    (void)state;
+    samples s;
+    samples_fill(&s, 13);
+    char path[512], url[600], msg[RTE_PUBLISH_MESSAGE_SIZE];
+    snprintf(path, sizeof path, "%s/player.%d.lcmlog", getenv("RTE_TEST_TMP"), (int)getpid());
+    snprintf(url, sizeof url, "file://%s", path);
+    rte_publisher *pub = NULL;
+    assert_int_equal(rte_publisher_create(&pub, url, &limits, msg, sizeof msg), RTE_OK);
+    for (int i = 0; i < 5; i++)
+        publish_one(pub, i, &s);
+    rte_publisher_destroy(pub);
+
+    lcm_t *sub_lcm = lcm_create(URL);
+    assert_non_null(sub_lcm);
+    lcm_subscription_t *sub = lcm_subscribe(sub_lcm, ".*", on_message, NULL);
+    char *argv[] = {(char *)"lcm-logplayer", (char *)"--speed=10", (char *)"--lcm-url=" URL,
+                    path, NULL};
+    pid_t player = spawn(argv);
+    for (int i = 0; i < 5; i++) {
+        got.count = 0;
+        while (got.count == 0)
+            assert_true(lcm_handle_timeout(sub_lcm, 5000) > 0);
+        check_bytes(i, &s, got.channel, got.data, got.size);
+    }
+    int status;
+    assert_int_equal(waitpid(player, &status, 0), player);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    lcm_unsubscribe(sub_lcm, sub);
+    lcm_destroy(sub_lcm);
+    unlink(path);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_udpm_round_trip_without_heap_calls),
+        cmocka_unit_test(test_lcm_logger_records_our_messages),
+        cmocka_unit_test(test_lcm_logplayer_plays_our_log),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
