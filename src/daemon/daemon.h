@@ -28,6 +28,7 @@ typedef struct rted_counters {
     uint64_t status_sent;
     uint64_t reloads;         /* configurations applied at run time (SIGHUP, params_t) */
     uint64_t refused;         /* run-time changes refused (fixed keys, bad values) */
+    uint64_t rewinds;         /* a looping recording started again */
 } rted_counters;
 
 typedef enum rted_step {

@@ -372,6 +372,9 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     derive(d);
     realtime(c);
     d->window_start_ns = now_ns();
+    /* A first status says the daemon is up; it also makes liblcm cache the
+     * channel (memq:// strdup()s a channel's name on its first message). */
+    rted_daemon_publish_status(d);
     *out = d;
     return true;
 fail:
@@ -786,8 +789,10 @@ rted_step rted_daemon_step(rted_daemon *d)
     char why[RTE_SOURCE_MESSAGE_SIZE] = "";
     rte_status st = rte_source_next(&d->source, &f, 100, why, sizeof why);
     if (st == RTE_ERR_END) {
-        if (d->cfg.loop && rte_recorded_source_rewind(&d->source) == RTE_OK)
+        if (d->cfg.loop && rte_recorded_source_rewind(&d->source) == RTE_OK) {
+            d->n.rewinds++;
             return RTED_STEP_IDLE;
+        }
         d->state = RTE_SOURCE_ENDED;
         return RTED_STEP_END;
     }
