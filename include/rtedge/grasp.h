@@ -7,16 +7,17 @@
  *   -> grasp: the point at the centroid, the gripper closing across the
  *   box's short side, opened as wide as that side.
  *
- * A context is created once for a maximum frame size and maximum counts: it
- * holds every buffer and the scratch arena (one allocation, in
- * rte_grasp_create). rte_grasp_process() allocates nothing and is integer
- * only. The parameters of rte_grasp_params can be changed between frames
+ * A context is set up once for a maximum frame size and maximum counts: it
+ * holds every buffer and the scratch arena, in one block of caller memory
+ * (rte_grasp_init) or one malloc at start-up (rte_grasp_create).
+ * rte_grasp_process() allocates nothing and is integer only. The parameters of rte_grasp_params can be changed between frames
  * with rte_grasp_set_params() (no allocation); the fields of
  * rte_grasp_config outside .params fix buffer sizes and tables and cannot.
  * A context is not thread-safe: one per thread. */
 #ifndef RTEDGE_GRASP_H
 #define RTEDGE_GRASP_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "rtedge/contours.h"
@@ -105,17 +106,25 @@ typedef struct rte_grasp_result {
 
 typedef struct rte_grasp_ctx rte_grasp_ctx;
 
-/* RTE_OK and *ctx, or RTE_ERR_ARGUMENT (a field out of range),
- * RTE_ERR_NO_MEMORY. */
+/* Bytes the context needs for a configuration, everything included
+ * (0 when the configuration is invalid). */
+size_t rte_grasp_memory_size(const rte_grasp_config *config);
+
+/* Places the context in caller memory of at least rte_grasp_memory_size()
+ * bytes (any alignment): nothing is allocated. The memory must outlive the
+ * context; rte_grasp_destroy() is not needed (and does nothing) for it.
+ * RTE_ERR_ARGUMENT for a field out of range, RTE_ERR_NO_MEMORY when
+ * `bytes` is too small. */
+rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t bytes, rte_grasp_ctx **ctx);
+
+/* The same in one block from malloc (the only allocation of the grasp
+ * path, at start-up); rte_grasp_destroy() frees it. */
 rte_status rte_grasp_create(const rte_grasp_config *config, rte_grasp_ctx **ctx);
 void rte_grasp_destroy(rte_grasp_ctx *ctx);
 
 /* Checks and applies new parameters (RTE_ERR_ARGUMENT leaves the old ones). */
 rte_status rte_grasp_set_params(rte_grasp_ctx *ctx, const rte_grasp_params *params);
 rte_status rte_grasp_get_params(const rte_grasp_ctx *ctx, rte_grasp_params *params);
-
-/* Bytes rte_grasp_create allocates for a configuration (0 when invalid). */
-size_t rte_grasp_memory_size(const rte_grasp_config *config);
 
 /* One frame, at most max_width x max_height (RTE_ERR_SIZE otherwise). */
 rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_grasp_result *out);

@@ -44,9 +44,9 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                           "canny: odd size of the closing ellipse", NULL};
     t[n++] = (cli_option){"close-iterations", CLI_INT, &o->close_iterations, 1, 8, NULL,
                           "canny: closing iterations", NULL};
-    t[n++] = (cli_option){"min-area", CLI_INT, &o->min_area, 0, 1 << 30, NULL, "smallest object, px", NULL};
+    t[n++] = (cli_option){"min-area", CLI_INT, &o->min_area, 0, 4194304, NULL, "smallest object, px", NULL};
     if (grasp) {
-        t[n++] = (cli_option){"max-area", CLI_INT, &o->max_area, 0, 1 << 30, NULL,
+        t[n++] = (cli_option){"max-area", CLI_INT, &o->max_area, 0, 4194304, NULL,
                               "largest object, px (0 = no limit)", NULL};
         t[n++] = (cli_option){"skip-border", CLI_FLAG, &o->skip_border, 0, 0, NULL,
                               "drop objects touching the image border", NULL};

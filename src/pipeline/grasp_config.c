@@ -100,13 +100,43 @@ static rte_status tables(const rte_grasp_config *c, rte_gaussian_kernel *k, rte_
     return st;
 }
 
+/* The block: the context, then its buffers, each 64-byte aligned. */
+static size_t block_size(const rte_grasp_config *c, size_t arena_bytes)
+{
+    return rte_arena_piece_size(sizeof(rte_grasp_ctx)) + layout(NULL, NULL, c, arena_bytes);
+}
+
 size_t rte_grasp_memory_size(const rte_grasp_config *config)
 {
     rte_gaussian_kernel k;
     rte_morph_element e;
     if (!config_ok(config) || tables(config, &k, &e) != RTE_OK)
         return 0;
-    return sizeof(rte_grasp_ctx) + layout(NULL, NULL, config, arena_size(config, &k, &e));
+    return block_size(config, arena_size(config, &k, &e));
+}
+
+rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t bytes, rte_grasp_ctx **out)
+{
+    if (!out)
+        return RTE_ERR_ARGUMENT;
+    *out = NULL;
+    rte_gaussian_kernel k;
+    rte_morph_element e;
+    if (!memory || !config_ok(config) || tables(config, &k, &e) != RTE_OK)
+        return RTE_ERR_ARGUMENT;
+    const size_t arena_bytes = arena_size(config, &k, &e);
+    if (bytes < block_size(config, arena_bytes))
+        return RTE_ERR_NO_MEMORY;
+    const uintptr_t base = ((uintptr_t)memory + RTE_ARENA_ALIGN - 1) & ~(uintptr_t)(RTE_ARENA_ALIGN - 1);
+    rte_grasp_ctx *ctx = (rte_grasp_ctx *)base;
+    memset(ctx, 0, sizeof *ctx);
+    ctx->blur = k;
+    ctx->close = e;
+    layout(ctx, (uint8_t *)base + rte_arena_piece_size(sizeof *ctx), config, arena_bytes);
+    ctx->config = *config;
+    ctx->params = config->params;
+    *out = ctx;
+    return RTE_OK;
 }
 
 rte_status rte_grasp_create(const rte_grasp_config *config, rte_grasp_ctx **out)
@@ -114,35 +144,23 @@ rte_status rte_grasp_create(const rte_grasp_config *config, rte_grasp_ctx **out)
     if (!out)
         return RTE_ERR_ARGUMENT;
     *out = NULL;
-    if (!config_ok(config))
+    const size_t bytes = rte_grasp_memory_size(config);
+    if (bytes == 0)
         return RTE_ERR_ARGUMENT;
-    rte_grasp_ctx *ctx = calloc(1, sizeof *ctx);
-    if (!ctx)
+    void *memory = malloc(bytes);
+    if (!memory)
         return RTE_ERR_NO_MEMORY;
-    rte_status st = tables(config, &ctx->blur, &ctx->close);
+    rte_status st = rte_grasp_init(config, memory, bytes, out);
     if (st != RTE_OK) {
-        free(ctx);
+        free(memory);
         return st;
     }
-    const size_t arena_bytes = arena_size(config, &ctx->blur, &ctx->close);
-    const size_t bytes = layout(NULL, NULL, config, arena_bytes);
-    ctx->memory = malloc(bytes);
-    if (!ctx->memory) {
-        free(ctx);
-        return RTE_ERR_NO_MEMORY;
-    }
-    uintptr_t base = ((uintptr_t)ctx->memory + RTE_ARENA_ALIGN - 1) & ~(uintptr_t)(RTE_ARENA_ALIGN - 1);
-    layout(ctx, (uint8_t *)base, config, arena_bytes);
-    ctx->config = *config;
-    ctx->params = config->params;
-    *out = ctx;
+    (*out)->memory = memory;
     return RTE_OK;
 }
 
 void rte_grasp_destroy(rte_grasp_ctx *ctx)
 {
-    if (!ctx)
-        return;
-    free(ctx->memory);
-    free(ctx);
+    if (ctx)
+        free(ctx->memory); /* the context lives in that block; NULL after rte_grasp_init */
 }

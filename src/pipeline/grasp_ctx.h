@@ -23,7 +23,7 @@ struct rte_grasp_ctx {
     grasp_candidate *best; /* config.max_objects, sorted by area */
     rte_grasp_object *objects;
     rte_arena arena;
-    void *memory;
+    void *memory; /* the block to free (rte_grasp_create), NULL after rte_grasp_init */
 };
 
 /* Integer checks of run-time parameters against a configuration. */

@@ -434,6 +434,42 @@ static void contour_bound(void **state)
     test_free(img.buf);
 }
 
+/* The context in caller memory: any alignment, exact size, too small. */
+static void caller_memory(void **state)
+{
+    (void)state;
+    rte_grasp_config c;
+    rte_grasp_config_default(&c);
+    c.max_width = 200;
+    c.max_height = 120;
+    c.max_contours = 64;
+    c.max_points = 4096;
+    c.max_objects = 4;
+    c.params.max_objects = 4;
+    const size_t bytes = rte_grasp_memory_size(&c);
+    assert_true(bytes > 3 * 200 * 120);
+    uint8_t *mem = test_malloc(bytes + 1);
+    rte_grasp_ctx *ctx = (rte_grasp_ctx *)mem;
+    assert_int_equal(rte_grasp_init(&c, mem + 1, bytes - 1, &ctx), RTE_ERR_NO_MEMORY);
+    assert_null(ctx);
+    assert_int_equal(rte_grasp_init(&c, NULL, bytes, &ctx), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_grasp_init(&c, mem + 1, bytes, &ctx), RTE_OK); /* unaligned start */
+    assert_true((uint8_t *)ctx >= mem + 1 && (uint8_t *)ctx < mem + bytes);
+
+    rte_image_u8 img = unit_image_u8(200, 120, 5, 200);
+    truth t;
+    const rte_vertex a[4] = {{40, 30}, {99, 30}, {99, 59}, {40, 59}};
+    fill_polygon(&img, a, 4, 40, &t);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_true((const uint8_t *)r.objects > mem && (const uint8_t *)r.objects < mem + bytes + 1);
+    assert_int_equal(r.objects[0].info.shape, RTE_SHAPE_RECTANGLE);
+    rte_grasp_destroy(ctx); /* nothing to free: the memory is ours */
+    test_free(img.buf);
+    test_free(mem);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -444,6 +480,7 @@ int main(void)
         cmocka_unit_test(object_bound),
         cmocka_unit_test(sizes_and_errors),
         cmocka_unit_test(contour_bound),
+        cmocka_unit_test(caller_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
