@@ -9,9 +9,9 @@
  *   udpm://...   lcm_publish (liblcm 1.3.1 sends from the caller's buffer
  *                with sendmsg: no heap call, measured in tests/lcm).
  *   memq://      lcm_publish; no heap call while nobody in the process has
- *                subscribed to the channel, one malloc (a copy of the
- *                message, freed by lcm_handle) per subscribed message:
- *                memq is an in-process test transport.
+ *                subscribed to the channel; with a subscriber, three mallocs
+ *                per message (measured: memq queues a copy of it), freed by
+ *                lcm_handle. memq is an in-process test transport.
  *   file://PATH  written here, not through liblcm: liblcm's log provider
  *                callocs an event (channel + data) and frees it for every
  *                message. The file is the LCM log format (lcm-logplayer,

@@ -1,24 +1,15 @@
 /* LCM log files: see lcm_log.h. */
 #include "lcm_log.h"
 
+#include "source_msg.h"
+
 #include <errno.h>
 #include <fcntl.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/uio.h>
 #include <unistd.h>
-
-void rte_lcm_msgf(char *msg, size_t size, const char *fmt, ...)
-{
-    if (!msg || size == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, size, fmt, ap);
-    va_end(ap);
-}
 
 static void put_be32(uint8_t *p, uint32_t v)
 {
@@ -54,10 +45,10 @@ rte_status rte_lcm_log_writer_open(rte_lcm_log_writer *w, const char *path, int 
     int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (append ? O_APPEND : O_TRUNC);
     w->fd = open(path, flags, 0644);
     if (w->fd < 0) {
-        rte_lcm_msgf(msg, msg_size, "%s: %s", path, strerror(errno));
+        rte_source_msgf(msg, msg_size, "%s: %s", path, strerror(errno));
         return RTE_ERR_IO;
     }
-    rte_lcm_msgf(msg, msg_size, "%s", "");
+    rte_source_msgf(msg, msg_size, "%s", "");
     return RTE_OK;
 }
 
@@ -66,7 +57,7 @@ rte_status rte_lcm_log_write(rte_lcm_log_writer *w, int64_t utime, const char *c
 {
     size_t channel_len = strlen(channel);
     if (channel_len == 0 || channel_len > RTE_LCM_LOG_MAX_CHANNEL || size > INT32_MAX) {
-        rte_lcm_msgf(msg, msg_size, "log event: channel of %zu bytes or data of %zu bytes", channel_len,
+        rte_source_msgf(msg, msg_size, "log event: channel of %zu bytes or data of %zu bytes", channel_len,
              size);
         return RTE_ERR_ARGUMENT;
     }
@@ -91,7 +82,7 @@ rte_status rte_lcm_log_write(rte_lcm_log_writer *w, int64_t utime, const char *c
         if (n < 0) {
             if (errno == EINTR)
                 continue;
-            rte_lcm_msgf(msg, msg_size, "log write: %s", strerror(errno));
+            rte_source_msgf(msg, msg_size, "log write: %s", strerror(errno));
             return RTE_ERR_IO;
         }
         done += (size_t)n;
@@ -105,7 +96,7 @@ rte_status rte_lcm_log_write(rte_lcm_log_writer *w, int64_t utime, const char *c
         }
     }
     w->next_event++;
-    rte_lcm_msgf(msg, msg_size, "%s", "");
+    rte_source_msgf(msg, msg_size, "%s", "");
     return RTE_OK;
 }
 
@@ -124,23 +115,23 @@ rte_status rte_lcm_log_reader_open(rte_lcm_log_reader *r, const char *path,
     memset(r, 0, sizeof *r);
     r->fd = -1;
     if (max_event_bytes == 0 || max_event_bytes > INT32_MAX) {
-        rte_lcm_msgf(msg, msg_size, "%s: bad maximum event size %zu", path, max_event_bytes);
+        rte_source_msgf(msg, msg_size, "%s: bad maximum event size %zu", path, max_event_bytes);
         return RTE_ERR_ARGUMENT;
     }
     r->buf = malloc(max_event_bytes);
     if (!r->buf) {
-        rte_lcm_msgf(msg, msg_size, "%s: no memory for %zu bytes", path, max_event_bytes);
+        rte_source_msgf(msg, msg_size, "%s: no memory for %zu bytes", path, max_event_bytes);
         return RTE_ERR_NO_MEMORY;
     }
     r->capacity = max_event_bytes;
     r->fd = open(path, O_RDONLY | O_CLOEXEC);
     if (r->fd < 0) {
-        rte_lcm_msgf(msg, msg_size, "%s: %s", path, strerror(errno));
+        rte_source_msgf(msg, msg_size, "%s: %s", path, strerror(errno));
         free(r->buf);
         r->buf = NULL;
         return RTE_ERR_IO;
     }
-    rte_lcm_msgf(msg, msg_size, "%s", "");
+    rte_source_msgf(msg, msg_size, "%s", "");
     return RTE_OK;
 }
 
@@ -192,29 +183,29 @@ rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *
     uint8_t h[RTE_LCM_LOG_HEADER_SIZE];
     ssize_t n = read_at(r->fd, h, sizeof h, r->offset);
     if (n < 0) {
-        rte_lcm_msgf(msg, msg_size, "log read: %s", strerror(errno));
+        rte_source_msgf(msg, msg_size, "log read: %s", strerror(errno));
         return RTE_ERR_IO;
     }
     if (n == 0) {
-        rte_lcm_msgf(msg, msg_size, "end of log");
+        rte_source_msgf(msg, msg_size, "end of log");
         return RTE_ERR_END;
     }
     int64_t at = r->offset;
     if (n >= 4 && get_be32(h) != RTE_LCM_LOG_SYNC) {
         r->offset = resync(r->fd, at);
-        rte_lcm_msgf(msg, msg_size, "log offset %lld: no sync word, skipped to %lld", (long long)at,
+        rte_source_msgf(msg, msg_size, "log offset %lld: no sync word, skipped to %lld", (long long)at,
              (long long)r->offset);
         return RTE_ERR_CORRUPT;
     }
     if (n < (ssize_t)sizeof h) {
         r->offset = at + n;
-        rte_lcm_msgf(msg, msg_size, "log offset %lld: event header cut short", (long long)at);
+        rte_source_msgf(msg, msg_size, "log offset %lld: event header cut short", (long long)at);
         return RTE_ERR_TRUNCATED;
     }
     uint32_t channel_len = get_be32(h + 20), size = get_be32(h + 24);
     if (channel_len == 0 || channel_len > RTE_LCM_LOG_MAX_CHANNEL || size > INT32_MAX) {
         r->offset = resync(r->fd, at);
-        rte_lcm_msgf(msg, msg_size, "log offset %lld: impossible lengths (channel %u, data %u)",
+        rte_source_msgf(msg, msg_size, "log offset %lld: impossible lengths (channel %u, data %u)",
              (long long)at, channel_len, size);
         return RTE_ERR_CORRUPT;
     }
@@ -222,7 +213,7 @@ rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *
     n = read_at(r->fd, ev->channel, channel_len, at + (int64_t)sizeof h);
     if (n != (ssize_t)channel_len) {
         r->offset = (int64_t)lseek(r->fd, 0, SEEK_END);
-        rte_lcm_msgf(msg, msg_size, "log offset %lld: event cut short", (long long)at);
+        rte_source_msgf(msg, msg_size, "log offset %lld: event cut short", (long long)at);
         return n < 0 ? RTE_ERR_IO : RTE_ERR_TRUNCATED;
     }
     ev->channel[channel_len] = '\0';
@@ -233,25 +224,25 @@ rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *
         uint8_t last;
         if (read_at(r->fd, &last, 1, end - 1) != 1) {
             r->offset = (int64_t)lseek(r->fd, 0, SEEK_END);
-            rte_lcm_msgf(msg, msg_size, "log offset %lld: event cut short", (long long)at);
+            rte_source_msgf(msg, msg_size, "log offset %lld: event cut short", (long long)at);
             return RTE_ERR_TRUNCATED;
         }
         r->offset = end;
-        rte_lcm_msgf(msg, msg_size, "log event %lld on %s: %u bytes, more than %zu", (long long)ev->eventnum,
+        rte_source_msgf(msg, msg_size, "log event %lld on %s: %u bytes, more than %zu", (long long)ev->eventnum,
              ev->channel, size, r->capacity);
         return RTE_ERR_TOO_LARGE;
     }
     n = read_at(r->fd, r->buf, size, at + (int64_t)sizeof h + channel_len);
     if (n != (ssize_t)size) {
         r->offset = (int64_t)lseek(r->fd, 0, SEEK_END);
-        rte_lcm_msgf(msg, msg_size, "log event %lld on %s: data cut short (%zd of %u bytes)",
+        rte_source_msgf(msg, msg_size, "log event %lld on %s: data cut short (%zd of %u bytes)",
              (long long)ev->eventnum, ev->channel, n, size);
         return n < 0 ? RTE_ERR_IO : RTE_ERR_TRUNCATED;
     }
     r->offset = end;
     ev->data = r->buf;
     ev->size = (int32_t)size;
-    rte_lcm_msgf(msg, msg_size, "%s", "");
+    rte_source_msgf(msg, msg_size, "%s", "");
     return RTE_OK;
 }
 

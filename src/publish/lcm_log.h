@@ -59,9 +59,4 @@ rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *
                             size_t msg_size);
 void rte_lcm_log_reader_close(rte_lcm_log_reader *r);
 
-/* printf into msg (nothing when msg is NULL or size 0): the messages of
- * src/publish and the LCM sources. */
-void rte_lcm_msgf(char *msg, size_t size, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-
 #endif

@@ -12,6 +12,7 @@
 #include <lcm/lcm.h>
 
 #include "lcm_log.h"
+#include "source_msg.h"
 
 struct rte_publisher {
     lcm_t *lcm;              /* memq://, udpm:// */
@@ -120,7 +121,7 @@ static rte_status parse_file_url(const char *url, char *path, size_t capacity, i
     const char *q = strchr(p, '?');
     size_t len = q ? (size_t)(q - p) : strlen(p);
     if (len == 0 || len >= capacity) {
-        rte_lcm_msgf(msg, msg_size, "%s: no file name, or one too long", url);
+        rte_source_msgf(msg, msg_size, "%s: no file name, or one too long", url);
         return RTE_ERR_ARGUMENT;
     }
     memcpy(path, p, len);
@@ -130,7 +131,7 @@ static rte_status parse_file_url(const char *url, char *path, size_t capacity, i
         if (strcmp(q, "?mode=a") == 0)
             *append = 1;
         else if (strcmp(q, "?mode=w") != 0) {
-            rte_lcm_msgf(msg, msg_size, "%s: the only option is mode=w or mode=a", url);
+            rte_source_msgf(msg, msg_size, "%s: the only option is mode=w or mode=a", url);
             return RTE_ERR_ARGUMENT;
         }
     }
@@ -150,17 +151,17 @@ rte_status rte_publisher_create(rte_publisher **out, const char *url,
                                 const rte_publish_limits *limits, char *msg, size_t msg_size)
 {
     if (!out || !url || !limits) {
-        rte_lcm_msgf(msg, msg_size, "publisher: missing argument");
+        rte_source_msgf(msg, msg_size, "publisher: missing argument");
         return RTE_ERR_ARGUMENT;
     }
     *out = NULL;
     if (!limits_ok(limits)) {
-        rte_lcm_msgf(msg, msg_size, "publisher: limits out of range");
+        rte_source_msgf(msg, msg_size, "publisher: limits out of range");
         return RTE_ERR_ARGUMENT;
     }
     rte_publisher *pub = calloc(1, sizeof *pub);
     if (!pub) {
-        rte_lcm_msgf(msg, msg_size, "publisher: no memory");
+        rte_source_msgf(msg, msg_size, "publisher: no memory");
         return RTE_ERR_NO_MEMORY;
     }
     pub->log.fd = -1;
@@ -168,7 +169,7 @@ rte_status rte_publisher_create(rte_publisher **out, const char *url,
     pub->capacity = worst_case_size(limits);
     pub->buf = pub->capacity ? malloc(pub->capacity) : NULL;
     if (!pub->buf) {
-        rte_lcm_msgf(msg, msg_size, "publisher: no memory for a %zu-byte buffer", pub->capacity);
+        rte_source_msgf(msg, msg_size, "publisher: no memory for a %zu-byte buffer", pub->capacity);
         rte_publisher_destroy(pub);
         return RTE_ERR_NO_MEMORY;
     }
@@ -182,7 +183,7 @@ rte_status rte_publisher_create(rte_publisher **out, const char *url,
     } else {
         pub->lcm = lcm_create(url);
         if (!pub->lcm) {
-            rte_lcm_msgf(msg, msg_size, "%s: liblcm cannot open it", url);
+            rte_source_msgf(msg, msg_size, "%s: liblcm cannot open it", url);
             st = RTE_ERR_IO;
         }
     }
@@ -190,7 +191,7 @@ rte_status rte_publisher_create(rte_publisher **out, const char *url,
         rte_publisher_destroy(pub);
         return st;
     }
-    rte_lcm_msgf(msg, msg_size, "%s", "");
+    rte_source_msgf(msg, msg_size, "%s", "");
     *out = pub;
     return RTE_OK;
 }
@@ -264,7 +265,7 @@ static rte_status send_encoded(rte_publisher *pub, const char *channel, int len,
     }
     pub->stats.messages++;
     pub->stats.bytes += (uint64_t)len;
-    rte_lcm_msgf(msg, msg_size, "%s", "");
+    rte_source_msgf(msg, msg_size, "%s", "");
     return RTE_OK;
 }
 

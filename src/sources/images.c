@@ -237,11 +237,8 @@ rte_status rte_images_source_open(rte_source *source, const rte_images_source_co
         images_close(s);
         return st;
     }
-    source->ops = &rte_images_source_ops;
-    source->impl = s;
-    source->max_width = max_w;
-    source->max_height = max_h;
-    source->format = config->format;
+    rte_recording_attach(source, &rte_images_source_ops, s, max_w, max_h,
+                         config->format);
     rte_source_msgf(msg, msg_size, "%zu image files, up to %dx%d", s->count, max_w, max_h);
     return RTE_OK;
 }

@@ -241,20 +241,33 @@ static rte_status check_config(const rte_lcm_source_config *c, int live, char *m
     return RTE_OK;
 }
 
+/* Checks the configuration and allocates a zeroed impl of `size` bytes;
+ * NULL with *st set when either fails. */
+static void *open_impl(rte_source *source, const rte_lcm_source_config *config, int live,
+                       size_t size, rte_status *st, char *msg, size_t msg_size)
+{
+    *st = RTE_ERR_ARGUMENT;
+    if (!source)
+        return NULL;
+    memset(source, 0, sizeof *source);
+    *st = check_config(config, live, msg, msg_size);
+    if (*st != RTE_OK)
+        return NULL;
+    void *impl = calloc(1, size);
+    if (!impl) {
+        rte_source_msgf(msg, msg_size, "%s: no memory", config->url);
+        *st = RTE_ERR_NO_MEMORY;
+    }
+    return impl;
+}
+
 rte_status rte_lcm_log_source_open(rte_source *source, const rte_lcm_source_config *config,
                                    char *msg, size_t msg_size)
 {
-    if (!source)
-        return RTE_ERR_ARGUMENT;
-    memset(source, 0, sizeof *source);
-    rte_status st = check_config(config, 0, msg, msg_size);
-    if (st != RTE_OK)
+    rte_status st;
+    lcm_log_source *s = open_impl(source, config, 0, sizeof *s, &st, msg, msg_size);
+    if (!s)
         return st;
-    lcm_log_source *s = calloc(1, sizeof *s);
-    if (!s) {
-        rte_source_msgf(msg, msg_size, "lcm-log: no memory");
-        return RTE_ERR_NO_MEMORY;
-    }
     s->reader.fd = -1;
     snprintf(s->channel, sizeof s->channel, "%s", config->channel ? config->channel : "");
     s->format = config->format;
@@ -274,11 +287,8 @@ rte_status rte_lcm_log_source_open(rte_source *source, const rte_lcm_source_conf
     /* Frame interval after a rewind: unknown in general, 1/30 s. */
     rte_recording_init(&s->rec, rte_recording_frame_ns(1, RTE_RECORDED_DEFAULT_FPS, 1),
                        lcm_log_rewind);
-    source->ops = &rte_lcm_log_source_ops;
-    source->impl = s;
-    source->max_width = s->max_w;
-    source->max_height = s->max_h;
-    source->format = s->format;
+    rte_recording_attach(source, &rte_lcm_log_source_ops, s, s->max_w, s->max_h,
+                         s->format);
     rte_source_msgf(msg, msg_size, "%s: image_t %s up to %dx%d", path,
                     rte_pixel_format_name(s->format), s->max_w, s->max_h);
     return RTE_OK;
@@ -296,14 +306,17 @@ typedef struct lcm_live_source {
     size_t capacity;
     int32_t size;       /* of the message in buf; -1: it did not fit */
     int pending;        /* buf holds a message not handed out yet */
+    uint32_t replaced;  /* messages replaced by newer ones since the last frame */
 } lcm_live_source;
 
 static void on_image(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     (void)channel;
     lcm_live_source *s = user;
-    if (s->pending)
+    if (s->pending) {
         s->rec.stats.skipped++; /* a newer one replaces it */
+        s->replaced++;
+    }
     s->pending = 1;
     if (rbuf->data_size > s->capacity) {
         s->size = -1;
@@ -344,6 +357,8 @@ static rte_status lcm_live_next(void *impl, rte_source_frame *out, int32_t timeo
     if (st != RTE_OK)
         return rte_recording_bad(&s->rec, st);
     rte_recording_deliver(&s->rec, out, &frame, utime * 1000);
+    out->dropped = s->replaced;
+    s->replaced = 0;
     return RTE_OK;
 }
 
@@ -367,17 +382,10 @@ static const rte_source_ops lcm_live_source_ops = {"lcm", lcm_live_next, rte_rec
 rte_status rte_lcm_live_source_open(rte_source *source, const rte_lcm_source_config *config,
                                     char *msg, size_t msg_size)
 {
-    if (!source)
-        return RTE_ERR_ARGUMENT;
-    memset(source, 0, sizeof *source);
-    rte_status st = check_config(config, 1, msg, msg_size);
-    if (st != RTE_OK)
+    rte_status st;
+    lcm_live_source *s = open_impl(source, config, 1, sizeof *s, &st, msg, msg_size);
+    if (!s)
         return st;
-    lcm_live_source *s = calloc(1, sizeof *s);
-    if (!s) {
-        rte_source_msgf(msg, msg_size, "lcm: no memory");
-        return RTE_ERR_NO_MEMORY;
-    }
     rte_recording_init(&s->rec, 0, NULL);
     s->format = config->format;
     s->max_w = config->max_width;
@@ -395,11 +403,8 @@ rte_status rte_lcm_live_source_open(rte_source *source, const rte_lcm_source_con
         lcm_live_close(s);
         return st;
     }
-    source->ops = &lcm_live_source_ops;
-    source->impl = s;
-    source->max_width = s->max_w;
-    source->max_height = s->max_h;
-    source->format = s->format;
+    rte_recording_attach(source, &lcm_live_source_ops, s, s->max_w, s->max_h,
+                         s->format);
     rte_source_msgf(msg, msg_size, "%s channel %s: image_t %s up to %dx%d", config->url,
                     config->channel, rte_pixel_format_name(s->format), s->max_w, s->max_h);
     return RTE_OK;

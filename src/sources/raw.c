@@ -113,11 +113,8 @@ rte_status rte_raw_source_open(rte_source *source, const rte_raw_source_config *
         raw_close(s);
         return st;
     }
-    source->ops = &rte_raw_source_ops;
-    source->impl = s;
-    source->max_width = config->width;
-    source->max_height = config->height;
-    source->format = config->format;
+    rte_recording_attach(source, &rte_raw_source_ops, s, config->width, config->height,
+                         config->format);
     rte_source_msgf(msg, msg_size, "%s: %s %dx%d, %zu bytes a frame", config->path,
                     rte_pixel_format_name(config->format), config->width, config->height,
                     frame_size);

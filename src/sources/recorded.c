@@ -14,6 +14,16 @@ void rte_recording_init(rte_recording *rec, int64_t frame_ns, void (*rewind)(voi
     rec->last_ns = -1;
 }
 
+void rte_recording_attach(rte_source *source, const rte_source_ops *ops, void *impl,
+                          int32_t max_width, int32_t max_height, rte_pixel_format format)
+{
+    source->ops = ops;
+    source->impl = impl;
+    source->max_width = max_width;
+    source->max_height = max_height;
+    source->format = format;
+}
+
 int64_t rte_recording_now_ns(void)
 {
     struct timespec ts;

@@ -24,6 +24,9 @@ typedef struct rte_recording {
  * first one again. */
 void rte_recording_init(rte_recording *rec, int64_t frame_ns, void (*rewind)(void *impl));
 
+/* Fills *source once the impl is open. */
+void rte_recording_attach(rte_source *source, const rte_source_ops *ops, void *impl,
+                          int32_t max_width, int32_t max_height, rte_pixel_format format);
 /* Hands out a frame read from slot rec->index (then advances it). */
 void rte_recording_deliver(rte_recording *rec, rte_source_frame *out, const rte_frame *frame,
                            int64_t recorded_ns);

@@ -1,22 +1,80 @@
 /* YUV4MPEG2 source (what `ffmpeg -i in.mp4 -pix_fmt gray out.y4m` or
  * `-pix_fmt yuv420p` writes): mono frames as GREY, 4:2:0 as NV12.
  *
- * Memory: open() allocates the source, its stdio buffer, the frame and the
- * chroma planes; next() allocates nothing. */
+ * Memory: open() allocates the source, its read buffer, the frame and the
+ * chroma planes; next() allocates nothing. Reading uses read(2) through the
+ * source's own buffer, not stdio: glibc's fseeko calls free() (on its
+ * backup area), and a rewind for --loop must make no heap call. */
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <unistd.h>
+
 #include "recorded.h"
 
 #define Y4M_LINE_MAX 1024
-#define Y4M_STDIO_BUFFER (64 * 1024)
+#define Y4M_READ_BUFFER (64 * 1024)
+
+/* A buffered reader on a file descriptor. */
+typedef struct y4m_file {
+    int fd;
+    uint8_t *buf;        /* Y4M_READ_BUFFER bytes */
+    size_t pos, len;     /* unread bytes: buf[pos..len) */
+    long long offset;    /* file offset of buf[pos] */
+    int error;           /* errno of a failed read, 0 */
+} y4m_file;
+
+static int fill(y4m_file *f)
+{
+    f->pos = f->len = 0;
+    for (;;) {
+        ssize_t n = read(f->fd, f->buf, Y4M_READ_BUFFER);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            f->error = errno;
+        f->len = n > 0 ? (size_t)n : 0;
+        return n > 0;
+    }
+}
+
+static int next_byte(y4m_file *f)
+{
+    if (f->pos == f->len && !fill(f))
+        return -1;
+    f->offset++;
+    return f->buf[f->pos++];
+}
+
+/* Up to n bytes into dst; the count read (short at the end or on an error). */
+static size_t read_bytes(y4m_file *f, uint8_t *dst, size_t n)
+{
+    size_t got = 0;
+    while (got < n) {
+        if (f->pos == f->len && !fill(f))
+            break;
+        size_t k = f->len - f->pos < n - got ? f->len - f->pos : n - got;
+        memcpy(dst + got, f->buf + f->pos, k);
+        f->pos += k;
+        f->offset += (long long)k;
+        got += k;
+    }
+    return got;
+}
+
+static void seek_to(y4m_file *f, long long offset)
+{
+    lseek(f->fd, (off_t)offset, SEEK_SET);
+    f->pos = f->len = 0;
+    f->offset = offset;
+}
 
 typedef struct y4m_source {
     rte_recording rec; /* first: see recorded.h */
-    FILE *file;
-    char *stdio_buf;
+    y4m_file file;
     long long data_start;       /* offset of the first FRAME */
     int32_t width, height, fps_num, fps_den;
     int mono;
@@ -29,16 +87,16 @@ typedef struct y4m_source {
 
 /* One header line (without its '\n') into line; -1 at EOF before any
  * byte, -2 when longer than Y4M_LINE_MAX or cut by EOF. */
-static int read_line(FILE *f, char *line)
+static int read_line(y4m_file *f, char *line)
 {
     int n = 0, c;
-    while ((c = getc(f)) != EOF && c != '\n') {
+    while ((c = next_byte(f)) >= 0 && c != '\n') {
         if (n == Y4M_LINE_MAX - 1)
             return -2;
         line[n++] = (char)c;
     }
     line[n] = '\0';
-    if (c == EOF)
+    if (c < 0)
         return n == 0 ? -1 : -2;
     return n;
 }
@@ -107,7 +165,7 @@ static rte_status parse_header(y4m_source *s, char *line, char *msg, size_t msg_
 static void y4m_rewind(void *impl)
 {
     y4m_source *s = impl;
-    fseeko(s->file, (off_t)s->data_start, SEEK_SET);
+    seek_to(&s->file, s->data_start);
 }
 
 /* After a bad FRAME header that started at `at`: on to the next "FRAME"
@@ -115,15 +173,13 @@ static void y4m_rewind(void *impl)
 static void skip_to_next_frame(y4m_source *s, long long at)
 {
     static const char magic[] = "FRAME";
-    fseeko(s->file, (off_t)(at + 1), SEEK_SET);
-    long long pos = at + 1;
+    seek_to(&s->file, at + 1);
     size_t matched = 0;
     int c;
-    while ((c = getc(s->file)) != EOF) {
-        pos++;
+    while ((c = next_byte(&s->file)) >= 0) {
         if (matched == 5) {
             if (c == ' ' || c == '\n') {
-                fseeko(s->file, (off_t)(pos - 6), SEEK_SET);
+                seek_to(&s->file, s->file.offset - 6);
                 return;
             }
             matched = 0;
@@ -140,12 +196,18 @@ static rte_status y4m_next(void *impl, rte_source_frame *out, int32_t timeout_ms
 {
     (void)timeout_ms;
     y4m_source *s = impl;
-    long long at = (long long)ftello(s->file);
+    long long at = s->file.offset;
     char line[Y4M_LINE_MAX];
-    int n = read_line(s->file, line);
+    s->file.error = 0;
+    int n = read_line(&s->file, line);
+    if (s->file.error) {
+        s->rec.stats.errors++;
+        rte_source_msgf(msg, msg_size, "%s: %s", s->path_name, strerror(s->file.error));
+        return RTE_ERR_IO;
+    }
     if (n == -1)
         return rte_recording_end(&s->rec, msg, msg_size);
-    if (n < 0 && feof(s->file)) {
+    if (n == -2 && s->file.len == 0) {
         rte_source_msgf(msg, msg_size, "%s: frame %llu: header cut short", s->path_name,
                         (unsigned long long)s->rec.index);
         return rte_recording_bad(&s->rec, RTE_ERR_TRUNCATED);
@@ -153,18 +215,19 @@ static rte_status y4m_next(void *impl, rte_source_frame *out, int32_t timeout_ms
     if (n < 5 || strncmp(line, "FRAME", 5) != 0 || (line[5] != ' ' && line[5] != '\0')) {
         skip_to_next_frame(s, at);
         rte_source_msgf(msg, msg_size, "%s: offset %lld: not a FRAME header, skipped to %lld",
-                        s->path_name, at, (long long)ftello(s->file));
+                        s->path_name, at, s->file.offset);
         return rte_recording_bad(&s->rec, RTE_ERR_CORRUPT);
     }
-    size_t got = fread(s->frame, 1, s->y_bytes, s->file);
+    size_t got = read_bytes(&s->file, s->frame, s->y_bytes);
     if (got == s->y_bytes && !s->mono)
-        got += fread(s->chroma, 1, 2 * s->c_bytes, s->file);
+        got += read_bytes(&s->file, s->chroma, 2 * s->c_bytes);
     size_t want = s->y_bytes + (s->mono ? 0 : 2 * s->c_bytes);
     if (got != want) {
+        int err = s->file.error;
         rte_source_msgf(msg, msg_size, "%s: frame %llu cut short: %zu of %zu bytes%s%s",
                         s->path_name, (unsigned long long)s->rec.index, got, want,
-                        ferror(s->file) ? ": " : "", ferror(s->file) ? strerror(errno) : "");
-        return rte_recording_bad(&s->rec, ferror(s->file) ? RTE_ERR_IO : RTE_ERR_TRUNCATED);
+                        err ? ": " : "", err ? strerror(err) : "");
+        return rte_recording_bad(&s->rec, err ? RTE_ERR_IO : RTE_ERR_TRUNCATED);
     }
     if (!s->mono) {
         /* I420 -> NV12: interleave U and V (rows of 2 * cw bytes). */
@@ -188,9 +251,9 @@ static void y4m_close(void *impl)
     y4m_source *s = impl;
     if (!s)
         return;
-    if (s->file)
-        fclose(s->file);
-    free(s->stdio_buf);
+    if (s->file.fd >= 0)
+        close(s->file.fd);
+    free(s->file.buf);
     free(s->frame);
     free(s->chroma);
     free(s);
@@ -213,17 +276,16 @@ rte_status rte_y4m_source_open(rte_source *source, const char *path, char *msg, 
     const char *slash = strrchr(path, '/');
     snprintf(s->path_name, sizeof s->path_name, "%s", slash ? slash + 1 : path);
     rte_status st = RTE_OK;
-    s->file = fopen(path, "rb");
-    s->stdio_buf = malloc(Y4M_STDIO_BUFFER);
-    if (!s->file) {
+    s->file.fd = open(path, O_RDONLY | O_CLOEXEC);
+    s->file.buf = malloc(Y4M_READ_BUFFER);
+    if (s->file.fd < 0) {
         rte_source_msgf(msg, msg_size, "%s: %s", path, strerror(errno));
         st = RTE_ERR_IO;
-    } else if (!s->stdio_buf) {
+    } else if (!s->file.buf) {
         st = RTE_ERR_NO_MEMORY;
     } else {
-        setvbuf(s->file, s->stdio_buf, _IOFBF, Y4M_STDIO_BUFFER);
         char line[Y4M_LINE_MAX];
-        if (read_line(s->file, line) < 0) {
+        if (read_line(&s->file, line) < 0) {
             rte_source_msgf(msg, msg_size, "%s: no YUV4MPEG2 header", s->path_name);
             st = RTE_ERR_FORMAT;
         } else {
@@ -231,7 +293,7 @@ rte_status rte_y4m_source_open(rte_source *source, const char *path, char *msg, 
         }
     }
     if (st == RTE_OK) {
-        s->data_start = (long long)ftello(s->file);
+        s->data_start = s->file.offset;
         s->y_bytes = (size_t)s->width * (size_t)s->height;
         s->c_bytes = s->mono ? 0 : (size_t)((s->width + 1) / 2) * (size_t)((s->height + 1) / 2);
         s->frame_size = rte_frame_packed_size(s->mono ? RTE_PIXEL_GREY : RTE_PIXEL_NV12,
@@ -248,11 +310,8 @@ rte_status rte_y4m_source_open(rte_source *source, const char *path, char *msg, 
         return st;
     }
     rte_recording_init(&s->rec, rte_recording_frame_ns(1, s->fps_num, s->fps_den), y4m_rewind);
-    source->ops = &rte_y4m_source_ops;
-    source->impl = s;
-    source->max_width = s->width;
-    source->max_height = s->height;
-    source->format = s->mono ? RTE_PIXEL_GREY : RTE_PIXEL_NV12;
+    rte_recording_attach(source, &rte_y4m_source_ops, s, s->width, s->height,
+                         s->mono ? RTE_PIXEL_GREY : RTE_PIXEL_NV12);
     rte_source_msgf(msg, msg_size, "%s: %dx%d %s at %d/%d fps", s->path_name, s->width,
                     s->height, s->mono ? "mono" : "4:2:0", s->fps_num, s->fps_den);
     return RTE_OK;

@@ -9,7 +9,11 @@
  * preloaded with LD_PRELOAD into one that is not. Under a sanitizer the
  * sanitizer's allocator comes first and nothing is counted:
  * heapcount_active() tells, so tests can skip. Counting is process-wide and
- * atomic (other threads' calls count too). */
+ * atomic (other threads' calls count too).
+ *
+ * Preloaded into a program that does not call this API, it reports at exit:
+ *   LD_PRELOAD=libheapcount.so HEAPCOUNT_REPORT=counts.txt program ...
+ * writes "malloc N calloc N realloc N free N bytes N" to counts.txt. */
 #ifndef RTEDGE_HEAPCOUNT_H
 #define RTEDGE_HEAPCOUNT_H
 

@@ -164,14 +164,20 @@ static const char *temp_path(char *buf, size_t size, const char *name)
     return buf;
 }
 
+/* A temporary log file's path and its file:// URL. */
+static void temp_log(char *path, size_t path_size, char *url, size_t url_size, const char *name)
+{
+    temp_path(path, path_size, name);
+    snprintf(url, url_size, "file://%s", path);
+}
+
 static void test_file_log_read_back(void **state)
 {
     (void)state;
     samples s;
     samples_fill(&s, 2);
     char path[512], url[600];
-    temp_path(path, sizeof path, "publish.lcmlog");
-    snprintf(url, sizeof url, "file://%s", path);
+    temp_log(path, sizeof path, url, sizeof url, "publish.lcmlog");
     rte_publisher *pub = create(url);
     assert_null(rte_publisher_lcm(pub));
     publish_all(pub, &s);
@@ -295,8 +301,7 @@ static void test_damaged_log(void **state)
     samples s;
     samples_fill(&s, 4);
     char path[512], url[600], msg[256];
-    temp_path(path, sizeof path, "damaged.lcmlog");
-    snprintf(url, sizeof url, "file://%s", path);
+    temp_log(path, sizeof path, url, sizeof url, "damaged.lcmlog");
     rte_publisher *pub = create(url);
     for (int i = 0; i < 4; i++)
         assert_int_equal(rte_publish_status(pub, "STATUS", &s.status, msg, sizeof msg), RTE_OK);
@@ -360,8 +365,7 @@ static void test_heap_calls_file(void **state)
     samples s;
     samples_fill(&s, 5);
     char path[512], url[600];
-    temp_path(path, sizeof path, "heap.lcmlog");
-    snprintf(url, sizeof url, "file://%s", path);
+    temp_log(path, sizeof path, url, sizeof url, "heap.lcmlog");
     rte_publisher *pub = create(url);
     heapcount_counts c = count_publishing(pub, &s, 20);
     assert_int_equal(heapcount_calls(&c), 0);

@@ -21,6 +21,7 @@
 #include "lcm_log.h"
 #include "messages.h"
 #include "rtedge/publish.h"
+#include "rtedge/recorded_source.h"
 
 extern char **environ;
 
@@ -218,12 +219,81 @@ static void test_lcm_logplayer_plays_our_log(void **state)
     unlink(path);
 }
 
+/* The live image_t source: newest frame first, timeouts, bad messages,
+ * and no heap call per frame after the first. */
+static void test_live_lcm_source(void **state)
+{
+    (void)state;
+    char msg[RTE_SOURCE_MESSAGE_SIZE];
+    rte_source src;
+    rte_lcm_source_config cfg = {URL, "CAMERA", RTE_PIXEL_GREY, 64, 48};
+    assert_int_equal(rte_lcm_live_source_open(&src, &cfg, msg, sizeof msg), RTE_OK);
+    assert_string_equal(src.ops->kind, "lcm");
+    rte_publisher *pub = NULL;
+    assert_int_equal(rte_publisher_create(&pub, URL, &limits, msg, sizeof msg), RTE_OK);
+    static uint8_t pixels[64 * 48];
+    rtedge_image_t img = {0, 64, 48, 64, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, 64 * 48, pixels, 0,
+                          NULL};
+    rte_source_frame f;
+    assert_int_equal(rte_source_next(&src, &f, 50, msg, sizeof msg), RTE_ERR_TIMEOUT);
+
+    /* Three images before next(): it hands out the newest. The receive
+     * thread takes them in turn, so wait until all three are there. */
+    for (int k = 1; k <= 3; k++) {
+        img.utime = 1000 * k;
+        pixels[0] = (uint8_t)k;
+        assert_int_equal(rte_publish_image(pub, "CAMERA", &img, msg, sizeof msg), RTE_OK);
+    }
+    sleep_ms(200);
+    assert_int_equal(rte_source_next(&src, &f, 1000, msg, sizeof msg), RTE_OK);
+    assert_int_equal(f.frame.plane[0][0], 3);
+    assert_int_equal(f.recorded_ns, 3000 * 1000);
+    assert_int_equal(f.dropped, 2);
+    rte_source_stats stats;
+    rte_source_get_stats(&src, &stats);
+    assert_int_equal(stats.skipped, 2);
+
+    /* Not an image_t on the channel: a bad frame. */
+    samples s;
+    samples_fill(&s, 14);
+    assert_int_equal(rte_publish_status(pub, "CAMERA", &s.status, msg, sizeof msg), RTE_OK);
+    assert_int_equal(rte_source_next(&src, &f, 1000, msg, sizeof msg), RTE_ERR_FORMAT);
+
+    /* Steady state: publish, receive; count the source's heap calls. */
+    int counting = heapcount_active();
+    uint64_t calls = 0;
+    for (int k = 0; k < 20; k++) {
+        img.utime = 10000 + k;
+        pixels[0] = (uint8_t)(100 + k);
+        assert_int_equal(rte_publish_image(pub, "CAMERA", &img, msg, sizeof msg), RTE_OK);
+        heapcount_reset();
+        assert_int_equal(rte_source_next(&src, &f, 1000, msg, sizeof msg), RTE_OK);
+        heapcount_counts c;
+        heapcount_get(&c);
+        if (k > 0)
+            calls += heapcount_calls(&c);
+        assert_int_equal(f.frame.plane[0][0], 100 + k);
+        assert_int_equal(f.dropped, 0);
+    }
+    if (counting) {
+        print_message("live lcm source: %llu heap calls in 19 frames\n",
+                      (unsigned long long)calls);
+        assert_int_equal(calls, 0);
+    }
+    rte_source_get_stats(&src, &stats);
+    assert_int_equal(stats.frames, 21);
+    assert_int_equal(stats.bad_frames, 1);
+    rte_publisher_destroy(pub);
+    rte_source_close(&src);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_udpm_round_trip_without_heap_calls),
         cmocka_unit_test(test_lcm_logger_records_our_messages),
         cmocka_unit_test(test_lcm_logplayer_plays_our_log),
+        cmocka_unit_test(test_live_lcm_source),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

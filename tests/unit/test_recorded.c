@@ -13,6 +13,7 @@
 
 #include <cmocka.h>
 
+#include "heapcount.h"
 #include "rtedge/imageio.h"
 #include "rtedge/pacer.h"
 #include "rtedge/publish.h"
@@ -64,6 +65,14 @@ static void write_gray(const char *path, int32_t w, int32_t h, uint8_t value)
     free(buf);
 }
 
+/* write_gray into dir/name; the path is left in path. */
+static void write_gray_in(char *path, size_t size, const char *dir, const char *name, int32_t w,
+                          int32_t h, uint8_t value)
+{
+    snprintf(path, size, "%s/%s", dir, name);
+    write_gray(path, w, h, value);
+}
+
 static void expect_stats(const rte_source *src, uint64_t frames, uint64_t bad,
                          rte_source_state state)
 {
@@ -82,18 +91,24 @@ static void test_images_directory_with_corrupt_png(void **state)
     char dir[600], path[700];
     tmp_path(dir, sizeof dir, "images");
     mkdir(dir, 0755);
-    snprintf(path, sizeof path, "%s/a.pgm", dir);
-    write_gray(path, 8, 6, 10);
-    snprintf(path, sizeof path, "%s/b.png", dir);
-    write_gray(path, 8, 6, 20);
+    write_gray_in(path, sizeof path, dir, "a.pgm", 8, 6, 10);
+    write_gray_in(path, sizeof path, dir, "b.png", 8, 6, 20);
     /* c.png: a PNG cut in the middle of its data */
-    snprintf(path, sizeof path, "%s/c.png", dir);
-    write_gray(path, 8, 6, 30);
+    write_gray_in(path, sizeof path, dir, "c.png", 8, 6, 30);
     struct stat sb;
     assert_int_equal(stat(path, &sb), 0);
     assert_int_equal(truncate(path, sb.st_size / 2), 0);
-    snprintf(path, sizeof path, "%s/d.PNG", dir);
-    write_gray(path, 5, 4, 40);
+    write_gray_in(path, sizeof path, dir, "d.PNG", 5, 4, 40);
+    /* e.png: whole, but a byte of its image data flipped (CRC mismatch) */
+    write_gray_in(path, sizeof path, dir, "e.png", 8, 6, 50);
+    assert_int_equal(stat(path, &sb), 0);
+    int fd = open(path, O_RDWR);
+    assert_true(fd >= 0);
+    uint8_t byte;
+    assert_int_equal(pread(fd, &byte, 1, sb.st_size - 20), 1);
+    byte ^= 0x55;
+    assert_int_equal(pwrite(fd, &byte, 1, sb.st_size - 20), 1);
+    close(fd);
     snprintf(path, sizeof path, "%s/notes.txt", dir);
     write_file(path, "x", 1);
 
@@ -107,13 +122,13 @@ static void test_images_directory_with_corrupt_png(void **state)
     assert_int_equal(src.format, RTE_PIXEL_GREY);
 
     rte_source_frame f;
-    const uint8_t firsts[] = {10, 20, 0, 40};
+    const uint8_t firsts[] = {10, 20, 0, 40, 0};
     for (int pass = 0; pass < 2; pass++) {
-        for (int i = 0; i < 4; i++) {
+        for (int i = 0; i < 5; i++) {
             rte_status st = rte_source_next(&src, &f, 0, msg, sizeof msg);
-            if (i == 2) {
-                assert_int_not_equal(st, RTE_OK);
-                assert_non_null(strstr(msg, "c.png"));
+            if (i == 2 || i == 4) {
+                assert_int_equal(st, i == 2 ? RTE_ERR_TRUNCATED : RTE_ERR_CORRUPT);
+                assert_non_null(strstr(msg, i == 2 ? "c.png" : "e.png"));
                 continue;
             }
             assert_int_equal(st, RTE_OK);
@@ -121,13 +136,13 @@ static void test_images_directory_with_corrupt_png(void **state)
             assert_int_equal(f.frame.width, i == 3 ? 5 : 8);
             assert_int_equal(f.frame.plane[0][0], firsts[i]);
             assert_int_equal(f.frame.plane[0][f.frame.stride[0] + 2], firsts[i] + 3);
-            assert_int_equal(f.sequence, (uint64_t)(pass * 4 + i));
-            /* 30 fps by default; the second pass goes on after the first */
+            assert_int_equal(f.sequence, (uint64_t)(pass * 5 + i));
+            /* 30 fps by default; after the rewind, one frame after d.PNG */
             assert_int_equal(f.recorded_ns, (int64_t)(pass * 4 + i) * 1000000000 / 30);
         }
         assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_ERR_END);
         assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_ERR_END);
-        expect_stats(&src, (uint64_t)(pass + 1) * 3, (uint64_t)pass + 1, RTE_SOURCE_ENDED);
+        expect_stats(&src, (uint64_t)(pass + 1) * 3, (uint64_t)(pass + 1) * 2, RTE_SOURCE_ENDED);
         assert_int_equal(rte_recorded_source_rewind(&src), RTE_OK);
     }
     rte_source_close(&src);
@@ -473,6 +488,76 @@ static void test_lcm_log_images(void **state)
     assert_null(src.ops);
 }
 
+/* ---- no heap calls per frame ---- */
+
+/* Heap calls of `frames` next() calls after the first, with a rewind at the
+ * end of the recording. */
+static uint64_t heap_calls_per_run(rte_source *src, int frames)
+{
+    rte_source_frame f;
+    char msg[RTE_SOURCE_MESSAGE_SIZE];
+    assert_int_equal(rte_source_next(src, &f, 0, msg, sizeof msg), RTE_OK);
+    heapcount_reset();
+    for (int i = 0; i < frames; i++) {
+        rte_status st = rte_source_next(src, &f, 0, msg, sizeof msg);
+        if (st == RTE_ERR_END) {
+            assert_int_equal(rte_recorded_source_rewind(src), RTE_OK);
+            st = rte_source_next(src, &f, 0, msg, sizeof msg);
+        }
+        assert_int_equal(st, RTE_OK);
+    }
+    heapcount_counts c;
+    heapcount_get(&c);
+    rte_source_close(src);
+    return heapcount_calls(&c);
+}
+
+static void test_no_heap_calls_per_frame(void **state)
+{
+    (void)state;
+    if (!heapcount_active()) {
+        print_message("heapcount is not interposed (sanitizer build?): not counted\n");
+        skip();
+    }
+    char path[700], url[800], msg[RTE_SOURCE_MESSAGE_SIZE];
+    rte_source src;
+    tmp_path(path, sizeof path, "heap.y4m");
+    write_y4m(path, "YUV4MPEG2 W64 H48 C420\n", 64, 48, 0, 4, NULL, 0);
+    assert_int_equal(rte_y4m_source_open(&src, path, msg, sizeof msg), RTE_OK);
+    assert_int_equal(heap_calls_per_run(&src, 10), 0);
+
+    tmp_path(path, sizeof path, "heap.raw");
+    static uint8_t raw[3 * 64 * 48 * 3];
+    write_file(path, raw, sizeof raw);
+    rte_raw_source_config rc = {path, RTE_PIXEL_BGR24, 64, 48, 0, 0};
+    assert_int_equal(rte_raw_source_open(&src, &rc, msg, sizeof msg), RTE_OK);
+    assert_int_equal(heap_calls_per_run(&src, 10), 0);
+
+    tmp_path(path, sizeof path, "heap.lcmlog");
+    snprintf(url, sizeof url, "file://%s", path);
+    rte_publish_limits limits = {32, 0, 0, 0, 0, 64 * 48, 1};
+    rte_publisher *pub;
+    assert_int_equal(rte_publisher_create(&pub, url, &limits, msg, sizeof msg), RTE_OK);
+    rtedge_image_t img = {0, 64, 48, 64, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, 64 * 48, raw, 0, NULL};
+    for (int k = 0; k < 3; k++)
+        assert_int_equal(rte_publish_image(pub, "CAM", &img, msg, sizeof msg), RTE_OK);
+    rte_publisher_destroy(pub);
+    rte_lcm_source_config lc = {path, "CAM", 0, 0, 0};
+    assert_int_equal(rte_lcm_log_source_open(&src, &lc, msg, sizeof msg), RTE_OK);
+    assert_int_equal(heap_calls_per_run(&src, 10), 0);
+
+    /* Image files: the codecs' and stdio's own (documented in imageio.h). */
+    char dir[600];
+    tmp_path(dir, sizeof dir, "heapimages");
+    mkdir(dir, 0755);
+    write_gray_in(path, sizeof path, dir, "a.pgm", 64, 48, 1);
+    write_gray_in(path, sizeof path, dir, "b.png", 64, 48, 2);
+    rte_images_source_config ic = {dir, RTE_PIXEL_GREY, 0, 0, 0, 0};
+    assert_int_equal(rte_images_source_open(&src, &ic, msg, sizeof msg), RTE_OK);
+    print_message("images source, 10 frames of PGM and PNG: %llu heap calls (fopen, libspng)\n",
+                  (unsigned long long)heap_calls_per_run(&src, 10));
+}
+
 /* ---- pacing on a fake clock ---- */
 
 #define MS 1000000LL
@@ -559,6 +644,7 @@ int main(void)
         cmocka_unit_test(test_y4m_from_ffmpeg),
         cmocka_unit_test(test_raw_frames),
         cmocka_unit_test(test_lcm_log_images),
+        cmocka_unit_test(test_no_heap_calls_per_frame),
         cmocka_unit_test(test_pacer_recorded),
         cmocka_unit_test(test_pacer_fps_and_fast),
     };
