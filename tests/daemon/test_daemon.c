@@ -578,12 +578,12 @@ static void heap_run(const char *url, bool images)
                   (unsigned long long)heapcount_calls(&hc), (unsigned long long)hc.malloc_calls,
                   (unsigned long long)hc.calloc_calls, (unsigned long long)hc.realloc_calls,
                   (unsigned long long)hc.free_calls);
-    /* Nothing allocates. The only calls are glibc's fseeko() calling
-     * free(NULL) (its backup read area) once per rewind of the Y4M file when
-     * the recording loops: exactly one per rewind, none per frame. */
+    /* Nothing allocates. The only calls allowed are glibc's fseeko()
+     * calling free(NULL) (its backup read area) when the Y4M source seeks
+     * back for a rewind: at most one per rewind, none per frame. */
     assert_int_equal(heapcount_allocations(&hc), 0);
     assert_int_equal(n.rewinds, 99);
-    assert_int_equal(hc.free_calls, n.rewinds);
+    assert_true(hc.free_calls == 0 || hc.free_calls == n.rewinds);
 }
 
 static void test_no_heap_calls_file(void **state)
