@@ -258,19 +258,33 @@ static void test_memq_road_lanes(void **state)
     rtedge_status_t_decode_cleanup(&s.last_status);
 }
 
-static void test_memq_objects(void **state)
+/* The daemon over memq:// on a fresh objects sequence (damaged or not),
+ * with `tweak` applied to the test configuration. */
+static void objects_run(const char *name, int frames, int damage, void (*tweak)(rted_config *),
+                        seen *s, rted_counters *n)
 {
     char y4m[512];
-    path(y4m, sizeof y4m, "objects.y4m");
-    write_objects_y4m(y4m, 20, 0);
-    static seen s;
-    memset(&s, 0, sizeof s);
+    path(y4m, sizeof y4m, name);
+    write_objects_y4m(y4m, frames, damage);
+    memset(s, 0, sizeof *s);
     rted_config c;
     base_config(&c, y4m, "memq://");
-    c.publish_images = true;
+    if (tweak)
+        tweak(&c);
     rted_daemon *d = open_daemon(&c, NULL);
-    run_memq(d, &s);
+    run_memq(d, s);
+    rted_daemon_get_counters(d, n);
     rted_daemon_close(d);
+}
+
+static void with_images(rted_config *c) { c->publish_images = true; }
+static void tiny_deadline(rted_config *c) { c->deadline_ms = 0.001; /* 1 us: no frame makes it */ }
+
+static void test_memq_objects(void **state)
+{
+    static seen s;
+    rted_counters n;
+    objects_run("objects.y4m", 20, 0, with_images, &s, &n);
     assert_int_equal(s.lanes, 20);
     assert_int_equal(s.grasps, 20);
     assert_int_equal(s.images, 20);
@@ -280,19 +294,9 @@ static void test_memq_objects(void **state)
 
 static void test_deadline_accounting(void **state)
 {
-    char y4m[512];
-    path(y4m, sizeof y4m, "objects_deadline.y4m");
-    write_objects_y4m(y4m, 10, 0);
     static seen s;
-    memset(&s, 0, sizeof s);
-    rted_config c;
-    base_config(&c, y4m, "memq://");
-    c.deadline_ms = 0.001; /* 1 us: no frame can make it */
-    rted_daemon *d = open_daemon(&c, NULL);
-    run_memq(d, &s);
     rted_counters n;
-    rted_daemon_get_counters(d, &n);
-    rted_daemon_close(d);
+    objects_run("objects_deadline.y4m", 10, 0, tiny_deadline, &s, &n);
     assert_int_equal(n.processed, 10);
     assert_int_equal(n.deadline_misses, 10);
     assert_int_equal(n.stages_skipped, 10); /* the grasp path, every frame */
@@ -306,18 +310,9 @@ static void test_deadline_accounting(void **state)
 
 static void test_damaged_frames(void **state)
 {
-    char y4m[512];
-    path(y4m, sizeof y4m, "objects_damaged.y4m");
-    write_objects_y4m(y4m, 12, 1);
     static seen s;
-    memset(&s, 0, sizeof s);
-    rted_config c;
-    base_config(&c, y4m, "memq://");
-    rted_daemon *d = open_daemon(&c, NULL);
-    run_memq(d, &s);
     rted_counters n;
-    rted_daemon_get_counters(d, &n);
-    rted_daemon_close(d);
+    objects_run("objects_damaged.y4m", 12, 1, NULL, &s, &n);
     print_message("damaged: %llu processed, %llu bad\n", (unsigned long long)n.processed,
                   (unsigned long long)n.bad_frames);
     assert_true(n.bad_frames >= 2);
