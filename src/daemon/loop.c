@@ -71,6 +71,7 @@ struct rted_daemon {
     uint64_t window_processed;
     int64_t window_start_ns;
     rte_source_state state;
+    volatile sig_atomic_t *stop; /* rted_daemon_run's flag: ends a wait for a frame's time */
 };
 
 static int64_t now_ns(void)
@@ -820,6 +821,8 @@ rted_step rted_daemon_step(rted_daemon *d)
         }
         if (a == RTE_PACE_PROCESS)
             break;
+        if (d->stop && *d->stop)
+            return RTED_STEP_IDLE;
         sleep_ns(wait > 50000000 ? 50000000 : wait);
         waited = true;
         if (d->cfg.status_period_ms &&
@@ -836,6 +839,7 @@ rted_step rted_daemon_step(rted_daemon *d)
 int rted_daemon_run(rted_daemon *d, volatile sig_atomic_t *stop, volatile sig_atomic_t *reload)
 {
     int code = 0;
+    d->stop = stop;
     while (!*stop) {
         if (*reload) {
             *reload = 0;

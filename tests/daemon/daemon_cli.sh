@@ -95,3 +95,20 @@ s=$(summary "$TMP/hup.lcm")
 [ "$(field "$s" 'd["objects_last"]')" -eq 0 ] || fail "SIGHUP: min_area not applied"
 [ "$(field "$s" 'len(d["config_hashes"])')" -eq 2 ] || fail "SIGHUP: status hashes $s"
 echo "ok: SIGHUP applied grasp.min_area, refused grasp.max_objects"
+
+# [realtime]: SCHED_FIFO, affinity and mlockall are applied or warned about, never fatal.
+"$RTEDGED" --source "$Y4M" --fast --max-frames 3 --lcm-url "file://$TMP/rt.lcm" \
+    --set realtime.priority=10 --set realtime.cpu=0 --set realtime.mlockall=true 2>"$TMP/rt.err" ||
+    fail "realtime: exit $?: $(cat "$TMP/rt.err")"
+grep -q "3 processed" "$TMP/rt.err" || fail "realtime: $(cat "$TMP/rt.err")"
+echo "ok: realtime settings: $(grep -c warning "$TMP/rt.err") warnings: $(grep warning "$TMP/rt.err" | tr '\n' ' ')"
+
+# A slow recorded pace still stops at once on SIGTERM (no wait for the next frame's time).
+"$RTEDGED" --source "$Y4M" --speed 0.01 --lcm-url "file://$TMP/slow.lcm" 2>"$TMP/slow.err" &
+pid=$!
+sleep 1
+kill -TERM $pid
+start=$(date +%s)
+wait $pid || fail "slow: exit $?"
+[ $(( $(date +%s) - start )) -le 1 ] || fail "slow pace: SIGTERM took too long"
+echo "ok: SIGTERM during a long wait for a frame's time"
