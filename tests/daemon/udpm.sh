@@ -21,7 +21,7 @@ logger=$!
 $PY "$SUB" --types "$TYPES" --timeout 4 --quiet --summary "$URL" >"$TMP/live.json" &
 sub=$!
 sleep 1
-"$RTEDGED" --source "$Y4M" --fps 40 --lcm-url "$URL" --set publish.images=true \
+"$RTEDGED" --source "$Y4M" --fps 40 --deadline-ms 1000 --set deadline.max_late_ms=-1 --lcm-url "$URL" --set publish.images=true \
     2>"$TMP/daemon.err" || fail "rtedged: $(cat "$TMP/daemon.err")"
 sleep 1
 kill -INT $logger
