@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <cmocka.h>
 #include <lcm/eventlog.h>
@@ -322,6 +323,34 @@ static void test_damaged_frames(void **state)
     rtedge_status_t_decode_cleanup(&s.last_status);
 }
 
+/* An image directory (PGM files) as the source. */
+static void test_images_source(void **state)
+{
+    char dir[512], file[600];
+    path(dir, sizeof dir, "images");
+    mkdir(dir, 0755);
+    static uint8_t img[OW * OH];
+    for (int k = 0; k < 6; k++) {
+        snprintf(file, sizeof file, "%s/frame_%02d.pgm", dir, k);
+        FILE *f = fopen(file, "wb");
+        assert_non_null(f);
+        objects_frame(k, img);
+        fprintf(f, "P5\n%d %d\n255\n", OW, OH);
+        fwrite(img, 1, sizeof img, f);
+        fclose(f);
+    }
+    static seen s;
+    memset(&s, 0, sizeof s);
+    rted_config c;
+    base_config(&c, dir, "memq://");
+    rted_daemon *d = open_daemon(&c, NULL);
+    run_memq(d, &s);
+    rted_daemon_close(d);
+    assert_int_equal(s.grasps, 6);
+    assert_int_equal(s.grasp_ok, 6);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
 typedef struct log_counts {
     int lanes, grasps, statuses, other, grasp_ok;
 } log_counts;
@@ -607,6 +636,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_deadline_accounting),
         cmocka_unit_test(test_damaged_frames),
         cmocka_unit_test(test_file_log),
+        cmocka_unit_test(test_images_source),
         cmocka_unit_test(test_lcm_log_source),
         cmocka_unit_test(test_reload),
         cmocka_unit_test(test_params_channel),
