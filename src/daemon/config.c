@@ -26,7 +26,7 @@ typedef struct key_def {
 } key_def;
 
 static const char *const source_kinds[] = {"auto", "y4m", "images", "raw", "lcm-log", "lcm",
-                                           "v4l2", NULL};
+                                           "v4l2", "libcamera", NULL};
 static const char *const paces[] = {"recorded", "fps", "fast", NULL};
 static const char *const canny_modes[] = {"fixed", "median", "otsu", NULL};
 static const char *const binarizers[] = {"otsu", "fixed", "canny-close", NULL};
@@ -42,9 +42,10 @@ static const char *const polarities[] = {"auto", "dark", "bright", NULL};
 static const key_def keys[] = {
     ENUM("source", "kind", source_kind, source_kinds, false, "auto",
          "what `path` is; auto: *.y4m, a directory or glob of images, *.lcm/*.log\n"
-         "(an LCM log of image_t), udpm:// or memq:// (live image_t), /dev/video*"),
+         "(an LCM log of image_t), udpm:// or memq:// (live image_t), /dev/video*;\n"
+         "libcamera: path is the camera id, or its index in `cam -l`"),
     TEXT("source", "path", source_path, false, "fixtures/solidWhiteRight_clip.y4m",
-         "the recording, image directory or glob, LCM URL or V4L2 device"),
+         "the recording, image directory or glob, LCM URL, V4L2 device or camera"),
     TEXT("source", "channel", source_channel, false, "",
          "LCM sources: the image_t channel (a log: empty = every channel)"),
     TEXT("source", "format", source_format, false, "",

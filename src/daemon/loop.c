@@ -23,6 +23,9 @@
 
 #include "rtedge/arena.h"
 #include "rtedge/grasp.h"
+#ifdef RTE_HAVE_LIBCAMERA
+#include "rtedge/libcamera_source.h"
+#endif
 #include "rtedge/lane.h"
 #include "rtedge/pacer.h"
 #include "rtedge/publish.h"
@@ -113,7 +116,8 @@ static rted_source_kind guess_kind(const char *path)
 
 static const char *kind_name(rted_source_kind k)
 {
-    static const char *const names[] = {"auto", "y4m", "images", "raw", "lcm-log", "lcm", "v4l2"};
+    static const char *const names[] = {"auto", "y4m",  "images", "raw",
+                                        "lcm-log", "lcm", "v4l2", "libcamera"};
     return names[k];
 }
 
@@ -165,6 +169,23 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
         st = rte_v4l2_source_open(&d->source, &vc, &info, why, sizeof why);
         break;
     }
+    case RTED_SOURCE_LIBCAMERA: {
+#ifdef RTE_HAVE_LIBCAMERA
+        rte_libcamera_config lc = {NULL, 0, fmt, c->width, c->height, 0};
+        char *end;
+        long index = strtol(c->source_path, &end, 10);
+        if (*end || end == c->source_path)
+            lc.camera = c->source_path;
+        else
+            lc.index = (int32_t)index;
+        rte_libcamera_info info;
+        st = rte_libcamera_source_open(&d->source, &lc, &info, why, sizeof why);
+#else
+        snprintf(why, sizeof why, "rtedge was built without libcamera");
+        st = RTE_ERR_UNSUPPORTED;
+#endif
+        break;
+    }
     case RTED_SOURCE_AUTO:
         break;
     }
@@ -173,7 +194,8 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
                  why[0] ? why : rte_status_message(st));
         return false;
     }
-    d->recorded = kind != RTED_SOURCE_LCM && kind != RTED_SOURCE_V4L2;
+    d->recorded = kind != RTED_SOURCE_LCM && kind != RTED_SOURCE_V4L2 &&
+                  kind != RTED_SOURCE_LIBCAMERA;
     snprintf(d->source_id, sizeof d->source_id, "%s:%s", kind_name(kind), c->source_path);
     d->width = d->source.max_width;
     d->height = d->source.max_height;

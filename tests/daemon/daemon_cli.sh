@@ -112,3 +112,10 @@ start=$(date +%s)
 wait $pid || fail "slow: exit $?"
 [ $(( $(date +%s) - start )) -le 1 ] || fail "slow pace: SIGTERM took too long"
 echo "ok: SIGTERM during a long wait for a frame's time"
+
+# A camera that is not there: a clear message and exit 1 (not a configuration error).
+"$RTEDGED" --source /dev/video99 --lcm-url "file://$TMP/cam.lcm" 2>"$TMP/cam.err" >/dev/null
+rc=$?
+[ $rc -eq 1 ] && grep -q "cannot open v4l2 source /dev/video99" "$TMP/cam.err" ||
+    fail "missing camera: exit $rc: $(cat "$TMP/cam.err")"
+echo "ok: missing camera: $(tail -1 "$TMP/cam.err")"
