@@ -45,3 +45,20 @@ $PY "$SUB" --types "$TYPES" "$TMP/replay.lcm" | grep '^frame' | cut -c1-40 >"$TM
 [ "$(wc -l <"$TMP/b")" -eq "$frames" ] || fail "replay: $(wc -l <"$TMP/b") frames"
 diff "$TMP/a" "$TMP/b" >/dev/null || fail "replayed lanes differ: $(diff "$TMP/a" "$TMP/b" | head -5)"
 echo "ok: the LCM log source replays the recording with the same lanes and offsets"
+
+# A live LCM source: a second daemon analyses the first one's image_t frames
+# as they arrive over udpm:// (what a camera process publishing image_t would be).
+"$RTEDGED" --set source.kind=lcm --source "$URL" --set source.channel=RTEDGE_IMAGE \
+    --set source.format=grey --set source.width=480 --set source.height=270 \
+    --deadline-ms 1000 --lcm-url "file://$TMP/live_in.lcm" 2>"$TMP/live_in.err" &
+live=$!
+sleep 1
+"$RTEDGED" --source "$Y4M" --fps 20 --deadline-ms 1000 --set deadline.max_late_ms=-1 \
+    --lcm-url "$URL" --set publish.images=true 2>"$TMP/daemon2.err" || fail "rtedged (images)"
+sleep 1
+kill -TERM $live
+wait $live || fail "live-source daemon: exit $?: $(cat "$TMP/live_in.err")"
+got=$($PY "$SUB" --types "$TYPES" --quiet --summary "$TMP/live_in.lcm")
+n=$(field "$got" 'd["lanes"]')
+[ "$n" -ge $((frames * 3 / 4)) ] || fail "live LCM source: $n of $frames frames: $(cat "$TMP/live_in.err")"
+echo "ok: live LCM image_t source: $n of $frames frames analysed"
