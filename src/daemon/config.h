@@ -1,0 +1,89 @@
+/* rtedged's configuration: an INI file plus command-line overrides, read
+ * through one table of keys (config.c) that gives each key its type, range,
+ * default, help text and whether it may change while running (SIGHUP,
+ * params_t) or fixes a size at start. The same table prints
+ * `rtedged --help-config` (which is also the documented rtedged.conf). */
+#ifndef RTEDGED_CONFIG_H
+#define RTEDGED_CONFIG_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#define RTED_TEXT 256
+#define RTED_MSG 512
+
+typedef enum rted_source_kind {
+    RTED_SOURCE_AUTO = 0, RTED_SOURCE_Y4M, RTED_SOURCE_IMAGES, RTED_SOURCE_RAW,
+    RTED_SOURCE_LCM_LOG, RTED_SOURCE_LCM, RTED_SOURCE_V4L2, RTED_SOURCE_LIBCAMERA,
+} rted_source_kind;
+
+typedef enum rted_pace { RTED_PACE_RECORDED = 0, RTED_PACE_FPS, RTED_PACE_FAST } rted_pace;
+
+typedef struct rted_config {
+    /* [source] */
+    int32_t source_kind;
+    char source_path[RTED_TEXT];
+    char source_channel[RTED_TEXT];
+    char source_format[16];
+    int32_t width, height;          /* maxima (raw: the frame size); 0 = from the source */
+    int32_t pace;
+    double fps;
+    double speed;
+    bool loop;
+    int32_t max_frames;             /* stop after this many processed frames; 0 = never */
+    /* [lane] */
+    bool lane_enabled;
+    int32_t lane_max_segments, lane_blur_ksize;
+    int32_t lane_canny_mode, lane_canny_low, lane_canny_high;
+    int32_t lane_hough_threshold, lane_min_length, lane_max_gap;
+    int32_t lane_hold_frames, lane_gate_px;
+    bool lane_use_color;
+    char lane_roi[RTED_TEXT];
+    /* [grasp] */
+    bool grasp_enabled;
+    int32_t grasp_max_objects, grasp_max_contours, grasp_max_points, grasp_blur_ksize;
+    int32_t grasp_binarize, grasp_threshold, grasp_polarity;
+    int32_t grasp_min_area, grasp_max_area;
+    bool grasp_skip_border;
+    /* [publish] */
+    char lcm_url[RTED_TEXT];
+    char lane_channel[64], grasp_channel[64], status_channel[64], params_channel[64];
+    char image_channel[64];
+    bool params_enabled;
+    bool publish_images;
+    int32_t status_period_ms;
+    /* [deadline] */
+    double deadline_ms;             /* 0 = 1000 / fps (or 1000 / 30) */
+    double grasp_min_budget_ms;     /* skip grasp when less than this is left */
+    double max_late_ms;             /* pacer: drop frames later than this; < 0 never */
+    /* [realtime] */
+    int32_t rt_priority;            /* 0 = no SCHED_FIFO */
+    int32_t rt_cpu;                 /* -1 = no affinity */
+    bool rt_mlockall;
+} rted_config;
+
+/* Fills the table's defaults. */
+void rted_config_defaults(rted_config *c);
+/* Reads an INI file over *c. false and *msg ("file:line: why") on the
+ * first error (unknown section or key, bad value, duplicate key). */
+bool rted_config_load(rted_config *c, const char *path, char *msg, size_t msg_size);
+/* One "section.key=value" override (origin names it in messages). */
+bool rted_config_set(rted_config *c, const char *assignment, const char *origin, char *msg,
+                     size_t msg_size);
+/* Cross-key checks (canny low <= high, ROI syntax, ...). */
+bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size);
+/* The effective configuration as INI. */
+void rted_config_print(const rted_config *c, FILE *f);
+/* The documented default file: every key with help, range and default. */
+void rted_config_print_help(FILE *f);
+/* FNV-1a of the printed configuration's values. */
+uint64_t rted_config_hash(const rted_config *c);
+/* true and the name of the first fixed (start-up only) key whose value differs. */
+bool rted_config_fixed_change(const rted_config *now, const rted_config *next, char *name,
+                              size_t name_size);
+/* Parses lane.roi ("x,y;x,y;..." fractions) into Q16 vertices. */
+int32_t rted_parse_roi(const char *text, int32_t *xy_q16, int32_t max_vertices);
+
+#endif

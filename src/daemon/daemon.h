@@ -1,0 +1,64 @@
+/* The daemon's loop (loop.c): a source, the pacer, the lane and grasp paths
+ * and the publisher, all sized at rted_daemon_open() from the
+ * configuration; rted_daemon_step() then makes no heap call (the sources'
+ * image-file codecs and a memq:// subscriber aside: see publish.h). */
+#ifndef RTEDGED_DAEMON_H
+#define RTEDGED_DAEMON_H
+
+#include <signal.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include <lcm/lcm.h>
+
+#include "config.h"
+
+typedef struct rted_daemon rted_daemon;
+
+/* Counters since start (the status message carries them too). */
+typedef struct rted_counters {
+    uint64_t received;        /* frames the source handed out */
+    uint64_t processed;
+    uint64_t dropped;         /* stale (pacer) plus the source's own drops */
+    uint64_t bad_frames;      /* unreadable frames the source skipped */
+    uint64_t deadline_misses;
+    uint64_t stages_skipped;  /* grasp paths (and images) skipped to keep the deadline */
+    uint64_t published;
+    uint64_t publish_errors;
+    uint64_t status_sent;
+    uint64_t reloads;         /* configurations applied at run time (SIGHUP, params_t) */
+    uint64_t refused;         /* run-time changes refused (fixed keys, bad values) */
+    uint64_t rewinds;         /* a looping recording started again */
+} rted_counters;
+
+typedef enum rted_step {
+    RTED_STEP_FRAME = 0,  /* a frame was processed */
+    RTED_STEP_IDLE,       /* nothing processed (waited, dropped, bad frame, timeout) */
+    RTED_STEP_END,        /* the recording ended (and does not loop) or max_frames reached */
+    RTED_STEP_FAILED,     /* the source failed */
+} rted_step;
+
+/* config_path: re-read on SIGHUP (NULL: reload refused). */
+bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *config_path,
+                      char *msg, size_t msg_size);
+void rted_daemon_close(rted_daemon *d);
+/* One frame: read, pace, analyse, publish; status when due. */
+rted_step rted_daemon_step(rted_daemon *d);
+/* Steps until *stop, the end or a failure; *reload re-reads the file.
+ * Publishes a final status. Returns the process exit code. */
+int rted_daemon_run(rted_daemon *d, volatile sig_atomic_t *stop, volatile sig_atomic_t *reload);
+/* Applies a new configuration's runtime keys (false and *msg: a fixed key
+ * changed or a value is invalid; counted in refused). */
+bool rted_daemon_apply(rted_daemon *d, const rted_config *next, char *msg, size_t msg_size);
+/* Re-reads the configuration file (and the command-line overrides given to
+ * rted_daemon_set_overrides) and applies it. */
+bool rted_daemon_reload(rted_daemon *d, char *msg, size_t msg_size);
+void rted_daemon_set_overrides(rted_daemon *d, char *const *sets, int n_sets);
+void rted_daemon_publish_status(rted_daemon *d);
+void rted_daemon_get_counters(const rted_daemon *d, rted_counters *c);
+/* The publisher's lcm_t (memq://, udpm://), for in-process subscribers. */
+lcm_t *rted_daemon_lcm(rted_daemon *d);
+/* The latency of the last status window, microseconds: p50, p99, max. */
+void rted_daemon_latency(const rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *max);
+
+#endif

@@ -1,0 +1,647 @@
+/* rtedged in process: the loop on synthetic sequences with known answers,
+ * publishing over memq:// (decoded by a subscriber in the same process) and
+ * to file:// logs (read back with lcm_eventlog); deadline accounting;
+ * damaged frames; run-time configuration (file reload, params_t); an LCM
+ * log source round trip; and the heap-call count after the first frame.
+ *   test_daemon BUILD_DIR   (BUILD_DIR holds road_straight.{y4m,csv}) */
+#include <math.h>
+#include <poll.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <cmocka.h>
+#include <lcm/eventlog.h>
+#include <lcm/lcm.h>
+
+#include "config.h"
+#include "daemon.h"
+#include "heapcount.h"
+#include "rtedge/publish.h"
+
+static const char *build_dir;
+
+static void path(char *out, size_t size, const char *name)
+{
+    snprintf(out, size, "%s/daemon_%s", build_dir, name);
+}
+
+/* ---- the objects sequence: two bright rectangles moving on a dark table ---- */
+
+#define OW 160
+#define OH 120
+typedef struct rect {
+    int x0, y0, w, h;
+} rect;
+
+static void objects_at(int k, rect r[2])
+{
+    r[0] = (rect){20 + k, 20, 40, 24};
+    r[1] = (rect){100, 50 + k, 30, 30};
+}
+
+static void objects_frame(int k, uint8_t *img)
+{
+    rect r[2];
+    objects_at(k, r);
+    memset(img, 40, OW * OH);
+    for (int i = 0; i < 2; i++)
+        for (int y = r[i].y0; y < r[i].y0 + r[i].h; y++)
+            memset(img + y * OW + r[i].x0, 200, (size_t)r[i].w);
+}
+
+/* damage: 0 none; 1 a corrupt FRAME header at frame 3 and a truncated last frame. */
+static void write_objects_y4m(const char *file, int frames, int damage)
+{
+    FILE *f = fopen(file, "wb");
+    assert_non_null(f);
+    fprintf(f, "YUV4MPEG2 W%d H%d F30:1 Ip A1:1 Cmono\n", OW, OH);
+    static uint8_t img[OW * OH];
+    for (int k = 0; k < frames; k++) {
+        objects_frame(k, img);
+        fputs(damage && k == 3 ? "FRAMX\n" : "FRAME\n", f);
+        fwrite(img, 1, damage && k == frames - 1 ? OW * OH / 2 : OW * OH, f);
+    }
+    fclose(f);
+}
+
+static void base_config(rted_config *c, const char *source, const char *url)
+{
+    rted_config_defaults(c);
+    assert_true(strlen(source) < sizeof c->source_path && strlen(url) < sizeof c->lcm_url);
+    memcpy(c->source_path, source, strlen(source) + 1);
+    memcpy(c->lcm_url, url, strlen(url) + 1);
+    c->pace = RTED_PACE_FAST;
+    c->deadline_ms = 1000; /* generous: sanitizer builds are slow */
+}
+
+static rted_daemon *open_daemon(const rted_config *c, const char *config_path)
+{
+    rted_daemon *d;
+    char msg[RTED_MSG];
+    bool ok = rted_daemon_open(&d, c, config_path, msg, sizeof msg);
+    if (!ok)
+        print_error("%s\n", msg);
+    assert_true(ok);
+    return d;
+}
+
+/* ---- a memq:// subscriber ---- */
+
+typedef struct seen {
+    int lanes, grasps, statuses, images;
+    int grasp_ok;           /* grasp messages whose objects match the drawn ones */
+    int lane_match;         /* lane messages within tolerance of the CSV */
+    int lane_checked;
+    int deadline_met;
+    int64_t last_sequence;
+    bool sequence_ok;
+    double csv[128][4];
+    int csv_visible[128][2];
+    int csv_rows;
+    rtedge_status_t last_status;
+} seen;
+
+static bool near(double a, double b, double tol) { return fabs(a - b) <= tol; }
+
+static void check_grasp(seen *s, const rtedge_grasp_detection_t *m)
+{
+    rect r[2];
+    objects_at((int)m->header.sequence, r);
+    if (m->nobjects != 2)
+        return;
+    int ok = 0;
+    for (int i = 0; i < 2; i++) {
+        const rtedge_grasp_object_t *o = &m->objects[i];
+        for (int j = 0; j < 2; j++) {
+            double cx = r[j].x0 + (r[j].w - 1) / 2.0, cy = r[j].y0 + (r[j].h - 1) / 2.0;
+            double short_side = r[j].w < r[j].h ? r[j].w : r[j].h;
+            if (near(o->centroid_x, cx, 0.75) && near(o->centroid_y, cy, 0.75) &&
+                near(o->grasp_x, cx, 0.75) && near(o->grasp_y, cy, 0.75) &&
+                near(o->opening_width_px, short_side - 1, 2.5) && o->bbox_width >= r[j].w - 2 &&
+                o->bbox_width <= r[j].w + 2)
+                ok++;
+        }
+    }
+    if (ok == 2)
+        s->grasp_ok++;
+}
+
+static void check_lane(seen *s, const rtedge_lane_detection_t *m)
+{
+    int64_t k = m->header.sequence;
+    if (k < 0 || k >= s->csv_rows)
+        return;
+    if (!s->csv_visible[k][0] || !s->csv_visible[k][1] || k < 5)
+        return; /* the tracker settles in the first frames; worn markings are held */
+    s->lane_checked++;
+    if (m->left.found && m->right.found && near(m->left.x1, s->csv[k][0], 10) &&
+        near(m->right.x1, s->csv[k][2], 10) && near(m->left.x2, s->csv[k][1], 10) &&
+        near(m->right.x2, s->csv[k][3], 10))
+        s->lane_match++;
+}
+
+static void on_message(const lcm_recv_buf_t *rb, const char *channel, void *user)
+{
+    seen *s = user;
+    if (!strcmp(channel, "RTEDGE_LANES")) {
+        rtedge_lane_detection_t m;
+        assert_true(rtedge_lane_detection_t_decode(rb->data, 0, (int)rb->data_size, &m) > 0);
+        if (s->lanes && m.header.sequence != s->last_sequence + 1)
+            s->sequence_ok = false;
+        s->last_sequence = m.header.sequence;
+        s->lanes++;
+        s->deadline_met += m.header.deadline_met;
+        assert_true(m.header.latency_us >= 0);
+        assert_int_equal(m.header.deadline_met, m.header.latency_us <= m.header.deadline_us);
+        assert_int_equal(m.header.roi_npoints, 4);
+        check_lane(s, &m);
+        rtedge_lane_detection_t_decode_cleanup(&m);
+    } else if (!strcmp(channel, "RTEDGE_GRASP")) {
+        rtedge_grasp_detection_t m;
+        assert_true(rtedge_grasp_detection_t_decode(rb->data, 0, (int)rb->data_size, &m) > 0);
+        s->grasps++;
+        check_grasp(s, &m);
+        rtedge_grasp_detection_t_decode_cleanup(&m);
+    } else if (!strcmp(channel, "RTEDGE_STATUS")) {
+        rtedge_status_t m;
+        assert_true(rtedge_status_t_decode(rb->data, 0, (int)rb->data_size, &m) > 0);
+        s->statuses++;
+        rtedge_status_t_decode_cleanup(&s->last_status);
+        s->last_status = m;
+    } else if (!strcmp(channel, "RTEDGE_IMAGE")) {
+        s->images++;
+    }
+}
+
+static void drain(lcm_t *lcm)
+{
+    struct pollfd p = {lcm_get_fileno(lcm), POLLIN, 0};
+    while (poll(&p, 1, 0) > 0 && (p.revents & POLLIN))
+        lcm_handle(lcm);
+}
+
+static void run_memq(rted_daemon *d, seen *s)
+{
+    lcm_t *lcm = rted_daemon_lcm(d);
+    assert_non_null(lcm);
+    lcm_subscription_t *sub = lcm_subscribe(lcm, "RTEDGE_.*", on_message, s);
+    s->sequence_ok = true;
+    for (;;) {
+        rted_step st = rted_daemon_step(d);
+        drain(lcm);
+        if (st == RTED_STEP_END || st == RTED_STEP_FAILED)
+            break;
+    }
+    rted_daemon_publish_status(d);
+    drain(lcm);
+    lcm_unsubscribe(lcm, sub);
+}
+
+static void read_csv(seen *s, const char *file)
+{
+    FILE *f = fopen(file, "r");
+    assert_non_null(f);
+    char line[256];
+    assert_non_null(fgets(line, sizeof line, f));
+    int k, lv, rv;
+    double a, b, c, e;
+    while (fgets(line, sizeof line, f) &&
+           sscanf(line, "%d,%lf,%lf,%lf,%lf,%d,%d", &k, &a, &b, &c, &e, &lv, &rv) == 7 && k < 128) {
+        s->csv[k][0] = a;
+        s->csv[k][1] = b;
+        s->csv[k][2] = c;
+        s->csv[k][3] = e;
+        s->csv_visible[k][0] = lv;
+        s->csv_visible[k][1] = rv;
+        s->csv_rows = k + 1;
+    }
+    fclose(f);
+}
+
+/* ---- tests ---- */
+
+static void test_memq_road_lanes(void **state)
+{
+    char y4m[512], csv[512];
+    snprintf(y4m, sizeof y4m, "%s/road_straight.y4m", build_dir);
+    snprintf(csv, sizeof csv, "%s/road_straight.csv", build_dir);
+    static seen s;
+    memset(&s, 0, sizeof s);
+    read_csv(&s, csv);
+    assert_int_equal(s.csv_rows, 60);
+    rted_config c;
+    base_config(&c, y4m, "memq://");
+    c.grasp_enabled = false;
+    rted_daemon *d = open_daemon(&c, NULL);
+    run_memq(d, &s);
+    rted_counters n;
+    rted_daemon_get_counters(d, &n);
+    rted_daemon_close(d);
+    assert_int_equal(n.processed, 60);
+    assert_int_equal(s.lanes, 60);
+    assert_int_equal(s.grasps, 0);
+    assert_true(s.sequence_ok);
+    assert_int_equal(s.deadline_met, 60);
+    print_message("road_straight: %d of %d frames with both lanes within 10 px of the truth\n",
+                  s.lane_match, s.lane_checked);
+    assert_true(s.lane_checked > 40);
+    assert_true(s.lane_match * 10 >= s.lane_checked * 9);
+    assert_true(s.statuses >= 1);
+    assert_int_equal(s.last_status.frames_processed, 60);
+    assert_int_equal(s.last_status.deadline_misses, 0);
+    assert_true(s.last_status.latency_max_us >= s.last_status.latency_p99_us);
+    assert_true(s.last_status.latency_p99_us >= s.last_status.latency_p50_us);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
+/* The daemon over memq:// on a fresh objects sequence (damaged or not),
+ * with `tweak` applied to the test configuration. */
+static void objects_run(const char *name, int frames, int damage, void (*tweak)(rted_config *),
+                        seen *s, rted_counters *n)
+{
+    char y4m[512];
+    path(y4m, sizeof y4m, name);
+    write_objects_y4m(y4m, frames, damage);
+    memset(s, 0, sizeof *s);
+    rted_config c;
+    base_config(&c, y4m, "memq://");
+    if (tweak)
+        tweak(&c);
+    rted_daemon *d = open_daemon(&c, NULL);
+    run_memq(d, s);
+    rted_daemon_get_counters(d, n);
+    rted_daemon_close(d);
+}
+
+static void with_images(rted_config *c) { c->publish_images = true; }
+static void tiny_deadline(rted_config *c) { c->deadline_ms = 0.001; /* 1 us: no frame makes it */ }
+
+static void test_memq_objects(void **state)
+{
+    static seen s;
+    rted_counters n;
+    objects_run("objects.y4m", 20, 0, with_images, &s, &n);
+    assert_int_equal(s.lanes, 20);
+    assert_int_equal(s.grasps, 20);
+    assert_int_equal(s.images, 20);
+    assert_int_equal(s.grasp_ok, 20);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
+static void test_deadline_accounting(void **state)
+{
+    static seen s;
+    rted_counters n;
+    objects_run("objects_deadline.y4m", 10, 0, tiny_deadline, &s, &n);
+    assert_int_equal(n.processed, 10);
+    assert_int_equal(n.deadline_misses, 10);
+    assert_int_equal(n.stages_skipped, 10); /* the grasp path, every frame */
+    assert_int_equal(s.lanes, 10);
+    assert_int_equal(s.grasps, 0);
+    assert_int_equal(s.deadline_met, 0);
+    assert_int_equal(s.last_status.deadline_misses, 10);
+    assert_int_equal(s.last_status.stages_skipped, 10);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
+static void test_damaged_frames(void **state)
+{
+    static seen s;
+    rted_counters n;
+    objects_run("objects_damaged.y4m", 12, 1, NULL, &s, &n);
+    print_message("damaged: %llu processed, %llu bad\n", (unsigned long long)n.processed,
+                  (unsigned long long)n.bad_frames);
+    assert_true(n.bad_frames >= 2);
+    assert_true(n.processed >= 9 && n.processed <= 10);
+    assert_int_equal(s.grasps, (int)n.processed);
+    assert_int_equal(s.grasp_ok, (int)n.processed);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
+/* An image directory (PGM files) as the source. */
+static void test_images_source(void **state)
+{
+    char dir[512], file[600];
+    path(dir, sizeof dir, "images");
+    mkdir(dir, 0755);
+    static uint8_t img[OW * OH];
+    for (int k = 0; k < 6; k++) {
+        snprintf(file, sizeof file, "%s/frame_%02d.pgm", dir, k);
+        FILE *f = fopen(file, "wb");
+        assert_non_null(f);
+        objects_frame(k, img);
+        fprintf(f, "P5\n%d %d\n255\n", OW, OH);
+        fwrite(img, 1, sizeof img, f);
+        fclose(f);
+    }
+    static seen s;
+    memset(&s, 0, sizeof s);
+    rted_config c;
+    base_config(&c, dir, "memq://");
+    rted_daemon *d = open_daemon(&c, NULL);
+    run_memq(d, &s);
+    rted_daemon_close(d);
+    assert_int_equal(s.grasps, 6);
+    assert_int_equal(s.grasp_ok, 6);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
+typedef struct log_counts {
+    int lanes, grasps, statuses, other, grasp_ok;
+} log_counts;
+
+static void read_log(const char *file, log_counts *lc)
+{
+    memset(lc, 0, sizeof *lc);
+    lcm_eventlog_t *log = lcm_eventlog_create(file, "r");
+    assert_non_null(log);
+    lcm_eventlog_event_t *e;
+    seen s;
+    memset(&s, 0, sizeof s);
+    while ((e = lcm_eventlog_read_next_event(log))) {
+        if (!strcmp(e->channel, "RTEDGE_LANES")) {
+            rtedge_lane_detection_t m;
+            assert_true(rtedge_lane_detection_t_decode(e->data, 0, e->datalen, &m) > 0);
+            rtedge_lane_detection_t_decode_cleanup(&m);
+            lc->lanes++;
+        } else if (!strcmp(e->channel, "RTEDGE_GRASP")) {
+            rtedge_grasp_detection_t m;
+            assert_true(rtedge_grasp_detection_t_decode(e->data, 0, e->datalen, &m) > 0);
+            check_grasp(&s, &m);
+            rtedge_grasp_detection_t_decode_cleanup(&m);
+            lc->grasps++;
+        } else if (!strcmp(e->channel, "RTEDGE_STATUS")) {
+            rtedge_status_t m;
+            assert_true(rtedge_status_t_decode(e->data, 0, e->datalen, &m) > 0);
+            rtedge_status_t_decode_cleanup(&m);
+            lc->statuses++;
+        } else {
+            lc->other++;
+        }
+        lcm_eventlog_free_event(e);
+    }
+    lcm_eventlog_destroy(log);
+    lc->grasp_ok = s.grasp_ok;
+}
+
+static void run_to_end(rted_daemon *d)
+{
+    rted_step st;
+    while ((st = rted_daemon_step(d)) != RTED_STEP_END)
+        assert_int_not_equal(st, RTED_STEP_FAILED);
+    rted_daemon_publish_status(d);
+}
+
+static void test_file_log(void **state)
+{
+    char y4m[512], log[512], url[600];
+    path(y4m, sizeof y4m, "objects_file.y4m");
+    path(log, sizeof log, "file.lcm");
+    write_objects_y4m(y4m, 15, 0);
+    snprintf(url, sizeof url, "file://%s", log);
+    rted_config c;
+    base_config(&c, y4m, url);
+    rted_daemon *d = open_daemon(&c, NULL);
+    run_to_end(d);
+    rted_daemon_close(d);
+    log_counts lc;
+    read_log(log, &lc);
+    assert_int_equal(lc.lanes, 15);
+    assert_int_equal(lc.grasps, 15);
+    assert_int_equal(lc.grasp_ok, 15);
+    assert_true(lc.statuses >= 1);
+    assert_int_equal(lc.other, 0);
+}
+
+/* Frames recorded as image_t in an LCM log, replayed into the daemon. */
+static void test_lcm_log_source(void **state)
+{
+    char frames[512], url[600], out[512], out_url[600];
+    path(frames, sizeof frames, "frames.lcm");
+    path(out, sizeof out, "from_log.lcm");
+    snprintf(url, sizeof url, "file://%s", frames);
+    snprintf(out_url, sizeof out_url, "file://%s", out);
+    rte_publish_limits lim = {64, 8, 1, 1, 1, OW * OH, 0};
+    rte_publisher *pub;
+    char msg[256];
+    assert_int_equal(rte_publisher_create(&pub, url, &lim, msg, sizeof msg), RTE_OK);
+    static uint8_t img[OW * OH];
+    for (int k = 0; k < 8; k++) {
+        objects_frame(k, img);
+        rtedge_image_t m = {.utime = 1000000 + k * 33333, .width = OW, .height = OH,
+                            .row_stride = OW, .pixelformat = RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
+                            .size = OW * OH, .data = img};
+        assert_int_equal(rte_publish_image(pub, "CAMERA", &m, msg, sizeof msg), RTE_OK);
+    }
+    rte_publisher_destroy(pub);
+    rted_config c;
+    base_config(&c, frames, out_url);
+    c.source_kind = RTED_SOURCE_LCM_LOG;
+    snprintf(c.source_channel, sizeof c.source_channel, "CAMERA");
+    rted_daemon *d = open_daemon(&c, NULL);
+    run_to_end(d);
+    rted_daemon_close(d);
+    log_counts lc;
+    read_log(out, &lc);
+    assert_int_equal(lc.grasps, 8);
+    assert_int_equal(lc.grasp_ok, 8);
+}
+
+static void write_file(const char *file, const char *text)
+{
+    FILE *f = fopen(file, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static void test_reload(void **state)
+{
+    char y4m[512], conf[512], text[2048], msg[RTED_MSG];
+    path(y4m, sizeof y4m, "objects_reload.y4m");
+    path(conf, sizeof conf, "reload.conf");
+    write_objects_y4m(y4m, 5, 0);
+    snprintf(text, sizeof text,
+             "[source]\npath = %s\npace = fast\nloop = true\n[publish]\nurl = memq://\n"
+             "[grasp]\nmin_area = 100\n", y4m);
+    write_file(conf, text);
+    rted_config c;
+    rted_config_defaults(&c);
+    assert_true(rted_config_load(&c, conf, msg, sizeof msg));
+    rted_daemon *d = open_daemon(&c, conf);
+    static seen s;
+    memset(&s, 0, sizeof s);
+    lcm_t *lcm = rted_daemon_lcm(d);
+    lcm_subscription_t *sub = lcm_subscribe(lcm, "RTEDGE_GRASP", on_message, &s);
+    for (int i = 0; i < 3; i++)
+        rted_daemon_step(d);
+    drain(lcm);
+    assert_int_equal(s.grasp_ok, 3);
+    /* The larger rectangle is 960 px, the smaller 900: a minimum of 920 keeps one. */
+    snprintf(text, sizeof text,
+             "[source]\npath = %s\npace = fast\nloop = true\n[publish]\nurl = memq://\n"
+             "[grasp]\nmin_area = 920\n", y4m);
+    write_file(conf, text);
+    assert_true(rted_daemon_reload(d, msg, sizeof msg));
+    rted_counters n;
+    rted_daemon_get_counters(d, &n);
+    assert_int_equal(n.reloads, 1);
+    s.grasps = 0;
+    rted_daemon_step(d);
+    drain(lcm);
+    assert_int_equal(s.grasps, 1);
+    /* A size change is refused and the old configuration stays. */
+    snprintf(text, sizeof text,
+             "[source]\npath = %s\npace = fast\nloop = true\n[publish]\nurl = memq://\n"
+             "[grasp]\nmin_area = 920\nmax_objects = 64\n", y4m);
+    write_file(conf, text);
+    assert_false(rted_daemon_reload(d, msg, sizeof msg));
+    assert_non_null(strstr(msg, "grasp.max_objects"));
+    rted_daemon_get_counters(d, &n);
+    assert_int_equal(n.refused, 1);
+    assert_int_equal(n.reloads, 1);
+    /* params_t: a runtime value applied, an out-of-range one and a size refused. */
+    rtedge_param_t p[1] = {{.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT,
+                            .int_value = 100}};
+    rtedge_params_t pm = {.utime = 0, .request_id = 7, .nparams = 1, .params = p};
+    uint8_t buf[512];
+    int len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
+    assert_true(len > 0);
+    /* params are off by default: nothing happens */
+    lcm_publish(lcm, "RTEDGE_PARAMS", buf, (unsigned)len);
+    rted_daemon_step(d);
+    rted_daemon_get_counters(d, &n);
+    assert_int_equal(n.reloads, 1);
+    lcm_unsubscribe(lcm, sub);
+    rted_daemon_close(d);
+}
+
+static void test_params_channel(void **state)
+{
+    char y4m[512];
+    path(y4m, sizeof y4m, "objects_params.y4m");
+    write_objects_y4m(y4m, 5, 0);
+    rted_config c;
+    base_config(&c, y4m, "memq://");
+    c.loop = true;
+    c.params_enabled = true;
+    rted_daemon *d = open_daemon(&c, NULL);
+    lcm_t *lcm = rted_daemon_lcm(d);
+    static seen s;
+    memset(&s, 0, sizeof s);
+    lcm_subscription_t *sub = lcm_subscribe(lcm, "RTEDGE_GRASP", on_message, &s);
+    rtedge_param_t p[2] = {{.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT,
+                            .int_value = 920},
+                           {.name = "deadline.ms", .kind = RTEDGE_PARAM_T_KIND_REAL,
+                            .real_value = 900}};
+    rtedge_params_t pm = {.request_id = 1, .nparams = 2, .params = p};
+    uint8_t buf[512];
+    int len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
+    lcm_publish(lcm, "RTEDGE_PARAMS", buf, (unsigned)len);
+    rted_daemon_step(d);
+    drain(lcm);
+    rted_counters n;
+    rted_daemon_get_counters(d, &n);
+    assert_int_equal(n.reloads, 1);
+    assert_int_equal(s.grasps, 1);
+    assert_int_equal(s.grasp_ok, 0); /* one object left */
+    /* out of range, then a fixed size: both refused */
+    p[0].int_value = -5;
+    pm.nparams = 1;
+    len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
+    lcm_publish(lcm, "RTEDGE_PARAMS", buf, (unsigned)len);
+    rted_daemon_step(d);
+    p[0] = (rtedge_param_t){.name = "lane.max_segments", .kind = RTEDGE_PARAM_T_KIND_INT,
+                            .int_value = 10};
+    len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
+    lcm_publish(lcm, "RTEDGE_PARAMS", buf, (unsigned)len);
+    rted_daemon_step(d);
+    drain(lcm);
+    rted_daemon_get_counters(d, &n);
+    assert_int_equal(n.reloads, 1);
+    assert_int_equal(n.refused, 2);
+    lcm_unsubscribe(lcm, sub);
+    rted_daemon_close(d);
+}
+
+/* 1000 frames, looped, as fast as possible, lane and grasp paths, status
+ * messages: no heap call after the first frame. */
+static void heap_run(const char *url, bool images)
+{
+    char y4m[512];
+    path(y4m, sizeof y4m, "objects_heap.y4m");
+    write_objects_y4m(y4m, 10, 0);
+    rted_config c;
+    base_config(&c, y4m, url);
+    c.loop = true;
+    c.max_frames = 1000;
+    c.status_period_ms = 10;
+    c.publish_images = images;
+    rted_daemon *d = open_daemon(&c, NULL);
+    assert_int_equal(rted_daemon_step(d), RTED_STEP_FRAME);
+    heapcount_reset();
+    rted_step st;
+    while ((st = rted_daemon_step(d)) != RTED_STEP_END)
+        assert_int_not_equal(st, RTED_STEP_FAILED);
+    rted_daemon_publish_status(d);
+    heapcount_counts hc;
+    heapcount_get(&hc);
+    rted_counters n;
+    rted_daemon_get_counters(d, &n);
+    rted_daemon_close(d);
+    assert_int_equal(n.processed, 1000);
+    print_message("%s: 999 frames, %llu messages, %llu status, %llu rewinds: %llu heap calls "
+                  "(malloc %llu calloc %llu realloc %llu free %llu)\n",
+                  url, (unsigned long long)n.published, (unsigned long long)n.status_sent,
+                  (unsigned long long)n.rewinds,
+                  (unsigned long long)heapcount_calls(&hc), (unsigned long long)hc.malloc_calls,
+                  (unsigned long long)hc.calloc_calls, (unsigned long long)hc.realloc_calls,
+                  (unsigned long long)hc.free_calls);
+    /* Nothing allocates. The only calls allowed are glibc's fseeko()
+     * calling free(NULL) (its backup read area) when the Y4M source seeks
+     * back for a rewind: at most one per rewind, none per frame. */
+    assert_int_equal(heapcount_allocations(&hc), 0);
+    assert_int_equal(n.rewinds, 99);
+    assert_true(hc.free_calls == 0 || hc.free_calls == n.rewinds);
+}
+
+static void test_no_heap_calls_file(void **state)
+{
+    if (!heapcount_active())
+        skip();
+    char log[512], url[600];
+    path(log, sizeof log, "heap.lcm");
+    snprintf(url, sizeof url, "file://%s", log);
+    heap_run(url, true);
+}
+
+static void test_no_heap_calls_memq(void **state)
+{
+    if (!heapcount_active())
+        skip();
+    heap_run("memq://", false);
+}
+
+int main(int argc, char **argv)
+{
+    build_dir = argc > 1 ? argv[1] : ".";
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_memq_road_lanes),
+        cmocka_unit_test(test_memq_objects),
+        cmocka_unit_test(test_deadline_accounting),
+        cmocka_unit_test(test_damaged_frames),
+        cmocka_unit_test(test_file_log),
+        cmocka_unit_test(test_images_source),
+        cmocka_unit_test(test_lcm_log_source),
+        cmocka_unit_test(test_reload),
+        cmocka_unit_test(test_params_channel),
+        cmocka_unit_test(test_no_heap_calls_file),
+        cmocka_unit_test(test_no_heap_calls_memq),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
