@@ -10,29 +10,18 @@ usage: test_cli.py RTEDGE_EXE FIXTURES_DIR [SHARED_DATA_DIR]
 """
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
 import cv2
 import numpy as np
 
+from cli_checks import Checks
+
 RTEDGE, FIXTURES = sys.argv[1], sys.argv[2]
 SHARED = sys.argv[3] if len(sys.argv) > 3 else ""
-failures = []
-checks = 0
-
-
-def run(*args):
-    return subprocess.run([RTEDGE, *args], capture_output=True, text=True)
-
-
-def check(cond, what):
-    global checks
-    checks += 1
-    if not cond:
-        failures.append(what)
-        print("FAIL:", what)
+tally = Checks(RTEDGE)
+run, check, failures = tally.run, tally.check, tally.failures
 
 
 def photos():
@@ -161,8 +150,7 @@ def main():
     r = run("gray", src, os.path.join(tmp, "no-such-dir", "x.png"))
     check(r.returncode == 1 and "no-such-dir" in r.stderr, f"unwritable output: exit {r.returncode}, {r.stderr!r}")
 
-    print(f"cli: {checks} checks, {len(failures)} failed")
-    return 1 if failures else 0
+    return tally.finish("cli")
 
 
 if __name__ == "__main__":

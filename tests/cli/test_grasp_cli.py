@@ -10,30 +10,19 @@ usage: test_grasp_cli.py RTEDGE_EXE SHARED_DATA_DIR
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 
 import cv2
 import numpy as np
 
+from cli_checks import Checks
+
 RTEDGE = sys.argv[1]
 SHARED = sys.argv[2] if len(sys.argv) > 2 else os.environ.get("RTE_SHARED_DATA_DIR", "")
 OBJECTS = os.path.join(SHARED, "objects")
-failures = []
-checks = 0
-
-
-def run(*args):
-    return subprocess.run([RTEDGE, *args], capture_output=True, text=True)
-
-
-def check(cond, what):
-    global checks
-    checks += 1
-    if not cond:
-        failures.append(what)
-        print("FAIL:", what)
+tally = Checks(RTEDGE)
+run, check, failures = tally.run, tally.check, tally.failures
 
 
 def shapes(name, *opts):
@@ -258,8 +247,7 @@ def main():
     objects_photos()
     grasp_json()
     contours_vs_opencv()
-    print(f"{checks} checks, {len(failures)} failed")
-    return 1 if failures else 0
+    return tally.finish("grasp cli")
 
 
 if __name__ == "__main__":

@@ -15,25 +15,17 @@ usage: test_hough_cli.py RTEDGE_EXE SHARED_DATA_DIR
 """
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
 import cv2
 import numpy as np
 
+from cli_checks import Checks
+
 RTEDGE, SHARED = sys.argv[1], sys.argv[2]
-failures = []
-
-
-def run(*args):
-    return subprocess.run([RTEDGE, *args], capture_output=True, text=True)
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL:", what)
+tally = Checks(RTEDGE)
+run, check, failures = tally.run, tally.check, tally.failures
 
 
 def json_of(*args):
@@ -157,11 +149,7 @@ def main():
         check(run(*cmd).returncode == 2, f"{' '.join(cmd)}: not a usage error")
     check(run("lines", os.path.join(tmp, "missing.png")).returncode == 3, "missing input: not exit 3")
 
-    if failures:
-        print(f"hough cli: {len(failures)} failures")
-        return 1
-    print("hough cli: all checks passed")
-    return 0
+    return tally.finish("hough cli")
 
 
 sys.exit(main())

@@ -5,25 +5,21 @@ file and a directory of images), usage and input errors.
 usage: test_lanes_cli.py RTEDGE FIXTURES_DIR SHARED_DATA_DIR"""
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
 import cv2
 import numpy as np
 
+from cli_checks import Checks
+
 RTEDGE, FIXTURES, SHARED = sys.argv[1:4]
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL:", what)
+tally = Checks(RTEDGE)
+check, failures = tally.check, tally.failures
 
 
 def run(*args):
-    p = subprocess.run([RTEDGE, "lanes", *args], capture_output=True, text=True)
+    p = tally.run("lanes", *args)
     return p.returncode, p.stdout, p.stderr
 
 
@@ -91,5 +87,4 @@ with tempfile.TemporaryDirectory() as tmp:
     check(run("--sequence", bad)[0] == 3, "truncated Y4M: input error")
     check(run("--sequence", os.path.join(tmp, "nothing"))[0] == 3, "missing sequence: input error")
 
-print("lanes cli: %d failures" % len(failures))
-sys.exit(1 if failures else 0)
+sys.exit(tally.finish("lanes cli"))
