@@ -9,6 +9,12 @@ RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}"
     libcmocka-dev libopencv-dev python3-opencv python3-numpy  # unit and oracle suites
     liblcm-java default-jdk-headless iproute2 util-linux ffmpeg  # LCM: Java types, udpm in a netns, Y4M
     libcamera-tools v4l-utils qemu-system-x86 busybox-static make xz-utils)  # the camera VM suite
+# The aarch64 stage of tools/test: Debian's cross compiler, qemu-user, and
+# the target's libraries as arm64 multi-arch packages (rte_install_aarch64
+# adds the arm64 architecture to dpkg first). LCM has no multi-arch
+# package, so the cross build leaves it out.
+RTE_AARCH64_PACKAGES=(gcc-aarch64-linux-gnu qemu-user
+    libcmocka-dev:arm64 libspng-dev:arm64 libturbojpeg0-dev:arm64 zlib1g-dev:arm64)
 
 rte_install_packages() {
     local missing=() p
@@ -23,4 +29,14 @@ rte_install_packages() {
     $sudo apt-get update -q >/dev/null || { echo "apt-get update failed"; return 1; }
     $sudo apt-get install -y -q --no-install-recommends "${missing[@]}" >/dev/null ||
         { echo "apt-get install ${missing[*]} failed"; return 1; }
+}
+
+rte_install_aarch64() {
+    if ! dpkg --print-foreign-architectures | grep -qx arm64; then
+        local sudo=
+        [ "$(id -u)" -ne 0 ] && sudo=sudo
+        echo "adding the arm64 architecture to dpkg"
+        $sudo dpkg --add-architecture arm64 || { echo "dpkg --add-architecture arm64 failed"; return 1; }
+    fi
+    rte_install_packages "${RTE_AARCH64_PACKAGES[@]}"
 }
