@@ -110,6 +110,21 @@ static void dg_int(digest *d, int64_t v)
     dg_bytes(d, b, 8);
 }
 
+/* Records made only of int32_t fields (rectangles, circles, segments) are
+ * hashed as one int32_t array of INT32_FIELDS(record) per record. */
+#define INT32_FIELDS(record) ((int32_t)(sizeof(record) / sizeof(int32_t)))
+_Static_assert(sizeof(rte_rect) == 4 * sizeof(int32_t), "int32_t fields only");
+_Static_assert(sizeof(rte_circle) == 3 * sizeof(int32_t), "int32_t fields only");
+_Static_assert(sizeof(rte_rotated_rect) == 13 * sizeof(int32_t), "int32_t fields only");
+_Static_assert(sizeof(rte_hough_segment) == 4 * sizeof(int32_t), "int32_t fields only");
+_Static_assert(sizeof(rte_hough_circle) == 4 * sizeof(int32_t), "int32_t fields only");
+
+static void dg_int32s(digest *d, const int32_t *v, int64_t n)
+{
+    for (int64_t i = 0; i < n; i++)
+        dg_int(d, v[i]);
+}
+
 /* ---- the collected lines ---- */
 
 typedef struct golden {
@@ -587,30 +602,17 @@ static void run_contours(golden *g, const input *in, const rte_image_u8 *bin, rt
 
 static void dg_rotated_rect(digest *d, const rte_rotated_rect *r)
 {
-    dg_int(d, r->cx_q8);
-    dg_int(d, r->cy_q8);
-    dg_int(d, r->length_q8);
-    dg_int(d, r->width_q8);
-    dg_int(d, r->angle_q16);
-    for (int i = 0; i < 4; i++) {
-        dg_int(d, r->corners_q8[i][0]);
-        dg_int(d, r->corners_q8[i][1]);
-    }
+    dg_int32s(d, &r->cx_q8, INT32_FIELDS(*r));
 }
 
 static void dg_circle(digest *d, const rte_circle *c)
 {
-    dg_int(d, c->cx_q8);
-    dg_int(d, c->cy_q8);
-    dg_int(d, c->r_q8);
+    dg_int32s(d, &c->cx_q8, INT32_FIELDS(*c));
 }
 
 static void dg_rect(digest *d, rte_rect r)
 {
-    dg_int(d, r.x);
-    dg_int(d, r.y);
-    dg_int(d, r.width);
-    dg_int(d, r.height);
+    dg_int32s(d, &r.x, INT32_FIELDS(r));
 }
 
 static void dg_shape_info(digest *d, const rte_shape_info *s)
@@ -739,6 +741,17 @@ static void run_shapes(golden *g, const rte_contours *c)
 
 /* ---- Hough ---- */
 
+
+static void emit_records(golden *g, const char *what, const char *noun, const int32_t *first,
+                         int32_t count, int32_t fields, int truncated)
+{
+    digest d = dg_new();
+    dg_int(&d, count);
+    dg_int(&d, truncated);
+    dg_int32s(&d, first, (int64_t)count * fields);
+    emit(g, what, d.h, "%s=%d truncated=%d", noun, count, truncated);
+}
+
 static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
 {
     rte_image_u8 blurred = new_u8(g, in->w, in->h), edges = new_u8(g, in->w, in->h);
@@ -811,16 +824,7 @@ static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
                             rte_hough_segments(cfg, &edges, &seg_cases[s], &g->arena, segs,
                                                MAX_SEGMENTS, &count, &truncated)))
                 continue;
-            d = dg_new();
-            dg_int(&d, count);
-            dg_int(&d, truncated);
-            for (int32_t j = 0; j < count; j++) {
-                dg_int(&d, segs[j].x0);
-                dg_int(&d, segs[j].y0);
-                dg_int(&d, segs[j].x1);
-                dg_int(&d, segs[j].y1);
-            }
-            emit(g, what, d.h, "segments=%d truncated=%d", count, truncated);
+            emit_records(g, what, "segments", &segs[0].x0, count, INT32_FIELDS(segs[0]), truncated);
         }
     }
 
@@ -843,16 +847,8 @@ static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
                         rte_hough_circles(&edges, &dx, &dy, p, &g->arena, circles, MAX_CIRCLES,
                                           &count, &truncated)))
             continue;
-        digest d = dg_new();
-        dg_int(&d, count);
-        dg_int(&d, truncated);
-        for (int32_t j = 0; j < count; j++) {
-            dg_int(&d, circles[j].x_q4);
-            dg_int(&d, circles[j].y_q4);
-            dg_int(&d, circles[j].r_q4);
-            dg_int(&d, circles[j].votes);
-        }
-        emit(g, what, d.h, "circles=%d truncated=%d", count, truncated);
+        emit_records(g, what, "circles", &circles[0].x_q4, count, INT32_FIELDS(circles[0]),
+                     truncated);
     }
 }
 
