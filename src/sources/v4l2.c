@@ -947,6 +947,28 @@ rte_status rte_v4l2_source_set_control(rte_source *source, const char *name, int
     return set_control(source->impl, name, value, msg, msg_size);
 }
 
+rte_status rte_v4l2_set_device_control(const char *device, const char *name, int32_t value,
+                                       const rte_v4l2_ops *ops, char *msg, size_t msg_size)
+{
+    v4l2_source s;
+    memset(&s, 0, sizeof(s));
+    if (!device || !name || strlen(device) >= sizeof(s.device)) {
+        rte_source_msgf(msg, msg_size, "no device or control name, or a name too long");
+        return RTE_ERR_ARGUMENT;
+    }
+    s.ops = ops ? ops : &rte_v4l2_system_ops;
+    s.fd = -1;
+    memcpy(s.device, device, strlen(device) + 1);
+    s.cfg.device = s.device;
+    copy_string(s.info.path, sizeof(s.info.path), s.device, sizeof(s.device));
+    rte_status st = open_node(&s, msg, msg_size);
+    if (st != RTE_OK)
+        return st;
+    st = set_control(&s, name, value, msg, msg_size);
+    close_fd(&s);
+    return st;
+}
+
 /* ---- listing ---- */
 
 static void print_interval(FILE *out, const struct v4l2_fract *t)
