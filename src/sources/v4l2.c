@@ -806,11 +806,17 @@ static rte_status v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_m
 
         memset(out, 0, sizeof(*out));
         out->frame = frame;
-        if ((newest.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC)
-            out->capture_ns = (int64_t)newest.timestamp.tv_sec * 1000000000 +
+        int64_t dequeued = s->ops->now_ns(s->ops->ctx);
+        out->capture_ns = dequeued;
+        /* A driver may stamp a frame from its schedule rather than from the
+         * clock (vivid stamps the end of the exposure, up to 0.9 frame
+         * periods ahead): no frame is captured after it was dequeued. */
+        if ((newest.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC) {
+            int64_t stamped = (int64_t)newest.timestamp.tv_sec * 1000000000 +
                               (int64_t)newest.timestamp.tv_usec * 1000;
-        else
-            out->capture_ns = s->ops->now_ns(s->ops->ctx);
+            if (stamped < dequeued)
+                out->capture_ns = stamped;
+        }
         out->recorded_ns = out->capture_ns;
         out->sequence = newest.sequence;
         out->dropped = s->have_delivered ? newest.sequence - s->last_delivered - 1 : 0;

@@ -37,35 +37,50 @@ inject() { # DEVICE CONTROL
     vm_ctl "$1" "$2" 0 2>>/tmp/problems || echo "could not set '$2'" >>/tmp/problems
 }
 
+# Waits up to SECONDS for TEXT in FILE (the daemon's stderr).
+wait_for() { # TEXT FILE SECONDS
+    n=0
+    while ! grep -q "$1" "$2"; do
+        n=$((n + 1))
+        [ $n -gt $(($3 * 10)) ] && { echo "no '$1' within $3 s" >>/tmp/problems; return 1; }
+        usleep 100000
+    done
+}
+
 # rtedged on vivid: lane and grasp paths at 640x480 YUYV, published to a
-# file:// log. While it runs: a fatal streaming error (EIO), vivid's
-# Disconnect (the node comes back when the daemon lets go of it), and the
-# device unbound from its driver for 1.5 s then bound again (a camera
-# unplugged and plugged in). The daemon must report each loss and stream
-# again without restarting; the host checks the log.
+# file:// log. While it runs: a buffer marked bad, a fatal streaming error
+# (EIO), vivid's Disconnect (the node comes back when the daemon lets go of
+# it), and the device unbound from its driver for 1.5 s then bound again (a
+# camera unplugged and plugged in). The daemon must report each loss and
+# stream again without restarting; the host checks the log. Each step
+# waits for the daemon to say it is streaming again, then lets frames flow
+# for 1.5 s.
 daemon_vivid() {
-    dev=/dev/video0
+    dev=/dev/video0 err=/tmp/rtedged-vivid.txt
     : >/tmp/problems
     rtedged --source $dev --set source.width=640 --set source.height=480 \
         --set source.format=yuyv --set publish.status_period_ms=500 \
-        --lcm-url file:///tmp/vivid.lcm 2>/tmp/rtedged-vivid.txt &
+        --lcm-url file:///tmp/vivid.lcm 2>$err &
     pid=$!
-    ms_sleep 4000
+    wait_for "v4l2 source:" $err 10 && ms_sleep 3000
+    inject $dev "Inject V4L2_BUF_FLAG_ERROR"
+    ms_sleep 500
     inject $dev "Inject Fatal Streaming Error"
-    ms_sleep 2000
+    wait_for "reconnection 1)" $err 10 && ms_sleep 1500
     inject $dev "Disconnect"
-    ms_sleep 2000
+    wait_for "reconnection 2)" $err 10 && ms_sleep 1500
     echo vivid.0 >/sys/bus/platform/drivers/vivid/unbind || echo "unbind failed" >>/tmp/problems
     ms_sleep 1500
     echo vivid.0 >/sys/bus/platform/drivers/vivid/bind || echo "bind failed" >>/tmp/problems
-    ms_sleep 3000
+    wait_for "reconnection 3)" $err 10 && ms_sleep 1500
     kill -TERM $pid
     wait $pid
     code=$?
-    cat /tmp/rtedged-vivid.txt
+    cat $err
     send_file daemon-vivid /tmp/vivid.lcm
+    grep -q " 1 bad," $err || echo "the bad buffer was not counted" >>/tmp/problems
     if [ $code -eq 0 ] && [ ! -s /tmp/problems ]; then
-        result PASS daemon-vivid-run "exit 0; $(tail -n 1 /tmp/rtedged-vivid.txt)"
+        result PASS daemon-vivid-run "exit 0; $(tail -n 1 $err)"
     else
         result FAIL daemon-vivid-run "exit $code; $(tr '\n' ' ' </tmp/problems)"
     fi
