@@ -87,12 +87,14 @@ daemon_vivid() {
 }
 
 # rtedged --record: 8 YUYV 320x180 frames (a size vivid's webcam input
-# has) into an LCM log of image_t, next to the lane messages it published
-# for them; the host replays the recording through its own rtedged and must
-# get the same lane messages.
+# has; the camera opened by its card name, with a control set) into an LCM
+# log of image_t, next to the lane messages it published for them; the
+# host replays the recording through its own rtedged and must get the same
+# lane messages.
 daemon_record() {
-    rtedged --source /dev/video0 --set source.width=320 --set source.height=180 \
-        --set source.format=yuyv --max-frames 8 --record /tmp/record.lcm \
+    rtedged --set source.kind=v4l2 --source vivid --set source.width=320 --set source.height=180 \
+        --set source.format=yuyv --set 'source.controls=brightness=140' \
+        --max-frames 8 --record /tmp/record.lcm \
         --lcm-url file:///tmp/record-out.lcm 2>/tmp/rtedged-record.txt
     code=$?
     cat /tmp/rtedged-record.txt
