@@ -129,23 +129,21 @@ static const char *kind_name(rted_source_kind k)
     return names[k];
 }
 
-/* source.format for a V4L2 camera: what the camera is asked to send. */
+/* source.format for a V4L2 camera: what the camera is asked to send (the
+ * pixel format names, or mjpeg). */
 static bool v4l2_format(const char *name, uint32_t *fourcc)
 {
-    static const struct {
-        const char *name;
-        uint32_t fourcc;
-    } formats[] = {
-        {"", V4L2_PIX_FMT_YUYV},     {"yuyv", V4L2_PIX_FMT_YUYV}, {"uyvy", V4L2_PIX_FMT_UYVY},
-        {"grey", V4L2_PIX_FMT_GREY}, {"gray", V4L2_PIX_FMT_GREY}, {"nv12", V4L2_PIX_FMT_NV12},
-        {"mjpeg", V4L2_PIX_FMT_MJPEG},
-    };
-    for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
-        if (!strcasecmp(name, formats[i].name)) {
-            *fourcc = formats[i].fourcc;
-            return true;
-        }
-    return false;
+    if (!strcasecmp(name, "mjpeg")) {
+        *fourcc = V4L2_PIX_FMT_MJPEG;
+        return true;
+    }
+    switch (name[0] ? rte_pixel_format_parse(name) : RTE_PIXEL_YUYV) {
+    case RTE_PIXEL_YUYV: *fourcc = V4L2_PIX_FMT_YUYV; return true;
+    case RTE_PIXEL_UYVY: *fourcc = V4L2_PIX_FMT_UYVY; return true;
+    case RTE_PIXEL_GREY: *fourcc = V4L2_PIX_FMT_GREY; return true;
+    case RTE_PIXEL_NV12: *fourcc = V4L2_PIX_FMT_NV12; return true;
+    default: return false;
+    }
 }
 
 static bool open_source(rted_daemon *d, char *msg, size_t msg_size)

@@ -570,8 +570,9 @@ static void test_params_channel(void **state)
 }
 
 /* 1000 frames, looped, as fast as possible, lane and grasp paths, status
- * messages: no heap call after the first frame. */
-static void heap_run(const char *url, bool images)
+ * messages (and the frames recorded: record != NULL): no heap call after
+ * the first frame. */
+static void heap_run(const char *url, bool images, const char *record)
 {
     char y4m[512];
     path(y4m, sizeof y4m, "objects_heap.y4m");
@@ -582,6 +583,8 @@ static void heap_run(const char *url, bool images)
     c.max_frames = 1000;
     c.status_period_ms = 10;
     c.publish_images = images;
+    if (record)
+        snprintf(c.record_path, sizeof c.record_path, "%s", record);
     rted_daemon *d = open_daemon(&c, NULL);
     assert_int_equal(rted_daemon_step(d), RTED_STEP_FRAME);
     heapcount_reset();
@@ -614,17 +617,26 @@ static void test_no_heap_calls_file(void **state)
 {
     if (!heapcount_active())
         skip();
-    char log[512], url[600];
+    char log[512], url[600], record[512];
     path(log, sizeof log, "heap.lcm");
+    path(record, sizeof record, "heap_record.lcm");
     snprintf(url, sizeof url, "file://%s", log);
-    heap_run(url, true);
+    heap_run(url, true, record);
+    /* Every frame was recorded. */
+    FILE *f = fopen(record, "rb");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fclose(f);
+    assert_true(size > 1000L * OW * OH);
+    remove(record);
 }
 
 static void test_no_heap_calls_memq(void **state)
 {
     if (!heapcount_active())
         skip();
-    heap_run("memq://", false);
+    heap_run("memq://", false, NULL);
 }
 
 int main(int argc, char **argv)
