@@ -124,8 +124,10 @@ def check_vivid(path, decoder):
     if len(hashes) != 1 or any(s.source_id != "v4l2:/dev/video0" for s in statuses):
         problems.append("statuses: %d config hashes, source ids %s"
                         % (len(hashes), sorted({s.source_id for s in statuses})))
-    if len(lanes) < 60:
-        problems.append("only %d frames in about 12 s" % len(lanes))
+    # About 9 s of streaming at vivid's 25 fps; qemu's emulation on a busy
+    # host manages less, but not this little.
+    if len(lanes) < 40:
+        problems.append("only %d frames in about 9 s of streaming" % len(lanes))
     # Every frame a lane message, in the source's order: sequences rise
     # while the device streams (a reopened device counts from 0 again).
     for state, seg in segments_of(msgs):
@@ -154,7 +156,8 @@ def check_vivid(path, decoder):
         if segs[i][1]:
             problems.append("%d lane messages while reconnecting" % len(segs[i][1]))
         after = segs[i + 1] if i + 1 < len(segs) else None
-        if not after or after[0] != STREAMING or len(after[1]) < 10:
+        # 1.5 s of frames after each recovery.
+        if not after or after[0] != STREAMING or len(after[1]) < 5:
             problems.append("after loss %d: %s" % (lost.index(i) + 1,
                             "no recovery" if not after else
                             "state %d, %d frames" % (after[0], len(after[1]))))
