@@ -75,9 +75,10 @@ def check_headers(lanes, width_range, height, source_id, deadline_us):
             problems.append("message %d: %dx%d" % (i, h.width, h.height))
         if h.source_id != source_id:
             problems.append("message %d: source_id %r" % (i, h.source_id))
-        # (Under qemu's emulation 2 s is far more than any frame takes.)
+        # Under qemu's emulation on a busy host a frame has taken 1.4 s;
+        # another clock than CLOCK_MONOTONIC would be off by far more.
         if abs(h.latency_us - (h.publish_utime - h.capture_utime)) > 1 or \
-                not 0 <= h.latency_us <= 2000000:
+                not 0 <= h.latency_us <= 5000000:
             problems.append("message %d: latency %d us (capture %d, publish %d)"
                             % (i, h.latency_us, h.capture_utime, h.publish_utime))
         if h.deadline_us != deadline_us or h.deadline_met != (h.latency_us <= h.deadline_us):
@@ -124,9 +125,9 @@ def check_vivid(path, decoder):
     if len(hashes) != 1 or any(s.source_id != "v4l2:/dev/video0" for s in statuses):
         problems.append("statuses: %d config hashes, source ids %s"
                         % (len(hashes), sorted({s.source_id for s in statuses})))
-    # About 9 s of streaming at vivid's 25 fps; qemu's emulation on a busy
-    # host manages less, but not this little.
-    if len(lanes) < 40:
+    # About 9 s of streaming at vivid's 25 fps: 200 frames; qemu's
+    # emulation on a busy host has managed 61, but not this few.
+    if len(lanes) < 30:
         problems.append("only %d frames in about 9 s of streaming" % len(lanes))
     # Every frame a lane message, in the source's order: sequences rise
     # while the device streams (a reopened device counts from 0 again).
