@@ -170,7 +170,9 @@ class Printer:
             self.counts["last_status"] = {
                 "frames_received": m.frames_received, "frames_processed": m.frames_processed,
                 "frames_dropped": m.frames_dropped, "deadline_misses": m.deadline_misses,
-                "stages_skipped": m.stages_skipped, "latency_p50_us": m.latency_p50_us,
+                "stages_skipped": m.stages_skipped, "frames_bad": m.frames_bad,
+                "source_reconnects": m.source_reconnects, "config_reloads": m.config_reloads,
+                "config_refused": m.config_refused, "latency_p50_us": m.latency_p50_us,
                 "latency_p99_us": m.latency_p99_us, "latency_max_us": m.latency_max_us,
                 "fps": round(m.fps, 2), "source_state": m.source_state,
                 "config_hash": "%016x" % (m.config_hash & (2**64 - 1))}
@@ -179,10 +181,12 @@ class Printer:
                 self.counts["config_hashes"].append(self.counts["last_status"]["config_hash"])
             if self.out:
                 s = self.counts["last_status"]
-                print("status: %d received, %d processed, %d dropped, %d deadline misses, "
-                      "%d stages skipped, latency p50 %d p99 %d max %d us, %.1f fps"
+                print("status: %d received, %d processed, %d dropped, %d bad, %d deadline misses, "
+                      "%d stages skipped, %d reconnects, %d changes refused, "
+                      "latency p50 %d p99 %d max %d us, %.1f fps"
                       % (s["frames_received"], s["frames_processed"], s["frames_dropped"],
-                         s["deadline_misses"], s["stages_skipped"], s["latency_p50_us"],
+                         s["frames_bad"], s["deadline_misses"], s["stages_skipped"],
+                         s["source_reconnects"], s["config_refused"], s["latency_p50_us"],
                          s["latency_p99_us"], s["latency_max_us"], s["fps"]),
                       file=self.out, flush=True)
         elif name == "image_t":
