@@ -5,6 +5,7 @@ RTE_BUILD_PACKAGES=(meson ninja-build gcc g++ pkg-config binutils
     libspng-dev libturbojpeg0-dev          # image files
     liblcm-dev liblcm-bin libglib2.0-dev   # LCM: lcm-gen; lcm.pc needs glib
     linux-libc-dev libcamera-dev)          # cameras: V4L2 headers, libcamera
+RTE_BENCH_PACKAGES=(valgrind)  # tools/bench --instructions (callgrind)
 RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}"
     libcmocka-dev libopencv-dev python3-opencv python3-numpy  # unit and oracle suites
     liblcm-java default-jdk-headless iproute2 util-linux ffmpeg  # LCM: Java types, udpm in a netns, Y4M
