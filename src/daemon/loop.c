@@ -720,7 +720,6 @@ void rted_daemon_publish_status(rted_daemon *d)
     rtedge_status_t *s = &d->status_msg;
     s->utime = t / 1000;
     s->source_state = (int8_t)ss.state;
-    s->source_reconnects = (int64_t)ss.reconnects;
     d->reported_state = ss.state;
     s->frames_received = (int64_t)d->n.received;
     s->frames_processed = (int64_t)d->n.processed;
@@ -728,6 +727,10 @@ void rted_daemon_publish_status(rted_daemon *d)
     s->frames_dropped = (int64_t)(d->n.dropped + ss.driver_drops + ss.skipped);
     s->deadline_misses = (int64_t)d->n.deadline_misses;
     s->stages_skipped = (int64_t)d->n.stages_skipped;
+    s->frames_bad = (int64_t)ss.bad_frames;
+    s->source_reconnects = (int64_t)ss.reconnects;
+    s->config_reloads = (int64_t)d->n.reloads;
+    s->config_refused = (int64_t)d->n.refused;
     s->window_us = (t - d->window_start_ns) / 1000;
     window_latency(d, &s->latency_p50_us, &s->latency_p99_us, &s->latency_max_us);
     s->fps = s->window_us > 0 ? (float)((double)d->window_processed * 1e6 / (double)s->window_us)

@@ -317,6 +317,7 @@ static void test_damaged_frames(void **state)
     print_message("damaged: %llu processed, %llu bad\n", (unsigned long long)n.processed,
                   (unsigned long long)n.bad_frames);
     assert_true(n.bad_frames >= 2);
+    assert_int_equal(s.last_status.frames_bad, (int64_t)n.bad_frames); /* the final status */
     assert_true(n.processed >= 9 && n.processed <= 10);
     assert_int_equal(s.grasps, (int)n.processed);
     assert_int_equal(s.grasp_ok, (int)n.processed);
@@ -565,6 +566,15 @@ static void test_params_channel(void **state)
     rted_daemon_get_counters(d, &n);
     assert_int_equal(n.reloads, 1);
     assert_int_equal(n.refused, 2);
+    /* subscribers learn of both outcomes from the status message */
+    lcm_subscription_t *status_sub = lcm_subscribe(lcm, "RTEDGE_STATUS", on_message, &s);
+    rted_daemon_publish_status(d);
+    drain(lcm);
+    assert_int_equal(s.last_status.config_reloads, 1);
+    assert_int_equal(s.last_status.config_refused, 2);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+    memset(&s.last_status, 0, sizeof s.last_status);
+    lcm_unsubscribe(lcm, status_sub);
     lcm_unsubscribe(lcm, sub);
     rted_daemon_close(d);
 }
