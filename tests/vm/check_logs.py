@@ -143,7 +143,7 @@ def check_vivid(path, decoder):
                          " ".join("%.1f" % f for f in busy[:8]),
                          "; " + "; ".join(problems[:5]) if problems else ""))
 
-    # Three losses (fatal streaming error, Disconnect, unbind), each
+    # A bad buffer, and three losses (fatal streaming error, Disconnect, unbind), each
     # reported at once with the state RECONNECTING, no frames while lost,
     # frames again after each, and three reconnections counted.
     name = "daemon-vivid-faults"
@@ -174,12 +174,14 @@ def check_vivid(path, decoder):
     # The unbound device is away 1.5 s: the daemon kept retrying that long.
     if not durations or max(durations) < 1000:
         problems.append("no loss lasted 1 s (the unbind): %s ms" % durations)
-    if last.source_reconnects != 3 or last.source_state != STREAMING:
-        problems.append("final status: %d reconnects, state %d" % (last.source_reconnects,
-                                                                   last.source_state))
+    # And the one buffer vivid marked bad, skipped and counted.
+    if last.source_reconnects != 3 or last.source_state != STREAMING or last.frames_bad != 1:
+        problems.append("final status: %d reconnects, state %d, %d bad frames"
+                        % (last.source_reconnects, last.source_state, last.frames_bad))
     result(not problems, name,
-           "states %s, losses of %s ms, %d reconnects, frames after each recovery %s%s"
-           % ("".join(str(s) for s in states), durations, last.source_reconnects,
+           "states %s, losses of %s ms, %d reconnects, %d bad frame, frames after each recovery "
+           "%s%s" % ("".join(str(s) for s in states), durations, last.source_reconnects,
+              last.frames_bad,
               [len(segs[i + 1][1]) for i in lost if i + 1 < len(segs)],
               "; " + "; ".join(problems[:5]) if problems else ""))
 
