@@ -40,11 +40,16 @@ void rte_sobel_taps(int32_t order, int32_t ksize, int16_t *taps)
 void rte_grad_column_pass(const rte_image_u8 *src, int32_t y, const int16_t *ky, int32_t ny,
                           rte_border border, int16_t *v, int32_t pad)
 {
-    const int32_t w = src->width, r = ny / 2;
+    const int32_t r = ny / 2;
     const uint8_t *row[RTE_GRAD_MAX_TAPS];
     for (int32_t k = 0; k < ny; k++)
         row[k] = rte_u8_row(src, rte_border_fold(y + k - r, src->height, border));
+    rte_grad_column_rows(row, src->width, ky, ny, border, v, pad);
+}
 
+void rte_grad_column_rows(const uint8_t *const *row, int32_t w, const int16_t *ky, int32_t ny,
+                          rte_border border, int16_t *v, int32_t pad)
+{
     int16_t *restrict out = v;
     /* One loop per tap count so each vectorises with the taps in registers. */
     switch (ny) {

@@ -27,6 +27,11 @@ int32_t rte_border_fold(int32_t p, int32_t len, rte_border border);
 void rte_grad_column_pass(const rte_image_u8 *src, int32_t y, const int16_t *ky, int32_t ny,
                           rte_border border, int16_t *v, int32_t pad);
 
+/* The same from the ny source rows themselves (row[k] is source row
+ * y + k - ny/2, already folded), each `w` pixels wide. */
+void rte_grad_column_rows(const uint8_t *const *row, int32_t w, const int16_t *ky, int32_t ny,
+                          rte_border border, int16_t *v, int32_t pad);
+
 /* How a row pass turns its int32 sums into int16. */
 typedef enum rte_row_mode {
     RTE_ROW_FITS,        /* the caller knows the sums fit int16 (fastest) */

@@ -5,6 +5,9 @@
 #include <string.h>
 
 #include "binary64.h"
+#include "rtedge/cpu.h"
+#include "simd/rows.h"
+#include "threshold_rows.h"
 
 rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256])
 {
@@ -97,32 +100,25 @@ rte_status rte_threshold_otsu_u8(const rte_image_u8 *src, int32_t *thresh)
     return rte_threshold_otsu_histogram(hist, thresh);
 }
 
-/* Row kernels: plain loops over bytes without branches, so the compiler
- * can turn them into vector compares and selects. No restrict: s == d
- * (in place) is allowed. */
-static void row_binary(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t,
-                       uint8_t hi, uint8_t lo)
+/* The row kernel, once per instruction set (see simd/rows.h). */
+void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                         uint8_t maxval)
 {
-    for (int32_t x = 0; x < n; x++)
-        d[x] = s[x] > t ? hi : lo;
+    threshold_row(s, d, n, type, t, maxval);
 }
 
-static void row_trunc(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
+rte_threshold_row_fn rte_threshold_row_select(uint32_t features)
 {
-    for (int32_t x = 0; x < n; x++)
-        d[x] = s[x] > t ? t : s[x];
-}
-
-static void row_tozero(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
-{
-    for (int32_t x = 0; x < n; x++)
-        d[x] = s[x] > t ? s[x] : 0;
-}
-
-static void row_tozero_inv(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
-{
-    for (int32_t x = 0; x < n; x++)
-        d[x] = s[x] > t ? 0 : s[x];
+#ifdef RTE_SIMD_X86
+    if (features & RTE_CPU_X86_AVX2)
+        return rte_threshold_row_avx2;
+#endif
+#ifdef RTE_SIMD_NEON
+    if (features & RTE_CPU_ARM_NEON)
+        return rte_threshold_row_neon;
+#endif
+    (void)features;
+    return rte_threshold_row_c;
 }
 
 static void fill_rows(rte_image_u8 *dst, uint8_t v)
@@ -188,21 +184,11 @@ rte_status rte_threshold_u8(const rte_image_u8 *src, rte_image_u8 *dst,
         return RTE_OK;
     }
 
-    const uint8_t t8 = (uint8_t)t;
-    for (int32_t y = 0; y < src->height; y++) {
-        const uint8_t *s = rte_u8_row(src, y);
-        uint8_t *d = rte_u8_row(dst, y);
-        switch (type) {
-        case RTE_THRESH_BINARY: row_binary(s, d, src->width, t8, maxval, 0); break;
-        case RTE_THRESH_BINARY_INV: row_binary(s, d, src->width, t8, 0, maxval); break;
-        case RTE_THRESH_TRUNC: row_trunc(s, d, src->width, t8); break;
-        case RTE_THRESH_TOZERO: row_tozero(s, d, src->width, t8); break;
-        case RTE_THRESH_TOZERO_INV: row_tozero_inv(s, d, src->width, t8); break;
-        }
-    }
+    const rte_threshold_row_fn row = rte_threshold_row_select(rte_cpu_features());
+    for (int32_t y = 0; y < src->height; y++)
+        row(rte_u8_row(src, y), rte_u8_row(dst, y), src->width, (int)type, (uint8_t)t, maxval);
     return RTE_OK;
 }
-
 /* The value at 0-based rank `k` of the sorted pixels. */
 static int32_t value_at_rank(const uint32_t hist[256], uint64_t k)
 {

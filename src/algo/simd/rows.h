@@ -68,7 +68,44 @@ void rte_morph_reduce_rows_c(uint8_t *d, const uint8_t *const *r, int32_t count,
                              int32_t n, bool is_max);
 rte_morph_rows rte_morph_rows_select(uint32_t features);
 
+/* Canny with aperture 3 and the L1 magnitude on 8-bit images (src/algo/
+ * canny.c, canny_rows.h): Sobel dx, dy and |dx| + |dy| of the row between
+ * three source rows (columns replicated at the ends), and the non-maximum
+ * suppression of a magnitude row (up, cur, down hold 0 at index -1 and
+ * width) into map codes 1 / 0 / 2 (not an edge / maybe / edge). */
+typedef void (*rte_canny_sobel_fn)(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
+                                   int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
+typedef void (*rte_canny_nms_fn)(const int16_t *up, const int16_t *cur, const int16_t *down,
+                                 const int16_t *dx, const int16_t *dy, uint8_t *map,
+                                 int32_t width, int16_t low, int16_t high);
+typedef struct rte_canny_rows {
+    rte_canny_sobel_fn sobel;
+    rte_canny_nms_fn nms;
+} rte_canny_rows;
+
+void rte_canny_sobel_row_c(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
+                           int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
+void rte_canny_nms_row_c(const int16_t *up, const int16_t *cur, const int16_t *down,
+                         const int16_t *dx, const int16_t *dy, uint8_t *map, int32_t width,
+                         int16_t low, int16_t high);
+rte_canny_rows rte_canny_rows_select(uint32_t features);
+
+/* Fixed-level threshold of a row (src/algo/threshold.c, threshold_rows.h),
+ * `type` an rte_threshold_type, 0 <= t < 255; s == d (in place) allowed. */
+typedef void (*rte_threshold_row_fn)(const uint8_t *s, uint8_t *d, int32_t n, int type,
+                                     uint8_t t, uint8_t maxval);
+void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                         uint8_t maxval);
+rte_threshold_row_fn rte_threshold_row_select(uint32_t features);
+
 #ifdef RTE_SIMD_X86
+void rte_canny_sobel_row_avx2(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
+                              int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
+void rte_canny_nms_row_avx2(const int16_t *up, const int16_t *cur, const int16_t *down,
+                            const int16_t *dx, const int16_t *dy, uint8_t *map, int32_t width,
+                            int16_t low, int16_t high);
+void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                            uint8_t maxval);
 void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
                             bool is_max);
 void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count,
@@ -85,6 +122,13 @@ void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
+void rte_canny_sobel_row_neon(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
+                              int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
+void rte_canny_nms_row_neon(const int16_t *up, const int16_t *cur, const int16_t *down,
+                            const int16_t *dx, const int16_t *dy, uint8_t *map, int32_t width,
+                            int16_t low, int16_t high);
+void rte_threshold_row_neon(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                            uint8_t maxval);
 #endif
 
 #endif
