@@ -9,8 +9,10 @@
 #include <stdbool.h>
 
 #include "rtedge/blur.h"
+#include "rtedge/canny.h"
 #include "rtedge/color.h"
 #include "rtedge/cpu.h"
+#include "rtedge/threshold.h"
 
 #include "../../src/algo/simd/rows.h"
 
@@ -277,6 +279,178 @@ static void morph_rows_match_reference(void **state)
     assert_true(ran >= 1);
 }
 
+/* Canny rows (aperture 3, L1): each variant against the C reference. */
+typedef struct canny_variant {
+    const char *name;
+    uint32_t needs;
+    rte_canny_sobel_fn sobel;
+    rte_canny_nms_fn nms;
+} canny_variant;
+
+static const canny_variant canny_variants[] = {
+#ifdef RTE_SIMD_X86
+    { "canny_avx2", RTE_CPU_X86_AVX2, rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2 },
+#endif
+#ifdef RTE_SIMD_NEON
+    { "canny_neon", RTE_CPU_ARM_NEON, rte_canny_sobel_row_neon, rte_canny_nms_row_neon },
+#endif
+    { "canny_c", 0, rte_canny_sobel_row_c, rte_canny_nms_row_c },
+};
+#define CANNY_VARIANT_COUNT (sizeof canny_variants / sizeof canny_variants[0])
+
+/* A random int16 in [-range, range]. */
+static int16_t rand_s16(uint32_t *seed, int32_t range)
+{
+    return (int16_t)((int32_t)(unit_rand(seed) % (uint32_t)(2 * range + 1)) - range);
+}
+
+/* Sobel rows: three rows `stride` apart in one buffer (stride odd and
+ * larger than the row, the last row ending at the buffer's end). */
+static void check_canny_sobel(const canny_variant *v, int32_t width, uint32_t *seed)
+{
+    const size_t stride = (size_t)width + 1 + 2 * (unit_rand(seed) % 8);
+    const size_t bytes = 2 * stride + (size_t)width;
+    uint8_t *src = test_malloc(bytes);
+    fill_random(src, bytes, seed, width % 7 == 0);
+    const size_t n = (size_t)width + GUARD;
+    int16_t *want = test_malloc(3 * n * sizeof *want), *got = test_malloc(3 * n * sizeof *got);
+    for (size_t i = 0; i < 3 * n; i++)
+        want[i] = got[i] = (int16_t)0x7EEE;
+    rte_canny_sobel_row_c(src, src + stride, src + 2 * stride, want, want + n, want + 2 * n, width);
+    v->sobel(src, src + stride, src + 2 * stride, got, got + n, got + 2 * n, width);
+    for (size_t i = 0; i < 3 * n; i++)
+        if (want[i] != got[i])
+            fail_msg("%s sobel width %d: %s[%zu] is %d, reference %d", v->name, (int)width,
+                     i < n ? "dx" : i < 2 * n ? "dy" : "mag", i % n, got[i], want[i]);
+    test_free(src);
+    test_free(want);
+    test_free(got);
+}
+
+/* Suppression rows: magnitude rows with their zero ends; `range` small
+ * makes ties between neighbours and zero derivatives common. */
+static void check_canny_nms(const canny_variant *v, int32_t width, int32_t range, uint32_t *seed)
+{
+    const size_t padded = (size_t)width + 2;
+    int16_t *mag = test_malloc(3 * padded * sizeof *mag);
+    int16_t *grad = test_malloc(2 * (size_t)width * sizeof *grad);
+    for (size_t r = 0; r < 3; r++) {
+        int16_t *row = mag + r * padded;
+        for (size_t x = 0; x < padded; x++)
+            row[x] = (int16_t)(unit_rand(seed) % (uint32_t)(2 * range + 1));
+        row[0] = row[padded - 1] = 0;
+    }
+    for (size_t x = 0; x < 2 * (size_t)width; x++)
+        grad[x] = rand_s16(seed, range);
+    /* thresholds anywhere from -1 to just above the largest magnitude */
+    const int16_t low = (int16_t)((int32_t)(unit_rand(seed) % (uint32_t)(2 * range + 3)) - 1);
+    const int16_t high = (int16_t)(low + (int32_t)(unit_rand(seed) % (uint32_t)(2 * range + 2)));
+    const size_t n = (size_t)width + GUARD;
+    uint8_t *want = test_malloc(n), *got = test_malloc(n);
+    memset(want, 0xEE, n);
+    memset(got, 0xEE, n);
+    rte_canny_nms_row_c(mag + 1, mag + padded + 1, mag + 2 * padded + 1, grad, grad + width, want,
+                        width, low, high);
+    v->nms(mag + 1, mag + padded + 1, mag + 2 * padded + 1, grad, grad + width, got, width, low,
+           high);
+    for (size_t i = 0; i < n; i++)
+        if (want[i] != got[i])
+            fail_msg("%s nms width %d range %d: code %zu is %u, reference %u", v->name,
+                     (int)width, (int)range, i, got[i], want[i]);
+    test_free(mag);
+    test_free(grad);
+    test_free(want);
+    test_free(got);
+}
+
+static void canny_rows_match_reference(void **state)
+{
+    (void)state;
+    static const int32_t ranges[] = { 1, 3, 40, 1020 };
+    int ran = 0;
+    for (size_t i = 0; i < CANNY_VARIANT_COUNT; i++) {
+        const canny_variant *v = &canny_variants[i];
+        if (!cpu_runs(v->name, v->needs))
+            continue;
+        uint32_t seed = 0x5EED1u + (uint32_t)i;
+        for (int32_t w = 1; w <= 67; w++)
+            for (int k = 0; k < 8; k++) {
+                check_canny_sobel(v, w, &seed);
+                check_canny_nms(v, w, ranges[k % 4], &seed);
+            }
+        for (int k = 0; k < 16; k++) {
+            const int32_t w = 68 + (int32_t)(unit_rand(&seed) % 2000);
+            check_canny_sobel(v, w, &seed);
+            check_canny_nms(v, w, ranges[k % 4], &seed);
+        }
+        ran++;
+    }
+    assert_true(ran >= 1);
+}
+
+/* Threshold rows: each variant against the C reference, every type, also
+ * in place. */
+typedef struct threshold_variant {
+    const char *name;
+    uint32_t needs;
+    rte_threshold_row_fn row;
+} threshold_variant;
+
+static const threshold_variant threshold_variants[] = {
+#ifdef RTE_SIMD_X86
+    { "threshold_avx2", RTE_CPU_X86_AVX2, rte_threshold_row_avx2 },
+#endif
+#ifdef RTE_SIMD_NEON
+    { "threshold_neon", RTE_CPU_ARM_NEON, rte_threshold_row_neon },
+#endif
+    { "threshold_c", 0, rte_threshold_row_c },
+};
+#define THRESHOLD_VARIANT_COUNT (sizeof threshold_variants / sizeof threshold_variants[0])
+
+static void check_threshold(const threshold_variant *v, int32_t width, int type, uint32_t *seed)
+{
+    const size_t so = unit_rand(seed) % MAX_OFFSET, n = (size_t)width + GUARD;
+    uint8_t *src = test_malloc(so + (size_t)width);
+    fill_random(src + so, (size_t)width, seed, width % 7 == 0);
+    const uint8_t t = (uint8_t)(unit_rand(seed) % 255), maxval = (uint8_t)unit_rand(seed);
+    uint8_t *want = test_malloc(n), *got = test_malloc(n);
+    memset(want, 0xEE, n);
+    memset(got, 0xEE, n);
+    rte_threshold_row_c(src + so, want, width, type, t, maxval);
+    v->row(src + so, got, width, type, t, maxval);
+    if (memcmp(want, got, n) != 0)
+        fail_msg("%s width %d type %d t %u differs", v->name, (int)width, type, t);
+    /* in place */
+    memcpy(got, src + so, (size_t)width);
+    v->row(got, got, width, type, t, maxval);
+    if (memcmp(want, got, n) != 0)
+        fail_msg("%s in place width %d type %d t %u differs", v->name, (int)width, type, t);
+    test_free(src);
+    test_free(want);
+    test_free(got);
+}
+
+static void threshold_rows_match_reference(void **state)
+{
+    (void)state;
+    int ran = 0;
+    for (size_t i = 0; i < THRESHOLD_VARIANT_COUNT; i++) {
+        const threshold_variant *v = &threshold_variants[i];
+        if (!cpu_runs(v->name, v->needs))
+            continue;
+        uint32_t seed = 0x7E57u + (uint32_t)i;
+        for (int type = RTE_THRESH_BINARY; type <= RTE_THRESH_TOZERO_INV; type++) {
+            for (int32_t w = 1; w <= 67; w++)
+                for (int k = 0; k < 4; k++)
+                    check_threshold(v, w, type, &seed);
+            for (int k = 0; k < 8; k++)
+                check_threshold(v, 68 + (int32_t)(unit_rand(&seed) % 3000), type, &seed);
+        }
+        ran++;
+    }
+    assert_true(ran >= 1);
+}
+
 /* Every colour through the dispatched whole-image path: 2^24 pixels as a
  * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
  * value, which also checks that each row restarts at its stride. */
@@ -315,10 +489,16 @@ static void force_c_selects_the_reference(void **state)
     assert_true(hw & RTE_CPU_X86_SSE2);
     if (hw & RTE_CPU_X86_SSSE3)
         assert_true(rte_row_c3_to_gray_select(hw, false) != rte_row_bgr_to_gray_c);
+    if (hw & RTE_CPU_X86_AVX2) {
+        assert_true(rte_canny_rows_select(hw).sobel == rte_canny_sobel_row_avx2);
+        assert_true(rte_threshold_row_select(hw) == rte_threshold_row_avx2);
+    }
 #endif
 #ifdef RTE_SIMD_NEON
     assert_true(hw & RTE_CPU_ARM_NEON);
     assert_true(rte_row_c3_to_gray_select(hw, false) == rte_row_bgr_to_gray_neon);
+    assert_true(rte_canny_rows_select(hw).nms == rte_canny_nms_row_neon);
+    assert_true(rte_threshold_row_select(hw) == rte_threshold_row_neon);
 #endif
     assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
     assert_int_equal(rte_cpu_features(), 0);
@@ -328,6 +508,9 @@ static void force_c_selects_the_reference(void **state)
     assert_true(g.column == rte_gaussian_column_pass_c && g.row == rte_gaussian_row_pass_c);
     rte_morph_rows m = rte_morph_rows_select(rte_cpu_features());
     assert_true(m.op2 == rte_morph_row_op2_c && m.reduce == rte_morph_reduce_rows_c);
+    rte_canny_rows c = rte_canny_rows_select(rte_cpu_features());
+    assert_true(c.sobel == rte_canny_sobel_row_c && c.nms == rte_canny_nms_row_c);
+    assert_true(rte_threshold_row_select(rte_cpu_features()) == rte_threshold_row_c);
     assert_int_equal(rte_cpu_features_hw(), hw);
     /* "0" and "" mean "not forced" */
     assert_int_equal(setenv("RTE_FORCE_C", "0", 1), 0);
@@ -358,6 +541,52 @@ static void forced_and_dispatched_images_agree(void **state)
     test_free(b.buf);
 }
 
+/* Random images of widths 1..67 with odd strides through the public
+ * Canny (plain and fused) and threshold calls: forced C and dispatched
+ * give the same bytes and leave the padding alone. */
+static void forced_and_dispatched_canny_and_threshold_agree(void **state)
+{
+    (void)state;
+    static uint8_t arena_memory[1 << 18];
+    rte_arena arena;
+    rte_arena_init(&arena, arena_memory, sizeof arena_memory);
+    rte_gaussian_kernel k;
+    assert_int_equal(rte_gaussian_kernel_init(&k, 5, 5, 0, 0), RTE_OK);
+    uint32_t seed = 777;
+    for (int32_t w = 1; w <= 67; w++) {
+        const int32_t h = 1 + (int32_t)(unit_rand(&seed) % 40);
+        const int32_t pad = 1 + 2 * (int32_t)(unit_rand(&seed) % 5); /* odd strides */
+        rte_image_u8 src = unit_image_u8(w, h, pad, 0);
+        for (int32_t y = 0; y < h; y++)
+            fill_random(src.buf + (size_t)y * src.stride, (size_t)w, &seed, w % 7 == 0);
+        rte_canny_params p;
+        const double low = unit_rand(&seed) % 300, high = unit_rand(&seed) % 600;
+        assert_int_equal(rte_canny_params_init(&p, low, high, 3, false), RTE_OK);
+        rte_threshold_params tp;
+        assert_int_equal(rte_threshold_params_init(&tp, (rte_threshold_type)(w % 5),
+                                                   unit_rand(&seed) % 256, 200, false),
+                         RTE_OK);
+        rte_image_u8 out[2][3];
+        for (int forced = 0; forced < 2; forced++) {
+            if (forced)
+                assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
+            for (int j = 0; j < 3; j++)
+                out[forced][j] = unit_image_u8(w, h, pad, 0x11);
+            assert_int_equal(rte_canny_u8(&src, &out[forced][0], &p, &arena), RTE_OK);
+            assert_int_equal(rte_canny_blurred_u8(&src, &out[forced][1], &k, &p, &arena), RTE_OK);
+            assert_int_equal(rte_threshold_u8(&src, &out[forced][2], &tp, NULL), RTE_OK);
+            assert_int_equal(unsetenv("RTE_FORCE_C"), 0);
+        }
+        for (int j = 0; j < 3; j++) {
+            assert_memory_equal(out[0][j].buf, out[1][j].buf, (size_t)src.stride * h);
+            unit_assert_padding_u8(&out[0][j]);
+            test_free(out[0][j].buf);
+            test_free(out[1][j].buf);
+        }
+        test_free(src.buf);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -365,8 +594,11 @@ int main(void)
         cmocka_unit_test(every_colour_matches_reference),
         cmocka_unit_test(gaussian_passes_match_reference),
         cmocka_unit_test(morph_rows_match_reference),
+        cmocka_unit_test(canny_rows_match_reference),
+        cmocka_unit_test(threshold_rows_match_reference),
         cmocka_unit_test(force_c_selects_the_reference),
         cmocka_unit_test(forced_and_dispatched_images_agree),
+        cmocka_unit_test(forced_and_dispatched_canny_and_threshold_agree),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
