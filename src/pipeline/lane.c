@@ -142,15 +142,12 @@ static void lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, c
     }
 }
 
-/* Canny thresholds for this frame. */
+/* Automatic Canny thresholds for this frame (unchanged when the
+ * histogram is empty). */
 static void lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
                             int32_t *low, int32_t *high)
 {
     const rte_lane_params *p = &ctx->params;
-    *low = p->canny_low;
-    *high = p->canny_high;
-    if (p->canny_mode == RTE_LANE_CANNY_FIXED)
-        return;
     uint32_t hist[256] = {0};
     for (int32_t y = 0; y < img->height; y++) {
         const uint8_t *s = rte_u8_row(img, y), *m = rte_u8_row(mask, y);
@@ -494,25 +491,36 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     out->stage_ns[RTE_LANE_STAGE_GRAY] = t1 - t0;
     t0 = t1;
 
-    rte_image_u8 blurred = lane_view(&ctx->blurred, 0, 0, cw, ch);
-    if ((st = rte_gaussian_blur_u8(&src, &blurred, &ctx->blur, &ctx->arena)) != RTE_OK)
-        return st;
-    t1 = lane_now_ns();
-    out->stage_ns[RTE_LANE_STAGE_BLUR] = t1 - t0;
-    t0 = t1;
-
     rte_image_u8 mask = lane_view(&ctx->mask, 0, 0, cw, ch);
     rte_image_u8 edges = lane_view(&ctx->edges, 0, 0, cw, ch);
-    int32_t low, high;
-    lane_thresholds(ctx, &blurred, &mask, &low, &high);
-    /* Integer thresholds on the L1 magnitude of a 3x3 Sobel are what
-     * rte_canny_params_init gives for whole numbers: set them directly. */
-    ctx->canny.low = low;
-    ctx->canny.high = high;
+    int32_t low = p->canny_low, high = p->canny_high;
+    if (p->canny_mode == RTE_LANE_CANNY_FIXED) {
+        /* Fused front end: blur, Sobel and suppression over a band of rows,
+         * no blurred image (its time counts in the Canny stage). */
+        ctx->canny.low = low;
+        ctx->canny.high = high;
+        if ((st = rte_canny_blurred_u8(&src, &edges, &ctx->blur, &ctx->canny, &ctx->arena)) != RTE_OK)
+            return st;
+    } else {
+        /* The thresholds come from the blurred pixels' histogram, so the
+         * blurred image is needed before any suppression. */
+        rte_image_u8 blurred = lane_view(&ctx->blurred, 0, 0, cw, ch);
+        if ((st = rte_gaussian_blur_u8(&src, &blurred, &ctx->blur, &ctx->arena)) != RTE_OK)
+            return st;
+        t1 = lane_now_ns();
+        out->stage_ns[RTE_LANE_STAGE_BLUR] = t1 - t0;
+        t0 = t1;
+        lane_thresholds(ctx, &blurred, &mask, &low, &high);
+        /* Integer thresholds on the L1 magnitude of a 3x3 Sobel are what
+         * rte_canny_params_init gives for whole numbers: set them directly. */
+        ctx->canny.low = low;
+        ctx->canny.high = high;
+        if ((st = rte_canny_u8(&blurred, &edges, &ctx->canny, &ctx->arena)) != RTE_OK)
+            return st;
+    }
     out->canny_low = low;
     out->canny_high = high;
-    if ((st = rte_canny_u8(&blurred, &edges, &ctx->canny, &ctx->arena)) != RTE_OK ||
-        (st = rte_polygon_mask_apply(&edges, &mask, &edges)) != RTE_OK)
+    if ((st = rte_polygon_mask_apply(&edges, &mask, &edges)) != RTE_OK)
         return st;
     t1 = lane_now_ns();
     out->stage_ns[RTE_LANE_STAGE_CANNY] = t1 - t0;
