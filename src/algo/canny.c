@@ -63,18 +63,7 @@ size_t rte_canny_blurred_scratch_size(int32_t max_width, int32_t max_height,
 }
 
 /* The row kernels of aperture 3 with L1, once per instruction set. */
-void rte_canny_sobel_row_c(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
-                           int16_t *dx, int16_t *dy, int16_t *mag, int32_t width)
-{
-    canny_sobel_row(up, mid, down, dx, dy, mag, width);
-}
-
-void rte_canny_nms_row_c(const int16_t *up, const int16_t *cur, const int16_t *down,
-                         const int16_t *dx, const int16_t *dy, uint8_t *map, int32_t width,
-                         int16_t low, int16_t high)
-{
-    canny_nms_row(up, cur, down, dx, dy, map, width, low, high);
-}
+RTE_CANNY_ROWS_DEFINE(c)
 
 rte_canny_rows rte_canny_rows_select(uint32_t features)
 {

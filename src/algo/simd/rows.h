@@ -83,11 +83,14 @@ typedef struct rte_canny_rows {
     rte_canny_nms_fn nms;
 } rte_canny_rows;
 
-void rte_canny_sobel_row_c(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
-                           int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
-void rte_canny_nms_row_c(const int16_t *up, const int16_t *cur, const int16_t *down,
-                         const int16_t *dx, const int16_t *dy, uint8_t *map, int32_t width,
-                         int16_t low, int16_t high);
+/* rte_canny_sobel_row_<isa> and rte_canny_nms_row_<isa>, of the types above. */
+#define RTE_CANNY_ROWS_DECLARE(isa)                                                              \
+    void rte_canny_sobel_row_##isa(const uint8_t *up, const uint8_t *mid, const uint8_t *down,   \
+                                   int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);       \
+    void rte_canny_nms_row_##isa(const int16_t *up, const int16_t *cur, const int16_t *down,     \
+                                 const int16_t *dx, const int16_t *dy, uint8_t *map,             \
+                                 int32_t width, int16_t low, int16_t high);
+RTE_CANNY_ROWS_DECLARE(c)
 rte_canny_rows rte_canny_rows_select(uint32_t features);
 
 /* Fixed-level threshold of a row (src/algo/threshold.c, threshold_rows.h),
@@ -99,11 +102,7 @@ void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint
 rte_threshold_row_fn rte_threshold_row_select(uint32_t features);
 
 #ifdef RTE_SIMD_X86
-void rte_canny_sobel_row_avx2(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
-                              int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
-void rte_canny_nms_row_avx2(const int16_t *up, const int16_t *cur, const int16_t *down,
-                            const int16_t *dx, const int16_t *dy, uint8_t *map, int32_t width,
-                            int16_t low, int16_t high);
+RTE_CANNY_ROWS_DECLARE(avx2)
 void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
                             uint8_t maxval);
 void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
@@ -122,11 +121,7 @@ void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
-void rte_canny_sobel_row_neon(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
-                              int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
-void rte_canny_nms_row_neon(const int16_t *up, const int16_t *cur, const int16_t *down,
-                            const int16_t *dx, const int16_t *dy, uint8_t *map, int32_t width,
-                            int16_t low, int16_t high);
+RTE_CANNY_ROWS_DECLARE(neon)
 void rte_threshold_row_neon(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
                             uint8_t maxval);
 #endif
