@@ -142,18 +142,15 @@ static void lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, c
     }
 }
 
-/* Automatic Canny thresholds for this frame (unchanged when the
- * histogram is empty). */
+/* Automatic Canny thresholds for this frame from the histogram of the
+ * blurred pixels inside the ROI (unchanged when it is empty). */
 static void lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
                             int32_t *low, int32_t *high)
 {
     const rte_lane_params *p = &ctx->params;
-    uint32_t hist[256] = {0};
-    for (int32_t y = 0; y < img->height; y++) {
-        const uint8_t *s = rte_u8_row(img, y), *m = rte_u8_row(mask, y);
-        for (int32_t x = 0; x < img->width; x++)
-            hist[s[x]] += (uint32_t)(m[x] >> 7);
-    }
+    uint32_t hist[256];
+    if (rte_histogram_masked_u8(img, mask, hist) != RTE_OK)
+        return;
     int32_t lo, hi;
     rte_status st = p->canny_mode == RTE_LANE_CANNY_MEDIAN
                         ? rte_threshold_auto_canny_median(hist, p->auto_sigma_permille, &lo, &hi)
