@@ -28,27 +28,60 @@ static bool cpu_runs(const char *name, uint32_t needs)
     return false;
 }
 
-typedef struct c3_variant {
+/* The first member of every variant struct below. */
+typedef struct variant_head {
     const char *name;
     uint32_t needs; /* RTE_CPU_* bits */
+} variant_head;
+
+/* Calls check(variant, seed) for each of `count` variants (structs of
+ * `size` bytes that start with a variant_head) that this CPU runs, with a
+ * seed of seed0 plus the variant's index; at least one must run. */
+static void for_each_variant(const void *variants, size_t count, size_t size, uint32_t seed0,
+                             void (*check)(const void *variant, uint32_t *seed))
+{
+    int ran = 0;
+    for (size_t i = 0; i < count; i++) {
+        const void *v = (const char *)variants + i * size;
+        const variant_head *head = v;
+        if (!cpu_runs(head->name, head->needs))
+            continue;
+        uint32_t seed = seed0 + (uint32_t)i;
+        check(v, &seed);
+        ran++;
+    }
+    assert_true(ran >= 1);
+}
+
+/* Defines the test NAME_match_reference: NAME(variant, seed) for every
+ * variant in the array VARIANTS that this CPU runs. */
+#define VARIANTS_TEST(NAME, VARIANTS, SEED)                                                       \
+    static void NAME##_match_reference(void **state)                                              \
+    {                                                                                             \
+        (void)state;                                                                              \
+        for_each_variant(VARIANTS, sizeof VARIANTS / sizeof VARIANTS[0], sizeof VARIANTS[0], SEED, \
+                         NAME);                                                                   \
+    }
+
+typedef struct c3_variant {
+    variant_head head;
     rte_row_c3_to_gray_fn fn, ref;
 } c3_variant;
 
 static const c3_variant c3_variants[] = {
 #ifdef RTE_SIMD_X86
-    { "bgr_to_gray_ssse3", RTE_CPU_X86_SSSE3, rte_row_bgr_to_gray_ssse3, rte_row_bgr_to_gray_c },
-    { "rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c },
-    { "bgr_to_gray_avx2", RTE_CPU_X86_AVX2, rte_row_bgr_to_gray_avx2, rte_row_bgr_to_gray_c },
-    { "rgb_to_gray_avx2", RTE_CPU_X86_AVX2, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c },
+    { { "bgr_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_bgr_to_gray_ssse3, rte_row_bgr_to_gray_c },
+    { { "rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c },
+    { { "bgr_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_bgr_to_gray_avx2, rte_row_bgr_to_gray_c },
+    { { "rgb_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c },
 #endif
 #ifdef RTE_SIMD_NEON
-    { "bgr_to_gray_neon", RTE_CPU_ARM_NEON, rte_row_bgr_to_gray_neon, rte_row_bgr_to_gray_c },
-    { "rgb_to_gray_neon", RTE_CPU_ARM_NEON, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c },
+    { { "bgr_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_bgr_to_gray_neon, rte_row_bgr_to_gray_c },
+    { { "rgb_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c },
 #endif
     /* the reference against itself keeps the harness honest on any CPU */
-    { "bgr_to_gray_c", 0, rte_row_bgr_to_gray_c, rte_row_bgr_to_gray_c },
+    { { "bgr_to_gray_c", 0 }, rte_row_bgr_to_gray_c, rte_row_bgr_to_gray_c },
 };
-#define C3_VARIANT_COUNT (sizeof c3_variants / sizeof c3_variants[0])
 
 /* Random bytes; every 7th row uses only 0 and 255 so that the extremes
  * (and the rounding at the top of the range) are hit often. */
@@ -77,7 +110,7 @@ static void check_c3_row(const c3_variant *v, int32_t width, uint32_t *seed)
     if (memcmp(want, got, dof + (size_t)width + GUARD) != 0) {
         for (size_t i = 0; i < dof + (size_t)width + GUARD; i++)
             if (want[i] != got[i])
-                fail_msg("%s width %d: byte %zd is %u, reference %u", v->name, (int)width,
+                fail_msg("%s width %d: byte %zd is %u, reference %u", v->head.name, (int)width,
                          (ptrdiff_t)i - (ptrdiff_t)dof, got[i], want[i]);
     }
     test_free(sbuf);
@@ -85,39 +118,30 @@ static void check_c3_row(const c3_variant *v, int32_t width, uint32_t *seed)
     test_free(got);
 }
 
-static void c3_to_gray_rows_match_reference(void **state)
+static void c3_to_gray_rows(const void *variant, uint32_t *seed)
 {
-    (void)state;
-    int ran = 0;
-    for (size_t i = 0; i < C3_VARIANT_COUNT; i++) {
-        const c3_variant *v = &c3_variants[i];
-        if (!cpu_runs(v->name, v->needs))
-            continue;
-        uint32_t seed = 0x9E3779B9u + (uint32_t)i;
-        for (int32_t w = 1; w <= 300; w++)
-            check_c3_row(v, w, &seed);
-        for (int k = 0; k < 40; k++)
-            check_c3_row(v, 301 + (int32_t)(unit_rand(&seed) % 4000), &seed);
-        ran++;
-    }
-    assert_true(ran >= 1);
+    const c3_variant *v = variant;
+    for (int32_t w = 1; w <= 300; w++)
+        check_c3_row(v, w, seed);
+    for (int k = 0; k < 40; k++)
+        check_c3_row(v, 301 + (int32_t)(unit_rand(seed) % 4000), seed);
 }
+
+VARIANTS_TEST(c3_to_gray_rows, c3_variants, 0x9E3779B9u)
 
 /* Gaussian passes: each variant against the C build of the same loops. */
 typedef struct gaussian_variant {
-    const char *name;
-    uint32_t needs;
+    variant_head head;
     rte_gaussian_column_fn column;
     rte_gaussian_row_fn row;
 } gaussian_variant;
 
 static const gaussian_variant gaussian_variants[] = {
 #ifdef RTE_SIMD_X86
-    { "gaussian_avx2", RTE_CPU_X86_AVX2, rte_gaussian_column_pass_avx2, rte_gaussian_row_pass_avx2 },
+    { { "gaussian_avx2", RTE_CPU_X86_AVX2 }, rte_gaussian_column_pass_avx2, rte_gaussian_row_pass_avx2 },
 #endif
-    { "gaussian_c", 0, rte_gaussian_column_pass_c, rte_gaussian_row_pass_c },
+    { { "gaussian_c", 0 }, rte_gaussian_column_pass_c, rte_gaussian_row_pass_c },
 };
-#define GAUSSIAN_VARIANT_COUNT (sizeof gaussian_variants / sizeof gaussian_variants[0])
 
 /* Symmetric random taps summing to 256, as rte_gaussian_kernel holds (the
  * middle tap takes the remainder). */
@@ -160,7 +184,7 @@ static void check_gaussian(const gaussian_variant *v, int32_t width, int32_t ksi
     rte_gaussian_column_pass_c(rows, want, want + n, width, taps, ksize, split);
     v->column(rows, got, got + n, width, taps, ksize, split);
     if (memcmp(want, got, 2 * n * sizeof *want) != 0)
-        fail_msg("%s column pass width %d ksize %d split %d differs", v->name, (int)width,
+        fail_msg("%s column pass width %d ksize %d split %d differs", v->head.name, (int)width,
                  (int)ksize, split);
     for (int32_t j = 0; j < ksize; j++)
         test_free(row_bufs[j]);
@@ -177,7 +201,7 @@ static void check_gaussian(const gaussian_variant *v, int32_t width, int32_t ksi
     rte_gaussian_row_pass_c(hi, lo, dwant, width, taps, ksize, split);
     v->row(hi, lo, dgot, width, taps, ksize, split);
     if (memcmp(dwant, dgot, n) != 0)
-        fail_msg("%s row pass width %d ksize %d split %d differs", v->name, (int)width,
+        fail_msg("%s row pass width %d ksize %d split %d differs", v->head.name, (int)width,
                  (int)ksize, split);
     test_free(hi);
     test_free(lo);
@@ -185,43 +209,34 @@ static void check_gaussian(const gaussian_variant *v, int32_t width, int32_t ksi
     test_free(dgot);
 }
 
-static void gaussian_passes_match_reference(void **state)
+static void gaussian_passes(const void *variant, uint32_t *seed)
 {
-    (void)state;
-    int ran = 0;
-    for (size_t i = 0; i < GAUSSIAN_VARIANT_COUNT; i++) {
-        const gaussian_variant *v = &gaussian_variants[i];
-        if (!cpu_runs(v->name, v->needs))
-            continue;
-        uint32_t seed = 0xC0FFEEu + (uint32_t)i;
-        for (int32_t ksize = 1; ksize <= RTE_GAUSSIAN_MAX_KSIZE; ksize += 2)
-            for (int split = 0; split <= 1; split++) {
-                for (int32_t w = 1; w <= 80; w++)
-                    check_gaussian(v, w, ksize, split, &seed);
-                for (int k = 0; k < 4; k++)
-                    check_gaussian(v, 81 + (int32_t)(unit_rand(&seed) % 2000), ksize, split,
-                                   &seed);
-            }
-        ran++;
-    }
-    assert_true(ran >= 1);
+    const gaussian_variant *v = variant;
+    for (int32_t ksize = 1; ksize <= RTE_GAUSSIAN_MAX_KSIZE; ksize += 2)
+        for (int split = 0; split <= 1; split++) {
+            for (int32_t w = 1; w <= 80; w++)
+                check_gaussian(v, w, ksize, split, seed);
+            for (int k = 0; k < 4; k++)
+                check_gaussian(v, 81 + (int32_t)(unit_rand(seed) % 2000), ksize, split,
+                               seed);
+        }
 }
+
+VARIANTS_TEST(gaussian_passes, gaussian_variants, 0xC0FFEEu)
 
 /* Morphology rows: each variant against the C build of the same loops. */
 typedef struct morph_variant {
-    const char *name;
-    uint32_t needs;
+    variant_head head;
     rte_morph_op2_fn op2;
     rte_morph_reduce_fn reduce;
 } morph_variant;
 
 static const morph_variant morph_variants[] = {
 #ifdef RTE_SIMD_X86
-    { "morph_avx2", RTE_CPU_X86_AVX2, rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2 },
+    { { "morph_avx2", RTE_CPU_X86_AVX2 }, rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2 },
 #endif
-    { "morph_c", 0, rte_morph_row_op2_c, rte_morph_reduce_rows_c },
+    { { "morph_c", 0 }, rte_morph_row_op2_c, rte_morph_reduce_rows_c },
 };
-#define MORPH_VARIANT_COUNT (sizeof morph_variants / sizeof morph_variants[0])
 
 enum { MORPH_MAX_ROWS = 64 };
 
@@ -245,58 +260,49 @@ static void check_morph(const morph_variant *v, int32_t width, int32_t count, bo
     rte_morph_reduce_rows_c(want, rows, count, accumulate, width, is_max);
     v->reduce(got, rows, count, accumulate, width, is_max);
     if (memcmp(want, got, n) != 0)
-        fail_msg("%s reduce width %d count %d acc %d max %d differs", v->name, (int)width,
+        fail_msg("%s reduce width %d count %d acc %d max %d differs", v->head.name, (int)width,
                  (int)count, accumulate, is_max);
     /* op2, also in place (d == a) */
     rte_morph_row_op2_c(want, want, rows[0], width, is_max);
     v->op2(got, got, rows[0], width, is_max);
     if (memcmp(want, got, n) != 0)
-        fail_msg("%s op2 width %d max %d differs", v->name, (int)width, is_max);
+        fail_msg("%s op2 width %d max %d differs", v->head.name, (int)width, is_max);
     test_free(src);
     test_free(want);
     test_free(got);
 }
 
-static void morph_rows_match_reference(void **state)
+static void morph_rows(const void *variant, uint32_t *seed)
 {
-    (void)state;
-    int ran = 0;
-    for (size_t i = 0; i < MORPH_VARIANT_COUNT; i++) {
-        const morph_variant *v = &morph_variants[i];
-        if (!cpu_runs(v->name, v->needs))
-            continue;
-        uint32_t seed = 0xBADC0DEu + (uint32_t)i;
-        for (int32_t count = 1; count <= MORPH_MAX_ROWS; count++)
-            for (int m = 0; m < 4; m++) {
-                bool accumulate = m & 1, is_max = m & 2;
-                for (int32_t w = 1; w <= 70; w++)
-                    check_morph(v, w, count, accumulate, is_max, &seed);
-                check_morph(v, 71 + (int32_t)(unit_rand(&seed) % 2000), count, accumulate,
-                            is_max, &seed);
-            }
-        ran++;
-    }
-    assert_true(ran >= 1);
+    const morph_variant *v = variant;
+    for (int32_t count = 1; count <= MORPH_MAX_ROWS; count++)
+        for (int m = 0; m < 4; m++) {
+            bool accumulate = m & 1, is_max = m & 2;
+            for (int32_t w = 1; w <= 70; w++)
+                check_morph(v, w, count, accumulate, is_max, seed);
+            check_morph(v, 71 + (int32_t)(unit_rand(seed) % 2000), count, accumulate,
+                        is_max, seed);
+        }
 }
+
+VARIANTS_TEST(morph_rows, morph_variants, 0xBADC0DEu)
 
 /* Canny rows (aperture 3, L1): each variant against the C reference. */
 typedef struct canny_variant {
-    const char *name;
-    uint32_t needs;
+    variant_head head;
     rte_canny_sobel_fn sobel;
     rte_canny_nms_fn nms;
 } canny_variant;
 
 static const canny_variant canny_variants[] = {
 #ifdef RTE_SIMD_X86
-    { "canny_avx2", RTE_CPU_X86_AVX2, rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2 },
+    { { "canny_avx2", RTE_CPU_X86_AVX2 }, rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2 },
 #endif
 #ifdef RTE_SIMD_NEON
-    { "canny_neon", RTE_CPU_ARM_NEON, rte_canny_sobel_row_neon, rte_canny_nms_row_neon },
+    { { "canny_neon", RTE_CPU_ARM_NEON }, rte_canny_sobel_row_neon, rte_canny_nms_row_neon },
 #endif
-    { "canny_c", 0, rte_canny_sobel_row_c, rte_canny_nms_row_c },
+    { { "canny_c", 0 }, rte_canny_sobel_row_c, rte_canny_nms_row_c },
 };
-#define CANNY_VARIANT_COUNT (sizeof canny_variants / sizeof canny_variants[0])
 
 /* A random int16 in [-range, range]. */
 static int16_t rand_s16(uint32_t *seed, int32_t range)
@@ -320,7 +326,7 @@ static void check_canny_sobel(const canny_variant *v, int32_t width, uint32_t *s
     v->sobel(src, src + stride, src + 2 * stride, got, got + n, got + 2 * n, width);
     for (size_t i = 0; i < 3 * n; i++)
         if (want[i] != got[i])
-            fail_msg("%s sobel width %d: %s[%zu] is %d, reference %d", v->name, (int)width,
+            fail_msg("%s sobel width %d: %s[%zu] is %d, reference %d", v->head.name, (int)width,
                      i < n ? "dx" : i < 2 * n ? "dy" : "mag", i % n, got[i], want[i]);
     test_free(src);
     test_free(want);
@@ -355,7 +361,7 @@ static void check_canny_nms(const canny_variant *v, int32_t width, int32_t range
            high);
     for (size_t i = 0; i < n; i++)
         if (want[i] != got[i])
-            fail_msg("%s nms width %d range %d: code %zu is %u, reference %u", v->name,
+            fail_msg("%s nms width %d range %d: code %zu is %u, reference %u", v->head.name,
                      (int)width, (int)range, i, got[i], want[i]);
     test_free(mag);
     test_free(grad);
@@ -363,49 +369,40 @@ static void check_canny_nms(const canny_variant *v, int32_t width, int32_t range
     test_free(got);
 }
 
-static void canny_rows_match_reference(void **state)
+static void canny_rows(const void *variant, uint32_t *seed)
 {
-    (void)state;
+    const canny_variant *v = variant;
     static const int32_t ranges[] = { 1, 3, 40, 1020 };
-    int ran = 0;
-    for (size_t i = 0; i < CANNY_VARIANT_COUNT; i++) {
-        const canny_variant *v = &canny_variants[i];
-        if (!cpu_runs(v->name, v->needs))
-            continue;
-        uint32_t seed = 0x5EED1u + (uint32_t)i;
-        for (int32_t w = 1; w <= 67; w++)
-            for (int k = 0; k < 8; k++) {
-                check_canny_sobel(v, w, &seed);
-                check_canny_nms(v, w, ranges[k % 4], &seed);
-            }
-        for (int k = 0; k < 16; k++) {
-            const int32_t w = 68 + (int32_t)(unit_rand(&seed) % 2000);
-            check_canny_sobel(v, w, &seed);
-            check_canny_nms(v, w, ranges[k % 4], &seed);
+    for (int32_t w = 1; w <= 67; w++)
+        for (int k = 0; k < 8; k++) {
+            check_canny_sobel(v, w, seed);
+            check_canny_nms(v, w, ranges[k % 4], seed);
         }
-        ran++;
+    for (int k = 0; k < 16; k++) {
+        const int32_t w = 68 + (int32_t)(unit_rand(seed) % 2000);
+        check_canny_sobel(v, w, seed);
+        check_canny_nms(v, w, ranges[k % 4], seed);
     }
-    assert_true(ran >= 1);
 }
+
+VARIANTS_TEST(canny_rows, canny_variants, 0x5EED1u)
 
 /* Threshold rows: each variant against the C reference, every type, also
  * in place. */
 typedef struct threshold_variant {
-    const char *name;
-    uint32_t needs;
+    variant_head head;
     rte_threshold_row_fn row;
 } threshold_variant;
 
 static const threshold_variant threshold_variants[] = {
 #ifdef RTE_SIMD_X86
-    { "threshold_avx2", RTE_CPU_X86_AVX2, rte_threshold_row_avx2 },
+    { { "threshold_avx2", RTE_CPU_X86_AVX2 }, rte_threshold_row_avx2 },
 #endif
 #ifdef RTE_SIMD_NEON
-    { "threshold_neon", RTE_CPU_ARM_NEON, rte_threshold_row_neon },
+    { { "threshold_neon", RTE_CPU_ARM_NEON }, rte_threshold_row_neon },
 #endif
-    { "threshold_c", 0, rte_threshold_row_c },
+    { { "threshold_c", 0 }, rte_threshold_row_c },
 };
-#define THRESHOLD_VARIANT_COUNT (sizeof threshold_variants / sizeof threshold_variants[0])
 
 static void check_threshold(const threshold_variant *v, int32_t width, int type, uint32_t *seed)
 {
@@ -419,37 +416,30 @@ static void check_threshold(const threshold_variant *v, int32_t width, int type,
     rte_threshold_row_c(src + so, want, width, type, t, maxval);
     v->row(src + so, got, width, type, t, maxval);
     if (memcmp(want, got, n) != 0)
-        fail_msg("%s width %d type %d t %u differs", v->name, (int)width, type, t);
+        fail_msg("%s width %d type %d t %u differs", v->head.name, (int)width, type, t);
     /* in place */
     memcpy(got, src + so, (size_t)width);
     v->row(got, got, width, type, t, maxval);
     if (memcmp(want, got, n) != 0)
-        fail_msg("%s in place width %d type %d t %u differs", v->name, (int)width, type, t);
+        fail_msg("%s in place width %d type %d t %u differs", v->head.name, (int)width, type, t);
     test_free(src);
     test_free(want);
     test_free(got);
 }
 
-static void threshold_rows_match_reference(void **state)
+static void threshold_rows(const void *variant, uint32_t *seed)
 {
-    (void)state;
-    int ran = 0;
-    for (size_t i = 0; i < THRESHOLD_VARIANT_COUNT; i++) {
-        const threshold_variant *v = &threshold_variants[i];
-        if (!cpu_runs(v->name, v->needs))
-            continue;
-        uint32_t seed = 0x7E57u + (uint32_t)i;
-        for (int type = RTE_THRESH_BINARY; type <= RTE_THRESH_TOZERO_INV; type++) {
-            for (int32_t w = 1; w <= 67; w++)
-                for (int k = 0; k < 4; k++)
-                    check_threshold(v, w, type, &seed);
-            for (int k = 0; k < 8; k++)
-                check_threshold(v, 68 + (int32_t)(unit_rand(&seed) % 3000), type, &seed);
-        }
-        ran++;
+    const threshold_variant *v = variant;
+    for (int type = RTE_THRESH_BINARY; type <= RTE_THRESH_TOZERO_INV; type++) {
+        for (int32_t w = 1; w <= 67; w++)
+            for (int k = 0; k < 4; k++)
+                check_threshold(v, w, type, seed);
+        for (int k = 0; k < 8; k++)
+            check_threshold(v, 68 + (int32_t)(unit_rand(seed) % 3000), type, seed);
     }
-    assert_true(ran >= 1);
 }
+
+VARIANTS_TEST(threshold_rows, threshold_variants, 0x7E57u)
 
 /* Every colour through the dispatched whole-image path: 2^24 pixels as a
  * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
