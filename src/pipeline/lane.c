@@ -610,10 +610,22 @@ rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64
     if (rte_frame_gray_view(frame, &gray) == RTE_OK)
         return lane_run(ctx, &gray, NULL, 0, false, t_ns, 0, out);
     const int64_t t0 = lane_now_ns();
-    gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
-    if ((st = rte_frame_to_gray(frame, &gray)) != RTE_OK)
-        return st;
     const bool colour = frame->format == RTE_PIXEL_BGR24 || frame->format == RTE_PIXEL_RGB24;
+    /* Only the ROI's bounding box is read: with 3-byte pixels (where any
+     * crop is a plain view of the frame) only that part becomes grey. */
+    rte_frame part = *frame;
+    int32_t x0 = 0, y0 = 0;
+    if (colour && lane_roi(ctx, frame->width, frame->height) == RTE_OK) {
+        x0 = ctx->crop_x0;
+        y0 = ctx->crop_y0;
+        part.width = ctx->crop_x1 - x0;
+        part.height = ctx->crop_y1 - y0;
+        part.plane[0] += (size_t)y0 * (size_t)frame->stride[0] + 3 * (size_t)x0;
+    }
+    gray = lane_view(&ctx->gray, x0, y0, x0 + part.width, y0 + part.height);
+    if ((st = rte_frame_to_gray(&part, &gray)) != RTE_OK)
+        return st;
+    gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
     return lane_run(ctx, &gray, colour ? frame->plane[0] : NULL, frame->stride[0],
                     frame->format == RTE_PIXEL_RGB24, t_ns, lane_now_ns() - t0, out);
 }
