@@ -5,7 +5,9 @@
 #include <time.h>
 
 #include "../algo/geom_fixed.h"
+#include "lane_cue_rows.h"
 #include "lane_internal.h"
+#include "rtedge/cpu.h"
 #include "rtedge/color.h"
 #include "rtedge/polygon_mask.h"
 #include "rtedge/threshold.h"
@@ -112,34 +114,42 @@ static rte_status lane_roi(rte_lane_context *ctx, int32_t w, int32_t h)
     return RTE_OK;
 }
 
+/* The colour cue's row kernel, once per instruction set (see simd/rows.h). */
+void rte_lane_cue_row_c(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
+                        const rte_lane_cue *cue, bool rgb)
+{
+    lane_cue_row(gray, bgr, dst, width, cue, rgb);
+}
+
+rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features)
+{
+#ifdef RTE_SIMD_X86
+    if (features & RTE_CPU_X86_AVX2)
+        return rte_lane_cue_row_avx2;
+#endif
+    (void)features;
+    return rte_lane_cue_row_c;
+}
+
 /* The colour cue: white or yellow paint -> 255, everything else grey scaled
  * by dim_q8 / 256. `bgr` rows hold B,G,R (R,G,B when rgb is set). */
 static void lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, const uint8_t *bgr,
                            int32_t bgr_stride, bool rgb, rte_image_u8 *dst)
 {
-    /* 8-bit comparisons (16 pixels per vector): a threshold of 256 can
-     * never be reached, so it disables its test. */
-    const uint8_t wm = (uint8_t)(p->white_min > 255 ? 255 : p->white_min);
-    const uint8_t white_on = p->white_min <= 255 ? 0xFF : 0;
-    const uint8_t ym = (uint8_t)(p->yellow_rg_min > 255 ? 255 : p->yellow_rg_min);
-    const uint8_t yellow_on = p->yellow_rg_min <= 255 ? 0xFF : 0;
-    const uint8_t yb = (uint8_t)p->yellow_b_margin;
-    const uint16_t dim = (uint16_t)p->dim_q8;
-    const int bi = rgb ? 2 : 0, ri = rgb ? 0 : 2;
-    for (int32_t y = 0; y < dst->height; y++) {
-        const uint8_t *restrict g = rte_u8_row(gray, y);
-        const uint8_t *restrict c = bgr + (size_t)y * (size_t)bgr_stride;
-        uint8_t *restrict d = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < dst->width; x++) {
-            const uint8_t b = c[3 * x + bi], gg = c[3 * x + 1], r = c[3 * x + ri];
-            const uint8_t mn = r < gg ? r : gg;
-            const uint8_t mb = mn > yb ? (uint8_t)(mn - yb) : 0; /* B may be at most this */
-            const uint8_t white = (uint8_t)(-(uint8_t)((b >= wm) & (gg >= wm) & (r >= wm)) & white_on);
-            const uint8_t yellow = (uint8_t)(-(uint8_t)((mn >= ym) & (mn >= yb) & (b <= mb)) & yellow_on);
-            const uint8_t paint = white | yellow; /* 0xFF or 0 */
-            d[x] = (uint8_t)(paint | (~paint & (uint8_t)((g[x] * dim) >> 8)));
-        }
-    }
+    /* 8-bit comparisons (16 or 32 pixels per vector): a threshold of 256
+     * can never be reached, so it disables its test. */
+    const rte_lane_cue cue = {
+        .white_min = (uint8_t)(p->white_min > 255 ? 255 : p->white_min),
+        .white_on = p->white_min <= 255 ? 0xFF : 0,
+        .yellow_min = (uint8_t)(p->yellow_rg_min > 255 ? 255 : p->yellow_rg_min),
+        .yellow_on = p->yellow_rg_min <= 255 ? 0xFF : 0,
+        .yellow_b_margin = (uint8_t)p->yellow_b_margin,
+        .dim_q8 = (uint16_t)p->dim_q8,
+    };
+    const rte_lane_cue_row_fn row = rte_lane_cue_row_select(rte_cpu_features());
+    for (int32_t y = 0; y < dst->height; y++)
+        row(rte_u8_row(gray, y), bgr + (size_t)y * (size_t)bgr_stride, rte_u8_row(dst, y),
+            dst->width, &cue, rgb);
 }
 
 /* Automatic Canny thresholds for this frame from the histogram of the

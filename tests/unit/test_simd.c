@@ -441,6 +441,59 @@ static void threshold_rows(const void *variant, uint32_t *seed)
 
 VARIANTS_TEST(threshold_rows, threshold_variants, 0x7E57u)
 
+/* The lane path's colour cue rows: each variant against the C reference,
+ * random thresholds (256 as an "off" mask too), both channel orders. */
+typedef struct lane_cue_variant {
+    variant_head head;
+    rte_lane_cue_row_fn row;
+} lane_cue_variant;
+
+static const lane_cue_variant lane_cue_variants[] = {
+#ifdef RTE_SIMD_X86
+    { { "lane_cue_avx2", RTE_CPU_X86_AVX2 }, rte_lane_cue_row_avx2 },
+#endif
+    { { "lane_cue_c", 0 }, rte_lane_cue_row_c },
+};
+
+static void check_lane_cue(const lane_cue_variant *v, int32_t width, uint32_t *seed)
+{
+    const size_t so = unit_rand(seed) % MAX_OFFSET, n = (size_t)width + GUARD;
+    uint8_t *bgr = test_malloc(so + 3 * (size_t)width), *gray = test_malloc((size_t)width);
+    /* extremes often, and colours near the thresholds below */
+    fill_random(bgr + so, 3 * (size_t)width, seed, width % 7 == 0);
+    fill_random(gray, (size_t)width, seed, 0);
+    const uint32_t r = unit_rand(seed);
+    const rte_lane_cue cue = {
+        .white_min = (uint8_t)(150 + r % 100), .white_on = (r >> 8) % 4 ? 0xFF : 0,
+        .yellow_min = (uint8_t)(100 + (r >> 10) % 120), .yellow_on = (r >> 17) % 4 ? 0xFF : 0,
+        .yellow_b_margin = (uint8_t)((r >> 19) % 80), .dim_q8 = (uint16_t)((r >> 23) % 257),
+    };
+    const bool rgb = (r >> 31) != 0;
+    uint8_t *want = test_malloc(n), *got = test_malloc(n);
+    memset(want, 0xEE, n);
+    memset(got, 0xEE, n);
+    rte_lane_cue_row_c(gray, bgr + so, want, width, &cue, rgb);
+    v->row(gray, bgr + so, got, width, &cue, rgb);
+    if (memcmp(want, got, n) != 0)
+        fail_msg("%s width %d rgb %d differs", v->head.name, (int)width, rgb);
+    test_free(bgr);
+    test_free(gray);
+    test_free(want);
+    test_free(got);
+}
+
+static void lane_cue_rows(const void *variant, uint32_t *seed)
+{
+    const lane_cue_variant *v = variant;
+    for (int32_t w = 1; w <= 67; w++)
+        for (int k = 0; k < 8; k++)
+            check_lane_cue(v, w, seed);
+    for (int k = 0; k < 32; k++)
+        check_lane_cue(v, 68 + (int32_t)(unit_rand(seed) % 3000), seed);
+}
+
+VARIANTS_TEST(lane_cue_rows, lane_cue_variants, 0xC0105u)
+
 /* Every colour through the dispatched whole-image path: 2^24 pixels as a
  * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
  * value, which also checks that each row restarts at its stride. */
@@ -501,6 +554,7 @@ static void force_c_selects_the_reference(void **state)
     rte_canny_rows c = rte_canny_rows_select(rte_cpu_features());
     assert_true(c.sobel == rte_canny_sobel_row_c && c.nms == rte_canny_nms_row_c);
     assert_true(rte_threshold_row_select(rte_cpu_features()) == rte_threshold_row_c);
+    assert_true(rte_lane_cue_row_select(rte_cpu_features()) == rte_lane_cue_row_c);
     assert_int_equal(rte_cpu_features_hw(), hw);
     /* "0" and "" mean "not forced" */
     assert_int_equal(setenv("RTE_FORCE_C", "0", 1), 0);
@@ -586,6 +640,7 @@ int main(void)
         cmocka_unit_test(morph_rows_match_reference),
         cmocka_unit_test(canny_rows_match_reference),
         cmocka_unit_test(threshold_rows_match_reference),
+        cmocka_unit_test(lane_cue_rows_match_reference),
         cmocka_unit_test(force_c_selects_the_reference),
         cmocka_unit_test(forced_and_dispatched_images_agree),
         cmocka_unit_test(forced_and_dispatched_canny_and_threshold_agree),

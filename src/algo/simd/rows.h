@@ -101,8 +101,23 @@ void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint
                          uint8_t maxval);
 rte_threshold_row_fn rte_threshold_row_select(uint32_t features);
 
+/* The lane path's colour cue (src/pipeline/lane.c, lane_cue_rows.h):
+ * white or yellow paint in a B,G,R row (R,G,B when rgb) -> 255, other
+ * pixels gray * dim_q8 / 256. Thresholds of 256 are given as *_on = 0. */
+typedef struct rte_lane_cue {
+    uint8_t white_min, white_on, yellow_min, yellow_on, yellow_b_margin;
+    uint16_t dim_q8;
+} rte_lane_cue;
+typedef void (*rte_lane_cue_row_fn)(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst,
+                                    int32_t width, const rte_lane_cue *cue, bool rgb);
+void rte_lane_cue_row_c(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
+                        const rte_lane_cue *cue, bool rgb);
+rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features);
+
 #ifdef RTE_SIMD_X86
 RTE_CANNY_ROWS_DECLARE(avx2)
+void rte_lane_cue_row_avx2(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
+                           const rte_lane_cue *cue, bool rgb);
 void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
                             uint8_t maxval);
 void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
