@@ -241,6 +241,7 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
      * as int16 in the same ring. */
     const bool fast = src && ap == 3 && !params->l2_gradient;
     const rte_canny_rows kernels = rte_canny_rows_select(in->features);
+    const rte_grad_rows grad = rte_grad_rows_select(in->features);
     const int16_t low16 = threshold16(params->low), high16 = threshold16(params->high);
     int16_t *ring16[3] = { (int16_t *)ring[0], (int16_t *)ring[1], (int16_t *)ring[2] };
 
@@ -264,10 +265,12 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
             } else {
                 const int16_t *dxr, *dyr;
                 if (src) {
-                    rte_grad_column_rows(rows, w, smooth, ap, RTE_BORDER_REPLICATE, vs, ap / 2);
-                    rte_grad_column_rows(rows, w, deriv, ap, RTE_BORDER_REPLICATE, vd, ap / 2);
-                    rte_grad_row_pass(vs, deriv, ap, dxb[i & 1], w, row_mode);
-                    rte_grad_row_pass(vd, smooth, ap, dyb[i & 1], w, row_mode);
+                    rte_grad_column_rows(&grad, rows, w, smooth, ap, RTE_BORDER_REPLICATE, vs,
+                                         ap / 2);
+                    rte_grad_column_rows(&grad, rows, w, deriv, ap, RTE_BORDER_REPLICATE, vd,
+                                         ap / 2);
+                    grad.row(vs, deriv, ap, dxb[i & 1], w, (int)row_mode);
+                    grad.row(vd, smooth, ap, dyb[i & 1], w, (int)row_mode);
                     dxr = dxb[i & 1];
                     dyr = dyb[i & 1];
                 } else {

@@ -14,6 +14,7 @@
 #include "rtedge/cpu.h"
 #include "rtedge/threshold.h"
 
+#include "../../src/algo/gradient_rows.h"
 #include "../../src/algo/simd/rows.h"
 
 enum { GUARD = 64, MAX_OFFSET = 32 };
@@ -441,6 +442,86 @@ static void threshold_rows(const void *variant, uint32_t *seed)
 
 VARIANTS_TEST(threshold_rows, threshold_variants, 0x7E57u)
 
+/* Gradient rows (Sobel, Scharr, Laplacian, Canny's apertures 5 and 7):
+ * each variant against the C reference, random taps of every length and
+ * the special Sobel 3 taps, every row mode. */
+typedef struct grad_variant {
+    variant_head head;
+    rte_grad_column_fn column;
+    rte_grad_row_fn row;
+} grad_variant;
+
+static const grad_variant grad_variants[] = {
+#ifdef RTE_SIMD_X86
+    { { "grad_avx2", RTE_CPU_X86_AVX2 }, rte_grad_column_avx2, rte_grad_row_avx2 },
+#endif
+    { { "grad_c", 0 }, rte_grad_column_c, rte_grad_row_c },
+};
+
+/* n taps: [1 2 1] or [-1 0 1] for some 3-tap cases, else random with
+ * sum |tap| <= `l1`. */
+static void random_grad_taps(int16_t *taps, int32_t n, int32_t l1, uint32_t *seed)
+{
+    static const int16_t sobel[2][3] = { { 1, 2, 1 }, { -1, 0, 1 } };
+    const uint32_t r = unit_rand(seed) % 4;
+    if (n == 3 && r < 2) {
+        memcpy(taps, sobel[r], sizeof sobel[r]);
+        return;
+    }
+    for (int32_t i = 0; i < n; i++)
+        taps[i] = rand_s16(seed, l1 / n);
+}
+
+static void check_grad(const grad_variant *v, int32_t width, int32_t n, int mode, uint32_t *seed)
+{
+    const size_t guard = (size_t)width + GUARD;
+    int16_t taps[RTE_GRAD_MAX_TAPS];
+    /* column pass: |sum| <= 128 * 255 fits int16 */
+    random_grad_taps(taps, n, 128, seed);
+    const uint8_t *rows[RTE_GRAD_MAX_TAPS];
+    uint8_t *src = test_malloc((size_t)width + (size_t)n);
+    fill_random(src, (size_t)width + (size_t)n, seed, width % 7 == 0);
+    for (int32_t j = 0; j < n; j++)
+        rows[j] = src + unit_rand(seed) % (uint32_t)(n + 1);
+    int16_t *want = test_malloc(guard * sizeof *want), *got = test_malloc(guard * sizeof *got);
+    for (size_t i = 0; i < guard; i++)
+        want[i] = got[i] = (int16_t)0x7EEE;
+    rte_grad_column_c(rows, width, taps, n, want);
+    v->column(rows, width, taps, n, got);
+    if (memcmp(want, got, guard * sizeof *want) != 0)
+        fail_msg("%s column pass width %d taps %d differs", v->head.name, (int)width, (int)n);
+    /* row pass over a padded row: small values when the sums must fit */
+    random_grad_taps(taps, n, mode == RTE_ROW_FITS ? 64 : 4096, seed);
+    int16_t *padded = test_malloc(((size_t)width + (size_t)n) * sizeof *padded);
+    for (size_t i = 0; i < (size_t)width + (size_t)n; i++)
+        padded[i] = rand_s16(seed, mode == RTE_ROW_FITS ? 511 : 32767);
+    for (size_t i = 0; i < guard; i++)
+        want[i] = got[i] = (int16_t)0x7EEE;
+    rte_grad_row_c(padded + n / 2, taps, n, want, width, mode);
+    v->row(padded + n / 2, taps, n, got, width, mode);
+    if (memcmp(want, got, guard * sizeof *want) != 0)
+        fail_msg("%s row pass width %d taps %d mode %d differs", v->head.name, (int)width,
+                 (int)n, mode);
+    test_free(src);
+    test_free(padded);
+    test_free(want);
+    test_free(got);
+}
+
+static void grad_rows(const void *variant, uint32_t *seed)
+{
+    const grad_variant *v = variant;
+    for (int32_t n = 1; n <= RTE_GRAD_MAX_TAPS; n += 2)
+        for (int mode = RTE_ROW_FITS; mode <= RTE_ROW_ROUND_DIV16; mode++) {
+            for (int32_t w = 1; w <= 67; w++)
+                check_grad(v, w, n, mode, seed);
+            for (int k = 0; k < 4; k++)
+                check_grad(v, 68 + (int32_t)(unit_rand(seed) % 2000), n, mode, seed);
+        }
+}
+
+VARIANTS_TEST(grad_rows, grad_variants, 0x6AD1u)
+
 /* The lane path's colour cue rows: each variant against the C reference,
  * random thresholds (256 as an "off" mask too), both channel orders. */
 typedef struct lane_cue_variant {
@@ -555,6 +636,8 @@ static void force_c_selects_the_reference(void **state)
     assert_true(c.sobel == rte_canny_sobel_row_c && c.nms == rte_canny_nms_row_c);
     assert_true(rte_threshold_row_select(rte_cpu_features()) == rte_threshold_row_c);
     assert_true(rte_lane_cue_row_select(rte_cpu_features()) == rte_lane_cue_row_c);
+    rte_grad_rows gr = rte_grad_rows_select(rte_cpu_features());
+    assert_true(gr.column == rte_grad_column_c && gr.row == rte_grad_row_c);
     assert_int_equal(rte_cpu_features_hw(), hw);
     /* "0" and "" mean "not forced" */
     assert_int_equal(setenv("RTE_FORCE_C", "0", 1), 0);
@@ -641,6 +724,7 @@ int main(void)
         cmocka_unit_test(canny_rows_match_reference),
         cmocka_unit_test(threshold_rows_match_reference),
         cmocka_unit_test(lane_cue_rows_match_reference),
+        cmocka_unit_test(grad_rows_match_reference),
         cmocka_unit_test(force_c_selects_the_reference),
         cmocka_unit_test(forced_and_dispatched_images_agree),
         cmocka_unit_test(forced_and_dispatched_canny_and_threshold_agree),

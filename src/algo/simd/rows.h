@@ -101,6 +101,28 @@ void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint
                          uint8_t maxval);
 rte_threshold_row_fn rte_threshold_row_select(uint32_t features);
 
+/* Separable integer filters of the gradient family (src/algo/gradient.c,
+ * gradient_loops.h; also Canny's apertures 5 and 7 and L2): the column
+ * pass of ny source rows into int16, and the row pass of a padded int16
+ * row (mode an rte_row_mode of gradient_rows.h). */
+typedef void (*rte_grad_column_fn)(const uint8_t *const *rows, int32_t width, const int16_t *ky,
+                                   int32_t ny, int16_t *out);
+typedef void (*rte_grad_row_fn)(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
+                                int32_t width, int mode);
+typedef struct rte_grad_rows {
+    rte_grad_column_fn column;
+    rte_grad_row_fn row;
+} rte_grad_rows;
+
+/* rte_grad_column_<isa> and rte_grad_row_<isa>, of the types above. */
+#define RTE_GRAD_ROWS_DECLARE(isa)                                                               \
+    void rte_grad_column_##isa(const uint8_t *const *rows, int32_t width, const int16_t *ky,     \
+                               int32_t ny, int16_t *out);                                        \
+    void rte_grad_row_##isa(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,       \
+                            int32_t width, int mode);
+RTE_GRAD_ROWS_DECLARE(c)
+rte_grad_rows rte_grad_rows_select(uint32_t features);
+
 /* The lane path's colour cue (src/pipeline/lane.c, lane_cue_rows.h):
  * white or yellow paint in a B,G,R row (R,G,B when rgb) -> 255, other
  * pixels gray * dim_q8 / 256. Thresholds of 256 are given as *_on = 0. */
@@ -116,6 +138,7 @@ rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features);
 
 #ifdef RTE_SIMD_X86
 RTE_CANNY_ROWS_DECLARE(avx2)
+RTE_GRAD_ROWS_DECLARE(avx2)
 void rte_lane_cue_row_avx2(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
                            const rte_lane_cue *cue, bool rgb);
 void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
