@@ -67,21 +67,9 @@ RTE_CANNY_ROWS_DEFINE(c)
 
 rte_canny_rows rte_canny_rows_select(uint32_t features)
 {
-    rte_canny_rows k = { rte_canny_sobel_row_c, rte_canny_nms_row_c };
-#ifdef RTE_SIMD_X86
-    if (features & RTE_CPU_X86_AVX2) {
-        k.sobel = rte_canny_sobel_row_avx2;
-        k.nms = rte_canny_nms_row_avx2;
-    }
-#endif
-#ifdef RTE_SIMD_NEON
-    if (features & RTE_CPU_ARM_NEON) {
-        k.sobel = rte_canny_sobel_row_neon;
-        k.nms = rte_canny_nms_row_neon;
-    }
-#endif
-    (void)features;
-    return k;
+    return RTE_SIMD_PICK(features, ((rte_canny_rows){ rte_canny_sobel_row_c, rte_canny_nms_row_c }),
+                         ((rte_canny_rows){ rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2 }),
+                         ((rte_canny_rows){ rte_canny_sobel_row_neon, rte_canny_nms_row_neon }));
 }
 
 /* A threshold for the 16-bit kernels: magnitudes are 0..2040 there, so

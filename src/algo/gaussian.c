@@ -91,15 +91,11 @@ void rte_gaussian_row_pass_c(const uint16_t *hi, const uint16_t *lo, uint8_t *ds
 
 rte_gaussian_rows rte_gaussian_rows_select(uint32_t features)
 {
-    rte_gaussian_rows k = { rte_gaussian_column_pass_c, rte_gaussian_row_pass_c };
-#ifdef RTE_SIMD_X86
-    if (features & RTE_CPU_X86_AVX2) {
-        k.column = rte_gaussian_column_pass_avx2;
-        k.row = rte_gaussian_row_pass_avx2;
-    }
-#endif
-    (void)features;
-    return k;
+    return RTE_SIMD_PICK(features,
+                         ((rte_gaussian_rows){ rte_gaussian_column_pass_c, rte_gaussian_row_pass_c }),
+                         ((rte_gaussian_rows){ rte_gaussian_column_pass_avx2,
+                                               rte_gaussian_row_pass_avx2 }),
+                         ((rte_gaussian_rows){ rte_gaussian_column_pass_c, rte_gaussian_row_pass_c }));
 }
 
 /* Power-of-two factor shared by all n taps, as a shift, at most `limit`. */

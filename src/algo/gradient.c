@@ -67,15 +67,9 @@ RTE_GRAD_ROWS_DEFINE(c)
 
 rte_grad_rows rte_grad_rows_select(uint32_t features)
 {
-    rte_grad_rows k = { rte_grad_column_c, rte_grad_row_c };
-#ifdef RTE_SIMD_X86
-    if (features & RTE_CPU_X86_AVX2) {
-        k.column = rte_grad_column_avx2;
-        k.row = rte_grad_row_avx2;
-    }
-#endif
-    (void)features;
-    return k;
+    return RTE_SIMD_PICK(features, ((rte_grad_rows){ rte_grad_column_c, rte_grad_row_c }),
+                         ((rte_grad_rows){ rte_grad_column_avx2, rte_grad_row_avx2 }),
+                         ((rte_grad_rows){ rte_grad_column_c, rte_grad_row_c }));
 }
 
 int32_t rte_grad_taps_l1(const int16_t *taps, int32_t n)

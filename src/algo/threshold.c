@@ -138,16 +138,8 @@ void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint
 
 rte_threshold_row_fn rte_threshold_row_select(uint32_t features)
 {
-#ifdef RTE_SIMD_X86
-    if (features & RTE_CPU_X86_AVX2)
-        return rte_threshold_row_avx2;
-#endif
-#ifdef RTE_SIMD_NEON
-    if (features & RTE_CPU_ARM_NEON)
-        return rte_threshold_row_neon;
-#endif
-    (void)features;
-    return rte_threshold_row_c;
+    return RTE_SIMD_PICK(features, rte_threshold_row_c, rte_threshold_row_avx2,
+                         rte_threshold_row_neon);
 }
 
 static void fill_rows(rte_image_u8 *dst, uint8_t v)

@@ -14,11 +14,25 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "rtedge/cpu.h"
+
 #if defined(__x86_64__) || defined(__i386__)
 #define RTE_SIMD_X86 1
 #endif
 #if defined(__aarch64__)
 #define RTE_SIMD_NEON 1
+#endif
+
+/* The variant for a feature word: `avx2` on x86 with AVX2, `neon` on
+ * aarch64 with NEON, else the C reference `c` (pass `c` again for a
+ * variant that does not exist). Only the current CPU family's argument is
+ * compiled, so the others may name functions built for other CPUs. */
+#if defined(RTE_SIMD_X86)
+#define RTE_SIMD_PICK(features, c, avx2, neon) (((features) & RTE_CPU_X86_AVX2) ? (avx2) : (c))
+#elif defined(RTE_SIMD_NEON)
+#define RTE_SIMD_PICK(features, c, avx2, neon) (((features) & RTE_CPU_ARM_NEON) ? (neon) : (c))
+#else
+#define RTE_SIMD_PICK(features, c, avx2, neon) ((void)(features), (c))
 #endif
 
 /* 3-byte pixels (B,G,R or R,G,B) to grey with BT.601 luma weights in Q15.
