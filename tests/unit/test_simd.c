@@ -669,8 +669,8 @@ static void forced_and_dispatched_images_agree(void **state)
 }
 
 /* Random images of widths 1..67 with odd strides through the public
- * Canny (plain and fused) and threshold calls: forced C and dispatched
- * give the same bytes and leave the padding alone. */
+ * Canny (apertures 3 and 5, plain and fused) and threshold calls: forced
+ * C and dispatched give the same bytes and leave the padding alone. */
 static void forced_and_dispatched_canny_and_threshold_agree(void **state)
 {
     (void)state;
@@ -686,25 +686,28 @@ static void forced_and_dispatched_canny_and_threshold_agree(void **state)
         rte_image_u8 src = unit_image_u8(w, h, pad, 0);
         for (int32_t y = 0; y < h; y++)
             fill_random(src.buf + (size_t)y * src.stride, (size_t)w, &seed, w % 7 == 0);
-        rte_canny_params p;
+        rte_canny_params p, p5;
         const double low = unit_rand(&seed) % 300, high = unit_rand(&seed) % 600;
         assert_int_equal(rte_canny_params_init(&p, low, high, 3, false), RTE_OK);
+        /* aperture 5, L2: the gradient rows */
+        assert_int_equal(rte_canny_params_init(&p5, 8 * low, 8 * high, 5, true), RTE_OK);
         rte_threshold_params tp;
         assert_int_equal(rte_threshold_params_init(&tp, (rte_threshold_type)(w % 5),
                                                    unit_rand(&seed) % 256, 200, false),
                          RTE_OK);
-        rte_image_u8 out[2][3];
+        rte_image_u8 out[2][4];
         for (int forced = 0; forced < 2; forced++) {
             if (forced)
                 assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
-            for (int j = 0; j < 3; j++)
+            for (int j = 0; j < 4; j++)
                 out[forced][j] = unit_image_u8(w, h, pad, 0x11);
             assert_int_equal(rte_canny_u8(&src, &out[forced][0], &p, &arena), RTE_OK);
             assert_int_equal(rte_canny_blurred_u8(&src, &out[forced][1], &k, &p, &arena), RTE_OK);
             assert_int_equal(rte_threshold_u8(&src, &out[forced][2], &tp, NULL), RTE_OK);
+            assert_int_equal(rte_canny_u8(&src, &out[forced][3], &p5, &arena), RTE_OK);
             assert_int_equal(unsetenv("RTE_FORCE_C"), 0);
         }
-        for (int j = 0; j < 3; j++) {
+        for (int j = 0; j < 4; j++) {
             assert_memory_equal(out[0][j].buf, out[1][j].buf, (size_t)src.stride * h);
             unit_assert_padding_u8(&out[0][j]);
             test_free(out[0][j].buf);
