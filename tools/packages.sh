@@ -5,6 +5,7 @@ RTE_BUILD_PACKAGES=(meson ninja-build gcc g++ pkg-config binutils
     libspng-dev libturbojpeg0-dev          # image files
     liblcm-dev liblcm-bin libglib2.0-dev   # LCM: lcm-gen; lcm.pc needs glib
     linux-libc-dev libcamera-dev)          # cameras: V4L2 headers, libcamera
+RTE_BENCH_PACKAGES=(valgrind)  # tools/bench --instructions (callgrind)
 RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}"
     libcmocka-dev libopencv-dev python3-opencv python3-numpy  # unit and oracle suites
     liblcm-java default-jdk-headless iproute2 util-linux ffmpeg  # LCM: Java types, udpm in a netns, Y4M
@@ -24,3 +25,25 @@ rte_install_packages() {
     $sudo apt-get install -y -q --no-install-recommends "${missing[@]}" >/dev/null ||
         { echo "apt-get install ${missing[*]} failed"; return 1; }
 }
+
+# rte_install_python_lcm DIR: the `lcm` Python package (on PyPI; Debian has
+# none) into DIR, for the Python subscriber (tools/subscribe.py) and its
+# tests; they use it through RTE_PYTHON_LCM=DIR. Without network it says so
+# and returns 1: the subscriber then receives with its built-in reader.
+RTE_PYTHON_LCM_VERSION=1.5.1
+rte_install_python_lcm() {
+    local dir=$1
+    [ -f "$dir/lcm/__init__.py" ] && return 0
+    local py
+    for py in python3 /usr/bin/python3; do
+        if "$py" -m pip --version >/dev/null 2>&1; then
+            mkdir -p "$(dirname "$dir")"
+            "$py" -m pip install --quiet --disable-pip-version-check --no-warn-script-location \
+                --root-user-action=ignore --target "$dir" "lcm==$RTE_PYTHON_LCM_VERSION" \
+                >"$dir.log" 2>&1 && return 0
+        fi
+    done
+    echo "note: could not install the lcm Python package (pip, PyPI); its tests will say SKIP"
+    return 1
+}
+

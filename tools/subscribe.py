@@ -3,12 +3,16 @@
 found, centre offset, objects, latency and whether the deadline was met;
 status_t once a second.
 
-Uses lcm-gen's Python types (built in BUILD/src/publish/python) and no
-python3-lcm (Debian has none): udpm:// is received with a plain multicast
-socket (LCM's small-message datagrams, "LC02"; fragmented "LC03" ones are
-reassembled), and file:// logs are read with a small log reader.
+Decodes with lcm-gen's Python types (built in BUILD/src/publish/python).
+Receives with the `lcm` Python package when it can be imported
+(`lc = lcm.LCM(url); lc.subscribe(".*", handler); lc.handle_timeout(ms)`;
+`lcm.EventLog` for logs): it is on PyPI (`pip install lcm`), not in Debian,
+so without it udpm:// is received with a plain multicast socket (LCM's
+small-message datagrams, "LC02"; fragmented "LC03" ones are reassembled)
+and file:// logs are read with a small log reader.
 
     tools/subscribe.py [--types DIR] [--count N] [--timeout S] [--summary]
+                       [--transport auto|lcm|builtin]
                        [udpm://239.255.76.67:7667?ttl=0 | file://LOG | LOG]
 
 --summary prints one JSON line of counts at the end (the tests use it).
@@ -98,6 +102,31 @@ def udpm_messages(url, timeout):
                 yield now, f[0], bytes(f[1])
 
 
+def lcm_messages(url, timeout):
+    """Yields (utime, channel, data) through the lcm Python package."""
+    import lcm
+    if not url.startswith("udpm://"):
+        for event in lcm.EventLog(url[len("file://"):] if url.startswith("file://") else url, "r"):
+            yield event.timestamp, event.channel, event.data
+        return
+    lc = lcm.LCM(url)
+    received = []
+    lc.subscribe(".*", lambda channel, data: received.append((int(time.time() * 1e6), channel, data)))
+    while True:
+        if lc.handle_timeout(int(timeout * 1000)) <= 0:
+            return  # nothing for `timeout` seconds (or an error)
+        while received:
+            yield received.pop(0)
+
+
+def have_lcm_package():
+    try:
+        import lcm  # noqa: F401
+        return True
+    except ImportError:
+        return False
+
+
 class Decoder:
     def __init__(self, types_dir):
         sys.path.insert(0, types_dir)
@@ -170,7 +199,9 @@ class Printer:
             self.counts["last_status"] = {
                 "frames_received": m.frames_received, "frames_processed": m.frames_processed,
                 "frames_dropped": m.frames_dropped, "deadline_misses": m.deadline_misses,
-                "stages_skipped": m.stages_skipped, "latency_p50_us": m.latency_p50_us,
+                "stages_skipped": m.stages_skipped, "frames_bad": m.frames_bad,
+                "source_reconnects": m.source_reconnects, "config_reloads": m.config_reloads,
+                "config_refused": m.config_refused, "latency_p50_us": m.latency_p50_us,
                 "latency_p99_us": m.latency_p99_us, "latency_max_us": m.latency_max_us,
                 "fps": round(m.fps, 2), "source_state": m.source_state,
                 "config_hash": "%016x" % (m.config_hash & (2**64 - 1))}
@@ -179,10 +210,12 @@ class Printer:
                 self.counts["config_hashes"].append(self.counts["last_status"]["config_hash"])
             if self.out:
                 s = self.counts["last_status"]
-                print("status: %d received, %d processed, %d dropped, %d deadline misses, "
-                      "%d stages skipped, latency p50 %d p99 %d max %d us, %.1f fps"
+                print("status: %d received, %d processed, %d dropped, %d bad, %d deadline misses, "
+                      "%d stages skipped, %d reconnects, %d changes refused, "
+                      "latency p50 %d p99 %d max %d us, %.1f fps"
                       % (s["frames_received"], s["frames_processed"], s["frames_dropped"],
-                         s["deadline_misses"], s["stages_skipped"], s["latency_p50_us"],
+                         s["frames_bad"], s["deadline_misses"], s["stages_skipped"],
+                         s["source_reconnects"], s["config_refused"], s["latency_p50_us"],
                          s["latency_p99_us"], s["latency_max_us"], s["fps"]),
                       file=self.out, flush=True)
         elif name == "image_t":
@@ -201,13 +234,20 @@ def main():
                     help="udpm: stop when nothing arrived for this long (s)")
     ap.add_argument("--summary", action="store_true", help="counts as JSON at the end")
     ap.add_argument("--quiet", action="store_true", help="no per-frame lines")
+    ap.add_argument("--transport", choices=("auto", "lcm", "builtin"), default="auto",
+                    help="receive with the lcm Python package, the built-in reader, or "
+                         "the package when it can be imported (default)")
     args = ap.parse_args()
     if not args.types:
         sys.exit("subscribe.py: no --types directory (build rtedge first)")
     dec = Decoder(args.types)
     out = None if args.quiet else sys.stdout
     p = Printer(out)
-    if args.url.startswith("udpm://"):
+    use_lcm = args.transport == "lcm" or (args.transport == "auto" and have_lcm_package())
+    p.counts["transport"] = "lcm" if use_lcm else "builtin"
+    if use_lcm:
+        source = lcm_messages(args.url, args.timeout)
+    elif args.url.startswith("udpm://"):
         source = udpm_messages(args.url, args.timeout)
     else:
         source = read_log(args.url[len("file://"):] if args.url.startswith("file://")

@@ -102,6 +102,13 @@ rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *confi
 rte_status rte_v4l2_source_set_control(rte_source *source, const char *name, int32_t value,
                                        char *msg, size_t msg_size);
 
+/* Sets one control by name on a device that another file handle (another
+ * process) may be streaming from: opens `device` (a path or a name, as in
+ * rte_v4l2_config), sets the control and closes it again. ops: NULL for
+ * the real syscalls. The same errors as rte_v4l2_source_set_control. */
+rte_status rte_v4l2_set_device_control(const char *device, const char *name, int32_t value,
+                                       const rte_v4l2_ops *ops, char *msg, size_t msg_size);
+
 /* "YUYV", "MJPG", ... into buf[5]. */
 const char *rte_v4l2_fourcc_name(uint32_t fourcc, char buf[5]);
 

@@ -49,8 +49,9 @@ static const key_def keys[] = {
     TEXT("source", "channel", source_channel, false, "",
          "LCM sources: the image_t channel (a log: empty = every channel)"),
     TEXT("source", "format", source_format, false, "",
-         "images, raw, v4l2: pixel format (grey, bgr24, rgb24, yuyv, uyvy, nv12);\n"
-         "empty: bgr24 (images), yuyv (v4l2)"),
+         "images, raw, v4l2, libcamera: pixel format (grey, bgr24, rgb24, yuyv,\n"
+         "uyvy, nv12; v4l2 also mjpeg, decoded to grey); empty: bgr24 (images),\n"
+         "yuyv (v4l2), the camera's choice (libcamera)"),
     INT("source", "width", width, 0, 8192, false, "0",
         "largest frame width (raw, v4l2: the frame width); 0: from the source"),
     INT("source", "height", height, 0, 8192, false, "0", "largest frame height, as width"),
@@ -62,6 +63,14 @@ static const key_def keys[] = {
     BOOL("source", "loop", loop, false, "false", "start a recording again at its end"),
     INT("source", "max_frames", max_frames, 0, 2147483647, false, "0",
         "stop after this many processed frames; 0: never"),
+    TEXT("source", "controls", source_controls, false, "",
+         "v4l2: controls set at open and at each reopening, 'name=value' pairs,\n"
+         "';'-separated, names as `v4l2-ctl -l` prints them (e.g. brightness=140;\n"
+         "auto_exposure=1;exposure_time_absolute=100)"),
+    TEXT("source", "record", record_path, false, "",
+         "write every frame the source delivers to this LCM log of image_t (the\n"
+         "frames as delivered, on publish.image_channel); replay it with\n"
+         "path = the log; empty: no recording"),
 
     BOOL("lane", "enabled", lane_enabled, false, "true", "run the lane path"),
     INT("lane", "max_segments", lane_max_segments, 1, 65536, false, "512",
@@ -351,6 +360,41 @@ bool rted_config_set(rted_config *c, const char *assignment, const char *origin,
     return true;
 }
 
+int32_t rted_parse_controls(const char *text, rte_v4l2_control *out, int32_t max)
+{
+    if (!out)
+        max = RTE_V4L2_MAX_CONTROLS;
+    int32_t n = 0;
+    const char *s = text;
+    while (*s) {
+        const char *eq = strchr(s, '=');
+        size_t len = eq ? (size_t)(eq - s) : 0;
+        while (len && s[len - 1] == ' ')
+            len--;
+        while (len && *s == ' ') {
+            s++;
+            len--;
+        }
+        if (!eq || !len || len >= RTE_V4L2_NAME_SIZE || n >= max)
+            return -1;
+        char *end;
+        errno = 0;
+        long v = strtol(eq + 1, &end, 0);
+        while (*end == ' ')
+            end++;
+        if (end == eq + 1 || errno || v < INT32_MIN || v > INT32_MAX || (*end && *end != ';'))
+            return -1;
+        if (out) {
+            memcpy(out[n].name, s, len);
+            out[n].name[len] = 0;
+            out[n].value = (int32_t)v;
+        }
+        n++;
+        s = *end ? end + 1 : end;
+    }
+    return n;
+}
+
 int32_t rted_parse_roi(const char *text, int32_t *xy_q16, int32_t max_vertices)
 {
     int32_t n = 0;
@@ -399,6 +443,12 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
     }
     if (!c->source_path[0]) {
         say(msg, msg_size, "source.path is empty");
+        return false;
+    }
+    if (rted_parse_controls(c->source_controls, NULL, 0) < 0) {
+        say(msg, msg_size, "source.controls: '%s' is not 'name=value;...' with at most %d "
+            "integer values and names of at most %d characters", c->source_controls,
+            RTE_V4L2_MAX_CONTROLS, RTE_V4L2_NAME_SIZE - 1);
         return false;
     }
     if (!c->lcm_url[0]) {

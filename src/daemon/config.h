@@ -11,6 +11,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "rtedge/v4l2_source.h"
+
 #define RTED_TEXT 256
 #define RTED_MSG 512
 
@@ -33,6 +35,8 @@ typedef struct rted_config {
     double speed;
     bool loop;
     int32_t max_frames;             /* stop after this many processed frames; 0 = never */
+    char source_controls[RTED_TEXT]; /* v4l2: "name=value;..." */
+    char record_path[RTED_TEXT];    /* LCM log of the delivered frames; "" = none */
     /* [lane] */
     bool lane_enabled;
     int32_t lane_max_segments, lane_blur_ksize;
@@ -83,6 +87,10 @@ uint64_t rted_config_hash(const rted_config *c);
 /* true and the name of the first fixed (start-up only) key whose value differs. */
 bool rted_config_fixed_change(const rted_config *now, const rted_config *next, char *name,
                               size_t name_size);
+/* Parses source.controls ("name=value;..."; "" is none) into out (NULL:
+ * only checks). Returns the number of controls, -1 when malformed or more
+ * than max (max is RTE_V4L2_MAX_CONTROLS when out is NULL). */
+int32_t rted_parse_controls(const char *text, rte_v4l2_control *out, int32_t max);
 /* Parses lane.roi ("x,y;x,y;..." fractions) into Q16 vertices. */
 int32_t rted_parse_roi(const char *text, int32_t *xy_q16, int32_t max_vertices);
 

@@ -21,6 +21,8 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include <linux/videodev2.h>
+
 #include "rtedge/arena.h"
 #include "rtedge/grasp.h"
 #ifdef RTE_HAVE_LIBCAMERA
@@ -56,6 +58,11 @@ struct rted_daemon {
     rte_publisher *pub;
     lcm_subscription_t *params_sub;
 
+    /* source.record: every delivered frame, packed, as image_t. */
+    rte_publisher *rec;
+    uint8_t *rec_buf;
+    rtedge_image_t rec_msg;
+
     void *memory;
     rte_arena arena;
     rte_image_u8 gray;
@@ -74,6 +81,7 @@ struct rted_daemon {
     uint64_t window_processed;
     int64_t window_start_ns;
     rte_source_state state;
+    rte_source_state reported_state; /* the source's state in the last status */
     volatile sig_atomic_t *stop; /* rted_daemon_run's flag: ends a wait for a frame's time */
 };
 
@@ -121,13 +129,37 @@ static const char *kind_name(rted_source_kind k)
     return names[k];
 }
 
+/* source.format for a V4L2 camera: what the camera is asked to send (the
+ * pixel format names, or mjpeg). */
+static bool v4l2_format(const char *name, uint32_t *fourcc)
+{
+    if (!strcasecmp(name, "mjpeg")) {
+        *fourcc = V4L2_PIX_FMT_MJPEG;
+        return true;
+    }
+    switch (name[0] ? rte_pixel_format_parse(name) : RTE_PIXEL_YUYV) {
+    case RTE_PIXEL_YUYV: *fourcc = V4L2_PIX_FMT_YUYV; return true;
+    case RTE_PIXEL_UYVY: *fourcc = V4L2_PIX_FMT_UYVY; return true;
+    case RTE_PIXEL_GREY: *fourcc = V4L2_PIX_FMT_GREY; return true;
+    case RTE_PIXEL_NV12: *fourcc = V4L2_PIX_FMT_NV12; return true;
+    default: return false;
+    }
+}
+
 static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
 {
     const rted_config *c = &d->cfg;
     rted_source_kind kind = c->source_kind ? (rted_source_kind)c->source_kind
                                            : guess_kind(c->source_path);
-    rte_pixel_format fmt = c->source_format[0] ? rte_pixel_format_parse(c->source_format) : 0;
-    if (c->source_format[0] && !fmt) {
+    uint32_t fourcc = 0;
+    if (kind == RTED_SOURCE_V4L2 && !v4l2_format(c->source_format, &fourcc)) {
+        say(msg, msg_size, "source.format: a V4L2 camera is read as yuyv, uyvy, grey, nv12 or "
+            "mjpeg, not", c->source_format);
+        return false;
+    }
+    rte_pixel_format fmt = c->source_format[0] && kind != RTED_SOURCE_V4L2
+                               ? rte_pixel_format_parse(c->source_format) : 0;
+    if (c->source_format[0] && kind != RTED_SOURCE_V4L2 && !fmt) {
         say(msg, msg_size, "source.format: unknown pixel format", c->source_format);
         return false;
     }
@@ -162,9 +194,11 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
         rte_v4l2_config vc;
         memset(&vc, 0, sizeof vc);
         vc.device = c->source_path;
+        vc.fourcc = fourcc;
         vc.width = c->width ? c->width : 1280;
         vc.height = c->height ? c->height : 720;
         vc.fps = (int32_t)lround(c->fps);
+        vc.n_controls = rted_parse_controls(c->source_controls, vc.controls, RTE_V4L2_MAX_CONTROLS);
         rte_v4l2_info info;
         st = rte_v4l2_source_open(&d->source, &vc, &info, why, sizeof why);
         break;
@@ -194,6 +228,9 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
                  why[0] ? why : rte_status_message(st));
         return false;
     }
+    /* Cameras say what they settled on (size, format, rate, adjustments). */
+    if (why[0] && (kind == RTED_SOURCE_V4L2 || kind == RTED_SOURCE_LIBCAMERA))
+        fprintf(stderr, "rtedged: %s source: %s\n", kind_name(kind), why);
     d->recorded = kind != RTED_SOURCE_LCM && kind != RTED_SOURCE_V4L2 &&
                   kind != RTED_SOURCE_LIBCAMERA;
     snprintf(d->source_id, sizeof d->source_id, "%s:%s", kind_name(kind), c->source_path);
@@ -266,6 +303,98 @@ static void derive(rted_daemon *d)
 }
 
 static void on_params(const lcm_recv_buf_t *rbuf, const char *channel, void *user);
+
+/* image_t's code for a delivered pixel format. */
+static int32_t image_t_format(rte_pixel_format f)
+{
+    switch (f) {
+    case RTE_PIXEL_GREY: return RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY;
+    case RTE_PIXEL_BGR24: return RTEDGE_IMAGE_T_PIXEL_FORMAT_BGR;
+    case RTE_PIXEL_RGB24: return RTEDGE_IMAGE_T_PIXEL_FORMAT_RGB;
+    case RTE_PIXEL_YUYV: return RTEDGE_IMAGE_T_PIXEL_FORMAT_YUYV;
+    case RTE_PIXEL_UYVY: return RTEDGE_IMAGE_T_PIXEL_FORMAT_UYVY;
+    case RTE_PIXEL_NV12: return RTEDGE_IMAGE_T_PIXEL_FORMAT_NV12;
+    }
+    return RTEDGE_IMAGE_T_PIXEL_FORMAT_INVALID;
+}
+
+/* The rows of one image_t: one stride for every plane (NV12's chroma rows
+ * are as long as its luma rows, rounded up to even), as the lcm-log source
+ * reads them back. */
+static int32_t record_stride(rte_pixel_format f, int32_t width)
+{
+    rte_frame layout;
+    uint8_t probe;
+    if (rte_frame_packed(&layout, f, width, 1, &probe, SIZE_MAX) != RTE_OK)
+        return 0;
+    return layout.stride[1] > layout.stride[0] ? layout.stride[1] : layout.stride[0];
+}
+
+static size_t record_bytes(rte_pixel_format f, int32_t width, int32_t height)
+{
+    size_t rows = (size_t)height + (f == RTE_PIXEL_NV12 ? (size_t)(height + 1) / 2 : 0);
+    return rows * (size_t)record_stride(f, width);
+}
+
+/* source.record: a file:// publisher of its own, sized for the source's
+ * largest frame. */
+static bool open_recording(rted_daemon *d, char *msg, size_t msg_size)
+{
+    const rted_config *c = &d->cfg;
+    size_t bytes = record_bytes(d->source.format, d->width, d->height);
+    if (!bytes || bytes > (1u << 30)) {
+        snprintf(msg, msg_size, "source.record: cannot record %dx%d %s frames", d->width,
+                 d->height, rte_pixel_format_name(d->source.format));
+        return false;
+    }
+    d->rec_buf = malloc(bytes);
+    if (!d->rec_buf) {
+        say(msg, msg_size, "out of memory", NULL);
+        return false;
+    }
+    char url[RTED_TEXT + 16], why[RTE_PUBLISH_MESSAGE_SIZE] = "";
+    snprintf(url, sizeof url, "%s%s", strncmp(c->record_path, "file://", 7) ? "file://" : "",
+             c->record_path);
+    rte_publish_limits lim = {RTED_TEXT + 16, 0, 0, 0, 0, (int32_t)bytes, 0};
+    if (rte_publisher_create(&d->rec, url, &lim, why, sizeof why) != RTE_OK) {
+        snprintf(msg, msg_size, "source.record: %s", why);
+        return false;
+    }
+    d->rec_msg.pixelformat = image_t_format(d->source.format);
+    d->rec_msg.data = d->rec_buf;
+    return true;
+}
+
+/* Copies the frame, row by row, into the recording's buffer and logs it. */
+static void record_frame(rted_daemon *d, const rte_source_frame *f)
+{
+    const rte_frame *fr = &f->frame;
+    rte_frame layout;
+    uint8_t probe;
+    int32_t stride = record_stride(fr->format, fr->width);
+    if (fr->width > d->width || fr->height > d->height || !stride ||
+        rte_frame_packed(&layout, fr->format, fr->width, 1, &probe, SIZE_MAX) != RTE_OK) {
+        d->n.publish_errors++;
+        return;
+    }
+    for (int p = 0; p < RTE_FRAME_MAX_PLANES && fr->plane[p]; p++) {
+        int32_t rows = p ? (fr->height + 1) / 2 : fr->height;
+        uint8_t *dst = d->rec_buf + (p ? (size_t)stride * (size_t)fr->height : 0);
+        for (int32_t y = 0; y < rows; y++)
+            memcpy(dst + (size_t)y * (size_t)stride, fr->plane[p] + (size_t)y * (size_t)fr->stride[p],
+                   (size_t)layout.stride[p]);
+    }
+    rtedge_image_t *m = &d->rec_msg;
+    m->utime = f->capture_ns / 1000;
+    m->width = fr->width;
+    m->height = fr->height;
+    m->row_stride = stride;
+    m->size = (int32_t)record_bytes(fr->format, fr->width, fr->height);
+    m->nmetadata = 0;
+    char msg[RTE_PUBLISH_MESSAGE_SIZE];
+    if (rte_publish_image(d->rec, d->cfg.image_channel, m, msg, sizeof msg) != RTE_OK)
+        d->n.publish_errors++;
+}
 
 static void realtime(const rted_config *c)
 {
@@ -384,6 +513,9 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
             d->params_sub = lcm_subscribe(lcm, c->params_channel, on_params, d);
     }
 
+    if (c->record_path[0] && !open_recording(d, msg, msg_size))
+        goto fail;
+
     d->lane_msg.header.source_id = d->source_id;
     d->lane_msg.header.roi = d->roi;
     d->lane_msg.segments = d->segments;
@@ -412,6 +544,8 @@ void rted_daemon_close(rted_daemon *d)
     if (d->params_sub && d->pub)
         lcm_unsubscribe(rte_publisher_lcm(d->pub), d->params_sub);
     rte_publisher_destroy(d->pub);
+    rte_publisher_destroy(d->rec);
+    free(d->rec_buf);
     rte_grasp_destroy(d->grasp);
     rte_lane_destroy(d->lane);
     rte_source_close(&d->source);
@@ -586,12 +720,17 @@ void rted_daemon_publish_status(rted_daemon *d)
     rtedge_status_t *s = &d->status_msg;
     s->utime = t / 1000;
     s->source_state = (int8_t)ss.state;
+    d->reported_state = ss.state;
     s->frames_received = (int64_t)d->n.received;
     s->frames_processed = (int64_t)d->n.processed;
     d->n.bad_frames = ss.bad_frames;
     s->frames_dropped = (int64_t)(d->n.dropped + ss.driver_drops + ss.skipped);
     s->deadline_misses = (int64_t)d->n.deadline_misses;
     s->stages_skipped = (int64_t)d->n.stages_skipped;
+    s->frames_bad = (int64_t)ss.bad_frames;
+    s->source_reconnects = (int64_t)ss.reconnects;
+    s->config_reloads = (int64_t)d->n.reloads;
+    s->config_refused = (int64_t)d->n.refused;
     s->window_us = (t - d->window_start_ns) / 1000;
     window_latency(d, &s->latency_p50_us, &s->latency_p99_us, &s->latency_max_us);
     s->fps = s->window_us > 0 ? (float)((double)d->window_processed * 1e6 / (double)s->window_us)
@@ -811,6 +950,16 @@ rted_step rted_daemon_step(rted_daemon *d)
     rte_source_frame f;
     char why[RTE_SOURCE_MESSAGE_SIZE] = "";
     rte_status st = rte_source_next(&d->source, &f, 100, why, sizeof why);
+    rte_source_stats ss;
+    rte_source_get_stats(&d->source, &ss);
+    d->n.bad_frames = ss.bad_frames;
+    if (ss.state != d->reported_state) {
+        /* A camera lost or back: said at once, not at the next period. */
+        if (ss.state == RTE_SOURCE_STREAMING)
+            fprintf(stderr, "rtedged: source streaming again (reconnection %llu)\n",
+                    (unsigned long long)ss.reconnects);
+        rted_daemon_publish_status(d);
+    }
     if (st == RTE_ERR_END) {
         if (d->cfg.loop && rte_recorded_source_rewind(&d->source) == RTE_OK) {
             d->n.rewinds++;
@@ -822,17 +971,17 @@ rted_step rted_daemon_step(rted_daemon *d)
     if (st == RTE_ERR_TIMEOUT)
         return RTED_STEP_IDLE;
     if (st != RTE_OK) {
-        rte_source_stats ss;
-        rte_source_get_stats(&d->source, &ss);
-        d->n.bad_frames = ss.bad_frames;
         if (ss.state == RTE_SOURCE_FAILED) {
             fprintf(stderr, "rtedged: source failed: %s\n", why);
             return RTED_STEP_FAILED;
         }
-        fprintf(stderr, "rtedged: frame skipped: %s\n", why[0] ? why : rte_status_message(st));
+        fprintf(stderr, "rtedged: %s: %s\n", st == RTE_ERR_DEVICE ? "source" : "frame skipped",
+                why[0] ? why : rte_status_message(st));
         return RTED_STEP_IDLE;
     }
     d->n.received++;
+    if (d->rec)
+        record_frame(d, &f);
     bool waited = false;
     for (;;) {
         int64_t wait = 0;

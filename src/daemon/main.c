@@ -7,6 +7,7 @@
 
 #include "config.h"
 #include "daemon.h"
+#include "rtedge/v4l2_source.h"
 
 #define EXIT_CONFIG 2
 #define MAX_SETS 64
@@ -22,7 +23,9 @@ static void usage(FILE *f)
           "  --config FILE       INI configuration (see rtedged.conf, --help-config)\n"
           "  --set S.K=V         override one key (repeatable; applied after the file)\n"
           "  --source PATH       source.path (a .y4m, image directory/glob, LCM log,\n"
-          "                      udpm:// channel URL, /dev/videoN)\n"
+          "                      udpm:// channel URL, /dev/videoN, a V4L2 card or bus\n"
+          "                      name with --set source.kind=v4l2, a libcamera camera\n"
+          "                      with --set source.kind=libcamera)\n"
           "  --fps N             source.pace=fps at N frames a second\n"
           "  --speed X           source.pace=recorded at X times real time\n"
           "  --fast              source.pace=fast (as fast as possible)\n"
@@ -30,6 +33,9 @@ static void usage(FILE *f)
           "  --max-frames N      source.max_frames=N\n"
           "  --lcm-url URL       publish.url\n"
           "  --deadline-ms MS    deadline.ms\n"
+          "  --record FILE       source.record: every frame into an LCM log of image_t\n"
+          "  --list-cameras      list the V4L2 and libcamera cameras with their formats,\n"
+          "                      sizes and frame rates; exit 0 if any, 1 if none\n"
           "  --check-config      validate and print the effective configuration, exit 0 or 2\n"
           "  --help-config       print every key with its help, range and default\n"
           "  --bench             run, then print latency p50/p99/max and peak RSS\n"
@@ -55,6 +61,11 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--help-config")) {
             rted_config_print_help(stdout);
             return 0;
+        } else if (!strcmp(a, "--list-cameras")) {
+            int n = rte_list_cameras(stdout);
+            if (!n)
+                fprintf(stderr, "rtedged: no camera found\n");
+            return n > 0 ? 0 : 1;
         } else if (!strcmp(a, "--check-config")) {
             check = true;
             continue;
@@ -92,6 +103,8 @@ int main(int argc, char **argv)
             key = "publish.url";
         } else if (!strcmp(a, "--deadline-ms")) {
             key = "deadline.ms";
+        } else if (!strcmp(a, "--record")) {
+            key = "source.record";
         } else {
             fprintf(stderr, "rtedged: unknown option '%s'\n", a);
             usage(stderr);

@@ -806,11 +806,17 @@ static rte_status v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_m
 
         memset(out, 0, sizeof(*out));
         out->frame = frame;
-        if ((newest.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC)
-            out->capture_ns = (int64_t)newest.timestamp.tv_sec * 1000000000 +
+        int64_t dequeued = s->ops->now_ns(s->ops->ctx);
+        out->capture_ns = dequeued;
+        /* A driver may stamp a frame from its schedule rather than from the
+         * clock (vivid stamps the end of the exposure, up to 0.9 frame
+         * periods ahead): no frame is captured after it was dequeued. */
+        if ((newest.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC) {
+            int64_t stamped = (int64_t)newest.timestamp.tv_sec * 1000000000 +
                               (int64_t)newest.timestamp.tv_usec * 1000;
-        else
-            out->capture_ns = s->ops->now_ns(s->ops->ctx);
+            if (stamped < dequeued)
+                out->capture_ns = stamped;
+        }
         out->recorded_ns = out->capture_ns;
         out->sequence = newest.sequence;
         out->dropped = s->have_delivered ? newest.sequence - s->last_delivered - 1 : 0;
@@ -945,6 +951,28 @@ rte_status rte_v4l2_source_set_control(rte_source *source, const char *name, int
         return RTE_ERR_ARGUMENT;
     }
     return set_control(source->impl, name, value, msg, msg_size);
+}
+
+rte_status rte_v4l2_set_device_control(const char *device, const char *name, int32_t value,
+                                       const rte_v4l2_ops *ops, char *msg, size_t msg_size)
+{
+    v4l2_source s;
+    memset(&s, 0, sizeof(s));
+    if (!device || !name || strlen(device) >= sizeof(s.device)) {
+        rte_source_msgf(msg, msg_size, "no device or control name, or a name too long");
+        return RTE_ERR_ARGUMENT;
+    }
+    s.ops = ops ? ops : &rte_v4l2_system_ops;
+    s.fd = -1;
+    memcpy(s.device, device, strlen(device) + 1);
+    s.cfg.device = s.device;
+    copy_string(s.info.path, sizeof(s.info.path), s.device, sizeof(s.device));
+    rte_status st = open_node(&s, msg, msg_size);
+    if (st != RTE_OK)
+        return st;
+    st = set_control(&s, name, value, msg, msg_size);
+    close_fd(&s);
+    return st;
 }
 
 /* ---- listing ---- */

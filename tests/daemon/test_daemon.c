@@ -317,6 +317,7 @@ static void test_damaged_frames(void **state)
     print_message("damaged: %llu processed, %llu bad\n", (unsigned long long)n.processed,
                   (unsigned long long)n.bad_frames);
     assert_true(n.bad_frames >= 2);
+    assert_int_equal(s.last_status.frames_bad, (int64_t)n.bad_frames); /* the final status */
     assert_true(n.processed >= 9 && n.processed <= 10);
     assert_int_equal(s.grasps, (int)n.processed);
     assert_int_equal(s.grasp_ok, (int)n.processed);
@@ -565,13 +566,23 @@ static void test_params_channel(void **state)
     rted_daemon_get_counters(d, &n);
     assert_int_equal(n.reloads, 1);
     assert_int_equal(n.refused, 2);
+    /* subscribers learn of both outcomes from the status message */
+    lcm_subscription_t *status_sub = lcm_subscribe(lcm, "RTEDGE_STATUS", on_message, &s);
+    rted_daemon_publish_status(d);
+    drain(lcm);
+    assert_int_equal(s.last_status.config_reloads, 1);
+    assert_int_equal(s.last_status.config_refused, 2);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+    memset(&s.last_status, 0, sizeof s.last_status);
+    lcm_unsubscribe(lcm, status_sub);
     lcm_unsubscribe(lcm, sub);
     rted_daemon_close(d);
 }
 
 /* 1000 frames, looped, as fast as possible, lane and grasp paths, status
- * messages: no heap call after the first frame. */
-static void heap_run(const char *url, bool images)
+ * messages (and the frames recorded: record != NULL): no heap call after
+ * the first frame. */
+static void heap_run(const char *url, bool images, const char *record)
 {
     char y4m[512];
     path(y4m, sizeof y4m, "objects_heap.y4m");
@@ -582,6 +593,8 @@ static void heap_run(const char *url, bool images)
     c.max_frames = 1000;
     c.status_period_ms = 10;
     c.publish_images = images;
+    if (record)
+        snprintf(c.record_path, sizeof c.record_path, "%s", record);
     rted_daemon *d = open_daemon(&c, NULL);
     assert_int_equal(rted_daemon_step(d), RTED_STEP_FRAME);
     heapcount_reset();
@@ -614,17 +627,26 @@ static void test_no_heap_calls_file(void **state)
 {
     if (!heapcount_active())
         skip();
-    char log[512], url[600];
+    char log[512], url[600], record[512];
     path(log, sizeof log, "heap.lcm");
+    path(record, sizeof record, "heap_record.lcm");
     snprintf(url, sizeof url, "file://%s", log);
-    heap_run(url, true);
+    heap_run(url, true, record);
+    /* Every frame was recorded. */
+    FILE *f = fopen(record, "rb");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fclose(f);
+    assert_true(size > 1000L * OW * OH);
+    remove(record);
 }
 
 static void test_no_heap_calls_memq(void **state)
 {
     if (!heapcount_active())
         skip();
-    heap_run("memq://", false);
+    heap_run("memq://", false, NULL);
 }
 
 int main(int argc, char **argv)

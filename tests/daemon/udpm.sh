@@ -18,8 +18,17 @@ frames=$(grep -c FRAME "$Y4M")
 
 lcm-logger --lcm-url="$URL" -c 'RTEDGE_.*' -q "$TMP/logger.lcm" &
 logger=$!
-$PY "$SUB" --types "$TYPES" --timeout 4 --quiet --summary "$URL" >"$TMP/live.json" &
+$PY "$SUB" --types "$TYPES" --timeout 4 --quiet --summary --transport builtin "$URL" >"$TMP/live.json" &
 sub=$!
+# The same through the lcm Python package, when tools/test could install it.
+pkg=
+if PYTHONPATH=${RTE_PYTHON_LCM:-} $PY -c 'import lcm' 2>/dev/null; then
+    PYTHONPATH=$RTE_PYTHON_LCM $PY "$SUB" --types "$TYPES" --timeout 4 --quiet --summary \
+        --transport lcm "$URL" >"$TMP/live_pkg.json" &
+    pkg=$!
+else
+    echo "SKIP (part): no lcm Python package (RTE_PYTHON_LCM=${RTE_PYTHON_LCM:-unset}); the built-in receiver is tested"
+fi
 sleep 1
 "$RTEDGED" --source "$Y4M" --fps 40 --deadline-ms 1000 --set deadline.max_late_ms=-1 --lcm-url "$URL" --set publish.images=true \
     2>"$TMP/daemon.err" || fail "rtedged: $(cat "$TMP/daemon.err")"
@@ -27,11 +36,19 @@ sleep 1
 kill -INT $logger
 wait $logger
 wait $sub
+[ -z "$pkg" ] || wait $pkg
 live=$(cat "$TMP/live.json")
 [ "$(field "$live" 'd["lanes"]')" -eq "$frames" ] || fail "live subscriber: $live"
 [ "$(field "$live" 'd["grasps"]')" -eq "$frames" ] || fail "live subscriber: $live"
 [ "$(field "$live" 'd["last_status"]["frames_processed"]')" -eq "$frames" ] || fail "live: $live"
 echo "ok: live subscriber over udpm: $frames frames"
+if [ -n "$pkg" ]; then
+    live=$(cat "$TMP/live_pkg.json")
+    [ "$(field "$live" 'd["transport"]')" = lcm ] || fail "lcm package subscriber: $live"
+    [ "$(field "$live" 'd["lanes"]')" -eq "$frames" ] || fail "lcm package subscriber: $live"
+    [ "$(field "$live" 'd["grasps"]')" -eq "$frames" ] || fail "lcm package subscriber: $live"
+    echo "ok: live subscriber through the lcm Python package: $frames frames"
+fi
 logged=$($PY "$SUB" --types "$TYPES" --quiet --summary "$TMP/logger.lcm")
 [ "$(field "$logged" 'd["lanes"]')" -eq "$frames" ] || fail "lcm-logger: $logged"
 [ "$(field "$logged" 'd["images"]')" -eq "$frames" ] || fail "lcm-logger images: $logged"

@@ -67,6 +67,7 @@ typedef struct fake {
     struct v4l2_buffer done[FAKE_BUFS]; /* what DQBUF returns for each */
     uint32_t next_seq;
     int mapped;
+    int owner_fd;                       /* the handle that requested the buffers */
 
     /* Counters. */
     int opens, closes, streamons, qbufs, sleeps;
@@ -125,9 +126,11 @@ static int fake_frame(fake *f)
     return fake_complete(f, f->next_seq, 0, 0);
 }
 
+/* Each open gets its own fd (10 + node + 100 * open count), as the kernel
+ * gives each open its own file handle. */
 static int node_of(int fd)
 {
-    return fd - 10;
+    return (fd - 10) % 100;
 }
 
 static int fake_open(void *ctx, const char *path, int flags)
@@ -141,7 +144,7 @@ static int fake_open(void *ctx, const char *path, int flags)
         if (strcmp(p, path) == 0 && (i == 0 || f->present)) {
             f->opens++;
             f->open_fds++;
-            return 10 + i;
+            return 10 + i + 100 * (f->opens % 1000);
         }
     }
     errno = ENOENT;
@@ -154,8 +157,9 @@ static int fake_close(void *ctx, int fd)
     assert_true(node_of(fd) >= 0 && node_of(fd) < FAKE_NODES);
     f->closes++;
     f->open_fds--;
-    if (node_of(fd) == 1) {
+    if (node_of(fd) == 1 && fd == f->owner_fd) {
         /* Closing the streaming fd stops streaming and frees the buffers. */
+        f->owner_fd = 0;
         f->streaming = 0;
         f->n_fifo = f->n_ready = 0;
         memset(f->queued, 0, sizeof(f->queued));
@@ -272,6 +276,9 @@ static int fake_ioctl(void *ctx, int fd, unsigned long request, void *arg)
         struct v4l2_requestbuffers *r = arg;
         assert_int_equal(r->memory, V4L2_MEMORY_MMAP);
         assert_false(f->streaming);
+        if (f->owner_fd && f->owner_fd != fd)
+            return fail_with(EBUSY);
+        f->owner_fd = fd;
         f->n_bufs = r->count > f->grant_max ? f->grant_max : r->count;
         r->count = f->n_bufs;
         return 0;
@@ -724,6 +731,40 @@ static void test_controls(void **state)
     assert_int_equal(F->opens, F->closes);
 }
 
+/* A control set from another file handle while the source streams (what
+ * an operator's tool, or the vm suite's fault injection, does): by path or
+ * card name, the fd closed again, the stream undisturbed. */
+static void test_device_control(void **state)
+{
+    (void)state;
+    rte_v4l2_config c = config(V4L2_PIX_FMT_YUYV);
+    rte_source src;
+    open_ok(&src, &c, NULL);
+    int opens = F->opens, closes = F->closes;
+    char msg[RTE_SOURCE_MESSAGE_SIZE];
+    assert_int_equal(rte_v4l2_set_device_control("/dev/video1", "brightness", 42, &OPS, msg,
+                                                 sizeof(msg)), RTE_OK);
+    assert_int_equal(F->controls[0].value, 42);
+    assert_int_equal(rte_v4l2_set_device_control("fake camera 1", "Brightness", 43, &OPS, msg,
+                                                 sizeof(msg)), RTE_OK);
+    assert_int_equal(F->controls[0].value, 43);
+    assert_int_equal(rte_v4l2_set_device_control("/dev/video1", "brightness", 300, &OPS, msg,
+                                                 sizeof(msg)), RTE_ERR_ARGUMENT);
+    assert_string_equal(msg, "control \"Brightness\": 300 is outside 0..255");
+    assert_int_equal(rte_v4l2_set_device_control("/dev/video7", "brightness", 1, &OPS, msg,
+                                                 sizeof(msg)), RTE_ERR_DEVICE);
+    assert_int_equal(rte_v4l2_set_device_control(NULL, "brightness", 1, &OPS, msg, sizeof(msg)),
+                     RTE_ERR_ARGUMENT);
+    /* Every handle it opened is closed; the source's is untouched. */
+    assert_int_equal(F->opens - opens, 4); /* by name: /dev/video0 is tried first */
+    assert_int_equal(F->closes - closes, 4);
+    assert_int_equal(F->streaming, 1);
+    fake_frame(F);
+    rte_source_frame fr;
+    assert_int_equal(next(&src, &fr, 0), RTE_OK);
+    rte_source_close(&src);
+}
+
 /* ---- frames ---- */
 
 /* Three frames ready: the newest is handed out, the two older ones go
@@ -875,6 +916,12 @@ static void test_timestamps(void **state)
     assert_int_equal(next(&src, &fr, 0), RTE_OK);
     assert_int_equal(fr.capture_ns, 5123456000); /* microsecond resolution */
     assert_int_equal(fr.recorded_ns, fr.capture_ns);
+    /* Stamped ahead of the clock (from the driver's schedule): the time
+     * of dequeueing, as no frame is captured later than that. */
+    fake_frame(F);
+    F->now -= 3000000;
+    assert_int_equal(next(&src, &fr, 0), RTE_OK);
+    assert_int_equal(fr.capture_ns, F->now);
     rte_source_close(&src);
 
     /* Not monotonic: the time of dequeueing instead. */
@@ -1135,6 +1182,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_open_errors, setup, teardown),
         cmocka_unit_test_setup_teardown(test_open_by_name, setup, teardown),
         cmocka_unit_test_setup_teardown(test_controls, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_device_control, setup, teardown),
         cmocka_unit_test_setup_teardown(test_newest_frame, setup, teardown),
         cmocka_unit_test_setup_teardown(test_sequence_gaps, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bad_buffers, setup, teardown),

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The `vm` suite: proves the camera sources against real kernel drivers.
 # Boots Debian's own kernel under qemu (TCG) with an initramfs holding
-# busybox, the test programs with their libraries, vivid and an out-of-tree
-# vimc, and parses the console for "RTE-VM PASS|FAIL name" lines (qemu exits
-# 0 whatever happened inside).
+# busybox, rtedged, the test programs with their libraries, vivid and an
+# out-of-tree vimc, and parses the console for "RTE-VM PASS|FAIL name" lines
+# (qemu exits 0 whatever happened inside). The LCM logs rtedged wrote in the
+# VM come out on the console too; check_logs.py decodes and checks them.
 #
-#   run_vm.sh WORK_DIR VM_VIVID LIST_CAMERAS [VM_LIBCAMERA]
+#   run_vm.sh WORK_DIR RTEDGED VM_VIVID VM_CTL LCM_PYTHON_TYPES [VM_LIBCAMERA]
 #
 # Packages come from `apt-get download` + `dpkg -x` into WORK_DIR (nothing
 # is installed); downloads, the extracted kernel and vimc.ko are cached
@@ -13,9 +14,11 @@
 set -uo pipefail
 
 work=$1
-vm_vivid=$2
-list_cameras=$3
-vm_libcamera=${4:-}
+rtedged=$2
+vm_vivid=$3
+vm_ctl=$4
+lcm_types=$5
+vm_libcamera=${6:-}
 here=$(cd "$(dirname "$0")" && pwd)
 
 skip() { echo "SKIP: $*"; exit 77; }
@@ -28,7 +31,7 @@ done
 busybox=/bin/busybox
 # (No `busybox --list | grep -q`: with pipefail, grep's early exit is a failure.)
 applets=$("$busybox" --list 2>/dev/null)
-for applet in cpio depmod modprobe; do
+for applet in cpio depmod modprobe gzip base64 usleep; do
     grep -qx "$applet" <<<"$applets" || skip "$busybox with $applet is missing (busybox-static)"
 done
 file_type=$(LC_ALL=C od -An -tx1 -N4 "$busybox" | tr -d ' ')
@@ -164,9 +167,10 @@ done
 closure() {
     ldd "$@" 2>/dev/null | awk '$2 == "=>" && $3 ~ /^\// {print $3} $1 ~ /^\// && $2 ~ /^\(/ {print $1}' | sort -u
 }
-programs=("$vm_vivid" "$list_cameras")
+programs=("$rtedged" "$vm_vivid" "$vm_ctl")
+cp "$rtedged" "$root/bin/rtedged"
 cp "$vm_vivid" "$root/bin/vm_vivid"
-cp "$list_cameras" "$root/bin/vm_list_cameras"
+cp "$vm_ctl" "$root/bin/vm_ctl"
 libcamera_extra=()
 if [ -n "$vm_libcamera" ]; then
     cp "$vm_libcamera" "$root/bin/vm_libcamera"
@@ -204,12 +208,27 @@ timeout 600 qemu-system-x86_64 -accel tcg -cpu max -smp 1 -m 768M -nographic -no
 qemu_status=$?
 step "qemu finished with status $qemu_status after $(( $(date +%s) - start )) s"
 tr -d '\r' <"$work/console.log" >"$work/console.txt"
-cat "$work/console.txt"
+# The files sent back are long: the console log has them, not the output.
+grep -v '^[A-Za-z0-9+/=]*$' "$work/console.txt"
+
+# ---- the daemon's logs, decoded on the host ----
+checks="$work/checks.txt"
+if [ -x /usr/bin/python3 ]; then
+    /usr/bin/python3 "$here/check_logs.py" "$work/console.txt" "$lcm_types" "$rtedged" \
+        "$work/logs" >"$checks" 2>&1
+    cat "$checks"
+else
+    echo "SKIP: the daemon's logs are not checked: no /usr/bin/python3" | tee "$checks"
+fi
 
 # ---- verdict ----
 expected=(vivid-yuyv vivid-grey vivid-uyvy vivid-nv12 vivid-drops vivid-buf-error vivid-fatal-error
-          vivid-streamon-error vivid-disconnect vivid-reload list-cameras)
-[ -n "$vm_libcamera" ] && expected+=(libcamera-vimc)
+          vivid-streamon-error vivid-disconnect vivid-reload daemon-vivid-run daemon-record-run
+          list-cameras)
+[ -n "$vm_libcamera" ] && expected+=(libcamera-vimc daemon-libcamera-run)
+# The host's checks of the logs (unless python3 is missing: SKIP above).
+host_expected=(daemon-vivid-log daemon-vivid-faults record-replay)
+[ -n "$vm_libcamera" ] && host_expected+=(daemon-libcamera-log)
 bad=0
 echo "---- results ----"
 for t in "${expected[@]}"; do
@@ -223,6 +242,16 @@ for t in "${expected[@]}"; do
 done
 if grep -q '^RTE-VM FAIL' "$work/console.txt"; then
     grep '^RTE-VM FAIL' "$work/console.txt"; bad=1
+fi
+if ! grep -q '^SKIP' "$checks"; then
+    for t in "${host_expected[@]}"; do
+        if grep -q "^PASS $t:" "$checks" && ! grep -q "^FAIL $t:" "$checks"; then
+            echo "PASS $t (host)"
+        else
+            echo "FAIL $t (host)"; bad=1
+        fi
+    done
+    grep -q '^FAIL' "$checks" && bad=1
 fi
 [ -n "$vm_libcamera" ] || echo "NOTE: built without libcamera: the vimc test did not run"
 grep -q '^RTE-VM end' "$work/console.txt" || { echo "FAIL: the VM did not finish its tests"; bad=1; }

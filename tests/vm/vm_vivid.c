@@ -67,10 +67,11 @@ static int capture(rte_source *src, int n, char *why, size_t why_size)
                      f.frame.width, f.frame.height, f.frame.stride[0]);
             return 0;
         }
-        /* vivid stamps the end of the exposure, 0.9 frame periods after it
-         * filled the buffer: a timestamp may lie that much ahead. (Another
-         * clock would be off by far more than the 2 s allowed behind.) */
-        if (f.capture_ns > now + 100000000 || now - f.capture_ns > 2000000000) {
+        /* vivid stamps the end of the exposure from its schedule, up to
+         * 0.9 frame periods ahead of the clock; the source takes the time
+         * of dequeueing then. (Another clock would be off by far more than
+         * the 2 s allowed behind.) */
+        if (f.capture_ns > now || now - f.capture_ns > 2000000000) {
             snprintf(why, why_size, "frame %d: capture time %lld ns, now %lld ns", i,
                      (long long)f.capture_ns, (long long)now);
             return 0;

@@ -41,6 +41,11 @@ struct Register {
     Register(std::string group, std::string name, std::function<Runners(const Frame &)> prepare);
 };
 
+// The two pipelines (bench_lanes.cpp, bench_pipelines.cpp), also run
+// together as the end-to-end case.
+Runners lane_path_runners(const Frame &f);
+Runners grasp_path_runners(const Frame &f);
+
 } // namespace bench
 
 #endif

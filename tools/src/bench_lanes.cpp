@@ -117,7 +117,10 @@ struct RteState {
     ~RteState() { rte_lane_destroy(ctx); }
 };
 
-Register lane_path("pipeline", "lane path (rte_lane_process vs OpenCV lane tutorial)", [](const Frame &f) {
+} // namespace
+
+bench::Runners bench::lane_path_runners(const Frame &f)
+{
     rte_lane_config cfg;
     rte_lane_config_default(&cfg, f.bgr.cols, f.bgr.rows);
     auto r = std::make_shared<RteState>();
@@ -132,6 +135,7 @@ Register lane_path("pipeline", "lane path (rte_lane_process vs OpenCV lane tutor
                        rte_lane_process(r->ctx, &fr, 0, &r->result);
                    },
                    [cv_side, bgr] { cv_side->run(*bgr); }};
-});
+}
 
-} // namespace
+static Register lane_path("pipeline", "lane path (rte_lane_process vs OpenCV lane tutorial)",
+                          bench::lane_path_runners);

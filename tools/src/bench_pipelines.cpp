@@ -87,9 +87,27 @@ struct GraspBench {
     }
 };
 
-Register grasp("pipeline", "grasp (blur 5, otsu, external contours, features)", [](const Frame &f) {
+} // namespace
+
+bench::Runners bench::grasp_path_runners(const Frame &f)
+{
     auto b = std::make_shared<GraspBench>(f);
     return Runners{[b] { b->rte(); }, [b] { b->opencv(); }};
-});
+}
 
-} // namespace
+static Register grasp("pipeline", "grasp (blur 5, otsu, external contours, features)",
+                      bench::grasp_path_runners);
+
+// What the daemon runs on every frame: the lane path on the colour frame,
+// then the grasp path on the grey one.
+static Register end_to_end("pipeline", "end to end (lane + grasp)", [](const Frame &f) {
+    Runners lane = bench::lane_path_runners(f), grasp = bench::grasp_path_runners(f);
+    return Runners{[lane, grasp] {
+                       lane.rtedge();
+                       grasp.rtedge();
+                   },
+                   [lane, grasp] {
+                       lane.opencv();
+                       grasp.opencv();
+                   }};
+});
