@@ -29,6 +29,7 @@
 #include <stdint.h>
 
 #include "rtedge/arena.h"
+#include "rtedge/blur.h"
 #include "rtedge/image.h"
 #include "rtedge/status.h"
 
@@ -62,6 +63,22 @@ size_t rte_canny_scratch_size(int32_t max_width, int32_t max_height, int32_t ape
 /* Edges of src into dst (same size, no overlap). */
 rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_canny_params *params,
                         rte_arena *scratch);
+
+/* Fused front end: the edges of the Gaussian blur of src, exactly
+ *   rte_gaussian_blur_u8(src, tmp, kernel); rte_canny_u8(tmp, dst, params)
+ * (= cv::GaussianBlur then cv::Canny), without the blurred image: each
+ * source row is blurred just before the Sobel needs it, into a band of
+ * `aperture` rows that stays in cache, and Sobel, magnitude and non-maximum
+ * suppression follow on the same rows; hysteresis runs at the end as in
+ * rte_canny_u8. dst may be src itself (it is written only at the end). */
+rte_status rte_canny_blurred_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                const rte_gaussian_kernel *kernel, const rte_canny_params *params,
+                                rte_arena *scratch);
+
+/* Arena bytes rte_canny_blurred_u8 needs for images up to max_width x
+ * max_height with this kernel and aperture (0 for invalid arguments). */
+size_t rte_canny_blurred_scratch_size(int32_t max_width, int32_t max_height,
+                                      const rte_gaussian_kernel *kernel, int32_t aperture);
 
 /* Edges from given derivatives dx and dy (same size as dst). params must come
  * from rte_canny_params_init with aperture 3 or 5 (both give the same

@@ -148,7 +148,7 @@ typedef struct rte_lane {
 
 typedef enum rte_lane_stage {
     RTE_LANE_STAGE_GRAY = 0, /* grey conversion and colour cue */
-    RTE_LANE_STAGE_BLUR,
+    RTE_LANE_STAGE_BLUR,     /* 0 with fixed thresholds: blur and Canny run fused (rte_canny_blurred_u8) */
     RTE_LANE_STAGE_CANNY,    /* thresholds, edges, ROI mask */
     RTE_LANE_STAGE_HOUGH,
     RTE_LANE_STAGE_FIT,      /* slope filter, gate, fits, tracking */

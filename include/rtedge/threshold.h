@@ -57,6 +57,11 @@ rte_status rte_threshold_u8(const rte_image_u8 *src, rte_image_u8 *dst,
  * every side is at most RTE_MAX_SIDE). */
 rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256]);
 
+/* The same over the pixels where mask (same size as src) is not 0, as
+ * cv::calcHist with a mask. */
+rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *mask,
+                                   uint32_t hist[256]);
+
 /* Otsu's threshold of a histogram exactly as OpenCV 4.6 computes it for
  * THRESH_OTSU: OpenCV works in IEEE double precision, and near-ties (for
  * example every empty bin between the two levels of a two-valued image)

@@ -2,7 +2,12 @@
  *
  * One pass over the rows: for row i the Sobel derivatives and magnitude are
  * computed, then row i-1 is suppressed against rows i-2, i-1 and i, so only
- * three magnitude rows and two derivative rows are alive. Suppression writes
+ * three magnitude rows and two derivative rows are alive. The fused front
+ * end (rte_canny_blurred_u8) blurs each source row just before the Sobel
+ * needs it, into a ring of `aperture` rows, so the blurred image is never
+ * stored either. Aperture 3 with the L1 magnitude on 8-bit images (the
+ * common case) runs in 16-bit row kernels with SIMD variants (canny_rows.h,
+ * simd/rows.h); the other cases in the generic 32-bit rows below. Suppression writes
  * an edge map with a 1-pixel frame: 1 = not an edge, 0 = maybe (a local
  * maximum above low), 2 = edge. Seeds (local maxima above high) go on a
  * stack, and the flood through 8-connected "maybe" pixels follows when all
@@ -12,11 +17,12 @@
 #include <string.h>
 
 #include "rtedge/canny.h"
+#include "rtedge/cpu.h"
 
+#include "canny_rows.h"
+#include "gaussian_line.h"
 #include "gradient_rows.h"
-
-/* tan(22.5 deg) in Q15, OpenCV's sector boundary. */
-#define TG22_Q15 13573
+#include "simd/rows.h"
 
 static size_t map_bytes(int32_t w, int32_t h) { return ((size_t)w + 2) * ((size_t)h + 2); }
 static size_t stack_bytes(int32_t w, int32_t h) { return (size_t)w * (size_t)h * sizeof(int32_t); }
@@ -26,6 +32,10 @@ static size_t column_row_bytes(int32_t w)
     return ((size_t)w + 2 * (RTE_GRAD_MAX_TAPS / 2)) * sizeof(int16_t);
 }
 static size_t deriv_row_bytes(int32_t w) { return (size_t)w * sizeof(int16_t); }
+
+/* The fused front end's ring of blurred rows: `aperture` rows of whole
+ * 64-byte lines. */
+static size_t blur_ring_stride(int32_t w) { return ((size_t)w + 63) / 64 * 64; }
 
 size_t rte_canny_scratch_size(int32_t max_width, int32_t max_height, int32_t aperture)
 {
@@ -39,6 +49,34 @@ size_t rte_canny_scratch_size(int32_t max_width, int32_t max_height, int32_t ape
            3 * rte_arena_piece_size(mag_row_bytes(max_width)) +
            2 * rte_arena_piece_size(column_row_bytes(max_width)) +
            4 * rte_arena_piece_size(deriv_row_bytes(max_width));
+}
+
+size_t rte_canny_blurred_scratch_size(int32_t max_width, int32_t max_height,
+                                      const rte_gaussian_kernel *kernel, int32_t aperture)
+{
+    const size_t canny = rte_canny_scratch_size(max_width, max_height, aperture);
+    if (canny == 0 || canny == SIZE_MAX || !kernel || !rte_gaussian_kernel_is_valid(kernel) ||
+        aperture < 1 || aperture > RTE_GRAD_MAX_TAPS)
+        return canny == SIZE_MAX ? SIZE_MAX : 0;
+    return canny + rte_gaussian_line_scratch_size(max_width, kernel) +
+           rte_arena_piece_size((size_t)aperture * blur_ring_stride(max_width));
+}
+
+/* The row kernels of aperture 3 with L1, once per instruction set. */
+RTE_CANNY_ROWS_DEFINE(c)
+
+rte_canny_rows rte_canny_rows_select(uint32_t features)
+{
+    return RTE_SIMD_PICK(features, ((rte_canny_rows){ rte_canny_sobel_row_c, rte_canny_nms_row_c }),
+                         ((rte_canny_rows){ rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2 }),
+                         ((rte_canny_rows){ rte_canny_sobel_row_neon, rte_canny_nms_row_neon }));
+}
+
+/* A threshold for the 16-bit kernels: magnitudes are 0..2040 there, so
+ * clamping to -1..INT16_MAX keeps every comparison m > t. */
+static int16_t threshold16(int32_t t)
+{
+    return (int16_t)(t < -1 ? -1 : t > INT16_MAX ? INT16_MAX : t);
 }
 
 static void magnitude_row(const int16_t *restrict dx, const int16_t *restrict dy,
@@ -70,7 +108,7 @@ static void suppress_row(const int32_t *restrict up, const int32_t *restrict cur
         const int32_t xs = dx[x], ys = dy[x];
         const int32_t ax = xs < 0 ? -xs : xs;
         const int32_t ay = (ys < 0 ? -ys : ys) << 15;
-        const int32_t tg22 = ax * TG22_Q15;
+        const int32_t tg22 = ax * RTE_CANNY_TG22_Q15;
         /* tan 67.5 = tan 22.5 + 2; wraps in 32 bits as OpenCV's for |dx| > 27145. */
         const int32_t tg67 = (int32_t)((uint32_t)tg22 + ((uint32_t)ax << 16));
         /* All neighbours are loaded, then selected: no branches, so the
@@ -118,11 +156,40 @@ static int32_t push_seeds(const uint8_t *mrow, int32_t w, int32_t base, int32_t 
     return top;
 }
 
-/* dx or dy rows come from src (Sobel, BORDER_REPLICATE) or from gx, gy. */
-static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
-                            const rte_image_s16 *gy, rte_image_u8 *dst,
-                            const rte_canny_params *params, rte_arena *scratch)
+/* Where the derivative rows come from: the Sobel of src, of its blur
+ * (fused front end: blur != NULL), or the given gx, gy. */
+typedef struct canny_input {
+    const rte_image_u8 *src;
+    const rte_image_s16 *gx, *gy;
+    const rte_gaussian_line *blur;
+    uint8_t *ring; /* blurred row r in slot r % aperture */
+    size_t ring_stride;
+    int32_t blurred; /* rows blurred so far */
+    uint32_t features;
+} canny_input;
+
+/* The `ap` rows of the 8-bit image around row i (replicated at the top and
+ * bottom, as Canny's Sobel), blurring the rows not yet blurred. A window of
+ * ap consecutive rows never shares a ring slot. */
+static void input_rows(canny_input *in, int32_t i, int32_t ap, const uint8_t **rows)
 {
+    const int32_t h = in->src->height, r = ap / 2;
+    if (in->blur) {
+        const int32_t last = i + r < h ? i + r : h - 1;
+        for (; in->blurred <= last; in->blurred++)
+            rte_gaussian_line_of_image(in->blur, in->src, in->blurred,
+                                       in->ring + (size_t)(in->blurred % ap) * in->ring_stride);
+    }
+    for (int32_t k = 0; k < ap; k++) {
+        const int32_t y = rte_border_fold(i + k - r, h, RTE_BORDER_REPLICATE);
+        rows[k] = in->blur ? in->ring + (size_t)(y % ap) * in->ring_stride : rte_u8_row(in->src, y);
+    }
+}
+
+static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_params *params,
+                            rte_arena *scratch)
+{
+    const rte_image_u8 *src = in->src;
     const int32_t w = dst->width, h = dst->height;
     const ptrdiff_t ms = (ptrdiff_t)w + 2;
     const size_t mark = rte_arena_mark(scratch);
@@ -158,6 +225,14 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
         vd += RTE_GRAD_MAX_TAPS / 2;
     }
 
+    /* Aperture 3 with L1 on 8-bit input: 16-bit kernels, magnitude rows
+     * as int16 in the same ring. */
+    const bool fast = src && ap == 3 && !params->l2_gradient;
+    const rte_canny_rows kernels = rte_canny_rows_select(in->features);
+    const rte_grad_rows grad = rte_grad_rows_select(in->features);
+    const int16_t low16 = threshold16(params->low), high16 = threshold16(params->high);
+    int16_t *ring16[3] = { (int16_t *)ring[0], (int16_t *)ring[1], (int16_t *)ring[2] };
+
     memset(map, 1, (size_t)ms);
     memset(map + (ptrdiff_t)(h + 1) * ms, 1, (size_t)ms);
     memset(ring[2], 0, mag_row_bytes(w)); /* row -1: magnitudes outside are 0 */
@@ -167,20 +242,31 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
      * y + 1 exists. */
     for (int32_t i = 0; i <= h; i++) {
         int32_t *next = ring[i % 3] + 1;
+        int16_t *next16 = ring16[i % 3] + 1;
         if (i < h) {
-            const int16_t *dxr, *dyr;
-            if (src) {
-                rte_grad_column_pass(src, i, smooth, ap, RTE_BORDER_REPLICATE, vs, ap / 2);
-                rte_grad_column_pass(src, i, deriv, ap, RTE_BORDER_REPLICATE, vd, ap / 2);
-                rte_grad_row_pass(vs, deriv, ap, dxb[i & 1], w, row_mode);
-                rte_grad_row_pass(vd, smooth, ap, dyb[i & 1], w, row_mode);
-                dxr = dxb[i & 1];
-                dyr = dyb[i & 1];
+            const uint8_t *rows[RTE_GRAD_MAX_TAPS];
+            if (src)
+                input_rows(in, i, ap, rows);
+            if (fast) {
+                kernels.sobel(rows[0], rows[1], rows[2], dxb[i & 1], dyb[i & 1], next16, w);
+                next16[-1] = next16[w] = 0;
             } else {
-                dxr = rte_s16_row(gx, i);
-                dyr = rte_s16_row(gy, i);
+                const int16_t *dxr, *dyr;
+                if (src) {
+                    rte_grad_column_rows(&grad, rows, w, smooth, ap, RTE_BORDER_REPLICATE, vs,
+                                         ap / 2);
+                    rte_grad_column_rows(&grad, rows, w, deriv, ap, RTE_BORDER_REPLICATE, vd,
+                                         ap / 2);
+                    grad.row(vs, deriv, ap, dxb[i & 1], w, (int)row_mode);
+                    grad.row(vd, smooth, ap, dyb[i & 1], w, (int)row_mode);
+                    dxr = dxb[i & 1];
+                    dyr = dyb[i & 1];
+                } else {
+                    dxr = rte_s16_row(in->gx, i);
+                    dyr = rte_s16_row(in->gy, i);
+                }
+                magnitude_row(dxr, dyr, next, w, params->l2_gradient);
             }
-            magnitude_row(dxr, dyr, next, w, params->l2_gradient);
         } else {
             memset(next - 1, 0, mag_row_bytes(w));
         }
@@ -188,12 +274,16 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
             continue;
 
         const int32_t y = i - 1;
-        const int16_t *dxr = src ? dxb[y & 1] : rte_s16_row(gx, y);
-        const int16_t *dyr = src ? dyb[y & 1] : rte_s16_row(gy, y);
+        const int16_t *dxr = src ? dxb[y & 1] : rte_s16_row(in->gx, y);
+        const int16_t *dyr = src ? dyb[y & 1] : rte_s16_row(in->gy, y);
         uint8_t *mrow = map + (ptrdiff_t)(y + 1) * ms + 1;
         mrow[-1] = mrow[w] = 1;
-        suppress_row(ring[(y + 2) % 3] + 1, ring[y % 3] + 1, next, dxr, dyr, mrow, w,
-                     params->low, params->high);
+        if (fast)
+            kernels.nms(ring16[(y + 2) % 3] + 1, ring16[y % 3] + 1, next16, dxr, dyr, mrow, w,
+                        low16, high16);
+        else
+            suppress_row(ring[(y + 2) % 3] + 1, ring[y % 3] + 1, next, dxr, dyr, mrow, w,
+                         params->low, params->high);
         top = push_seeds(mrow, w, (int32_t)((y + 1) * ms + 1), stack, top);
     }
 
@@ -221,16 +311,43 @@ static rte_status canny_run(const rte_image_u8 *src, const rte_image_s16 *gx,
     return RTE_OK;
 }
 
+static bool params_are_valid(const rte_canny_params *params)
+{
+    return params && (params->aperture == 3 || params->aperture == 5 || params->aperture == 7);
+}
+
 rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_canny_params *params,
                         rte_arena *scratch)
 {
-    if (!params || !scratch ||
-        (params->aperture != 3 && params->aperture != 5 && params->aperture != 7))
+    if (!params_are_valid(params) || !scratch)
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_image_u8_check_pair(src, dst);
     if (st != RTE_OK)
         return st;
-    return canny_run(src, NULL, NULL, dst, params, scratch);
+    canny_input in = { .src = src, .features = rte_cpu_features() };
+    return canny_run(&in, dst, params, scratch);
+}
+
+rte_status rte_canny_blurred_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                const rte_gaussian_kernel *kernel, const rte_canny_params *params,
+                                rte_arena *scratch)
+{
+    if (!params_are_valid(params) || !scratch || !kernel || !rte_gaussian_kernel_is_valid(kernel))
+        return RTE_ERR_ARGUMENT;
+    rte_status st = rte_image_u8_check_pair(src, dst);
+    if (st != RTE_OK)
+        return st;
+    const int32_t ap = params->aperture;
+    canny_input in = { .src = src, .features = rte_cpu_features(),
+                       .ring_stride = blur_ring_stride(src->width) };
+    const size_t mark = rte_arena_mark(scratch);
+    rte_gaussian_line line;
+    const bool ok = rte_gaussian_line_init(&line, kernel, src->width, in.features, scratch);
+    in.ring = rte_arena_alloc(scratch, (size_t)ap * in.ring_stride);
+    in.blur = &line;
+    st = ok && in.ring ? canny_run(&in, dst, params, scratch) : RTE_ERR_NO_MEMORY;
+    rte_arena_reset(scratch, mark);
+    return st;
 }
 
 rte_status rte_canny_from_gradient_u8(const rte_image_s16 *dx, const rte_image_s16 *dy,
@@ -250,5 +367,6 @@ rte_status rte_canny_from_gradient_u8(const rte_image_s16 *dx, const rte_image_s
     if (dx->width != dst->width || dx->height != dst->height || dy->width != dst->width ||
         dy->height != dst->height)
         return RTE_ERR_SIZE;
-    return canny_run(NULL, dx, dy, dst, params, scratch);
+    canny_input in = { .gx = dx, .gy = dy, .features = rte_cpu_features() };
+    return canny_run(&in, dst, params, scratch);
 }

@@ -6,8 +6,11 @@
  * source rows into an int16 row with folded border columns, then a row pass
  * into the destination. Only two int16 rows of scratch are used. */
 #include "rtedge/gradient.h"
+#include "rtedge/cpu.h"
 
+#include "gradient_loops.h"
 #include "gradient_rows.h"
+#include "simd/rows.h"
 
 int32_t rte_border_fold(int32_t p, int32_t len, rte_border border)
 {
@@ -37,59 +40,20 @@ void rte_sobel_taps(int32_t order, int32_t ksize, int16_t *taps)
     }
 }
 
-void rte_grad_column_pass(const rte_image_u8 *src, int32_t y, const int16_t *ky, int32_t ny,
-                          rte_border border, int16_t *v, int32_t pad)
+void rte_grad_column_pass(const rte_grad_rows *k, const rte_image_u8 *src, int32_t y,
+                          const int16_t *ky, int32_t ny, rte_border border, int16_t *v, int32_t pad)
 {
-    const int32_t w = src->width, r = ny / 2;
+    const int32_t r = ny / 2;
     const uint8_t *row[RTE_GRAD_MAX_TAPS];
-    for (int32_t k = 0; k < ny; k++)
-        row[k] = rte_u8_row(src, rte_border_fold(y + k - r, src->height, border));
+    for (int32_t j = 0; j < ny; j++)
+        row[j] = rte_u8_row(src, rte_border_fold(y + j - r, src->height, border));
+    rte_grad_column_rows(k, row, src->width, ky, ny, border, v, pad);
+}
 
-    int16_t *restrict out = v;
-    /* One loop per tap count so each vectorises with the taps in registers. */
-    switch (ny) {
-    case 1: {
-        const uint8_t *restrict a = row[0];
-        const int16_t c0 = ky[0];
-        for (int32_t x = 0; x < w; x++)
-            out[x] = (int16_t)(c0 * a[x]);
-        break;
-    }
-    case 3: {
-        const uint8_t *restrict a = row[0], *restrict b = row[1], *restrict c = row[2];
-        const int16_t c0 = ky[0], c1 = ky[1], c2 = ky[2];
-        /* The two 3x3 Sobel taps (and Canny's) without multiplies. */
-        if (c0 == 1 && c1 == 2 && c2 == 1)
-            for (int32_t x = 0; x < w; x++)
-                out[x] = (int16_t)(a[x] + 2 * b[x] + c[x]);
-        else if (c0 == -1 && c1 == 0 && c2 == 1)
-            for (int32_t x = 0; x < w; x++)
-                out[x] = (int16_t)(c[x] - a[x]);
-        else
-            for (int32_t x = 0; x < w; x++)
-                out[x] = (int16_t)(c0 * a[x] + c1 * b[x] + c2 * c[x]);
-        break;
-    }
-    case 5: {
-        const uint8_t *restrict a = row[0], *restrict b = row[1], *restrict c = row[2];
-        const uint8_t *restrict d = row[3], *restrict e = row[4];
-        const int16_t c0 = ky[0], c1 = ky[1], c2 = ky[2], c3 = ky[3], c4 = ky[4];
-        for (int32_t x = 0; x < w; x++)
-            out[x] = (int16_t)(c0 * a[x] + c1 * b[x] + c2 * c[x] + c3 * d[x] + c4 * e[x]);
-        break;
-    }
-    default: {
-        const uint8_t *restrict a = row[0], *restrict b = row[1], *restrict c = row[2];
-        const uint8_t *restrict d = row[3], *restrict e = row[4], *restrict f = row[5];
-        const uint8_t *restrict g = row[6];
-        const int16_t c0 = ky[0], c1 = ky[1], c2 = ky[2], c3 = ky[3], c4 = ky[4], c5 = ky[5],
-                      c6 = ky[6];
-        for (int32_t x = 0; x < w; x++)
-            out[x] = (int16_t)(c0 * a[x] + c1 * b[x] + c2 * c[x] + c3 * d[x] + c4 * e[x] +
-                               c5 * f[x] + c6 * g[x]);
-        break;
-    }
-    }
+void rte_grad_column_rows(const rte_grad_rows *k, const uint8_t *const *row, int32_t w,
+                          const int16_t *ky, int32_t ny, rte_border border, int16_t *v, int32_t pad)
+{
+    k->column(row, w, ky, ny, v);
     /* A column filter commutes with column folding: border columns are
      * copies of the folded ones. */
     for (int32_t x = 1; x <= pad; x++) {
@@ -98,76 +62,14 @@ void rte_grad_column_pass(const rte_image_u8 *src, int32_t y, const int16_t *ky,
     }
 }
 
-static inline int16_t sat_s16(int32_t v)
-{
-    return (int16_t)(v < INT16_MIN ? INT16_MIN : v > INT16_MAX ? INT16_MAX : v);
-}
+/* The row loops, once per instruction set (see simd/rows.h). */
+RTE_GRAD_ROWS_DEFINE(c)
 
-/* The sums in int32, then truncated (when the caller knows they fit: the
- * compiler then runs the loop in 16-bit lanes), saturated, or divided by 16
- * rounding half to even. The bias keeps the shift on non-negative values;
- * it is a multiple of 16 above any 7-tap sum of int16 column values. */
-static inline int16_t finish(int32_t v, rte_row_mode mode)
+rte_grad_rows rte_grad_rows_select(uint32_t features)
 {
-    if (mode == RTE_ROW_FITS)
-        return (int16_t)v;
-    if (mode == RTE_ROW_SATURATE)
-        return sat_s16(v);
-    const int32_t bias = 1 << 25;
-    const int32_t b = v + bias, q = b >> 4, r = b & 15;
-    return (int16_t)(q - (bias >> 4) + ((r > 8) | ((r == 8) & (q & 1))));
-}
-
-static inline void row_pass(const int16_t *restrict s, const int16_t *kx, int32_t nx,
-                            int16_t *restrict o, int32_t width, rte_row_mode mode)
-{
-    const int16_t c0 = kx[0];
-    switch (nx) {
-    case 1:
-        for (int32_t x = 0; x < width; x++)
-            o[x] = finish(c0 * s[x], mode);
-        break;
-    case 3: {
-        const int16_t c1 = kx[1], c2 = kx[2];
-        if (c0 == 1 && c1 == 2 && c2 == 1)
-            for (int32_t x = 0; x < width; x++)
-                o[x] = finish(s[x] + 2 * s[x + 1] + s[x + 2], mode);
-        else if (c0 == -1 && c1 == 0 && c2 == 1)
-            for (int32_t x = 0; x < width; x++)
-                o[x] = finish(s[x + 2] - s[x], mode);
-        else
-            for (int32_t x = 0; x < width; x++)
-                o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2], mode);
-        break;
-    }
-    case 5: {
-        const int16_t c1 = kx[1], c2 = kx[2], c3 = kx[3], c4 = kx[4];
-        for (int32_t x = 0; x < width; x++)
-            o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
-                              c4 * s[x + 4],
-                          mode);
-        break;
-    }
-    default: {
-        const int16_t c1 = kx[1], c2 = kx[2], c3 = kx[3], c4 = kx[4], c5 = kx[5], c6 = kx[6];
-        for (int32_t x = 0; x < width; x++)
-            o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
-                              c4 * s[x + 4] + c5 * s[x + 5] + c6 * s[x + 6],
-                          mode);
-        break;
-    }
-    }
-}
-
-void rte_grad_row_pass(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
-                       int32_t width, rte_row_mode mode)
-{
-    /* One instance per mode, each with a constant `finish`. */
-    switch (mode) {
-    case RTE_ROW_FITS: row_pass(v - nx / 2, kx, nx, out, width, RTE_ROW_FITS); break;
-    case RTE_ROW_SATURATE: row_pass(v - nx / 2, kx, nx, out, width, RTE_ROW_SATURATE); break;
-    default: row_pass(v - nx / 2, kx, nx, out, width, RTE_ROW_ROUND_DIV16); break;
-    }
+    return RTE_SIMD_PICK(features, ((rte_grad_rows){ rte_grad_column_c, rte_grad_row_c }),
+                         ((rte_grad_rows){ rte_grad_column_avx2, rte_grad_row_avx2 }),
+                         ((rte_grad_rows){ rte_grad_column_c, rte_grad_row_c }));
 }
 
 int32_t rte_grad_taps_l1(const int16_t *taps, int32_t n)
@@ -207,6 +109,7 @@ static rte_status separable(const rte_image_u8 *src, rte_image_s16 *dst, const i
         return st;
     if (!scratch)
         return RTE_ERR_ARGUMENT;
+    const rte_grad_rows k = rte_grad_rows_select(rte_cpu_features());
     const size_t mark = rte_arena_mark(scratch);
     int16_t *v = rte_arena_alloc(scratch, padded_row_bytes(src->width));
     if (!v)
@@ -217,8 +120,8 @@ static rte_status separable(const rte_image_u8 *src, rte_image_s16 *dst, const i
                                   ? RTE_ROW_SATURATE
                                   : RTE_ROW_FITS;
     for (int32_t y = 0; y < src->height; y++) {
-        rte_grad_column_pass(src, y, ky, ny, RTE_BORDER_REFLECT_101, v, nx / 2);
-        rte_grad_row_pass(v, kx, nx, rte_s16_row(dst, y), src->width, mode);
+        rte_grad_column_pass(&k, src, y, ky, ny, RTE_BORDER_REFLECT_101, v, nx / 2);
+        k.row(v, kx, nx, rte_s16_row(dst, y), src->width, (int)mode);
     }
     rte_arena_reset(scratch, mark);
     return RTE_OK;
@@ -269,6 +172,7 @@ rte_status rte_laplacian_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_
         return st;
     if (!scratch)
         return RTE_ERR_ARGUMENT;
+    const rte_grad_rows k = rte_grad_rows_select(rte_cpu_features());
     const size_t mark = rte_arena_mark(scratch);
     int16_t *outer = rte_arena_alloc(scratch, padded_row_bytes(src->width));
     int16_t *mid = rte_arena_alloc(scratch, padded_row_bytes(src->width));
@@ -283,11 +187,11 @@ rte_status rte_laplacian_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_
     static const int16_t pick_outer[3] = { 1, 0, 1 }, pick_mid[1] = { 1 };
     const int32_t w = src->width;
     for (int32_t y = 0; y < src->height; y++) {
-        rte_grad_column_pass(src, y, pick_outer, 3, RTE_BORDER_REFLECT_101, outer, 1);
+        rte_grad_column_pass(&k, src, y, pick_outer, 3, RTE_BORDER_REFLECT_101, outer, 1);
         const int16_t *restrict o = outer;
         int16_t *restrict d = rte_s16_row(dst, y);
         if (ksize == 1) {
-            rte_grad_column_pass(src, y, pick_mid, 1, RTE_BORDER_REFLECT_101, mid, 1);
+            rte_grad_column_pass(&k, src, y, pick_mid, 1, RTE_BORDER_REFLECT_101, mid, 1);
             const int16_t *restrict m = mid;
             for (int32_t x = 0; x < w; x++)
                 d[x] = (int16_t)(o[x] + m[x - 1] + m[x + 1] - 4 * m[x]);

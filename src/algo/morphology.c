@@ -144,15 +144,9 @@ void rte_morph_reduce_rows_c(uint8_t *d, const uint8_t *const *r, int32_t count,
 
 rte_morph_rows rte_morph_rows_select(uint32_t features)
 {
-    rte_morph_rows k = { rte_morph_row_op2_c, rte_morph_reduce_rows_c };
-#ifdef RTE_SIMD_X86
-    if (features & RTE_CPU_X86_AVX2) {
-        k.op2 = rte_morph_row_op2_avx2;
-        k.reduce = rte_morph_reduce_rows_avx2;
-    }
-#endif
-    (void)features;
-    return k;
+    return RTE_SIMD_PICK(features, ((rte_morph_rows){ rte_morph_row_op2_c, rte_morph_reduce_rows_c }),
+                         ((rte_morph_rows){ rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2 }),
+                         ((rte_morph_rows){ rte_morph_row_op2_c, rte_morph_reduce_rows_c }));
 }
 
 /* Copies a source row into `pad` with p->ax neutral pixels before it and

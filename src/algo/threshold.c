@@ -5,40 +5,72 @@
 #include <string.h>
 
 #include "binary64.h"
+#include "rtedge/cpu.h"
+#include "simd/rows.h"
+#include "threshold_rows.h"
 
-rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256])
+/* Adds the pixels of a row (where mask is NULL or mask[x] != 0) to four
+ * partial histograms: consecutive equal pixels would otherwise serialise
+ * on one counter's load-increment-store. Eight pixels at a time (one
+ * 8-byte load each; byte order cannot matter here); mask chunks of all
+ * zeros are skipped, chunks without a zero byte counted as unmasked. */
+static void histogram_row(const uint8_t *row, const uint8_t *mask, int32_t n, uint32_t part[4][256])
 {
-    rte_status st = rte_image_u8_check(src);
+    const uint64_t ones = 0x0101010101010101u, highs = 0x8080808080808080u;
+    int32_t x = 0;
+    for (; x + 8 <= n; x += 8) {
+        uint64_t v, m = ~(uint64_t)0;
+        memcpy(&v, row + x, sizeof v);
+        if (mask) {
+            memcpy(&m, mask + x, sizeof m);
+            if (m == 0)
+                continue;
+            if (((m - ones) & ~m & highs) != 0) { /* some byte of m is zero */
+                for (int k = 0; k < 8; k++)
+                    part[k & 3][(v >> (8 * k)) & 0xFF] += ((m >> (8 * k)) & 0xFF) != 0;
+                continue;
+            }
+        }
+        part[0][v & 0xFF]++;
+        part[1][(v >> 8) & 0xFF]++;
+        part[2][(v >> 16) & 0xFF]++;
+        part[3][(v >> 24) & 0xFF]++;
+        part[0][(v >> 32) & 0xFF]++;
+        part[1][(v >> 40) & 0xFF]++;
+        part[2][(v >> 48) & 0xFF]++;
+        part[3][v >> 56]++;
+    }
+    for (; x < n; x++)
+        part[0][row[x]] += !mask || mask[x] != 0;
+}
+
+static rte_status histogram(const rte_image_u8 *src, const rte_image_u8 *mask, uint32_t hist[256])
+{
+    rte_status st = mask ? rte_image_u8_check_pair(src, mask) : rte_image_u8_check(src);
     if (st != RTE_OK)
         return st;
     if (!hist)
         return RTE_ERR_ARGUMENT;
-    /* Four partial histograms: consecutive equal pixels would otherwise
-     * serialise on one counter's load-increment-store. */
     uint32_t part[4][256];
     memset(part, 0, sizeof part);
-    for (int32_t y = 0; y < src->height; y++) {
-        const uint8_t *row = rte_u8_row(src, y);
-        int32_t x = 0;
-        for (; x + 8 <= src->width; x += 8) {
-            /* one 8-byte load instead of eight (byte order cannot matter here) */
-            uint64_t v;
-            memcpy(&v, row + x, sizeof v);
-            part[0][v & 0xFF]++;
-            part[1][(v >> 8) & 0xFF]++;
-            part[2][(v >> 16) & 0xFF]++;
-            part[3][(v >> 24) & 0xFF]++;
-            part[0][(v >> 32) & 0xFF]++;
-            part[1][(v >> 40) & 0xFF]++;
-            part[2][(v >> 48) & 0xFF]++;
-            part[3][v >> 56]++;
-        }
-        for (; x < src->width; x++)
-            part[0][row[x]]++;
-    }
+    for (int32_t y = 0; y < src->height; y++)
+        histogram_row(rte_u8_row(src, y), mask ? rte_u8_row(mask, y) : NULL, src->width, part);
     for (int32_t v = 0; v < 256; v++)
         hist[v] = part[0][v] + part[1][v] + part[2][v] + part[3][v];
     return RTE_OK;
+}
+
+rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256])
+{
+    return histogram(src, NULL, hist);
+}
+
+rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *mask,
+                                   uint32_t hist[256])
+{
+    if (!mask)
+        return RTE_ERR_ARGUMENT;
+    return histogram(src, mask, hist);
 }
 
 /* FLT_EPSILON (2^-23) and 1 - FLT_EPSILON as binary64 bit patterns. */
@@ -97,32 +129,17 @@ rte_status rte_threshold_otsu_u8(const rte_image_u8 *src, int32_t *thresh)
     return rte_threshold_otsu_histogram(hist, thresh);
 }
 
-/* Row kernels: plain loops over bytes without branches, so the compiler
- * can turn them into vector compares and selects. No restrict: s == d
- * (in place) is allowed. */
-static void row_binary(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t,
-                       uint8_t hi, uint8_t lo)
+/* The row kernel, once per instruction set (see simd/rows.h). */
+void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                         uint8_t maxval)
 {
-    for (int32_t x = 0; x < n; x++)
-        d[x] = s[x] > t ? hi : lo;
+    threshold_row(s, d, n, type, t, maxval);
 }
 
-static void row_trunc(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
+rte_threshold_row_fn rte_threshold_row_select(uint32_t features)
 {
-    for (int32_t x = 0; x < n; x++)
-        d[x] = s[x] > t ? t : s[x];
-}
-
-static void row_tozero(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
-{
-    for (int32_t x = 0; x < n; x++)
-        d[x] = s[x] > t ? s[x] : 0;
-}
-
-static void row_tozero_inv(const uint8_t *s, uint8_t *d, int32_t n, uint8_t t)
-{
-    for (int32_t x = 0; x < n; x++)
-        d[x] = s[x] > t ? 0 : s[x];
+    return RTE_SIMD_PICK(features, rte_threshold_row_c, rte_threshold_row_avx2,
+                         rte_threshold_row_neon);
 }
 
 static void fill_rows(rte_image_u8 *dst, uint8_t v)
@@ -188,21 +205,11 @@ rte_status rte_threshold_u8(const rte_image_u8 *src, rte_image_u8 *dst,
         return RTE_OK;
     }
 
-    const uint8_t t8 = (uint8_t)t;
-    for (int32_t y = 0; y < src->height; y++) {
-        const uint8_t *s = rte_u8_row(src, y);
-        uint8_t *d = rte_u8_row(dst, y);
-        switch (type) {
-        case RTE_THRESH_BINARY: row_binary(s, d, src->width, t8, maxval, 0); break;
-        case RTE_THRESH_BINARY_INV: row_binary(s, d, src->width, t8, 0, maxval); break;
-        case RTE_THRESH_TRUNC: row_trunc(s, d, src->width, t8); break;
-        case RTE_THRESH_TOZERO: row_tozero(s, d, src->width, t8); break;
-        case RTE_THRESH_TOZERO_INV: row_tozero_inv(s, d, src->width, t8); break;
-        }
-    }
+    const rte_threshold_row_fn row = rte_threshold_row_select(rte_cpu_features());
+    for (int32_t y = 0; y < src->height; y++)
+        row(rte_u8_row(src, y), rte_u8_row(dst, y), src->width, (int)type, (uint8_t)t, maxval);
     return RTE_OK;
 }
-
 /* The value at 0-based rank `k` of the sorted pixels. */
 static int32_t value_at_rank(const uint32_t hist[256], uint64_t k)
 {

@@ -5,7 +5,9 @@
 #include <time.h>
 
 #include "../algo/geom_fixed.h"
+#include "lane_cue_rows.h"
 #include "lane_internal.h"
+#include "rtedge/cpu.h"
 #include "rtedge/color.h"
 #include "rtedge/polygon_mask.h"
 #include "rtedge/threshold.h"
@@ -112,51 +114,48 @@ static rte_status lane_roi(rte_lane_context *ctx, int32_t w, int32_t h)
     return RTE_OK;
 }
 
+/* The colour cue's row kernel, once per instruction set (see simd/rows.h). */
+void rte_lane_cue_row_c(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
+                        const rte_lane_cue *cue, bool rgb)
+{
+    lane_cue_row(gray, bgr, dst, width, cue, rgb);
+}
+
+rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features)
+{
+    return RTE_SIMD_PICK(features, rte_lane_cue_row_c, rte_lane_cue_row_avx2, rte_lane_cue_row_c);
+}
+
 /* The colour cue: white or yellow paint -> 255, everything else grey scaled
  * by dim_q8 / 256. `bgr` rows hold B,G,R (R,G,B when rgb is set). */
 static void lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, const uint8_t *bgr,
                            int32_t bgr_stride, bool rgb, rte_image_u8 *dst)
 {
-    /* 8-bit comparisons (16 pixels per vector): a threshold of 256 can
-     * never be reached, so it disables its test. */
-    const uint8_t wm = (uint8_t)(p->white_min > 255 ? 255 : p->white_min);
-    const uint8_t white_on = p->white_min <= 255 ? 0xFF : 0;
-    const uint8_t ym = (uint8_t)(p->yellow_rg_min > 255 ? 255 : p->yellow_rg_min);
-    const uint8_t yellow_on = p->yellow_rg_min <= 255 ? 0xFF : 0;
-    const uint8_t yb = (uint8_t)p->yellow_b_margin;
-    const uint16_t dim = (uint16_t)p->dim_q8;
-    const int bi = rgb ? 2 : 0, ri = rgb ? 0 : 2;
-    for (int32_t y = 0; y < dst->height; y++) {
-        const uint8_t *restrict g = rte_u8_row(gray, y);
-        const uint8_t *restrict c = bgr + (size_t)y * (size_t)bgr_stride;
-        uint8_t *restrict d = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < dst->width; x++) {
-            const uint8_t b = c[3 * x + bi], gg = c[3 * x + 1], r = c[3 * x + ri];
-            const uint8_t mn = r < gg ? r : gg;
-            const uint8_t mb = mn > yb ? (uint8_t)(mn - yb) : 0; /* B may be at most this */
-            const uint8_t white = (uint8_t)(-(uint8_t)((b >= wm) & (gg >= wm) & (r >= wm)) & white_on);
-            const uint8_t yellow = (uint8_t)(-(uint8_t)((mn >= ym) & (mn >= yb) & (b <= mb)) & yellow_on);
-            const uint8_t paint = white | yellow; /* 0xFF or 0 */
-            d[x] = (uint8_t)(paint | (~paint & (uint8_t)((g[x] * dim) >> 8)));
-        }
-    }
+    /* 8-bit comparisons (16 or 32 pixels per vector): a threshold of 256
+     * can never be reached, so it disables its test. */
+    const rte_lane_cue cue = {
+        .white_min = (uint8_t)(p->white_min > 255 ? 255 : p->white_min),
+        .white_on = p->white_min <= 255 ? 0xFF : 0,
+        .yellow_min = (uint8_t)(p->yellow_rg_min > 255 ? 255 : p->yellow_rg_min),
+        .yellow_on = p->yellow_rg_min <= 255 ? 0xFF : 0,
+        .yellow_b_margin = (uint8_t)p->yellow_b_margin,
+        .dim_q8 = (uint16_t)p->dim_q8,
+    };
+    const rte_lane_cue_row_fn row = rte_lane_cue_row_select(rte_cpu_features());
+    for (int32_t y = 0; y < dst->height; y++)
+        row(rte_u8_row(gray, y), bgr + (size_t)y * (size_t)bgr_stride, rte_u8_row(dst, y),
+            dst->width, &cue, rgb);
 }
 
-/* Canny thresholds for this frame. */
+/* Automatic Canny thresholds for this frame from the histogram of the
+ * blurred pixels inside the ROI (unchanged when it is empty). */
 static void lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
                             int32_t *low, int32_t *high)
 {
     const rte_lane_params *p = &ctx->params;
-    *low = p->canny_low;
-    *high = p->canny_high;
-    if (p->canny_mode == RTE_LANE_CANNY_FIXED)
+    uint32_t hist[256];
+    if (rte_histogram_masked_u8(img, mask, hist) != RTE_OK)
         return;
-    uint32_t hist[256] = {0};
-    for (int32_t y = 0; y < img->height; y++) {
-        const uint8_t *s = rte_u8_row(img, y), *m = rte_u8_row(mask, y);
-        for (int32_t x = 0; x < img->width; x++)
-            hist[s[x]] += (uint32_t)(m[x] >> 7);
-    }
     int32_t lo, hi;
     rte_status st = p->canny_mode == RTE_LANE_CANNY_MEDIAN
                         ? rte_threshold_auto_canny_median(hist, p->auto_sigma_permille, &lo, &hi)
@@ -494,25 +493,36 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     out->stage_ns[RTE_LANE_STAGE_GRAY] = t1 - t0;
     t0 = t1;
 
-    rte_image_u8 blurred = lane_view(&ctx->blurred, 0, 0, cw, ch);
-    if ((st = rte_gaussian_blur_u8(&src, &blurred, &ctx->blur, &ctx->arena)) != RTE_OK)
-        return st;
-    t1 = lane_now_ns();
-    out->stage_ns[RTE_LANE_STAGE_BLUR] = t1 - t0;
-    t0 = t1;
-
     rte_image_u8 mask = lane_view(&ctx->mask, 0, 0, cw, ch);
     rte_image_u8 edges = lane_view(&ctx->edges, 0, 0, cw, ch);
-    int32_t low, high;
-    lane_thresholds(ctx, &blurred, &mask, &low, &high);
-    /* Integer thresholds on the L1 magnitude of a 3x3 Sobel are what
-     * rte_canny_params_init gives for whole numbers: set them directly. */
-    ctx->canny.low = low;
-    ctx->canny.high = high;
+    int32_t low = p->canny_low, high = p->canny_high;
+    if (p->canny_mode == RTE_LANE_CANNY_FIXED) {
+        /* Fused front end: blur, Sobel and suppression over a band of rows,
+         * no blurred image (its time counts in the Canny stage). */
+        ctx->canny.low = low;
+        ctx->canny.high = high;
+        if ((st = rte_canny_blurred_u8(&src, &edges, &ctx->blur, &ctx->canny, &ctx->arena)) != RTE_OK)
+            return st;
+    } else {
+        /* The thresholds come from the blurred pixels' histogram, so the
+         * blurred image is needed before any suppression. */
+        rte_image_u8 blurred = lane_view(&ctx->blurred, 0, 0, cw, ch);
+        if ((st = rte_gaussian_blur_u8(&src, &blurred, &ctx->blur, &ctx->arena)) != RTE_OK)
+            return st;
+        t1 = lane_now_ns();
+        out->stage_ns[RTE_LANE_STAGE_BLUR] = t1 - t0;
+        t0 = t1;
+        lane_thresholds(ctx, &blurred, &mask, &low, &high);
+        /* Integer thresholds on the L1 magnitude of a 3x3 Sobel are what
+         * rte_canny_params_init gives for whole numbers: set them directly. */
+        ctx->canny.low = low;
+        ctx->canny.high = high;
+        if ((st = rte_canny_u8(&blurred, &edges, &ctx->canny, &ctx->arena)) != RTE_OK)
+            return st;
+    }
     out->canny_low = low;
     out->canny_high = high;
-    if ((st = rte_canny_u8(&blurred, &edges, &ctx->canny, &ctx->arena)) != RTE_OK ||
-        (st = rte_polygon_mask_apply(&edges, &mask, &edges)) != RTE_OK)
+    if ((st = rte_polygon_mask_apply(&edges, &mask, &edges)) != RTE_OK)
         return st;
     t1 = lane_now_ns();
     out->stage_ns[RTE_LANE_STAGE_CANNY] = t1 - t0;
@@ -605,10 +615,22 @@ rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64
     if (rte_frame_gray_view(frame, &gray) == RTE_OK)
         return lane_run(ctx, &gray, NULL, 0, false, t_ns, 0, out);
     const int64_t t0 = lane_now_ns();
-    gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
-    if ((st = rte_frame_to_gray(frame, &gray)) != RTE_OK)
-        return st;
     const bool colour = frame->format == RTE_PIXEL_BGR24 || frame->format == RTE_PIXEL_RGB24;
+    /* Only the ROI's bounding box is read: with 3-byte pixels (where any
+     * crop is a plain view of the frame) only that part becomes grey. */
+    rte_frame part = *frame;
+    int32_t x0 = 0, y0 = 0;
+    if (colour && lane_roi(ctx, frame->width, frame->height) == RTE_OK) {
+        x0 = ctx->crop_x0;
+        y0 = ctx->crop_y0;
+        part.width = ctx->crop_x1 - x0;
+        part.height = ctx->crop_y1 - y0;
+        part.plane[0] += (size_t)y0 * (size_t)frame->stride[0] + 3 * (size_t)x0;
+    }
+    gray = lane_view(&ctx->gray, x0, y0, x0 + part.width, y0 + part.height);
+    if ((st = rte_frame_to_gray(&part, &gray)) != RTE_OK)
+        return st;
+    gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
     return lane_run(ctx, &gray, colour ? frame->plane[0] : NULL, frame->stride[0],
                     frame->format == RTE_PIXEL_RGB24, t_ns, lane_now_ns() - t0, out);
 }

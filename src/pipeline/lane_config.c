@@ -80,7 +80,7 @@ rte_lane_context *rte_lane_create(const rte_lane_config *cfg)
     const int32_t w = cfg->max_width, h = cfg->max_height, n = cfg->max_segments;
     const size_t plane = (size_t)((w + 63) & ~63) * (size_t)h;
     size_t scratch = rte_gaussian_blur_u8_scratch_size(w, h, &ctx->blur);
-    size_t s = rte_canny_scratch_size(w, h, 3);
+    size_t s = rte_canny_blurred_scratch_size(w, h, &ctx->blur, 3);
     scratch = s > scratch ? s : scratch;
     s = rte_hough_segments_scratch_size(ctx->hough);
     scratch = s > scratch ? s : scratch;

@@ -1,7 +1,8 @@
 // Canny against OpenCV 4.6: apertures 3 and 5 (and 7), L1 and L2, threshold pairs
 // (swapped, zero, negative, fractional, very high) on every file image;
 // random parameters on the random images; Canny from given dx/dy, including
-// full-range random derivatives.
+// full-range random derivatives; the fused front end (rte_canny_blurred_u8)
+// against cv::GaussianBlur then cv::Canny.
 #include "oracle.hpp"
 
 #include <cstdio>
@@ -29,14 +30,25 @@ std::string describe(double lo, double hi, int ap, bool l2)
     return b;
 }
 
+// cv::Canny of gray, or with ksize > 0 of cv::GaussianBlur(gray, ksize,
+// sigma) against the fused rte_canny_blurred_u8.
 void check(oracle::Tally &t, const std::string &name, const cv::Mat &gray, double lo, double hi,
-           int ap, bool l2, rte_arena *arena, std::mt19937 &rng)
+           int ap, bool l2, rte_arena *arena, std::mt19937 &rng, int ksize = 0, double sigma = 0)
 {
     std::string what = name + describe(lo, hi, ap, l2);
-    cv::Mat expected;
-    cv::Canny(gray, expected, lo, hi, ap, l2);
+    cv::Mat blurred, expected;
+    rte_gaussian_kernel k;
     rte_canny_params p;
     rte_status st = rte_canny_params_init(&p, lo, hi, ap, l2);
+    if (ksize > 0) {
+        char b[64];
+        std::snprintf(b, sizeof b, " blurred(%d, %g)", ksize, sigma);
+        what += b;
+        cv::GaussianBlur(gray, blurred, cv::Size(ksize, ksize), sigma);
+        if (st == RTE_OK)
+            st = rte_gaussian_kernel_init(&k, ksize, ksize, sigma, sigma);
+    }
+    cv::Canny(ksize > 0 ? blurred : gray, expected, lo, hi, ap, l2);
     if (st != RTE_OK) {
         t.call_failed(what + " (params)", st);
         return;
@@ -45,7 +57,7 @@ void check(oracle::Tally &t, const std::string &name, const cv::Mat &gray, doubl
     rte_image_u8 src = oracle::padded_u8(gray, sbuf, rng);
     rte_image_u8 dst = oracle::blank_u8(gray.cols, gray.rows, dbuf, rng);
     size_t mark = rte_arena_mark(arena);
-    st = rte_canny_u8(&src, &dst, &p, arena);
+    st = ksize > 0 ? rte_canny_blurred_u8(&src, &dst, &k, &p, arena) : rte_canny_u8(&src, &dst, &p, arena);
     t.check(what, st, arena, mark, expected, dst);
 }
 
@@ -99,7 +111,9 @@ int main()
     cv::setNumThreads(1);
     oracle::Tally t("canny");
     std::mt19937 rng = oracle::make_rng();
-    Arena scratch(rte_canny_scratch_size(1280, 720, 7));
+    rte_gaussian_kernel largest;
+    rte_gaussian_kernel_init(&largest, 9, 9, 0, 0);
+    Arena scratch(rte_canny_blurred_scratch_size(1280, 720, &largest, 7));
 
     // (low, high): ordinary, swapped, zero, negative, fractional, equal,
     // above every magnitude, and beyond int32 (OpenCV's x86-64 floor wraps).
@@ -119,6 +133,11 @@ int main()
             check(t, in.name, in.gray, 400, 1200, 7, l2, &scratch.arena, rng);
             check(t, in.name, in.gray, 2000.5, 900, 7, l2, &scratch.arena, rng);
         }
+        // Fused front end: the lane and grasp settings, other kernels and apertures.
+        check(t, in.name, in.gray, 50, 150, 3, false, &scratch.arena, rng, 5, 0);
+        check(t, in.name, in.gray, 0, 0, 3, false, &scratch.arena, rng, 3, 0);
+        check(t, in.name, in.gray, 200, 60, 3, false, &scratch.arena, rng, 9, 2.5);
+        check(t, in.name, in.gray, 60, 180, 5, true, &scratch.arena, rng, 7, 0);
         cv::Mat dx, dy;
         cv::Sobel(in.gray, dx, CV_16S, 1, 0, 3);
         cv::Sobel(in.gray, dy, CV_16S, 0, 1, 3);
@@ -135,6 +154,8 @@ int main()
             hi *= 8;
         }
         check(t, in.name, in.gray, lo, hi, ap, l2, &scratch.arena, rng);
+        check(t, in.name, in.gray, lo, hi, ap, l2, &scratch.arena, rng, 1 + 2 * (int)(rng() % 5),
+              (rng() % 3) * 0.7);
         // Full-range derivatives: the wrapped L2 sum and sector test.
         cv::Mat dx(in.gray.rows, in.gray.cols, CV_16S), dy(in.gray.rows, in.gray.cols, CV_16S);
         if (rng() & 1) {

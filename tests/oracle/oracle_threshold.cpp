@@ -1,6 +1,7 @@
 // cv::threshold (every type, with and without THRESH_OTSU, fractional and
 // out-of-range thresh/maxval), Otsu's threshold on adversarial histograms,
-// the histogram, and the automatic Canny thresholds against references.
+// the histogram (also under a mask, as cv::calcHist), and the automatic
+// Canny thresholds against references.
 #include "oracle.hpp"
 
 #include <algorithm>
@@ -180,26 +181,40 @@ static double numpy_median(const cv::Mat &gray)
 
 static void check_auto(oracle::Tally &t, const std::string &name, const cv::Mat &gray, std::mt19937 &rng)
 {
-    std::vector<uint8_t> sbuf;
+    std::vector<uint8_t> sbuf, mbuf;
     rte_image_u8 src = oracle::padded_u8(gray, sbuf, rng);
-    uint32_t hist[256];
-    int st = rte_histogram_u8(&src, hist);
-    if (st != RTE_OK) {
-        t.call_failed(name + " histogram", st);
-        return;
+    // A mask of random values, zero in a random share of 8-pixel runs.
+    cv::Mat mask(gray.size(), CV_8UC1);
+    cv::randu(mask, 0, 256);
+    const uint32_t zero_share = rng() % 4;
+    for (int y = 0; y < mask.rows; y++) {
+        uint8_t *m = mask.ptr<uint8_t>(y);
+        for (int x = 0; x < mask.cols; x += 8)
+            if (rng() % 4 < zero_share)
+                std::fill(m + x, m + std::min(x + 8, mask.cols), 0);
     }
-    cv::Mat cvhist;
-    int channels[] = {0}, bins[] = {256};
-    float range[] = {0, 256};
-    const float *ranges[] = {range};
-    cv::calcHist(&gray, 1, channels, cv::Mat(), cvhist, 1, bins, ranges);
-    cv::Mat ours(256, 1, CV_32F);
-    for (int i = 0; i < 256; i++)
-        ours.at<float>(i) = (float)hist[i];
-    cv::Mat hist_ne;
-    cv::compare(cvhist, ours, hist_ne, cv::CMP_NE);
-    t.cases++;
-    t.differing += cv::countNonZero(hist_ne);
+    rte_image_u8 rmask = oracle::padded_u8(mask, mbuf, rng);
+    uint32_t hist[256];
+    for (bool masked : {true, false}) {
+        int st = masked ? rte_histogram_masked_u8(&src, &rmask, hist) : rte_histogram_u8(&src, hist);
+        if (st != RTE_OK) {
+            t.call_failed(name + (masked ? " masked histogram" : " histogram"), st);
+            return;
+        }
+        cv::Mat cvhist;
+        int channels[] = {0}, bins[] = {256};
+        float range[] = {0, 256};
+        const float *ranges[] = {range};
+        cv::calcHist(&gray, 1, channels, masked ? mask : cv::Mat(), cvhist, 1, bins, ranges);
+        cv::Mat ours(256, 1, CV_32F);
+        for (int i = 0; i < 256; i++)
+            ours.at<float>(i) = (float)hist[i];
+        cv::Mat hist_ne;
+        cv::compare(cvhist, ours, hist_ne, cv::CMP_NE);
+        t.cases++;
+        t.differing += cv::countNonZero(hist_ne);
+    }
+    int st = RTE_OK;
 
     double med = numpy_median(gray);
     // The recipe with s = 0.33 literally, in double: int(max(0, (1 - s) * m)).

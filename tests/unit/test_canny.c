@@ -1,5 +1,6 @@
 /* Canny: threshold conversion, hand-checked edges (steps, hysteresis,
- * 1xN / Nx1 / 1x1), arena sizing and argument errors. */
+ * 1xN / Nx1 / 1x1), arena sizing and argument errors; the fused front end
+ * (rte_canny_blurred_u8) against blur-then-Canny. */
 #include <math.h>
 
 #include "unit.h"
@@ -237,6 +238,102 @@ static void arena_size_and_arguments(void **state)
     test_free(dst.buf);
 }
 
+/* rte_canny_blurred_u8 gives the bytes of rte_gaussian_blur_u8 followed by
+ * rte_canny_u8: widths 1..67, heights 1..9 and a few taller, odd strides,
+ * every aperture, L1 and L2, square and unequal kernels, and in place. */
+static void blurred_equals_blur_then_canny(void **state)
+{
+    static uint8_t mem[1 << 18];
+    rte_arena a;
+    rte_arena_init(&a, mem, sizeof mem);
+    uint32_t rng = 4242;
+    static const int32_t ks[][2] = { { 5, 5 }, { 3, 3 }, { 1, 1 }, { 9, 3 }, { 1, 7 }, { 15, 15 } };
+    for (int32_t w = 1; w <= 67; w++) {
+        const int32_t h = w % 9 == 0 ? 30 + w % 17 : 1 + w % 9;
+        const int32_t pad = 1 + 2 * (w % 4);
+        rte_image_u8 src = unit_image_u8(w, h, pad, 0);
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++)
+                src.buf[y * src.stride + x] = (uint8_t)(w % 5 == 0 ? (unit_rand(&rng) & 1) * 255
+                                                                    : unit_rand(&rng));
+        const int32_t ap = 3 + 2 * (w % 3);
+        const bool l2 = (w / 3) % 2;
+        rte_gaussian_kernel k;
+        assert_int_equal(rte_gaussian_kernel_init(&k, ks[w % 6][0], ks[w % 6][1], 0, 0), RTE_OK);
+        rte_canny_params p;
+        assert_int_equal(rte_canny_params_init(&p, 20 + w, 60 + 3 * w, ap, l2), RTE_OK);
+        rte_image_u8 blurred = unit_image_u8(w, h, pad, 0);
+        rte_image_u8 want = unit_image_u8(w, h, pad, 0x11), got = unit_image_u8(w, h, pad, 0x22);
+        assert_int_equal(rte_gaussian_blur_u8(&src, &blurred, &k, &a), RTE_OK);
+        assert_int_equal(rte_canny_u8(&blurred, &want, &p, &a), RTE_OK);
+        assert_int_equal(rte_canny_blurred_u8(&src, &got, &k, &p, &a), RTE_OK);
+        assert_int_equal(a.used, 0);
+        assert_memory_equal(want.buf, got.buf, (size_t)want.stride * h);
+        unit_assert_padding_u8(&got);
+        /* in place: dst is written only after the last source row is read */
+        assert_int_equal(rte_canny_blurred_u8(&src, &src, &k, &p, &a), RTE_OK);
+        assert_memory_equal(want.buf, src.buf, (size_t)want.stride * h);
+        test_free(src.buf);
+        test_free(blurred.buf);
+        test_free(want.buf);
+        test_free(got.buf);
+    }
+}
+
+/* The stated arena size is enough at any alignment and a smaller one fails
+ * cleanly; bad arguments are refused. */
+static void blurred_arena_size_and_arguments(void **state)
+{
+    static uint8_t mem[1 << 16];
+    rte_image_u8 src = unit_image_u8(61, 17, 3, 0);
+    uint32_t rng = 5;
+    for (int y = 0; y < 17; y++)
+        for (int x = 0; x < 61; x++)
+            src.buf[y * src.stride + x] = (uint8_t)(unit_rand(&rng) % 64 + 96 * (x > 30));
+    rte_image_u8 dst = unit_image_u8(61, 17, 2, 0);
+    rte_gaussian_kernel k;
+    assert_int_equal(rte_gaussian_kernel_init(&k, 7, 7, 0, 0), RTE_OK);
+    rte_canny_params p;
+    assert_int_equal(rte_canny_params_init(&p, 30, 90, 3, false), RTE_OK);
+    const size_t need = rte_canny_blurred_scratch_size(61, 17, &k, 3);
+    assert_true(need > rte_canny_scratch_size(61, 17, 3));
+    assert_true(need <= sizeof mem - RTE_ARENA_ALIGN);
+    for (size_t off = 0; off < RTE_ARENA_ALIGN; off += 13) {
+        rte_arena a;
+        rte_arena_init(&a, mem + off, need);
+        assert_int_equal(rte_canny_blurred_u8(&src, &dst, &k, &p, &a), RTE_OK);
+        assert_int_equal(a.used, 0);
+        unit_assert_padding_u8(&dst);
+    }
+    int edges = 0;
+    for (int y = 0; y < 17; y++)
+        edges += dst.buf[y * dst.stride + 31] == 255 || dst.buf[y * dst.stride + 30] == 255;
+    assert_int_equal(edges, 17); /* the step at x = 30.5 is found on every row */
+    rte_arena a;
+    rte_arena_init(&a, mem, need / 2);
+    assert_int_equal(rte_canny_blurred_u8(&src, &dst, &k, &p, &a), RTE_ERR_NO_MEMORY);
+    assert_int_equal(a.used, 0);
+
+    rte_arena_init(&a, mem, sizeof mem);
+    rte_gaussian_kernel bad_k = k;
+    bad_k.taps_x[0]++; /* no longer sums to 256 */
+    assert_int_equal(rte_canny_blurred_u8(&src, &dst, &bad_k, &p, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_blurred_u8(&src, &dst, NULL, &p, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_blurred_u8(&src, &dst, &k, NULL, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_blurred_u8(&src, &dst, &k, &p, NULL), RTE_ERR_ARGUMENT);
+    rte_canny_params bad_p = p;
+    bad_p.aperture = 4;
+    assert_int_equal(rte_canny_blurred_u8(&src, &dst, &k, &bad_p, &a), RTE_ERR_ARGUMENT);
+    rte_image_u8 other = unit_image_u8(60, 17, 0, 0);
+    assert_int_equal(rte_canny_blurred_u8(&src, &other, &k, &p, &a), RTE_ERR_SIZE);
+    assert_int_equal(rte_canny_blurred_scratch_size(0, 17, &k, 3), 0);
+    assert_int_equal(rte_canny_blurred_scratch_size(61, 17, NULL, 3), 0);
+    assert_int_equal(rte_canny_blurred_scratch_size(61, 17, &bad_k, 3), 0);
+    test_free(other.buf);
+    test_free(src.buf);
+    test_free(dst.buf);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -246,6 +343,8 @@ int main(void)
         cmocka_unit_test(thin_images),
         cmocka_unit_test(from_gradient),
         cmocka_unit_test(arena_size_and_arguments),
+        cmocka_unit_test(blurred_equals_blur_then_canny),
+        cmocka_unit_test(blurred_arena_size_and_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -9,9 +9,12 @@
 #include <stdbool.h>
 
 #include "rtedge/blur.h"
+#include "rtedge/canny.h"
 #include "rtedge/color.h"
 #include "rtedge/cpu.h"
+#include "rtedge/threshold.h"
 
+#include "../../src/algo/gradient_rows.h"
 #include "../../src/algo/simd/rows.h"
 
 enum { GUARD = 64, MAX_OFFSET = 32 };
@@ -26,27 +29,60 @@ static bool cpu_runs(const char *name, uint32_t needs)
     return false;
 }
 
-typedef struct c3_variant {
+/* The first member of every variant struct below. */
+typedef struct variant_head {
     const char *name;
     uint32_t needs; /* RTE_CPU_* bits */
+} variant_head;
+
+/* Calls check(variant, seed) for each of `count` variants (structs of
+ * `size` bytes that start with a variant_head) that this CPU runs, with a
+ * seed of seed0 plus the variant's index; at least one must run. */
+static void for_each_variant(const void *variants, size_t count, size_t size, uint32_t seed0,
+                             void (*check)(const void *variant, uint32_t *seed))
+{
+    int ran = 0;
+    for (size_t i = 0; i < count; i++) {
+        const void *v = (const char *)variants + i * size;
+        const variant_head *head = v;
+        if (!cpu_runs(head->name, head->needs))
+            continue;
+        uint32_t seed = seed0 + (uint32_t)i;
+        check(v, &seed);
+        ran++;
+    }
+    assert_true(ran >= 1);
+}
+
+/* Defines the test NAME_match_reference: NAME(variant, seed) for every
+ * variant in the array VARIANTS that this CPU runs. */
+#define VARIANTS_TEST(NAME, VARIANTS, SEED)                                                       \
+    static void NAME##_match_reference(void **state)                                              \
+    {                                                                                             \
+        (void)state;                                                                              \
+        for_each_variant(VARIANTS, sizeof VARIANTS / sizeof VARIANTS[0], sizeof VARIANTS[0], SEED, \
+                         NAME);                                                                   \
+    }
+
+typedef struct c3_variant {
+    variant_head head;
     rte_row_c3_to_gray_fn fn, ref;
 } c3_variant;
 
 static const c3_variant c3_variants[] = {
 #ifdef RTE_SIMD_X86
-    { "bgr_to_gray_ssse3", RTE_CPU_X86_SSSE3, rte_row_bgr_to_gray_ssse3, rte_row_bgr_to_gray_c },
-    { "rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c },
-    { "bgr_to_gray_avx2", RTE_CPU_X86_AVX2, rte_row_bgr_to_gray_avx2, rte_row_bgr_to_gray_c },
-    { "rgb_to_gray_avx2", RTE_CPU_X86_AVX2, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c },
+    { { "bgr_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_bgr_to_gray_ssse3, rte_row_bgr_to_gray_c },
+    { { "rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c },
+    { { "bgr_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_bgr_to_gray_avx2, rte_row_bgr_to_gray_c },
+    { { "rgb_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c },
 #endif
 #ifdef RTE_SIMD_NEON
-    { "bgr_to_gray_neon", RTE_CPU_ARM_NEON, rte_row_bgr_to_gray_neon, rte_row_bgr_to_gray_c },
-    { "rgb_to_gray_neon", RTE_CPU_ARM_NEON, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c },
+    { { "bgr_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_bgr_to_gray_neon, rte_row_bgr_to_gray_c },
+    { { "rgb_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c },
 #endif
     /* the reference against itself keeps the harness honest on any CPU */
-    { "bgr_to_gray_c", 0, rte_row_bgr_to_gray_c, rte_row_bgr_to_gray_c },
+    { { "bgr_to_gray_c", 0 }, rte_row_bgr_to_gray_c, rte_row_bgr_to_gray_c },
 };
-#define C3_VARIANT_COUNT (sizeof c3_variants / sizeof c3_variants[0])
 
 /* Random bytes; every 7th row uses only 0 and 255 so that the extremes
  * (and the rounding at the top of the range) are hit often. */
@@ -75,7 +111,7 @@ static void check_c3_row(const c3_variant *v, int32_t width, uint32_t *seed)
     if (memcmp(want, got, dof + (size_t)width + GUARD) != 0) {
         for (size_t i = 0; i < dof + (size_t)width + GUARD; i++)
             if (want[i] != got[i])
-                fail_msg("%s width %d: byte %zd is %u, reference %u", v->name, (int)width,
+                fail_msg("%s width %d: byte %zd is %u, reference %u", v->head.name, (int)width,
                          (ptrdiff_t)i - (ptrdiff_t)dof, got[i], want[i]);
     }
     test_free(sbuf);
@@ -83,39 +119,30 @@ static void check_c3_row(const c3_variant *v, int32_t width, uint32_t *seed)
     test_free(got);
 }
 
-static void c3_to_gray_rows_match_reference(void **state)
+static void c3_to_gray_rows(const void *variant, uint32_t *seed)
 {
-    (void)state;
-    int ran = 0;
-    for (size_t i = 0; i < C3_VARIANT_COUNT; i++) {
-        const c3_variant *v = &c3_variants[i];
-        if (!cpu_runs(v->name, v->needs))
-            continue;
-        uint32_t seed = 0x9E3779B9u + (uint32_t)i;
-        for (int32_t w = 1; w <= 300; w++)
-            check_c3_row(v, w, &seed);
-        for (int k = 0; k < 40; k++)
-            check_c3_row(v, 301 + (int32_t)(unit_rand(&seed) % 4000), &seed);
-        ran++;
-    }
-    assert_true(ran >= 1);
+    const c3_variant *v = variant;
+    for (int32_t w = 1; w <= 300; w++)
+        check_c3_row(v, w, seed);
+    for (int k = 0; k < 40; k++)
+        check_c3_row(v, 301 + (int32_t)(unit_rand(seed) % 4000), seed);
 }
+
+VARIANTS_TEST(c3_to_gray_rows, c3_variants, 0x9E3779B9u)
 
 /* Gaussian passes: each variant against the C build of the same loops. */
 typedef struct gaussian_variant {
-    const char *name;
-    uint32_t needs;
+    variant_head head;
     rte_gaussian_column_fn column;
     rte_gaussian_row_fn row;
 } gaussian_variant;
 
 static const gaussian_variant gaussian_variants[] = {
 #ifdef RTE_SIMD_X86
-    { "gaussian_avx2", RTE_CPU_X86_AVX2, rte_gaussian_column_pass_avx2, rte_gaussian_row_pass_avx2 },
+    { { "gaussian_avx2", RTE_CPU_X86_AVX2 }, rte_gaussian_column_pass_avx2, rte_gaussian_row_pass_avx2 },
 #endif
-    { "gaussian_c", 0, rte_gaussian_column_pass_c, rte_gaussian_row_pass_c },
+    { { "gaussian_c", 0 }, rte_gaussian_column_pass_c, rte_gaussian_row_pass_c },
 };
-#define GAUSSIAN_VARIANT_COUNT (sizeof gaussian_variants / sizeof gaussian_variants[0])
 
 /* Symmetric random taps summing to 256, as rte_gaussian_kernel holds (the
  * middle tap takes the remainder). */
@@ -158,7 +185,7 @@ static void check_gaussian(const gaussian_variant *v, int32_t width, int32_t ksi
     rte_gaussian_column_pass_c(rows, want, want + n, width, taps, ksize, split);
     v->column(rows, got, got + n, width, taps, ksize, split);
     if (memcmp(want, got, 2 * n * sizeof *want) != 0)
-        fail_msg("%s column pass width %d ksize %d split %d differs", v->name, (int)width,
+        fail_msg("%s column pass width %d ksize %d split %d differs", v->head.name, (int)width,
                  (int)ksize, split);
     for (int32_t j = 0; j < ksize; j++)
         test_free(row_bufs[j]);
@@ -175,7 +202,7 @@ static void check_gaussian(const gaussian_variant *v, int32_t width, int32_t ksi
     rte_gaussian_row_pass_c(hi, lo, dwant, width, taps, ksize, split);
     v->row(hi, lo, dgot, width, taps, ksize, split);
     if (memcmp(dwant, dgot, n) != 0)
-        fail_msg("%s row pass width %d ksize %d split %d differs", v->name, (int)width,
+        fail_msg("%s row pass width %d ksize %d split %d differs", v->head.name, (int)width,
                  (int)ksize, split);
     test_free(hi);
     test_free(lo);
@@ -183,43 +210,34 @@ static void check_gaussian(const gaussian_variant *v, int32_t width, int32_t ksi
     test_free(dgot);
 }
 
-static void gaussian_passes_match_reference(void **state)
+static void gaussian_passes(const void *variant, uint32_t *seed)
 {
-    (void)state;
-    int ran = 0;
-    for (size_t i = 0; i < GAUSSIAN_VARIANT_COUNT; i++) {
-        const gaussian_variant *v = &gaussian_variants[i];
-        if (!cpu_runs(v->name, v->needs))
-            continue;
-        uint32_t seed = 0xC0FFEEu + (uint32_t)i;
-        for (int32_t ksize = 1; ksize <= RTE_GAUSSIAN_MAX_KSIZE; ksize += 2)
-            for (int split = 0; split <= 1; split++) {
-                for (int32_t w = 1; w <= 80; w++)
-                    check_gaussian(v, w, ksize, split, &seed);
-                for (int k = 0; k < 4; k++)
-                    check_gaussian(v, 81 + (int32_t)(unit_rand(&seed) % 2000), ksize, split,
-                                   &seed);
-            }
-        ran++;
-    }
-    assert_true(ran >= 1);
+    const gaussian_variant *v = variant;
+    for (int32_t ksize = 1; ksize <= RTE_GAUSSIAN_MAX_KSIZE; ksize += 2)
+        for (int split = 0; split <= 1; split++) {
+            for (int32_t w = 1; w <= 80; w++)
+                check_gaussian(v, w, ksize, split, seed);
+            for (int k = 0; k < 4; k++)
+                check_gaussian(v, 81 + (int32_t)(unit_rand(seed) % 2000), ksize, split,
+                               seed);
+        }
 }
+
+VARIANTS_TEST(gaussian_passes, gaussian_variants, 0xC0FFEEu)
 
 /* Morphology rows: each variant against the C build of the same loops. */
 typedef struct morph_variant {
-    const char *name;
-    uint32_t needs;
+    variant_head head;
     rte_morph_op2_fn op2;
     rte_morph_reduce_fn reduce;
 } morph_variant;
 
 static const morph_variant morph_variants[] = {
 #ifdef RTE_SIMD_X86
-    { "morph_avx2", RTE_CPU_X86_AVX2, rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2 },
+    { { "morph_avx2", RTE_CPU_X86_AVX2 }, rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2 },
 #endif
-    { "morph_c", 0, rte_morph_row_op2_c, rte_morph_reduce_rows_c },
+    { { "morph_c", 0 }, rte_morph_row_op2_c, rte_morph_reduce_rows_c },
 };
-#define MORPH_VARIANT_COUNT (sizeof morph_variants / sizeof morph_variants[0])
 
 enum { MORPH_MAX_ROWS = 64 };
 
@@ -243,39 +261,319 @@ static void check_morph(const morph_variant *v, int32_t width, int32_t count, bo
     rte_morph_reduce_rows_c(want, rows, count, accumulate, width, is_max);
     v->reduce(got, rows, count, accumulate, width, is_max);
     if (memcmp(want, got, n) != 0)
-        fail_msg("%s reduce width %d count %d acc %d max %d differs", v->name, (int)width,
+        fail_msg("%s reduce width %d count %d acc %d max %d differs", v->head.name, (int)width,
                  (int)count, accumulate, is_max);
     /* op2, also in place (d == a) */
     rte_morph_row_op2_c(want, want, rows[0], width, is_max);
     v->op2(got, got, rows[0], width, is_max);
     if (memcmp(want, got, n) != 0)
-        fail_msg("%s op2 width %d max %d differs", v->name, (int)width, is_max);
+        fail_msg("%s op2 width %d max %d differs", v->head.name, (int)width, is_max);
     test_free(src);
     test_free(want);
     test_free(got);
 }
 
-static void morph_rows_match_reference(void **state)
+static void morph_rows(const void *variant, uint32_t *seed)
 {
-    (void)state;
-    int ran = 0;
-    for (size_t i = 0; i < MORPH_VARIANT_COUNT; i++) {
-        const morph_variant *v = &morph_variants[i];
-        if (!cpu_runs(v->name, v->needs))
-            continue;
-        uint32_t seed = 0xBADC0DEu + (uint32_t)i;
-        for (int32_t count = 1; count <= MORPH_MAX_ROWS; count++)
-            for (int m = 0; m < 4; m++) {
-                bool accumulate = m & 1, is_max = m & 2;
-                for (int32_t w = 1; w <= 70; w++)
-                    check_morph(v, w, count, accumulate, is_max, &seed);
-                check_morph(v, 71 + (int32_t)(unit_rand(&seed) % 2000), count, accumulate,
-                            is_max, &seed);
-            }
-        ran++;
-    }
-    assert_true(ran >= 1);
+    const morph_variant *v = variant;
+    for (int32_t count = 1; count <= MORPH_MAX_ROWS; count++)
+        for (int m = 0; m < 4; m++) {
+            bool accumulate = m & 1, is_max = m & 2;
+            for (int32_t w = 1; w <= 70; w++)
+                check_morph(v, w, count, accumulate, is_max, seed);
+            check_morph(v, 71 + (int32_t)(unit_rand(seed) % 2000), count, accumulate,
+                        is_max, seed);
+        }
 }
+
+VARIANTS_TEST(morph_rows, morph_variants, 0xBADC0DEu)
+
+/* Canny rows (aperture 3, L1): each variant against the C reference. */
+typedef struct canny_variant {
+    variant_head head;
+    rte_canny_sobel_fn sobel;
+    rte_canny_nms_fn nms;
+} canny_variant;
+
+static const canny_variant canny_variants[] = {
+#ifdef RTE_SIMD_X86
+    { { "canny_avx2", RTE_CPU_X86_AVX2 }, rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2 },
+#endif
+#ifdef RTE_SIMD_NEON
+    { { "canny_neon", RTE_CPU_ARM_NEON }, rte_canny_sobel_row_neon, rte_canny_nms_row_neon },
+#endif
+    { { "canny_c", 0 }, rte_canny_sobel_row_c, rte_canny_nms_row_c },
+};
+
+/* A random int16 in [-range, range]. */
+static int16_t rand_s16(uint32_t *seed, int32_t range)
+{
+    return (int16_t)((int32_t)(unit_rand(seed) % (uint32_t)(2 * range + 1)) - range);
+}
+
+/* Sobel rows: three rows `stride` apart in one buffer (stride odd and
+ * larger than the row, the last row ending at the buffer's end). */
+static void check_canny_sobel(const canny_variant *v, int32_t width, uint32_t *seed)
+{
+    const size_t stride = (size_t)width + 1 + 2 * (unit_rand(seed) % 8);
+    const size_t bytes = 2 * stride + (size_t)width;
+    uint8_t *src = test_malloc(bytes);
+    fill_random(src, bytes, seed, width % 7 == 0);
+    const size_t n = (size_t)width + GUARD;
+    int16_t *want = test_malloc(3 * n * sizeof *want), *got = test_malloc(3 * n * sizeof *got);
+    for (size_t i = 0; i < 3 * n; i++)
+        want[i] = got[i] = (int16_t)0x7EEE;
+    rte_canny_sobel_row_c(src, src + stride, src + 2 * stride, want, want + n, want + 2 * n, width);
+    v->sobel(src, src + stride, src + 2 * stride, got, got + n, got + 2 * n, width);
+    for (size_t i = 0; i < 3 * n; i++)
+        if (want[i] != got[i])
+            fail_msg("%s sobel width %d: %s[%zu] is %d, reference %d", v->head.name, (int)width,
+                     i < n ? "dx" : i < 2 * n ? "dy" : "mag", i % n, got[i], want[i]);
+    test_free(src);
+    test_free(want);
+    test_free(got);
+}
+
+/* Suppression rows: magnitude rows with their zero ends; `range` small
+ * makes ties between neighbours and zero derivatives common. */
+static void check_canny_nms(const canny_variant *v, int32_t width, int32_t range, uint32_t *seed)
+{
+    const size_t padded = (size_t)width + 2;
+    int16_t *mag = test_malloc(3 * padded * sizeof *mag);
+    int16_t *grad = test_malloc(2 * (size_t)width * sizeof *grad);
+    for (size_t r = 0; r < 3; r++) {
+        int16_t *row = mag + r * padded;
+        for (size_t x = 0; x < padded; x++)
+            row[x] = (int16_t)(unit_rand(seed) % (uint32_t)(2 * range + 1));
+        row[0] = row[padded - 1] = 0;
+    }
+    for (size_t x = 0; x < 2 * (size_t)width; x++)
+        grad[x] = rand_s16(seed, range);
+    /* thresholds anywhere from -1 to just above the largest magnitude */
+    const int16_t low = (int16_t)((int32_t)(unit_rand(seed) % (uint32_t)(2 * range + 3)) - 1);
+    const int16_t high = (int16_t)(low + (int32_t)(unit_rand(seed) % (uint32_t)(2 * range + 2)));
+    const size_t n = (size_t)width + GUARD;
+    uint8_t *want = test_malloc(n), *got = test_malloc(n);
+    memset(want, 0xEE, n);
+    memset(got, 0xEE, n);
+    rte_canny_nms_row_c(mag + 1, mag + padded + 1, mag + 2 * padded + 1, grad, grad + width, want,
+                        width, low, high);
+    v->nms(mag + 1, mag + padded + 1, mag + 2 * padded + 1, grad, grad + width, got, width, low,
+           high);
+    for (size_t i = 0; i < n; i++)
+        if (want[i] != got[i])
+            fail_msg("%s nms width %d range %d: code %zu is %u, reference %u", v->head.name,
+                     (int)width, (int)range, i, got[i], want[i]);
+    test_free(mag);
+    test_free(grad);
+    test_free(want);
+    test_free(got);
+}
+
+static void canny_rows(const void *variant, uint32_t *seed)
+{
+    const canny_variant *v = variant;
+    static const int32_t ranges[] = { 1, 3, 40, 1020 };
+    for (int32_t w = 1; w <= 67; w++)
+        for (int k = 0; k < 8; k++) {
+            check_canny_sobel(v, w, seed);
+            check_canny_nms(v, w, ranges[k % 4], seed);
+        }
+    for (int k = 0; k < 16; k++) {
+        const int32_t w = 68 + (int32_t)(unit_rand(seed) % 2000);
+        check_canny_sobel(v, w, seed);
+        check_canny_nms(v, w, ranges[k % 4], seed);
+    }
+}
+
+VARIANTS_TEST(canny_rows, canny_variants, 0x5EED1u)
+
+/* Threshold rows: each variant against the C reference, every type, also
+ * in place. */
+typedef struct threshold_variant {
+    variant_head head;
+    rte_threshold_row_fn row;
+} threshold_variant;
+
+static const threshold_variant threshold_variants[] = {
+#ifdef RTE_SIMD_X86
+    { { "threshold_avx2", RTE_CPU_X86_AVX2 }, rte_threshold_row_avx2 },
+#endif
+#ifdef RTE_SIMD_NEON
+    { { "threshold_neon", RTE_CPU_ARM_NEON }, rte_threshold_row_neon },
+#endif
+    { { "threshold_c", 0 }, rte_threshold_row_c },
+};
+
+static void check_threshold(const threshold_variant *v, int32_t width, int type, uint32_t *seed)
+{
+    const size_t so = unit_rand(seed) % MAX_OFFSET, n = (size_t)width + GUARD;
+    uint8_t *src = test_malloc(so + (size_t)width);
+    fill_random(src + so, (size_t)width, seed, width % 7 == 0);
+    const uint8_t t = (uint8_t)(unit_rand(seed) % 255), maxval = (uint8_t)unit_rand(seed);
+    uint8_t *want = test_malloc(n), *got = test_malloc(n);
+    memset(want, 0xEE, n);
+    memset(got, 0xEE, n);
+    rte_threshold_row_c(src + so, want, width, type, t, maxval);
+    v->row(src + so, got, width, type, t, maxval);
+    if (memcmp(want, got, n) != 0)
+        fail_msg("%s width %d type %d t %u differs", v->head.name, (int)width, type, t);
+    /* in place */
+    memcpy(got, src + so, (size_t)width);
+    v->row(got, got, width, type, t, maxval);
+    if (memcmp(want, got, n) != 0)
+        fail_msg("%s in place width %d type %d t %u differs", v->head.name, (int)width, type, t);
+    test_free(src);
+    test_free(want);
+    test_free(got);
+}
+
+static void threshold_rows(const void *variant, uint32_t *seed)
+{
+    const threshold_variant *v = variant;
+    for (int type = RTE_THRESH_BINARY; type <= RTE_THRESH_TOZERO_INV; type++) {
+        for (int32_t w = 1; w <= 67; w++)
+            for (int k = 0; k < 4; k++)
+                check_threshold(v, w, type, seed);
+        for (int k = 0; k < 8; k++)
+            check_threshold(v, 68 + (int32_t)(unit_rand(seed) % 3000), type, seed);
+    }
+}
+
+VARIANTS_TEST(threshold_rows, threshold_variants, 0x7E57u)
+
+/* Gradient rows (Sobel, Scharr, Laplacian, Canny's apertures 5 and 7):
+ * each variant against the C reference, random taps of every length and
+ * the special Sobel 3 taps, every row mode. */
+typedef struct grad_variant {
+    variant_head head;
+    rte_grad_column_fn column;
+    rte_grad_row_fn row;
+} grad_variant;
+
+static const grad_variant grad_variants[] = {
+#ifdef RTE_SIMD_X86
+    { { "grad_avx2", RTE_CPU_X86_AVX2 }, rte_grad_column_avx2, rte_grad_row_avx2 },
+#endif
+    { { "grad_c", 0 }, rte_grad_column_c, rte_grad_row_c },
+};
+
+/* n taps: [1 2 1] or [-1 0 1] for some 3-tap cases, else random with
+ * sum |tap| <= `l1`. */
+static void random_grad_taps(int16_t *taps, int32_t n, int32_t l1, uint32_t *seed)
+{
+    static const int16_t sobel[2][3] = { { 1, 2, 1 }, { -1, 0, 1 } };
+    const uint32_t r = unit_rand(seed) % 4;
+    if (n == 3 && r < 2) {
+        memcpy(taps, sobel[r], sizeof sobel[r]);
+        return;
+    }
+    for (int32_t i = 0; i < n; i++)
+        taps[i] = rand_s16(seed, l1 / n);
+}
+
+static void check_grad(const grad_variant *v, int32_t width, int32_t n, int mode, uint32_t *seed)
+{
+    const size_t guard = (size_t)width + GUARD;
+    int16_t taps[RTE_GRAD_MAX_TAPS];
+    /* column pass: |sum| <= 128 * 255 fits int16 */
+    random_grad_taps(taps, n, 128, seed);
+    const uint8_t *rows[RTE_GRAD_MAX_TAPS];
+    uint8_t *src = test_malloc((size_t)width + (size_t)n);
+    fill_random(src, (size_t)width + (size_t)n, seed, width % 7 == 0);
+    for (int32_t j = 0; j < n; j++)
+        rows[j] = src + unit_rand(seed) % (uint32_t)(n + 1);
+    int16_t *want = test_malloc(guard * sizeof *want), *got = test_malloc(guard * sizeof *got);
+    for (size_t i = 0; i < guard; i++)
+        want[i] = got[i] = (int16_t)0x7EEE;
+    rte_grad_column_c(rows, width, taps, n, want);
+    v->column(rows, width, taps, n, got);
+    if (memcmp(want, got, guard * sizeof *want) != 0)
+        fail_msg("%s column pass width %d taps %d differs", v->head.name, (int)width, (int)n);
+    /* row pass over a padded row: small values when the sums must fit */
+    random_grad_taps(taps, n, mode == RTE_ROW_FITS ? 64 : 4096, seed);
+    int16_t *padded = test_malloc(((size_t)width + (size_t)n) * sizeof *padded);
+    for (size_t i = 0; i < (size_t)width + (size_t)n; i++)
+        padded[i] = rand_s16(seed, mode == RTE_ROW_FITS ? 511 : 32767);
+    for (size_t i = 0; i < guard; i++)
+        want[i] = got[i] = (int16_t)0x7EEE;
+    rte_grad_row_c(padded + n / 2, taps, n, want, width, mode);
+    v->row(padded + n / 2, taps, n, got, width, mode);
+    if (memcmp(want, got, guard * sizeof *want) != 0)
+        fail_msg("%s row pass width %d taps %d mode %d differs", v->head.name, (int)width,
+                 (int)n, mode);
+    test_free(src);
+    test_free(padded);
+    test_free(want);
+    test_free(got);
+}
+
+static void grad_rows(const void *variant, uint32_t *seed)
+{
+    const grad_variant *v = variant;
+    for (int32_t n = 1; n <= RTE_GRAD_MAX_TAPS; n += 2)
+        for (int mode = RTE_ROW_FITS; mode <= RTE_ROW_ROUND_DIV16; mode++) {
+            for (int32_t w = 1; w <= 67; w++)
+                check_grad(v, w, n, mode, seed);
+            for (int k = 0; k < 4; k++)
+                check_grad(v, 68 + (int32_t)(unit_rand(seed) % 2000), n, mode, seed);
+        }
+}
+
+VARIANTS_TEST(grad_rows, grad_variants, 0x6AD1u)
+
+/* The lane path's colour cue rows: each variant against the C reference,
+ * random thresholds (256 as an "off" mask too), both channel orders. */
+typedef struct lane_cue_variant {
+    variant_head head;
+    rte_lane_cue_row_fn row;
+} lane_cue_variant;
+
+static const lane_cue_variant lane_cue_variants[] = {
+#ifdef RTE_SIMD_X86
+    { { "lane_cue_avx2", RTE_CPU_X86_AVX2 }, rte_lane_cue_row_avx2 },
+#endif
+    { { "lane_cue_c", 0 }, rte_lane_cue_row_c },
+};
+
+static void check_lane_cue(const lane_cue_variant *v, int32_t width, uint32_t *seed)
+{
+    const size_t so = unit_rand(seed) % MAX_OFFSET, n = (size_t)width + GUARD;
+    uint8_t *bgr = test_malloc(so + 3 * (size_t)width), *gray = test_malloc((size_t)width);
+    /* extremes often, and colours near the thresholds below */
+    fill_random(bgr + so, 3 * (size_t)width, seed, width % 7 == 0);
+    fill_random(gray, (size_t)width, seed, 0);
+    const uint32_t r = unit_rand(seed);
+    const rte_lane_cue cue = {
+        .white_min = (uint8_t)(150 + r % 100), .white_on = (r >> 8) % 4 ? 0xFF : 0,
+        .yellow_min = (uint8_t)(100 + (r >> 10) % 120), .yellow_on = (r >> 17) % 4 ? 0xFF : 0,
+        .yellow_b_margin = (uint8_t)((r >> 19) % 80), .dim_q8 = (uint16_t)((r >> 23) % 257),
+    };
+    const bool rgb = (r >> 31) != 0;
+    uint8_t *want = test_malloc(n), *got = test_malloc(n);
+    memset(want, 0xEE, n);
+    memset(got, 0xEE, n);
+    rte_lane_cue_row_c(gray, bgr + so, want, width, &cue, rgb);
+    v->row(gray, bgr + so, got, width, &cue, rgb);
+    if (memcmp(want, got, n) != 0)
+        fail_msg("%s width %d rgb %d differs", v->head.name, (int)width, rgb);
+    test_free(bgr);
+    test_free(gray);
+    test_free(want);
+    test_free(got);
+}
+
+static void lane_cue_rows(const void *variant, uint32_t *seed)
+{
+    const lane_cue_variant *v = variant;
+    for (int32_t w = 1; w <= 67; w++)
+        for (int k = 0; k < 8; k++)
+            check_lane_cue(v, w, seed);
+    for (int k = 0; k < 32; k++)
+        check_lane_cue(v, 68 + (int32_t)(unit_rand(seed) % 3000), seed);
+}
+
+VARIANTS_TEST(lane_cue_rows, lane_cue_variants, 0xC0105u)
 
 /* Every colour through the dispatched whole-image path: 2^24 pixels as a
  * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
@@ -315,10 +613,16 @@ static void force_c_selects_the_reference(void **state)
     assert_true(hw & RTE_CPU_X86_SSE2);
     if (hw & RTE_CPU_X86_SSSE3)
         assert_true(rte_row_c3_to_gray_select(hw, false) != rte_row_bgr_to_gray_c);
+    if (hw & RTE_CPU_X86_AVX2) {
+        assert_true(rte_canny_rows_select(hw).sobel == rte_canny_sobel_row_avx2);
+        assert_true(rte_threshold_row_select(hw) == rte_threshold_row_avx2);
+    }
 #endif
 #ifdef RTE_SIMD_NEON
     assert_true(hw & RTE_CPU_ARM_NEON);
     assert_true(rte_row_c3_to_gray_select(hw, false) == rte_row_bgr_to_gray_neon);
+    assert_true(rte_canny_rows_select(hw).nms == rte_canny_nms_row_neon);
+    assert_true(rte_threshold_row_select(hw) == rte_threshold_row_neon);
 #endif
     assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
     assert_int_equal(rte_cpu_features(), 0);
@@ -328,6 +632,12 @@ static void force_c_selects_the_reference(void **state)
     assert_true(g.column == rte_gaussian_column_pass_c && g.row == rte_gaussian_row_pass_c);
     rte_morph_rows m = rte_morph_rows_select(rte_cpu_features());
     assert_true(m.op2 == rte_morph_row_op2_c && m.reduce == rte_morph_reduce_rows_c);
+    rte_canny_rows c = rte_canny_rows_select(rte_cpu_features());
+    assert_true(c.sobel == rte_canny_sobel_row_c && c.nms == rte_canny_nms_row_c);
+    assert_true(rte_threshold_row_select(rte_cpu_features()) == rte_threshold_row_c);
+    assert_true(rte_lane_cue_row_select(rte_cpu_features()) == rte_lane_cue_row_c);
+    rte_grad_rows gr = rte_grad_rows_select(rte_cpu_features());
+    assert_true(gr.column == rte_grad_column_c && gr.row == rte_grad_row_c);
     assert_int_equal(rte_cpu_features_hw(), hw);
     /* "0" and "" mean "not forced" */
     assert_int_equal(setenv("RTE_FORCE_C", "0", 1), 0);
@@ -358,6 +668,55 @@ static void forced_and_dispatched_images_agree(void **state)
     test_free(b.buf);
 }
 
+/* Random images of widths 1..67 with odd strides through the public
+ * Canny (apertures 3 and 5, plain and fused) and threshold calls: forced
+ * C and dispatched give the same bytes and leave the padding alone. */
+static void forced_and_dispatched_canny_and_threshold_agree(void **state)
+{
+    (void)state;
+    static uint8_t arena_memory[1 << 18];
+    rte_arena arena;
+    rte_arena_init(&arena, arena_memory, sizeof arena_memory);
+    rte_gaussian_kernel k;
+    assert_int_equal(rte_gaussian_kernel_init(&k, 5, 5, 0, 0), RTE_OK);
+    uint32_t seed = 777;
+    for (int32_t w = 1; w <= 67; w++) {
+        const int32_t h = 1 + (int32_t)(unit_rand(&seed) % 40);
+        const int32_t pad = 1 + 2 * (int32_t)(unit_rand(&seed) % 5); /* odd strides */
+        rte_image_u8 src = unit_image_u8(w, h, pad, 0);
+        for (int32_t y = 0; y < h; y++)
+            fill_random(src.buf + (size_t)y * src.stride, (size_t)w, &seed, w % 7 == 0);
+        rte_canny_params p, p5;
+        const double low = unit_rand(&seed) % 300, high = unit_rand(&seed) % 600;
+        assert_int_equal(rte_canny_params_init(&p, low, high, 3, false), RTE_OK);
+        /* aperture 5, L2: the gradient rows */
+        assert_int_equal(rte_canny_params_init(&p5, 8 * low, 8 * high, 5, true), RTE_OK);
+        rte_threshold_params tp;
+        assert_int_equal(rte_threshold_params_init(&tp, (rte_threshold_type)(w % 5),
+                                                   unit_rand(&seed) % 256, 200, false),
+                         RTE_OK);
+        rte_image_u8 out[2][4];
+        for (int forced = 0; forced < 2; forced++) {
+            if (forced)
+                assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
+            for (int j = 0; j < 4; j++)
+                out[forced][j] = unit_image_u8(w, h, pad, 0x11);
+            assert_int_equal(rte_canny_u8(&src, &out[forced][0], &p, &arena), RTE_OK);
+            assert_int_equal(rte_canny_blurred_u8(&src, &out[forced][1], &k, &p, &arena), RTE_OK);
+            assert_int_equal(rte_threshold_u8(&src, &out[forced][2], &tp, NULL), RTE_OK);
+            assert_int_equal(rte_canny_u8(&src, &out[forced][3], &p5, &arena), RTE_OK);
+            assert_int_equal(unsetenv("RTE_FORCE_C"), 0);
+        }
+        for (int j = 0; j < 4; j++) {
+            assert_memory_equal(out[0][j].buf, out[1][j].buf, (size_t)src.stride * h);
+            unit_assert_padding_u8(&out[0][j]);
+            test_free(out[0][j].buf);
+            test_free(out[1][j].buf);
+        }
+        test_free(src.buf);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -365,8 +724,13 @@ int main(void)
         cmocka_unit_test(every_colour_matches_reference),
         cmocka_unit_test(gaussian_passes_match_reference),
         cmocka_unit_test(morph_rows_match_reference),
+        cmocka_unit_test(canny_rows_match_reference),
+        cmocka_unit_test(threshold_rows_match_reference),
+        cmocka_unit_test(lane_cue_rows_match_reference),
+        cmocka_unit_test(grad_rows_match_reference),
         cmocka_unit_test(force_c_selects_the_reference),
         cmocka_unit_test(forced_and_dispatched_images_agree),
+        cmocka_unit_test(forced_and_dispatched_canny_and_threshold_agree),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

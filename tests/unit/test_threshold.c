@@ -165,6 +165,41 @@ static void histogram_counts_every_pixel(void **state)
     test_free(c.buf);
 }
 
+/* Only pixels under a non-zero mask count: masks of runs (whole 8-byte
+ * chunks on, off and mixed) and of scattered values 1..255, odd strides. */
+static void masked_histogram_counts_pixels_under_the_mask(void **state)
+{
+    uint32_t rng = 31337, hist[256];
+    for (int32_t w = 1; w <= 67; w++) {
+        const int32_t h = 1 + w % 5;
+        rte_image_u8 img = unit_image_u8(w, h, 1 + 2 * (w % 3), 0);
+        rte_image_u8 mask = unit_image_u8(w, h, 2 + w % 4, 0);
+        uint32_t want[256] = { 0 };
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++) {
+                const uint8_t v = (uint8_t)(unit_rand(&rng) % (w < 20 ? 3 : 256));
+                const uint32_t r = unit_rand(&rng);
+                const uint8_t m = w % 2 ? (uint8_t)(((x / 8 + y) % 3 == 0) ? 0 : 255)
+                                        : (uint8_t)(r % 4 == 0 ? 0 : 1 + r % 255);
+                img.buf[y * img.stride + x] = v;
+                mask.buf[y * mask.stride + x] = m;
+                want[v] += m != 0;
+            }
+        assert_int_equal(rte_histogram_masked_u8(&img, &mask, hist), RTE_OK);
+        assert_memory_equal(hist, want, sizeof want);
+        test_free(img.buf);
+        test_free(mask.buf);
+    }
+    rte_image_u8 a = unit_image_u8(9, 2, 0, 7), b = unit_image_u8(8, 2, 0, 255);
+    assert_int_equal(rte_histogram_masked_u8(&a, &b, hist), RTE_ERR_SIZE);
+    assert_int_equal(rte_histogram_masked_u8(&a, NULL, hist), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_histogram_masked_u8(&a, &a, NULL), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_histogram_masked_u8(&a, &a, hist), RTE_OK); /* a mask of 7s */
+    assert_int_equal(hist[7], 18);
+    test_free(a.buf);
+    test_free(b.buf);
+}
+
 /* OpenCV 4.6's Otsu loop in hardware doubles (the tests may use the FPU). */
 static int32_t otsu_double(const uint32_t hist[256])
 {
@@ -356,6 +391,7 @@ int main(void)
         cmocka_unit_test(params_follow_opencv_rounding),
         cmocka_unit_test(random_images_all_widths_and_in_place),
         cmocka_unit_test(histogram_counts_every_pixel),
+        cmocka_unit_test(masked_histogram_counts_pixels_under_the_mask),
         cmocka_unit_test(otsu_matches_double_replay_on_adversarial_histograms),
         cmocka_unit_test(otsu_hand_checked_and_errors),
         cmocka_unit_test(binary64_emulation_matches_the_fpu),

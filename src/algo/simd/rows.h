@@ -14,11 +14,25 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "rtedge/cpu.h"
+
 #if defined(__x86_64__) || defined(__i386__)
 #define RTE_SIMD_X86 1
 #endif
 #if defined(__aarch64__)
 #define RTE_SIMD_NEON 1
+#endif
+
+/* The variant for a feature word: `avx2` on x86 with AVX2, `neon` on
+ * aarch64 with NEON, else the C reference `c` (pass `c` again for a
+ * variant that does not exist). Only the current CPU family's argument is
+ * compiled, so the others may name functions built for other CPUs. */
+#if defined(RTE_SIMD_X86)
+#define RTE_SIMD_PICK(features, c, avx2, neon) (((features) & RTE_CPU_X86_AVX2) ? (avx2) : (c))
+#elif defined(RTE_SIMD_NEON)
+#define RTE_SIMD_PICK(features, c, avx2, neon) (((features) & RTE_CPU_ARM_NEON) ? (neon) : (c))
+#else
+#define RTE_SIMD_PICK(features, c, avx2, neon) ((void)(features), (c))
 #endif
 
 /* 3-byte pixels (B,G,R or R,G,B) to grey with BT.601 luma weights in Q15.
@@ -68,7 +82,81 @@ void rte_morph_reduce_rows_c(uint8_t *d, const uint8_t *const *r, int32_t count,
                              int32_t n, bool is_max);
 rte_morph_rows rte_morph_rows_select(uint32_t features);
 
+/* Canny with aperture 3 and the L1 magnitude on 8-bit images (src/algo/
+ * canny.c, canny_rows.h): Sobel dx, dy and |dx| + |dy| of the row between
+ * three source rows (columns replicated at the ends), and the non-maximum
+ * suppression of a magnitude row (up, cur, down hold 0 at index -1 and
+ * width) into map codes 1 / 0 / 2 (not an edge / maybe / edge). */
+typedef void (*rte_canny_sobel_fn)(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
+                                   int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
+typedef void (*rte_canny_nms_fn)(const int16_t *up, const int16_t *cur, const int16_t *down,
+                                 const int16_t *dx, const int16_t *dy, uint8_t *map,
+                                 int32_t width, int16_t low, int16_t high);
+typedef struct rte_canny_rows {
+    rte_canny_sobel_fn sobel;
+    rte_canny_nms_fn nms;
+} rte_canny_rows;
+
+/* rte_canny_sobel_row_<isa> and rte_canny_nms_row_<isa>, of the types above. */
+#define RTE_CANNY_ROWS_DECLARE(isa)                                                              \
+    void rte_canny_sobel_row_##isa(const uint8_t *up, const uint8_t *mid, const uint8_t *down,   \
+                                   int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);       \
+    void rte_canny_nms_row_##isa(const int16_t *up, const int16_t *cur, const int16_t *down,     \
+                                 const int16_t *dx, const int16_t *dy, uint8_t *map,             \
+                                 int32_t width, int16_t low, int16_t high);
+RTE_CANNY_ROWS_DECLARE(c)
+rte_canny_rows rte_canny_rows_select(uint32_t features);
+
+/* Fixed-level threshold of a row (src/algo/threshold.c, threshold_rows.h),
+ * `type` an rte_threshold_type, 0 <= t < 255; s == d (in place) allowed. */
+typedef void (*rte_threshold_row_fn)(const uint8_t *s, uint8_t *d, int32_t n, int type,
+                                     uint8_t t, uint8_t maxval);
+void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                         uint8_t maxval);
+rte_threshold_row_fn rte_threshold_row_select(uint32_t features);
+
+/* Separable integer filters of the gradient family (src/algo/gradient.c,
+ * gradient_loops.h; also Canny's apertures 5 and 7 and L2): the column
+ * pass of ny source rows into int16, and the row pass of a padded int16
+ * row (mode an rte_row_mode of gradient_rows.h). */
+typedef void (*rte_grad_column_fn)(const uint8_t *const *rows, int32_t width, const int16_t *ky,
+                                   int32_t ny, int16_t *out);
+typedef void (*rte_grad_row_fn)(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
+                                int32_t width, int mode);
+typedef struct rte_grad_rows {
+    rte_grad_column_fn column;
+    rte_grad_row_fn row;
+} rte_grad_rows;
+
+/* rte_grad_column_<isa> and rte_grad_row_<isa>, of the types above. */
+#define RTE_GRAD_ROWS_DECLARE(isa)                                                               \
+    void rte_grad_column_##isa(const uint8_t *const *rows, int32_t width, const int16_t *ky,     \
+                               int32_t ny, int16_t *out);                                        \
+    void rte_grad_row_##isa(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,       \
+                            int32_t width, int mode);
+RTE_GRAD_ROWS_DECLARE(c)
+rte_grad_rows rte_grad_rows_select(uint32_t features);
+
+/* The lane path's colour cue (src/pipeline/lane.c, lane_cue_rows.h):
+ * white or yellow paint in a B,G,R row (R,G,B when rgb) -> 255, other
+ * pixels gray * dim_q8 / 256. Thresholds of 256 are given as *_on = 0. */
+typedef struct rte_lane_cue {
+    uint8_t white_min, white_on, yellow_min, yellow_on, yellow_b_margin;
+    uint16_t dim_q8;
+} rte_lane_cue;
+typedef void (*rte_lane_cue_row_fn)(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst,
+                                    int32_t width, const rte_lane_cue *cue, bool rgb);
+void rte_lane_cue_row_c(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
+                        const rte_lane_cue *cue, bool rgb);
+rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features);
+
 #ifdef RTE_SIMD_X86
+RTE_CANNY_ROWS_DECLARE(avx2)
+RTE_GRAD_ROWS_DECLARE(avx2)
+void rte_lane_cue_row_avx2(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
+                           const rte_lane_cue *cue, bool rgb);
+void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                            uint8_t maxval);
 void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
                             bool is_max);
 void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count,
@@ -85,6 +173,9 @@ void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
+RTE_CANNY_ROWS_DECLARE(neon)
+void rte_threshold_row_neon(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                            uint8_t maxval);
 #endif
 
 #endif
