@@ -125,29 +125,23 @@ static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t k)
 /* Follows the line both ways from step 0 until more than max_gap steps in a
  * row miss; returns the extreme steps with hits (kmin > kmax when there is
  * none), their hits in c->end2 and records the hits between them. Beyond a
- * gap of g missing steps, the end only moves on once max(2, g) steps in a
- * row hit: a stray pixel past the end of a line, or another line crossing
- * its extension (within the band for a few steps only), does not lengthen
- * it, while a line that really goes on after a gap soon qualifies. Steps
- * over pixels of earlier segments neither count as missing nor hit. */
+ * gap, the end only moves on once two steps in a row hit, so a stray pixel
+ * past the end of a line does not lengthen it. */
 static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
 {
     c->nhits = 0;
     *kmin = INT32_MAX;
     *kmax = INT32_MIN;
     for (int32_t dir = 1; dir >= -1; dir -= 2) {
-        int32_t gap = 0, miss = 0, run = 0, need = 1, kept = c->nhits;
+        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits;
         for (int32_t k = dir == 1 ? 0 : -1; in_image(c, s, k); k += dir) {
             int32_t hx2, hy2;
             int hit = probe(c, s, k, &hx2, &hy2);
             if (hit == 1) {
-                if (run == 0 && miss > 0)
-                    need = miss > 2 ? miss : 2;
                 gap = 0;
-                miss = 0;
                 run++;
                 c->hits[c->nhits++] = ((uint32_t)hy2 << 16) | (uint32_t)hx2;
-                if (run >= need) {
+                if (seed_run || run >= 2) {
                     kept = c->nhits;
                     if (k > *kmax) {
                         *kmax = k;
@@ -161,7 +155,7 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
                 continue;
             }
             run = 0;
-            miss += hit == 0;
+            seed_run &= hit == 2; /* the seed's run goes on across earlier segments */
             if (hit == 2)
                 gap = 0;
             else if (++gap > c->max_gap)
@@ -337,7 +331,7 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
                     break;
                 uint8_t *q = wc->mask + (size_t)qy * w + qx;
                 if (!live(*q)) {
-                    if (o != 0)
+                    if (o > 1 || o < -1)
                         break;
                     continue;
                 }

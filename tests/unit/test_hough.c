@@ -106,10 +106,8 @@ static void test_sizes_and_truncation(void **state)
     }
 }
 
-/* A dashed diagonal with 3-pixel gaps (dashes 10..16, 20..26, .., 50..55)
- * and a 2-pixel stub at 5..6: one segment from 10 to 55 with max_gap 4 (the
- * stub is shorter than the gap before it, so it does not move the end), none
- * longer than min_length with max_gap 2. */
+/* A dashed diagonal with 3-pixel gaps: one segment end to end with
+ * max_gap 4, none longer than min_length with max_gap 2. */
 static void test_segments_gap_and_length(void **state)
 {
     (void)state;
@@ -127,7 +125,7 @@ static void test_segments_gap_and_length(void **state)
     assert_int_equal(n, 1);
     assert_int_equal(tr, 0);
     int32_t lo = s[0].x0 < s[0].x1 ? 0 : 1;
-    assert_true(abs((lo ? s[0].x1 : s[0].x0) - 10) <= 1 && abs((lo ? s[0].y1 : s[0].y0) - 10) <= 1);
+    assert_true(abs((lo ? s[0].x1 : s[0].x0) - 5) <= 1 && abs((lo ? s[0].y1 : s[0].y0) - 5) <= 1);
     assert_true(abs((lo ? s[0].x0 : s[0].x1) - 55) <= 1 && abs((lo ? s[0].y0 : s[0].y1) - 55) <= 1);
     p.max_gap = 2;
     p.min_length = 12;
@@ -139,30 +137,41 @@ static void test_segments_gap_and_length(void **state)
     test_free(a.base);
 }
 
-/* A disc of radius 12 at (31, 27): its boundary with the 3x3 Sobel
- * gradient of the disc image gives one circle at the centre. */
-static void test_circle_disc(void **state)
+/* Edge map and 3x3 Sobel derivatives (BORDER_REPLICATE) of a disc of
+ * radius r at (cx, cy) on a w x h image, as cv::HoughCircles makes them. */
+static void disc_inputs(int32_t w, int32_t h, int32_t cx, int32_t cy, int32_t r, rte_image_u8 *e, rte_image_s16 *gx,
+                        rte_image_s16 *gy)
 {
-    (void)state;
-    const int32_t w = 64, h = 56, cx = 31, cy = 27, r = 12;
-    uint8_t img[56][64];
+    static uint8_t img[64][64];
+    assert_true(w <= 64 && h <= 64);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++)
             img[y][x] = (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r ? 200 : 40;
-    rte_image_u8 e = unit_image_u8(w, h, 3, 0);
-    rte_image_s16 gx = unit_image_s16(w, h, 2), gy = unit_image_s16(w, h, 2);
+    *e = unit_image_u8(w, h, 3, 0);
+    *gx = unit_image_s16(w, h, 2);
+    *gy = unit_image_s16(w, h, 2);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++) {
             int32_t xm = x > 0 ? x - 1 : 0, xp = x < w - 1 ? x + 1 : x, ym = y > 0 ? y - 1 : 0, yp = y < h - 1 ? y + 1 : y;
             int32_t sx = img[ym][xp] + 2 * img[y][xp] + img[yp][xp] - img[ym][xm] - 2 * img[y][xm] - img[yp][xm];
             int32_t sy = img[yp][xm] + 2 * img[yp][x] + img[yp][xp] - img[ym][xm] - 2 * img[ym][x] - img[ym][xp];
-            gx.buf[(size_t)y * gx.stride + x] = (int16_t)sx;
-            gy.buf[(size_t)y * gy.stride + x] = (int16_t)sy;
+            gx->buf[(size_t)y * gx->stride + x] = (int16_t)sx;
+            gy->buf[(size_t)y * gy->stride + x] = (int16_t)sy;
             /* pixels with a neighbour of the other side */
             int v = img[y][x];
             int border = img[ym][x] != v || img[yp][x] != v || img[y][xm] != v || img[y][xp] != v;
-            e.buf[(size_t)y * e.stride + x] = border ? 255 : 0;
+            e->buf[(size_t)y * e->stride + x] = border ? 255 : 0;
         }
+}
+
+/* A disc of radius 12 at (31, 27): one circle at the centre. */
+static void test_circle_disc(void **state)
+{
+    (void)state;
+    const int32_t w = 64, h = 56, cx = 31, cy = 27, r = 12;
+    rte_image_u8 e;
+    rte_image_s16 gx, gy;
+    disc_inputs(w, h, cx, cy, r, &e, &gx, &gy);
     rte_hough_circles_params p = { 256, 10, 8, 5, 30 };
     rte_arena a = arena_of(rte_hough_circles_scratch_size(w, h, &p));
     rte_hough_circle c[4];
@@ -194,6 +203,36 @@ static void test_circle_disc(void **state)
     test_free(gx.buf);
     test_free(gy.buf);
     test_free(a.base);
+}
+
+/* Discs centred on column 0 and on row 0 (half outside the image): the
+ * centre is found there too (the accumulator's first row and column are
+ * searched like the others; they used to be skipped). */
+static void test_circle_on_border(void **state)
+{
+    (void)state;
+    const int32_t w = 48, h = 40, r = 10;
+    const int32_t centres[2][2] = { { 0, 20 }, { 24, 0 } };
+    for (int k = 0; k < 2; k++) {
+        rte_image_u8 e;
+        rte_image_s16 gx, gy;
+        disc_inputs(w, h, centres[k][0], centres[k][1], r, &e, &gx, &gy);
+        rte_hough_circles_params p = { 256, 10, 6, 5, 20 };
+        rte_arena a = arena_of(rte_hough_circles_scratch_size(w, h, &p));
+        rte_hough_circle c[4];
+        int32_t n = -1;
+        int tr = -1;
+        assert_int_equal(rte_hough_circles(&e, &gx, &gy, &p, &a, c, 4, &n, &tr), RTE_OK);
+        assert_true(n >= 1);
+        /* within 1.5 px: only half of the edge is there to fit */
+        assert_true(abs(c[0].x_q4 - centres[k][0] * 16) <= 24 && abs(c[0].y_q4 - centres[k][1] * 16) <= 24);
+        assert_true(abs(c[0].r_q4 - r * 16) <= 16);
+        assert_int_equal(a.used, 0);
+        test_free(e.buf);
+        test_free(gx.buf);
+        test_free(gy.buf);
+        test_free(a.base);
+    }
 }
 
 static void test_argument_errors(void **state)
@@ -239,6 +278,7 @@ int main(void)
         cmocka_unit_test(test_sizes_and_truncation),
         cmocka_unit_test(test_segments_gap_and_length),
         cmocka_unit_test(test_circle_disc),
+        cmocka_unit_test(test_circle_on_border),
         cmocka_unit_test(test_argument_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
