@@ -235,6 +235,66 @@ static void test_circle_on_border(void **state)
     }
 }
 
+/* The worst case at the configured maximum size (1920x1080, the largest
+ * frame the bench and the lane configurations use): an all-255 edge map runs
+ * in an arena of exactly the *_scratch_size bytes (cmocka's guard blocks and
+ * ASan catch a write past it) and reports truncation. Circles get
+ * derivatives that point every pixel at the nearest node of a 128-pixel
+ * grid, so a hundred centres qualify. */
+static void test_maximum_size_all_255(void **state)
+{
+    (void)state;
+    const int32_t w = 1920, h = 1080;
+    rte_hough_config cfg = config_of(w, h);
+    rte_image_u8 e = unit_image_u8(w, h, 1, 255);
+    int32_t n = -1;
+    int tr = -1;
+
+    size_t bytes = rte_hough_lines_scratch_size(&cfg, 16);
+    rte_arena a;
+    rte_arena_init(&a, test_malloc(bytes), bytes);
+    rte_hough_line l[16];
+    assert_int_equal(rte_hough_lines(&cfg, &e, 100, &a, l, 16, &n, &tr), RTE_OK);
+    assert_int_equal(n, 16);
+    assert_int_equal(tr, 1);
+    assert_int_equal(a.used, 0);
+    test_free(a.base);
+
+    bytes = rte_hough_segments_scratch_size(&cfg);
+    rte_arena_init(&a, test_malloc(bytes), bytes);
+    rte_hough_segment sg[4];
+    rte_hough_segments_params sp = { 50, 30, 10 };
+    assert_int_equal(rte_hough_segments(&cfg, &e, &sp, &a, sg, 4, &n, &tr), RTE_OK);
+    assert_int_equal(n, 4);
+    assert_int_equal(tr, 1);
+    assert_int_equal(a.used, 0);
+    for (int32_t i = 0; i < n; i++)
+        assert_true(sg[i].x0 >= 0 && sg[i].x0 < w && sg[i].x1 >= 0 && sg[i].x1 < w && sg[i].y0 >= 0 &&
+                    sg[i].y0 < h && sg[i].y1 >= 0 && sg[i].y1 < h);
+    test_free(a.base);
+
+    rte_image_s16 gx = unit_image_s16(w, h, 1), gy = unit_image_s16(w, h, 1);
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++) {
+            int32_t vx = (x + 64) / 128 * 128 - x, vy = (y + 64) / 128 * 128 - y;
+            gx.buf[(size_t)y * gx.stride + x] = (int16_t)(vx ? vx * 16 : 1);
+            gy.buf[(size_t)y * gy.stride + x] = (int16_t)(vy * 16);
+        }
+    rte_hough_circles_params cp = { 256, 20, 150, 35, 40 };
+    bytes = rte_hough_circles_scratch_size(w, h, &cp);
+    rte_arena_init(&a, test_malloc(bytes), bytes);
+    rte_hough_circle c[4];
+    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &cp, &a, c, 4, &n, &tr), RTE_OK);
+    assert_int_equal(n, 4);
+    assert_int_equal(tr, 1);
+    assert_int_equal(a.used, 0);
+    test_free(a.base);
+    unit_assert_padding_u8(&e);
+    test_free(gx.buf);
+    test_free(gy.buf);
+    test_free(e.buf);
+}
+
 static void test_argument_errors(void **state)
 {
     (void)state;
@@ -279,6 +339,7 @@ int main(void)
         cmocka_unit_test(test_segments_gap_and_length),
         cmocka_unit_test(test_circle_disc),
         cmocka_unit_test(test_circle_on_border),
+        cmocka_unit_test(test_maximum_size_all_255),
         cmocka_unit_test(test_argument_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
