@@ -8,7 +8,8 @@
  * 3. Radius: a histogram of the distances (1/16 pixel bins) from the centre
  *    to all edge pixels in range; the densest window of dp pixels, with the
  *    count weighed against the radius as OpenCV does, gives the radius and
- *    the support. Circles with support > acc_threshold are kept.
+ *    the support. Circles with support > acc_threshold are kept, their
+ *    centre refined to where the gradient lines of their edge pixels meet.
  * 4. Sorted by support, then raster order of the centre; a centre closer
  *    than min_dist to a kept one is dropped.
  * Edge pixels are kept in raster order with row starts, so step 3 only
@@ -166,6 +167,17 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
  * radius becomes the mean distance to the refined centre. A move of more
  * than 2 dp, too few pixels or a degenerate system keep the grid centre;
  * radii over 1000 px (where the sums would need more than 64 bits) too. */
+/* The point p (packed y << 16 | x) relative to the centre (1/16 pixel) in
+ * (*px, *py) and its distance; 1 when that is within `band` of r. */
+static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t band, int64_t *px, int64_t *py,
+                          int64_t *d)
+{
+    *px = (int64_t)(p & 0xFFFF) * 16 - cx;
+    *py = (int64_t)(p >> 16) * 16 - cy;
+    *d = (int64_t)rte_isqrt64((uint64_t)(*px * *px + *py * *py));
+    return *d >= r - band && *d <= r + band;
+}
+
 static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, const rte_image_s16 *dx,
                    const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx, int32_t *cy, int32_t *r_q4)
 {
@@ -179,9 +191,8 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, con
     int32_t n = 0;
     for (int32_t i = row_start[y_lo]; i < row_start[y_hi + 1]; i++) {
         const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
-        const int64_t px = (int64_t)x * 16 - *cx, py = (int64_t)y * 16 - *cy;
-        const int64_t d = (int64_t)rte_isqrt64((uint64_t)(px * px + py * py));
-        if (d < r - band || d > r + band)
+        int64_t px, py, d;
+        if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
             continue;
         if (x == 0 || y == 0 || x == dx->width - 1 || y == h - 1)
             continue; /* derivatives there depend on the border rule */
@@ -224,10 +235,8 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, con
     int64_t sum = 0;
     int32_t m = 0;
     for (int32_t i = row_start[y_lo]; i < row_start[y_hi + 1]; i++) {
-        const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
-        const int64_t px = (int64_t)x * 16 - *cx, py = (int64_t)y * 16 - *cy;
-        const int64_t d = (int64_t)rte_isqrt64((uint64_t)(px * px + py * py));
-        if (d < r - band || d > r + band)
+        int64_t px, py, d;
+        if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
             continue;
         sum += d;
         m++;
