@@ -142,8 +142,11 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
  * `dx`, `dy` = its 3x3 Sobel derivatives with BORDER_REPLICATE, all of one
  * size. Each edge pixel votes along its gradient for centres between the
  * radii; centres above acc_threshold that are local maxima get a radius from
- * a histogram of edge distances; circles are sorted by support and any
- * centre closer than min_dist to a stronger one is dropped. */
+ * a histogram of edge distances, then the centre is refined to where the
+ * gradient lines of the circle's edge pixels meet (least squares, within 2 dp
+ * of the accumulator cell) and the radius to their mean distance; circles
+ * are sorted by support and any centre closer than min_dist to a stronger
+ * one is dropped. */
 rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
                              const rte_image_s16 *dy, const rte_hough_circles_params *params,
                              rte_arena *arena, rte_hough_circle *circles, int32_t max_circles,

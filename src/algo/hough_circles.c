@@ -8,7 +8,8 @@
  * 3. Radius: a histogram of the distances (1/16 pixel bins) from the centre
  *    to all edge pixels in range; the densest window of dp pixels, with the
  *    count weighed against the radius as OpenCV does, gives the radius and
- *    the support. Circles with support > acc_threshold are kept.
+ *    the support. Circles with support > acc_threshold are kept, their
+ *    centre refined to where the gradient lines of their edge pixels meet.
  * 4. Sorted by support, then raster order of the centre; a centre closer
  *    than min_dist to a kept one is dropped.
  * Edge pixels are kept in raster order with row starts, so step 3 only
@@ -63,7 +64,7 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
            rte_arena_piece_size(pixels * sizeof(uint32_t)) +
            rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t)) +
            rte_arena_piece_size(cand * sizeof(int32_t)) + rte_arena_piece_size(cand * sizeof(uint64_t)) +
-           rte_arena_piece_size(cand * 2 * sizeof(int32_t)) +
+           rte_arena_piece_size(cand * 3 * sizeof(int32_t)) +
            rte_arena_piece_size((size_t)g.nbins * sizeof(int32_t));
 }
 
@@ -103,7 +104,7 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx, co
                     int32_t x2 = x1 >> 10, y2 = y1 >> 10;
                     if (x2 >= g->acols || y2 >= g->arows)
                         break;
-                    acc[y2 * astep + x2]++;
+                    acc[(y2 + 1) * astep + x2 + 1]++; /* one cell of border */
                 }
                 sx = -sx;
                 sy = -sy;
@@ -157,6 +158,93 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
     return best_count;
 }
 
+/* Step 3b: the centre refined to the point nearest to the gradient lines of
+ * the circle's edge pixels (those within 1.5 px of the radius whose
+ * gradient points within ~14 degrees of the centre, not on the image
+ * border, where the derivatives depend on the border rule): the least-squares
+ * intersection sum (I - u u^T) c = sum (I - u u^T) p with unit gradients u
+ * in Q8. It works on arcs too, and is not held to the accumulator grid. The
+ * radius becomes the mean distance to the refined centre. A move of more
+ * than 2 dp, too few pixels or a degenerate system keep the grid centre;
+ * radii over 1000 px (where the sums would need more than 64 bits) too. */
+/* The point p (packed y << 16 | x) relative to the centre (1/16 pixel) in
+ * (*px, *py) and its distance; 1 when that is within `band` of r. */
+static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t band, int64_t *px, int64_t *py,
+                          int64_t *d)
+{
+    *px = (int64_t)(p & 0xFFFF) * 16 - cx;
+    *py = (int64_t)(p >> 16) * 16 - cy;
+    *d = (int64_t)rte_isqrt64((uint64_t)(*px * *px + *py * *py));
+    return *d >= r - band && *d <= r + band;
+}
+
+static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, const rte_image_s16 *dx,
+                   const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx, int32_t *cy, int32_t *r_q4)
+{
+    const int32_t r = *r_q4, band = 24; /* 1.5 px */
+    if (r + band >= (1 << 14))
+        return;
+    int32_t y_lo = ((*cy - r - band) >> 4) - 1, y_hi = ((*cy + r + band) >> 4) + 1;
+    y_lo = y_lo < 0 ? 0 : y_lo;
+    y_hi = y_hi > h - 1 ? h - 1 : y_hi;
+    int64_t a00 = 0, a01 = 0, a11 = 0, b0 = 0, b1 = 0;
+    int32_t n = 0;
+    for (int32_t i = row_start[y_lo]; i < row_start[y_hi + 1]; i++) {
+        const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
+        int64_t px, py, d;
+        if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
+            continue;
+        if (x == 0 || y == 0 || x == dx->width - 1 || y == h - 1)
+            continue; /* derivatives there depend on the border rule */
+        const int64_t gx = rte_s16_row(dx, y)[x], gy = rte_s16_row(dy, y)[x];
+        const int64_t dot = gx * px + gy * py, cross = gx * py - gy * px;
+        if ((cross < 0 ? -cross : cross) * 4 > (dot < 0 ? -dot : dot))
+            continue;
+        const int64_t gm = (int64_t)rte_isqrt64((uint64_t)(gx * gx + gy * gy));
+        const int64_t ux = gx * 256 / gm, uy = gy * 256 / gm; /* Q8 unit vector */
+        /* I - u u^T in Q16: [uy^2, -ux uy; -ux uy, ux^2] */
+        const int64_t m00 = uy * uy, m01 = -ux * uy, m11 = ux * ux;
+        a00 += m00;
+        a01 += m01;
+        a11 += m11;
+        b0 += m00 * px + m01 * py;
+        b1 += m01 * px + m11 * py;
+        n++;
+    }
+    if (n < 3)
+        return;
+    /* Common scale so the products below stay within 64 bits (the solution
+     * does not change): a00 + a11 <= 2^24, then |b| <= 2^24 * 2^14. */
+    while (a00 + a11 > (1 << 24)) {
+        a00 /= 2;
+        a01 /= 2;
+        a11 /= 2;
+        b0 /= 2;
+        b1 /= 2;
+    }
+    const int64_t det = a00 * a11 - a01 * a01;
+    if (det <= 0)
+        return;
+    const int64_t ox = div_round(a11 * b0 - a01 * b1, det), oy = div_round(a00 * b1 - a01 * b0, det);
+    const int64_t lim = (dp_q8 + 4) / 8; /* 2 dp in 1/16 pixel */
+    if (ox > lim || ox < -lim || oy > lim || oy < -lim)
+        return;
+    *cx += (int32_t)ox;
+    *cy += (int32_t)oy;
+    /* radius: mean distance of the same pixels to the new centre */
+    int64_t sum = 0;
+    int32_t m = 0;
+    for (int32_t i = row_start[y_lo]; i < row_start[y_hi + 1]; i++) {
+        int64_t px, py, d;
+        if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
+            continue;
+        sum += d;
+        m++;
+    }
+    if (m > 0)
+        *r_q4 = (int32_t)div_round(sum, m);
+}
+
 rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
                              const rte_image_s16 *dy, const rte_hough_circles_params *params,
                              rte_arena *arena, rte_hough_circle *circles, int32_t max_circles,
@@ -187,7 +275,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     int32_t *row_start = rte_arena_alloc(arena, ((size_t)h + 1) * sizeof(int32_t));
     int32_t *centres = rte_arena_alloc(arena, cand_cap * sizeof(int32_t));
     uint64_t *keys = rte_arena_alloc(arena, cand_cap * sizeof(uint64_t));
-    int32_t *est = rte_arena_alloc(arena, cand_cap * 2 * sizeof(int32_t));
+    int32_t *est = rte_arena_alloc(arena, cand_cap * 3 * sizeof(int32_t));
     int32_t *bins = rte_arena_alloc(arena, (size_t)g.nbins * sizeof(int32_t));
     if (!acc || !pts || !row_start || !centres || !keys || !est || !bins) {
         rte_arena_reset(arena, mark);
@@ -216,15 +304,17 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     rte_hough_topk top = { keys, (int32_t)cand_cap, 0, 0 };
     int32_t nest = 0;
     for (int32_t i = 0; i < ncent; i++) {
-        int32_t ay = centres[i] / astep, ax = centres[i] - ay * astep;
+        int32_t ay = centres[i] / astep - 1, ax = centres[i] % astep - 1;
         /* (a + 0.5) * dp in 1/16 pixel */
         int32_t cx = (int32_t)(((int64_t)(2 * ax + 1) * params->dp_q8 + 16) / 32);
         int32_t cy = (int32_t)(((int64_t)(2 * ay + 1) * params->dp_q8 + 16) / 32);
         int32_t r = 0;
         int32_t support = estimate_radius(pts, row_start, h, &g, cx, cy, bins, &r);
         if (support > thr) {
-            est[2 * nest] = i;
-            est[2 * nest + 1] = r;
+            refine(pts, row_start, h, dx, dy, params->dp_q8, &cx, &cy, &r);
+            est[3 * nest] = cx;
+            est[3 * nest + 1] = cy;
+            est[3 * nest + 2] = r;
             rte_hough_topk_push(&top, rte_hough_key(support, (uint32_t)nest));
             nest++;
         }
@@ -236,10 +326,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     int32_t nout = 0;
     for (int32_t k = 0; k < top.size; k++) {
         int32_t e = (int32_t)rte_hough_key_index(top.keys[k]);
-        int32_t c = centres[est[2 * e]];
-        int32_t ay = c / astep, ax = c - ay * astep;
-        int32_t cx = (int32_t)(((int64_t)(2 * ax + 1) * params->dp_q8 + 16) / 32);
-        int32_t cy = (int32_t)(((int64_t)(2 * ay + 1) * params->dp_q8 + 16) / 32);
+        int32_t cx = est[3 * e], cy = est[3 * e + 1];
         int ok = 1;
         for (int32_t j = 0; j < nout && ok; j++) {
             int64_t ddx = cx - circles[j].x_q4, ddy = cy - circles[j].y_q4;
@@ -251,7 +338,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
             *truncated = 1;
             break;
         }
-        rte_hough_circle out = { cx, cy, est[2 * e + 1], rte_hough_key_votes(top.keys[k]) };
+        rte_hough_circle out = { cx, cy, est[3 * e + 2], rte_hough_key_votes(top.keys[k]) };
         circles[nout++] = out;
     }
     *count = nout;

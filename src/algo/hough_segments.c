@@ -9,7 +9,9 @@
  *   - the walk accepts and consumes pixels within one pixel of the line
  *     (not only the pixel on it), so a 2-pixel-thick or slightly jagged
  *     edge gives one segment, not several overlapping ones;
- *   - only points that voted are un-voted when a line is consumed;
+ *   - only points that voted are un-voted when a line is consumed, angle by
+ *     angle (the points are collinear, so each accumulator row is touched
+ *     in a short range);
  *   - the minimum length is Euclidean. */
 #include "rtedge/hough.h"
 
@@ -38,19 +40,6 @@ typedef struct walk_ctx {
     int32_t nhits;
     int32_t end2[4]; /* the hits at the extreme steps (half pixels) */
 } walk_ctx;
-
-size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
-{
-    if (!cfg)
-        return 0;
-    size_t pixels = (size_t)cfg->max_width * (size_t)cfg->max_height;
-    size_t cells = (size_t)cfg->num_angles * (size_t)rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height);
-    size_t side = (size_t)(cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height);
-    return rte_arena_piece_size(pixels * sizeof(uint32_t)) + rte_arena_piece_size(pixels) +
-           rte_arena_piece_size(cells * sizeof(int32_t)) +
-           rte_arena_piece_size((size_t)cfg->num_angles * sizeof(int32_t)) +
-           rte_arena_piece_size((2 * side + 4) * sizeof(uint32_t));
-}
 
 static inline uint8_t mask_at(const walk_ctx *c, int32_t x, int32_t y)
 {
@@ -166,7 +155,7 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
                 continue;
             }
             run = 0;
-            seed_run = 0;
+            seed_run &= hit == 2; /* the seed's run goes on across earlier segments */
             if (hit == 2)
                 gap = 0;
             else if (++gap > c->max_gap)
@@ -236,21 +225,147 @@ static int fit_line(const walk_ctx *c, line_q16 *l)
     return 1;
 }
 
-static inline void vote(int32_t *restrict acc, int32_t *restrict idx, const rte_hough_config *cfg,
-                        int32_t numangle, int32_t numrho, int32_t bias, int32_t x, int32_t y, int32_t d,
-                        int32_t *best_n, int32_t *best_v)
+/* Removes the votes of a list of packed points (any length). */
+static void unvote(int32_t *restrict acc, const rte_hough_config *cfg, int32_t numangle, int32_t numrho,
+                   int32_t bias, const uint32_t *restrict pts, int32_t n)
 {
     const int32_t shift = cfg->trig_shift;
-    for (int32_t n = 0; n < numangle; n++)
-        idx[n] = n * numrho + ((x * cfg->rho_cos[n] + y * cfg->rho_sin[n] + bias) >> shift);
+    for (int32_t a = 0; a < numangle; a++) {
+        int32_t *restrict row = acc + (size_t)a * numrho;
+        const int32_t c = cfg->rho_cos[a], sn = cfg->rho_sin[a];
+        for (int32_t i = 0; i < n; i++)
+            row[((int32_t)(pts[i] & 0xFFFF) * c + (int32_t)(pts[i] >> 16) * sn + bias) >> shift]--;
+    }
+}
+
+/* Adds the votes of the point (x, y) and returns its strongest cell: the
+ * first angle with the most votes, as OpenCV's `max_val < val` scan. The
+ * cells are computed first so the scattered increments can overlap. */
+static void vote(int32_t *restrict acc, int32_t *restrict idx, const rte_hough_config *cfg, int32_t numangle,
+                 int32_t numrho, int32_t bias, int32_t x, int32_t y, int32_t *best_n, int32_t *best_v)
+{
+    const int32_t shift = cfg->trig_shift;
+    for (int32_t a = 0; a < numangle; a++)
+        idx[a] = a * numrho + ((x * cfg->rho_cos[a] + y * cfg->rho_sin[a] + bias) >> shift);
     int32_t bv = 0, bn = 0;
-    for (int32_t n = 0; n < numangle; n++) {
-        int32_t v = acc[idx[n]] += d;
-        bn = v > bv ? n : bn;
+    for (int32_t a = 0; a < numangle; a++) {
+        int32_t v = ++acc[idx[a]];
+        bn = v > bv ? a : bn;
         bv = v > bv ? v : bv;
     }
     *best_n = bn;
     *best_v = bv;
+}
+
+/* Everything the search shares. */
+typedef struct seg_ctx {
+    const rte_hough_config *cfg;
+    int32_t *acc;
+    int32_t numangle, numrho, bias;
+    int64_t min_len2;
+    uint32_t *gone; /* voted pixels of the segment being consumed */
+    walk_ctx wc;
+} seg_ctx;
+
+/* The cell (best_n) of the point (x, y) reached the threshold: follow the
+ * line, refit, follow again. Returns 1 and the segment when it is long
+ * enough, after consuming its pixels and removing their votes. */
+static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_hough_segment *out)
+{
+    walk_ctx *wc = &sc->wc;
+    const rte_hough_config *cfg = sc->cfg;
+    const int32_t w = wc->w, h = wc->h;
+    /* The line of the winning cell through this point: direction
+     * (-sin, cos). Follow it, refit, follow the refitted line. */
+    line_q16 l = { (int64_t)x << 16, (int64_t)y << 16, -cfg->unit_sin[best_n], cfg->unit_cos[best_n] };
+    stepper s = make_stepper(&l, x, y);
+    int32_t kmin, kmax;
+    follow(wc, &s, &kmin, &kmax);
+    for (int iter = 0; iter < 2; iter++) {
+        line_q16 f = l;
+        if (!fit_line(wc, &f))
+            break;
+        stepper s2 = make_stepper(&f, x, y);
+        int32_t kmin2, kmax2;
+        follow(wc, &s2, &kmin2, &kmax2);
+        s = s2;
+        l = f;
+        if (kmin2 == kmin && kmax2 == kmax)
+            break;
+        kmin = kmin2;
+        kmax = kmax2;
+    }
+    if (wc->nhits == 0)
+        return 0;
+
+    /* Ends: the outermost hits projected onto the line. */
+    int32_t x0, y0, x1, y1;
+    project(&l, wc->end2[0], wc->end2[1], &x0, &y0);
+    project(&l, wc->end2[2], wc->end2[3], &x1, &y1);
+    int64_t ddx = x1 - x0, ddy = y1 - y0;
+    if (ddx * ddx + ddy * ddy < sc->min_len2) {
+        /* Too short: as OpenCV, the pixels on the walked line are dropped
+         * (their votes stay), so the crowded cell does not start the same
+         * walk again; pixels beside the line stay for other lines. */
+        for (int32_t k = kmin; k <= kmax; k++) {
+            int32_t px, py;
+            stepper_at(&s, k, &px, &py);
+            if ((uint32_t)px < (uint32_t)w && (uint32_t)py < (uint32_t)h && live(wc->mask[(size_t)py * w + px]))
+                wc->mask[(size_t)py * w + px] = PX_NONE;
+        }
+        return 0;
+    }
+
+    /* Consume the pixels along the segment: one pixel either side of the
+     * line, and further out (up to CONSUME_REACH) while the edge run across
+     * the line continues, so thick edges go in one piece. */
+    const int32_t ox = s.major_x ? 0 : 1, oy = s.major_x ? 1 : 0;
+    int32_t ngone = 0;
+    for (int32_t k = kmin; k <= kmax; k++) {
+        int32_t px, py;
+        stepper_at(&s, k, &px, &py);
+        for (int32_t dir = -1; dir <= 1; dir += 2) {
+            for (int32_t o = dir == 1 ? 0 : -1; o >= -CONSUME_REACH && o <= CONSUME_REACH; o += dir) {
+                int32_t qx = px + o * ox, qy = py + o * oy;
+                if ((uint32_t)qx >= (uint32_t)w || (uint32_t)qy >= (uint32_t)h)
+                    break;
+                uint8_t *q = wc->mask + (size_t)qy * w + qx;
+                if (!live(*q)) {
+                    if (o > 1 || o < -1)
+                        break;
+                    continue;
+                }
+                if (*q == PX_VOTED)
+                    sc->gone[ngone++] = ((uint32_t)qy << 16) | (uint32_t)qx;
+                *q = PX_USED;
+            }
+        }
+    }
+    unvote(sc->acc, cfg, sc->numangle, sc->numrho, sc->bias, sc->gone, ngone);
+
+    /* The projection can fall a fraction outside the image. */
+    out->x0 = x0 < 0 ? 0 : x0 >= w ? w - 1 : x0;
+    out->x1 = x1 < 0 ? 0 : x1 >= w ? w - 1 : x1;
+    out->y0 = y0 < 0 ? 0 : y0 >= h ? h - 1 : y0;
+    out->y1 = y1 < 0 ? 0 : y1 >= h ? h - 1 : y1;
+    return 1;
+}
+
+/* Pixels one segment can consume: CONSUME_REACH either side of each step. */
+static size_t gone_capacity(size_t side) { return (2 * CONSUME_REACH + 1) * (side + 2); }
+
+size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
+{
+    if (!cfg)
+        return 0;
+    size_t pixels = (size_t)cfg->max_width * (size_t)cfg->max_height;
+    size_t cells = (size_t)cfg->num_angles * (size_t)rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height);
+    size_t side = (size_t)(cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height);
+    return rte_arena_piece_size(pixels * sizeof(uint32_t)) + rte_arena_piece_size(pixels) +
+           rte_arena_piece_size(cells * sizeof(int32_t)) +
+           rte_arena_piece_size(gone_capacity(side) * sizeof(uint32_t)) +
+           rte_arena_piece_size((size_t)cfg->num_angles * sizeof(int32_t)) +
+           rte_arena_piece_size((2 * side + 4) * sizeof(uint32_t));
 }
 
 rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
@@ -273,9 +388,10 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     uint32_t *pts = rte_arena_alloc(arena, pixels * sizeof(uint32_t));
     uint8_t *mask = rte_arena_alloc(arena, pixels);
     int32_t *acc = rte_arena_alloc(arena, (size_t)numangle * numrho * sizeof(int32_t));
+    uint32_t *gone = rte_arena_alloc(arena, gone_capacity(side) * sizeof(uint32_t));
     int32_t *idx = rte_arena_alloc(arena, (size_t)numangle * sizeof(int32_t));
     uint32_t *hits = rte_arena_alloc(arena, (2 * side + 4) * sizeof(uint32_t));
-    if (!pts || !mask || !acc || !idx || !hits) {
+    if (!pts || !mask || !acc || !gone || !idx || !hits) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
@@ -307,9 +423,9 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         pts[j] = t;
     }
 
-    const int32_t bias = rte_hough_rho_bias(cfg, numrho);
-    const int64_t min_len2 = (int64_t)params->min_length * params->min_length;
-    walk_ctx wc = { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 } };
+    seg_ctx sc = { cfg, acc, numangle, numrho, rte_hough_rho_bias(cfg, numrho),
+                   (int64_t)params->min_length * params->min_length, gone,
+                   { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 } } };
     int32_t nseg = 0;
 
     for (int32_t i = 0; i < npts; i++) {
@@ -319,83 +435,16 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
             continue; /* consumed by an earlier line */
         *m = PX_VOTED;
         int32_t best_n, best_v;
-        vote(acc, idx, cfg, numangle, numrho, bias, x, y, 1, &best_n, &best_v);
+        vote(acc, idx, cfg, numangle, numrho, sc.bias, x, y, &best_n, &best_v);
         if (best_v < params->threshold)
             continue;
-
-        /* The line of the winning cell through this point: direction
-         * (-sin, cos). Follow it, refit, follow the refitted line. */
-        line_q16 l = { (int64_t)x << 16, (int64_t)y << 16, -cfg->unit_sin[best_n], cfg->unit_cos[best_n] };
-        stepper s = make_stepper(&l, x, y);
-        int32_t kmin, kmax;
-        follow(&wc, &s, &kmin, &kmax);
-        for (int iter = 0; iter < 2; iter++) {
-            line_q16 f = l;
-            if (!fit_line(&wc, &f))
-                break;
-            stepper s2 = make_stepper(&f, x, y);
-            int32_t kmin2, kmax2;
-            follow(&wc, &s2, &kmin2, &kmax2);
-            s = s2;
-            l = f;
-            if (kmin2 == kmin && kmax2 == kmax)
-                break;
-            kmin = kmin2;
-            kmax = kmax2;
-        }
-        if (wc.nhits == 0) {
-            /* The refitted line missed its own pixels (degenerate fit):
-             * consume the seed so it is not tried again. */
-            *m = PX_NONE;
-            continue;
-        }
-
-        /* Ends: the outermost hits projected onto the line. */
-        int32_t x0, y0, x1, y1;
-        project(&l, wc.end2[0], wc.end2[1], &x0, &y0);
-        project(&l, wc.end2[2], wc.end2[3], &x1, &y1);
-        int64_t ddx = x1 - x0, ddy = y1 - y0;
-        int good = ddx * ddx + ddy * ddy >= min_len2;
-
-        /* Consume the pixels along the segment: one pixel either side of
-         * the line, and further out (up to CONSUME_REACH) while the edge run
-         * across the line continues, so thick edges go in one piece.
-         * Un-vote the pixels that voted. */
-        int32_t ox = s.major_x ? 0 : 1, oy = s.major_x ? 1 : 0;
-        for (int32_t k = kmin; k <= kmax; k++) {
-            int32_t px, py;
-            stepper_at(&s, k, &px, &py);
-            for (int32_t dir = -1; dir <= 1; dir += 2) {
-                for (int32_t o = dir == 1 ? 0 : -1; o >= -CONSUME_REACH && o <= CONSUME_REACH; o += dir) {
-                    int32_t qx = px + o * ox, qy = py + o * oy;
-                    if ((uint32_t)qx >= (uint32_t)w || (uint32_t)qy >= (uint32_t)h)
-                        break;
-                    uint8_t *q = mask + (size_t)qy * w + qx;
-                    if (!live(*q)) {
-                        if (o > 1 || o < -1)
-                            break;
-                        continue;
-                    }
-                    if (*q == PX_VOTED && good) {
-                        int32_t bn, bv;
-                        vote(acc, idx, cfg, numangle, numrho, bias, qx, qy, -1, &bn, &bv);
-                    }
-                    *q = good ? PX_USED : PX_NONE;
-                }
-            }
-        }
-        if (!good)
+        rte_hough_segment seg;
+        if (!take_segment(&sc, x, y, best_n, &seg))
             continue;
         if (nseg == max_segments) {
             *truncated = 1;
             break;
         }
-        /* The projection can fall a fraction outside the image. */
-        x0 = x0 < 0 ? 0 : x0 >= w ? w - 1 : x0;
-        x1 = x1 < 0 ? 0 : x1 >= w ? w - 1 : x1;
-        y0 = y0 < 0 ? 0 : y0 >= h ? h - 1 : y0;
-        y1 = y1 < 0 ? 0 : y1 >= h ? h - 1 : y1;
-        rte_hough_segment seg = { x0, y0, x1, y1 };
         segments[nseg++] = seg;
     }
     *count = nseg;

@@ -137,45 +137,66 @@ static void test_segments_gap_and_length(void **state)
     test_free(a.base);
 }
 
-/* A disc of radius 12 at (31, 27): its boundary with the 3x3 Sobel
- * gradient of the disc image gives one circle at the centre. */
-static void test_circle_disc(void **state)
+/* Edge map and 3x3 Sobel derivatives (BORDER_REPLICATE) of a disc of
+ * radius r at (cx, cy) on a w x h image, as cv::HoughCircles makes them. */
+static void disc_inputs(int32_t w, int32_t h, int32_t cx, int32_t cy, int32_t r, rte_image_u8 *e, rte_image_s16 *gx,
+                        rte_image_s16 *gy)
 {
-    (void)state;
-    const int32_t w = 64, h = 56, cx = 31, cy = 27, r = 12;
-    uint8_t img[56][64];
+    static uint8_t img[64][64];
+    assert_true(w <= 64 && h <= 64);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++)
             img[y][x] = (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r ? 200 : 40;
-    rte_image_u8 e = unit_image_u8(w, h, 3, 0);
-    rte_image_s16 gx = unit_image_s16(w, h, 2), gy = unit_image_s16(w, h, 2);
+    *e = unit_image_u8(w, h, 3, 0);
+    *gx = unit_image_s16(w, h, 2);
+    *gy = unit_image_s16(w, h, 2);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++) {
             int32_t xm = x > 0 ? x - 1 : 0, xp = x < w - 1 ? x + 1 : x, ym = y > 0 ? y - 1 : 0, yp = y < h - 1 ? y + 1 : y;
             int32_t sx = img[ym][xp] + 2 * img[y][xp] + img[yp][xp] - img[ym][xm] - 2 * img[y][xm] - img[yp][xm];
             int32_t sy = img[yp][xm] + 2 * img[yp][x] + img[yp][xp] - img[ym][xm] - 2 * img[ym][x] - img[ym][xp];
-            gx.buf[(size_t)y * gx.stride + x] = (int16_t)sx;
-            gy.buf[(size_t)y * gy.stride + x] = (int16_t)sy;
+            gx->buf[(size_t)y * gx->stride + x] = (int16_t)sx;
+            gy->buf[(size_t)y * gy->stride + x] = (int16_t)sy;
             /* pixels with a neighbour of the other side */
             int v = img[y][x];
             int border = img[ym][x] != v || img[yp][x] != v || img[y][xm] != v || img[y][xp] != v;
-            e.buf[(size_t)y * e.stride + x] = border ? 255 : 0;
+            e->buf[(size_t)y * e->stride + x] = border ? 255 : 0;
         }
-    rte_hough_circles_params p = { 256, 10, 8, 5, 30 };
-    rte_arena a = arena_of(rte_hough_circles_scratch_size(w, h, &p));
-    rte_hough_circle c[4];
+}
+
+/* Runs rte_hough_circles in an arena of its scratch size; checks the
+ * status and that the arena is back at its mark. Returns the count. */
+static int32_t circles_of(const rte_image_u8 *e, const rte_image_s16 *gx, const rte_image_s16 *gy,
+                          const rte_hough_circles_params *p, rte_hough_circle *c, int32_t cap, int *tr)
+{
+    rte_arena a = arena_of(rte_hough_circles_scratch_size(e->width, e->height, p));
     int32_t n = -1;
+    assert_int_equal(rte_hough_circles(e, gx, gy, p, &a, c, cap, &n, tr), RTE_OK);
+    assert_int_equal(a.used, 0);
+    test_free(a.base);
+    return n;
+}
+
+/* A disc of radius 12 at (31, 27): one circle at the centre. */
+static void test_circle_disc(void **state)
+{
+    (void)state;
+    const int32_t w = 64, h = 56, cx = 31, cy = 27, r = 12;
+    rte_image_u8 e;
+    rte_image_s16 gx, gy;
+    disc_inputs(w, h, cx, cy, r, &e, &gx, &gy);
+    rte_hough_circles_params p = { 256, 10, 8, 5, 30 };
+    rte_hough_circle c[4];
     int tr = -1;
-    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &p, &a, c, 4, &n, &tr), RTE_OK);
-    assert_int_equal(n, 1);
+    assert_int_equal(circles_of(&e, &gx, &gy, &p, c, 4, &tr), 1);
     assert_int_equal(tr, 0);
     assert_true(abs(c[0].x_q4 - cx * 16) <= 16 && abs(c[0].y_q4 - cy * 16) <= 16);
     assert_true(abs(c[0].r_q4 - r * 16) <= 16);
-    assert_int_equal(a.used, 0);
     /* no room: one qualifies, none written, truncated */
-    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &p, &a, c, 0, &n, &tr), RTE_OK);
-    assert_int_equal(n, 0);
+    assert_int_equal(circles_of(&e, &gx, &gy, &p, c, 0, &tr), 0);
     assert_int_equal(tr, 1);
+    rte_arena a = arena_of(rte_hough_circles_scratch_size(w, h, &p));
+    int32_t n = -1;
     /* argument errors */
     rte_hough_circles_params bad = p;
     bad.dp_q8 = 255;
@@ -192,6 +213,91 @@ static void test_circle_disc(void **state)
     test_free(gx.buf);
     test_free(gy.buf);
     test_free(a.base);
+}
+
+/* Discs centred on column 0 and on row 0 (half outside the image): the
+ * centre is found there too (the accumulator's first row and column are
+ * searched like the others; they used to be skipped). */
+static void test_circle_on_border(void **state)
+{
+    (void)state;
+    const int32_t w = 48, h = 40, r = 10;
+    const int32_t centres[2][2] = { { 0, 20 }, { 24, 0 } };
+    for (int k = 0; k < 2; k++) {
+        rte_image_u8 e;
+        rte_image_s16 gx, gy;
+        disc_inputs(w, h, centres[k][0], centres[k][1], r, &e, &gx, &gy);
+        rte_hough_circles_params p = { 256, 10, 6, 5, 20 };
+        rte_hough_circle c[4];
+        int tr = -1;
+        assert_true(circles_of(&e, &gx, &gy, &p, c, 4, &tr) >= 1);
+        /* within 1.5 px: only half of the edge is there to fit */
+        assert_true(abs(c[0].x_q4 - centres[k][0] * 16) <= 24 && abs(c[0].y_q4 - centres[k][1] * 16) <= 24);
+        assert_true(abs(c[0].r_q4 - r * 16) <= 16);
+        test_free(e.buf);
+        test_free(gx.buf);
+        test_free(gy.buf);
+    }
+}
+
+/* The worst case at the configured maximum size (1920x1080, the largest
+ * frame the bench and the lane configurations use): an all-255 edge map runs
+ * in an arena of exactly the *_scratch_size bytes (cmocka's guard blocks and
+ * ASan catch a write past it) and reports truncation. Circles get
+ * derivatives that point every pixel at the nearest node of a 128-pixel
+ * grid, so a hundred centres qualify. */
+static void test_maximum_size_all_255(void **state)
+{
+    (void)state;
+    const int32_t w = 1920, h = 1080;
+    rte_hough_config cfg = config_of(w, h);
+    rte_image_u8 e = unit_image_u8(w, h, 1, 255);
+    int32_t n = -1;
+    int tr = -1;
+
+    size_t bytes = rte_hough_lines_scratch_size(&cfg, 16);
+    rte_arena a;
+    rte_arena_init(&a, test_malloc(bytes), bytes);
+    rte_hough_line l[16];
+    assert_int_equal(rte_hough_lines(&cfg, &e, 100, &a, l, 16, &n, &tr), RTE_OK);
+    assert_int_equal(n, 16);
+    assert_int_equal(tr, 1);
+    assert_int_equal(a.used, 0);
+    test_free(a.base);
+
+    bytes = rte_hough_segments_scratch_size(&cfg);
+    rte_arena_init(&a, test_malloc(bytes), bytes);
+    rte_hough_segment sg[4];
+    rte_hough_segments_params sp = { 50, 30, 10 };
+    assert_int_equal(rte_hough_segments(&cfg, &e, &sp, &a, sg, 4, &n, &tr), RTE_OK);
+    assert_int_equal(n, 4);
+    assert_int_equal(tr, 1);
+    assert_int_equal(a.used, 0);
+    for (int32_t i = 0; i < n; i++)
+        assert_true(sg[i].x0 >= 0 && sg[i].x0 < w && sg[i].x1 >= 0 && sg[i].x1 < w && sg[i].y0 >= 0 &&
+                    sg[i].y0 < h && sg[i].y1 >= 0 && sg[i].y1 < h);
+    test_free(a.base);
+
+    rte_image_s16 gx = unit_image_s16(w, h, 1), gy = unit_image_s16(w, h, 1);
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++) {
+            int32_t vx = (x + 64) / 128 * 128 - x, vy = (y + 64) / 128 * 128 - y;
+            gx.buf[(size_t)y * gx.stride + x] = (int16_t)(vx ? vx * 16 : 1);
+            gy.buf[(size_t)y * gy.stride + x] = (int16_t)(vy * 16);
+        }
+    rte_hough_circles_params cp = { 256, 20, 150, 35, 40 };
+    bytes = rte_hough_circles_scratch_size(w, h, &cp);
+    rte_arena_init(&a, test_malloc(bytes), bytes);
+    rte_hough_circle c[4];
+    assert_int_equal(rte_hough_circles(&e, &gx, &gy, &cp, &a, c, 4, &n, &tr), RTE_OK);
+    assert_int_equal(n, 4);
+    assert_int_equal(tr, 1);
+    assert_int_equal(a.used, 0);
+    test_free(a.base);
+    unit_assert_padding_u8(&e);
+    test_free(gx.buf);
+    test_free(gy.buf);
+    test_free(e.buf);
 }
 
 static void test_argument_errors(void **state)
@@ -237,6 +343,8 @@ int main(void)
         cmocka_unit_test(test_sizes_and_truncation),
         cmocka_unit_test(test_segments_gap_and_length),
         cmocka_unit_test(test_circle_disc),
+        cmocka_unit_test(test_circle_on_border),
+        cmocka_unit_test(test_maximum_size_all_255),
         cmocka_unit_test(test_argument_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
