@@ -150,6 +150,7 @@ class Printer:
         self.pending = {}
         self.counts = {"lanes": 0, "grasps": 0, "statuses": 0, "images": 0, "other": 0,
                        "deadline_met": 0, "frames": 0, "last_status": None}
+        self.latencies = []  # per frame: its last message's capture-to-publish time
 
     def line(self, seq):
         lane, grasp = self.pending.pop(seq)
@@ -168,6 +169,7 @@ class Printer:
         else:
             parts.append("objects  -")
         if h is not None:
+            self.latencies.append(h.latency_us)
             parts.append("latency %6d us" % h.latency_us)
             parts.append("deadline %s" % ("met" if h.deadline_met else "MISSED"))
         self.counts["frames"] += 1
@@ -210,13 +212,15 @@ class Printer:
                 self.counts["config_hashes"].append(self.counts["last_status"]["config_hash"])
             if self.out:
                 s = self.counts["last_status"]
+                # A window without frames (e.g. the final status) has no latency to show.
+                window = ("latency p50 %d p99 %d max %d us, %.1f fps"
+                          % (s["latency_p50_us"], s["latency_p99_us"], s["latency_max_us"], s["fps"])
+                          if s["latency_max_us"] > 0 else "no frames since the previous status")
                 print("status: %d received, %d processed, %d dropped, %d bad, %d deadline misses, "
-                      "%d stages skipped, %d reconnects, %d changes refused, "
-                      "latency p50 %d p99 %d max %d us, %.1f fps"
+                      "%d stages skipped, %d reconnects, %d changes refused, %s"
                       % (s["frames_received"], s["frames_processed"], s["frames_dropped"],
                          s["frames_bad"], s["deadline_misses"], s["stages_skipped"],
-                         s["source_reconnects"], s["config_refused"], s["latency_p50_us"],
-                         s["latency_p99_us"], s["latency_max_us"], s["fps"]),
+                         s["source_reconnects"], s["config_refused"], window),
                       file=self.out, flush=True)
         elif name == "image_t":
             self.counts["images"] += 1
@@ -265,6 +269,10 @@ def main():
         pass
     p.flush()
     if args.summary:
+        if p.latencies:
+            lat = sorted(p.latencies)
+            p.counts["latency_us"] = {"p50": lat[(len(lat) - 1) * 50 // 100],
+                                      "p99": lat[(len(lat) - 1) * 99 // 100], "max": lat[-1]}
         print(json.dumps(p.counts, sort_keys=True))
 
 

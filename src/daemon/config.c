@@ -185,32 +185,26 @@ static bool set_value(rted_config *c, const key_def *k, const char *value, char 
     char *field = (char *)c + k->offset;
     char *end;
     switch (k->type) {
-    case K_INT: {
-        errno = 0;
-        long long v = strtoll(value, &end, 10);
-        if (end == value || *end || errno) {
-            say(why, why_size, "'%s' is not an integer", value);
-            return false;
-        }
-        if (v < k->min || v > k->max) {
-            say(why, why_size, "%lld is out of range %.0f..%.0f", v, k->min, k->max);
-            return false;
-        }
-        *(int32_t *)field = (int32_t)v;
-        return true;
-    }
+    case K_INT:
     case K_REAL: {
+        /* Both parsed to double: every int32 is exact in it, and the table's
+         * ranges are doubles. */
+        const bool integer = k->type == K_INT;
         errno = 0;
-        double v = strtod(value, &end);
+        double v = integer ? (double)strtoll(value, &end, 10) : strtod(value, &end);
         if (end == value || *end || errno || !isfinite(v)) {
-            say(why, why_size, "'%s' is not a number", value);
+            say(why, why_size, "'%s' is not %s", value, integer ? "an integer" : "a number");
             return false;
         }
         if (v < k->min || v > k->max) {
-            say(why, why_size, "%g is out of range %g..%g", v, k->min, k->max);
+            say(why, why_size, integer ? "%.0f is out of range %.0f..%.0f" : "%g is out of range %g..%g", v,
+                k->min, k->max);
             return false;
         }
-        *(double *)field = v;
+        if (integer)
+            *(int32_t *)field = (int32_t)v;
+        else
+            *(double *)field = v;
         return true;
     }
     case K_BOOL:
