@@ -13,7 +13,7 @@
  * 4. Sorted by support, then raster order of the centre; a centre closer
  *    than min_dist to a kept one is dropped.
  * Edge pixels are kept in raster order with row starts, so step 3 only
- * visits the rows within max_radius of the centre. */
+ * visits the square within max_radius of the centre. */
 #include "rtedge/hough.h"
 
 #include "hough_internal.h"
@@ -115,6 +115,33 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx, co
     return n;
 }
 
+static inline int32_t lower_bound(const uint32_t *pts, int32_t lo, int32_t hi, uint32_t key)
+{
+    while (lo < hi) {
+        int32_t mid = lo + (hi - lo) / 2;
+        if (pts[mid] < key)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* The edge pixels of row y within `reach` (1/16 pixel, plus a pixel) of
+ * column cx (1/16 pixel): pts[*first .. *end). pts is in raster order, so a
+ * binary search in the row finds them; the scans around a centre then visit
+ * the square around it, not whole rows. */
+static inline void ring_window(const uint32_t *pts, const int32_t *row_start, int32_t y, int32_t cx,
+                               int32_t reach, int32_t *first, int32_t *end)
+{
+    const uint32_t row = (uint32_t)y << 16;
+    int32_t x_lo = ((cx - reach) >> 4) - 1, x_hi = ((cx + reach) >> 4) + 1;
+    x_lo = x_lo < 0 ? 0 : x_lo;
+    x_hi = x_hi > RTE_MAX_SIDE ? RTE_MAX_SIDE : x_hi;
+    *first = lower_bound(pts, row_start[y], row_start[y + 1], row | (uint32_t)x_lo);
+    *end = x_hi < x_lo ? *first : lower_bound(pts, *first, row_start[y + 1], row | (uint32_t)(x_hi + 1));
+}
+
 /* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. */
 static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, int32_t h, const circle_geom *g,
                                int32_t cx, int32_t cy, int32_t *bins, int32_t *radius_q4)
@@ -126,14 +153,18 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
     for (int32_t i = 0; i < g->nbins; i++)
         bins[i] = 0;
     int32_t any = 0;
-    for (int32_t i = row_start[y_lo]; i < row_start[y_hi + 1]; i++) {
-        int64_t ddx = (int64_t)(pts[i] & 0xFFFF) * 16 - cx, ddy = (int64_t)(pts[i] >> 16) * 16 - cy;
-        int64_t d2 = ddx * ddx + ddy * ddy;
-        if (d2 < rmin2 || d2 > rmax2)
-            continue;
-        int32_t b = (int32_t)rte_isqrt64((uint64_t)d2) - g->min_r * 16;
-        bins[b < 0 ? 0 : b >= g->nbins ? g->nbins - 1 : b]++;
-        any = 1;
+    for (int32_t y = y_lo; y <= y_hi; y++) {
+        int32_t i, end;
+        ring_window(pts, row_start, y, cx, g->max_r * 16, &i, &end);
+        for (; i < end; i++) {
+            int64_t ddx = (int64_t)(pts[i] & 0xFFFF) * 16 - cx, ddy = (int64_t)y * 16 - cy;
+            int64_t d2 = ddx * ddx + ddy * ddy;
+            if (d2 < rmin2 || d2 > rmax2)
+                continue;
+            int32_t b = (int32_t)rte_isqrt64((uint64_t)d2) - g->min_r * 16;
+            bins[b < 0 ? 0 : b >= g->nbins ? g->nbins - 1 : b]++;
+            any = 1;
+        }
     }
     int32_t best_count = 0, best_r = 0;
     if (!any)
@@ -189,27 +220,31 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, con
     y_hi = y_hi > h - 1 ? h - 1 : y_hi;
     int64_t a00 = 0, a01 = 0, a11 = 0, b0 = 0, b1 = 0;
     int32_t n = 0;
-    for (int32_t i = row_start[y_lo]; i < row_start[y_hi + 1]; i++) {
-        const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
-        int64_t px, py, d;
-        if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
-            continue;
-        if (x == 0 || y == 0 || x == dx->width - 1 || y == h - 1)
-            continue; /* derivatives there depend on the border rule */
-        const int64_t gx = rte_s16_row(dx, y)[x], gy = rte_s16_row(dy, y)[x];
-        const int64_t dot = gx * px + gy * py, cross = gx * py - gy * px;
-        if ((cross < 0 ? -cross : cross) * 4 > (dot < 0 ? -dot : dot))
-            continue;
-        const int64_t gm = (int64_t)rte_isqrt64((uint64_t)(gx * gx + gy * gy));
-        const int64_t ux = gx * 256 / gm, uy = gy * 256 / gm; /* Q8 unit vector */
-        /* I - u u^T in Q16: [uy^2, -ux uy; -ux uy, ux^2] */
-        const int64_t m00 = uy * uy, m01 = -ux * uy, m11 = ux * ux;
-        a00 += m00;
-        a01 += m01;
-        a11 += m11;
-        b0 += m00 * px + m01 * py;
-        b1 += m01 * px + m11 * py;
-        n++;
+    for (int32_t y = y_lo; y <= y_hi; y++) {
+        int32_t i, end;
+        ring_window(pts, row_start, y, *cx, r + band, &i, &end);
+        for (; i < end; i++) {
+            const int32_t x = (int32_t)(pts[i] & 0xFFFF);
+            int64_t px, py, d;
+            if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
+                continue;
+            if (x == 0 || y == 0 || x == dx->width - 1 || y == h - 1)
+                continue; /* derivatives there depend on the border rule */
+            const int64_t gx = rte_s16_row(dx, y)[x], gy = rte_s16_row(dy, y)[x];
+            const int64_t dot = gx * px + gy * py, cross = gx * py - gy * px;
+            if ((cross < 0 ? -cross : cross) * 4 > (dot < 0 ? -dot : dot))
+                continue;
+            const int64_t gm = (int64_t)rte_isqrt64((uint64_t)(gx * gx + gy * gy));
+            const int64_t ux = gx * 256 / gm, uy = gy * 256 / gm; /* Q8 unit vector */
+            /* I - u u^T in Q16: [uy^2, -ux uy; -ux uy, ux^2] */
+            const int64_t m00 = uy * uy, m01 = -ux * uy, m11 = ux * ux;
+            a00 += m00;
+            a01 += m01;
+            a11 += m11;
+            b0 += m00 * px + m01 * py;
+            b1 += m01 * px + m11 * py;
+            n++;
+        }
     }
     if (n < 3)
         return;
@@ -234,12 +269,16 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, con
     /* radius: mean distance of the same pixels to the new centre */
     int64_t sum = 0;
     int32_t m = 0;
-    for (int32_t i = row_start[y_lo]; i < row_start[y_hi + 1]; i++) {
-        int64_t px, py, d;
-        if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
-            continue;
-        sum += d;
-        m++;
+    for (int32_t y = y_lo; y <= y_hi; y++) {
+        int32_t i, end;
+        ring_window(pts, row_start, y, *cx, r + band, &i, &end);
+        for (; i < end; i++) {
+            int64_t px, py, d;
+            if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
+                continue;
+            sum += d;
+            m++;
+        }
     }
     if (m > 0)
         *r_q4 = (int32_t)div_round(sum, m);
