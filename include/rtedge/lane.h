@@ -106,8 +106,11 @@ void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height
 
 typedef struct rte_lane_context rte_lane_context;
 
-/* NULL when the configuration is invalid or memory runs out. */
-rte_lane_context *rte_lane_create(const rte_lane_config *cfg);
+/* Everything the lane path needs, allocated once (as rte_grasp_create).
+ * RTE_ERR_ARGUMENT for a configuration field out of range (sizes, counts,
+ * blur size, parameters), RTE_ERR_NO_MEMORY when allocation fails; *ctx is
+ * NULL then. */
+rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **ctx);
 void rte_lane_destroy(rte_lane_context *ctx);
 /* Checks and copies new runtime parameters (RTE_ERR_ARGUMENT leaves the
  * old ones). Safe between any two frames; allocates nothing. */

@@ -98,6 +98,16 @@ static int lanes_config(const char *name, const lanes_options *o, int32_t w, int
     return CLI_EXIT_OK;
 }
 
+/* The lane context for cfg; a usage error for a configuration out of range. */
+static int lanes_create(const char *name, const rte_lane_config *cfg, rte_lane_context **ctx)
+{
+    rte_status st = rte_lane_create(cfg, ctx);
+    if (st == RTE_OK)
+        return CLI_EXIT_OK;
+    cli_error(name, "lane configuration: %s", rte_status_message(st));
+    return st == RTE_ERR_NO_MEMORY ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
+}
+
 static void print_lane(const char *key, const rte_lane *l)
 {
     printf("\"%s\":{\"found\":%s", key, l->found ? "true" : "false");
@@ -215,11 +225,8 @@ static int lanes_image(const char *name, const lanes_options *o, const char *pat
         return rc;
     rte_lane_config cfg;
     rte_lane_context *ctx = NULL;
-    if ((rc = lanes_config(name, o, in.gray.width, in.gray.height, &cfg)) == CLI_EXIT_OK &&
-        !(ctx = rte_lane_create(&cfg))) {
-        cli_error(name, "invalid lane configuration");
-        rc = CLI_EXIT_USAGE;
-    }
+    if ((rc = lanes_config(name, o, in.gray.width, in.gray.height, &cfg)) == CLI_EXIT_OK)
+        rc = lanes_create(name, &cfg, &ctx);
     if (rc == CLI_EXIT_OK) {
         rte_lane_result r;
         rte_status st = rte_lane_process_gray(ctx, &in.gray, in.bgr.buf ? &in.bgr : NULL, 0, &r);
@@ -274,11 +281,8 @@ static int lanes_directory(const char *name, const lanes_options *o, const char 
         if ((rc = cli_load(name, path, &in)) != CLI_EXIT_OK)
             break;
         rte_lane_config cfg;
-        if (!ctx && (rc = lanes_config(name, o, in.gray.width, in.gray.height, &cfg)) == CLI_EXIT_OK &&
-            !(ctx = rte_lane_create(&cfg))) {
-            cli_error(name, "invalid lane configuration");
-            rc = CLI_EXIT_USAGE;
-        }
+        if (!ctx && (rc = lanes_config(name, o, in.gray.width, in.gray.height, &cfg)) == CLI_EXIT_OK)
+            rc = lanes_create(name, &cfg, &ctx);
         if (rc == CLI_EXIT_OK) {
             rte_lane_result r;
             rte_status st = rte_lane_process_gray(ctx, &in.gray, in.bgr.buf ? &in.bgr : NULL, i, &r);
@@ -312,10 +316,12 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
     rte_lane_context *ctx = NULL;
     uint8_t *mem = malloc((size_t)info.width * (size_t)info.height);
     int rc = lanes_config(name, o, info.width, info.height, &cfg);
-    if (rc == CLI_EXIT_OK && (!mem || !(ctx = rte_lane_create(&cfg)))) {
-        cli_error(name, "invalid lane configuration or out of memory");
-        rc = CLI_EXIT_USAGE;
+    if (rc == CLI_EXIT_OK && !mem) {
+        cli_error(name, "out of memory");
+        rc = CLI_EXIT_FAILURE;
     }
+    if (rc == CLI_EXIT_OK)
+        rc = lanes_create(name, &cfg, &ctx);
     rte_image_u8 gray = rte_image_u8_view(mem, info.width, info.height, 0);
     const int64_t frame_ns = info.fps_num > 0 ? (int64_t)1000000000 * info.fps_den / info.fps_num : 0;
     for (long i = 0; rc == CLI_EXIT_OK; i++) {

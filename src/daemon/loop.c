@@ -455,8 +455,13 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     d->lane_base.blur_ksize = c->lane_blur_ksize;
     if (c->lane_enabled) {
         rte_lane_config lc = d->lane_base;
-        if (!lane_params(d, c, &lc.params) || !(d->lane = rte_lane_create(&lc))) {
+        if (!lane_params(d, c, &lc.params)) {
             say(msg, msg_size, "the lane configuration is invalid for this source", NULL);
+            goto fail;
+        }
+        rte_status st = rte_lane_create(&lc, &d->lane);
+        if (st != RTE_OK) {
+            say(msg, msg_size, "lane path: %s", rte_status_message(st));
             goto fail;
         }
     }

@@ -58,24 +58,31 @@ static void lane_image(rte_image_u8 *img, uint8_t **cursor, int32_t width, int32
     *cursor += (size_t)img->stride * (size_t)height;
 }
 
-rte_lane_context *rte_lane_create(const rte_lane_config *cfg)
+rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
 {
+    if (!out)
+        return RTE_ERR_ARGUMENT;
+    *out = NULL;
     if (!cfg || cfg->max_width < 1 || cfg->max_height < 1 || cfg->max_width > RTE_LANE_MAX_SIDE ||
         cfg->max_height > RTE_LANE_MAX_SIDE || cfg->max_segments < 1 ||
         cfg->max_segments > RTE_LANE_MAX_SEGMENTS)
-        return NULL;
+        return RTE_ERR_ARGUMENT;
     rte_lane_context *ctx = calloc(1, sizeof *ctx);
     if (!ctx)
-        return NULL;
+        return RTE_ERR_NO_MEMORY;
     ctx->cfg = *cfg;
     ctx->hough = calloc(1, sizeof *ctx->hough);
-    if (!ctx->hough || rte_gaussian_kernel_init(&ctx->blur, cfg->blur_ksize, cfg->blur_ksize, 0, 0) != RTE_OK ||
+    if (!ctx->hough) {
+        rte_lane_destroy(ctx);
+        return RTE_ERR_NO_MEMORY;
+    }
+    if (rte_gaussian_kernel_init(&ctx->blur, cfg->blur_ksize, cfg->blur_ksize, 0, 0) != RTE_OK ||
         rte_hough_config_init(ctx->hough, cfg->max_width, cfg->max_height, 1.0,
                               3.14159265358979323846 / 180.0, 0.0, 3.14159265358979323846) != RTE_OK ||
         rte_canny_params_init(&ctx->canny, 50, 150, 3, false) != RTE_OK ||
         rte_lane_set_params(ctx, &cfg->params) != RTE_OK) {
         rte_lane_destroy(ctx);
-        return NULL;
+        return RTE_ERR_ARGUMENT;
     }
     const int32_t w = cfg->max_width, h = cfg->max_height, n = cfg->max_segments;
     const size_t plane = (size_t)((w + 63) & ~63) * (size_t)h;
@@ -92,7 +99,7 @@ rte_lane_context *rte_lane_create(const rte_lane_config *cfg)
     uint8_t *mem = aligned_alloc(64, (total + 63) & ~(size_t)63);
     if (!mem) {
         rte_lane_destroy(ctx);
-        return NULL;
+        return RTE_ERR_NO_MEMORY;
     }
     ctx->memory = mem;
     uint8_t *cur = mem;
@@ -110,7 +117,8 @@ rte_lane_context *rte_lane_create(const rte_lane_config *cfg)
     ctx->keys = (int64_t *)cur;
     cur += ((size_t)n * 2 * sizeof(int64_t) + 63) & ~(size_t)63;
     rte_arena_init(&ctx->arena, cur, total - (size_t)(cur - mem));
-    return ctx;
+    *out = ctx;
+    return RTE_OK;
 }
 
 void rte_lane_destroy(rte_lane_context *ctx)

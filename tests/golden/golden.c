@@ -896,8 +896,8 @@ static rte_lane_context *lane_create(int32_t w, int32_t h, int variant)
         cfg.params.use_color = false;
         cfg.blur_ksize = 7;
     }
-    rte_lane_context *ctx = rte_lane_create(&cfg);
-    if (!ctx)
+    rte_lane_context *ctx = NULL;
+    if (rte_lane_create(&cfg, &ctx) != RTE_OK)
         die("rte_lane_create failed for %dx%d", w, h);
     return ctx;
 }

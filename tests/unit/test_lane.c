@@ -58,7 +58,8 @@ static rte_lane_context *make_ctx(int32_t w, int32_t h, rte_lane_config *cfg)
     if (!cfg)
         cfg = &local;
     rte_lane_config_default(cfg, w, h);
-    rte_lane_context *ctx = rte_lane_create(cfg);
+    rte_lane_context *ctx = NULL;
+    assert_int_equal(rte_lane_create(cfg, &ctx), RTE_OK);
     assert_non_null(ctx);
     return ctx;
 }
@@ -75,21 +76,25 @@ static void test_arguments(void **state)
 {
     (void)state;
     rte_lane_config cfg;
-    assert_null(rte_lane_create(NULL));
+    rte_lane_context *ctx = NULL;
+    assert_int_equal(rte_lane_create(NULL, &ctx), RTE_ERR_ARGUMENT);
+    assert_null(ctx);
     rte_lane_config_default(&cfg, 64, 48);
+    assert_int_equal(rte_lane_create(&cfg, NULL), RTE_ERR_ARGUMENT);
     cfg.max_width = 0;
-    assert_null(rte_lane_create(&cfg));
+    assert_int_equal(rte_lane_create(&cfg, &ctx), RTE_ERR_ARGUMENT);
     rte_lane_config_default(&cfg, 64, 48);
     cfg.max_segments = 0;
-    assert_null(rte_lane_create(&cfg));
+    assert_int_equal(rte_lane_create(&cfg, &ctx), RTE_ERR_ARGUMENT);
     rte_lane_config_default(&cfg, 64, 48);
     cfg.blur_ksize = 4;
-    assert_null(rte_lane_create(&cfg));
+    assert_int_equal(rte_lane_create(&cfg, &ctx), RTE_ERR_ARGUMENT);
     rte_lane_config_default(&cfg, 64, 48);
     cfg.params.roi_count = 2;
-    assert_null(rte_lane_create(&cfg));
+    assert_int_equal(rte_lane_create(&cfg, &ctx), RTE_ERR_ARGUMENT);
+    assert_null(ctx);
 
-    rte_lane_context *ctx = make_ctx(64, 48, &cfg);
+    ctx = make_ctx(64, 48, &cfg);
     rte_lane_params p = cfg.params;
     p.canny_low = 200;
     p.canny_high = 100;
@@ -201,7 +206,7 @@ static void test_drawn_lanes(void **state)
     /* Few segments allowed: the list is cut and says so. */
     rte_lane_destroy(ctx);
     cfg.max_segments = 1;
-    ctx = rte_lane_create(&cfg);
+    assert_int_equal(rte_lane_create(&cfg, &ctx), RTE_OK);
     assert_non_null(ctx);
     assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
     assert_int_equal(r.segment_count, 1);

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -124,7 +125,8 @@ bench::Runners bench::lane_path_runners(const Frame &f)
     rte_lane_config cfg;
     rte_lane_config_default(&cfg, f.bgr.cols, f.bgr.rows);
     auto r = std::make_shared<RteState>();
-    r->ctx = rte_lane_create(&cfg);
+    if (rte_lane_create(&cfg, &r->ctx) != RTE_OK)
+        throw std::runtime_error("rte_lane_create failed");
     r->bgr = f.bgr.clone();
     auto cv_side = std::make_shared<CvPipeline>(f, cfg);
     auto bgr = std::make_shared<cv::Mat>(f.bgr.clone());
