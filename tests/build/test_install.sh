@@ -1,0 +1,53 @@
+#!/bin/sh
+# `meson install` into a staging folder, then what a user does with the
+# result: build a program against the installed headers and pkg-config file
+# and run it, check the installed daemon's configuration with the installed
+# rtedged, and check that the systemd unit starts that rtedged with that file.
+#   test_install.sh BUILD_DIR CONSUMER_SOURCE
+set -eu
+build=$1
+consumer=$2
+dest=$(mktemp -d)
+trap 'rm -rf "$dest"' EXIT
+
+meson install -C "$build" --destdir "$dest" --no-rebuild --quiet >/dev/null
+prefix=$(meson introspect "$build" --buildoptions |
+    /usr/bin/python3 -c 'import json, sys; print([o["value"] for o in json.load(sys.stdin) if o["name"] == "prefix"][0])')
+root=$dest$prefix
+
+fail() { echo "FAIL: $*"; exit 1; }
+pc=$(find "$root" -name rtedge.pc)
+[ -n "$pc" ] || fail "no rtedge.pc under $root"
+libdir=$(dirname "$(dirname "$pc")")
+[ -e "$libdir/librtedge.so" ] || fail "no librtedge.so in $libdir"
+for h in arena blur canny color contours cpu gradient grasp hough image lane morphology \
+         polygon_mask shape status threshold; do
+    [ -f "$root/include/rtedge/$h.h" ] || fail "header rtedge/$h.h not installed"
+done
+# Only librtedge's own headers: the CLI's and the daemon's internal ones stay.
+n=$(ls "$root/include/rtedge" | wc -l)
+[ "$n" -eq 16 ] || fail "$n headers installed, expected 16"
+
+# A program built as a user builds one.
+flags=$(PKG_CONFIG_PATH="$libdir/pkgconfig" PKG_CONFIG_SYSROOT_DIR="$dest" pkg-config --cflags --libs rtedge)
+${CC:-cc} -std=c11 -Wall -Werror -o "$dest/consumer" "$consumer" $flags ||
+    fail "cannot build against the installed headers ($flags)"
+LD_LIBRARY_PATH=$libdir "$dest/consumer" || fail "the program built against the installed librtedge failed"
+
+# The daemon, its configuration and the systemd unit (when LCM is built).
+if [ -x "$root/bin/rtedged" ]; then
+    conf=$(find "$root" -path '*rtedge/rtedged.conf')
+    [ -n "$conf" ] || fail "rtedged.conf not installed"
+    LD_LIBRARY_PATH=$libdir "$root/bin/rtedged" --config "$conf" --check-config >/dev/null ||
+        fail "the installed rtedged refuses the installed $conf"
+    unit=$root/lib/systemd/system/rtedged.service
+    [ -f "$unit" ] || fail "no systemd unit at $unit"
+    exec_start=$(sed -n 's/^ExecStart=//p' "$unit")
+    [ "$exec_start" = "$prefix/bin/rtedged --config ${conf#"$dest"}" ] ||
+        fail "the unit runs '$exec_start', not the installed rtedged with the installed configuration"
+    for lcm in "$root"/share/rtedge/lcmtypes/*.lcm; do
+        [ -f "$lcm" ] || fail "no LCM type definitions installed"
+    done
+    echo "ok: rtedged, ${conf#"$dest"}, the unit and $(ls "$root"/share/rtedge/lcmtypes | wc -l) LCM types installed"
+fi
+echo "ok: librtedge, 16 headers and rtedge.pc installed under $prefix; a program built with them runs"
