@@ -16,6 +16,8 @@
 #include "rtedge/hough.h"
 
 #include "hough_internal.h"
+#include "hough_rows.h"
+#include "simd/rows.h"
 
 /* Mask states of a pixel. */
 enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2, PX_USED = 3 };
@@ -225,47 +227,76 @@ static int fit_line(const walk_ctx *c, line_q16 *l)
     return 1;
 }
 
-/* Removes the votes of a list of packed points (any length). */
-static void unvote(int32_t *restrict acc, const rte_hough_config *cfg, int32_t numangle, int32_t numrho,
-                   int32_t bias, const uint32_t *restrict pts, int32_t n)
+void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
+                      int32_t bias, int32_t shift, int32_t stride, int32_t *idx)
 {
-    const int32_t shift = cfg->trig_shift;
-    for (int32_t a = 0; a < numangle; a++) {
-        int32_t *restrict row = acc + (size_t)a * numrho;
-        const int32_t c = cfg->rho_cos[a], sn = cfg->rho_sin[a];
-        for (int32_t i = 0; i < n; i++)
-            row[((int32_t)(pts[i] & 0xFFFF) * c + (int32_t)(pts[i] >> 16) * sn + bias) >> shift]--;
-    }
+    hough_bins_row(rho_cos, rho_sin, n, x, y, bias, shift, stride, idx);
 }
 
-/* Adds the votes of the point (x, y) and returns its strongest cell: the
- * first angle with the most votes, as OpenCV's `max_val < val` scan. The
- * cells are computed first so the scattered increments can overlap. */
-static void vote(int32_t *restrict acc, int32_t *restrict idx, const rte_hough_config *cfg, int32_t numangle,
-                 int32_t numrho, int32_t bias, int32_t x, int32_t y, int32_t *best_n, int32_t *best_v)
+rte_hough_bins_fn rte_hough_bins_select(uint32_t features)
 {
-    const int32_t shift = cfg->trig_shift;
-    for (int32_t a = 0; a < numangle; a++)
-        idx[a] = a * numrho + ((x * cfg->rho_cos[a] + y * cfg->rho_sin[a] + bias) >> shift);
-    int32_t bv = 0, bn = 0;
-    for (int32_t a = 0; a < numangle; a++) {
-        int32_t v = ++acc[idx[a]];
-        bn = v > bv ? a : bn;
-        bv = v > bv ? v : bv;
-    }
-    *best_n = bn;
-    *best_v = bv;
+    return RTE_SIMD_PICK(features, rte_hough_bins_c, rte_hough_bins_avx2, rte_hough_bins_c);
 }
 
 /* Everything the search shares. */
 typedef struct seg_ctx {
     const rte_hough_config *cfg;
-    int32_t *acc;
+    rte_hough_bins_fn bins;
+    uint16_t *acc; /* 16 bits: see votes_fit_u16 */
+    int32_t *idx;  /* the cells of one point, one per angle */
     int32_t numangle, numrho, bias;
     int64_t min_len2;
     uint32_t *gone; /* voted pixels of the segment being consumed */
     walk_ctx wc;
 } seg_ctx;
+
+/* The accumulator cells of the point (x, y), one per angle. */
+static inline void cells(const seg_ctx *sc, int32_t x, int32_t y, int32_t *idx)
+{
+    sc->bins(sc->cfg->rho_cos, sc->cfg->rho_sin, sc->numangle, x, y, sc->bias, sc->cfg->trig_shift, sc->numrho,
+             idx);
+}
+
+/* Adds the votes of the point (x, y); returns the most votes of its cells
+ * (in sc->idx). The cells are computed first so the scattered increments
+ * can overlap. */
+static uint32_t vote(const seg_ctx *sc, int32_t x, int32_t y)
+{
+    cells(sc, x, y, sc->idx);
+    uint16_t *restrict acc = sc->acc;
+    const int32_t *restrict idx = sc->idx;
+    uint32_t best = 0;
+    for (int32_t a = 0; a < sc->numangle; a++) {
+        uint32_t v = acc[idx[a]] + 1u;
+        acc[idx[a]] = (uint16_t)v;
+        best = v > best ? v : best;
+    }
+    return best;
+}
+
+/* The first angle whose cell (of the point just voted) holds `votes`:
+ * OpenCV's `max_val < val` scan. Only for points that reach the threshold. */
+static int32_t first_angle_with(const seg_ctx *sc, uint32_t votes)
+{
+    int32_t a = 0;
+    while (a < sc->numangle - 1 && sc->acc[sc->idx[a]] != votes)
+        a++;
+    return a;
+}
+
+/* Removes the votes of a list of packed points, point by point: they are
+ * neighbours along a line, so consecutive points hit the same or adjacent
+ * cells at every angle. */
+static void unvote(const seg_ctx *sc, const uint32_t *pts, int32_t n)
+{
+    uint16_t *restrict acc = sc->acc;
+    const int32_t *restrict idx = sc->idx;
+    for (int32_t i = 0; i < n; i++) {
+        cells(sc, (int32_t)(pts[i] & 0xFFFF), (int32_t)(pts[i] >> 16), sc->idx);
+        for (int32_t a = 0; a < sc->numangle; a++)
+            acc[idx[a]]--;
+    }
+}
 
 /* The cell (best_n) of the point (x, y) reached the threshold: follow the
  * line, refit, follow again. Returns 1 and the segment when it is long
@@ -341,7 +372,7 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
             }
         }
     }
-    unvote(sc->acc, cfg, sc->numangle, sc->numrho, sc->bias, sc->gone, ngone);
+    unvote(sc, sc->gone, ngone);
 
     /* The projection can fall a fraction outside the image. */
     out->x0 = x0 < 0 ? 0 : x0 >= w ? w - 1 : x0;
@@ -351,12 +382,27 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
     return 1;
 }
 
+/* The accumulator is 16 bits (half the memory traffic of 32). A cell
+ * counts the pixels whose x cos + y sin falls in one rho bin (each pixel
+ * votes once; only voted pixels are un-voted): along the line's major axis,
+ * at most floor(rho sqrt 2) + 1 per column or row, plus one for the
+ * fixed-point rounding, so at most max(w, h) (rho sqrt 2 + 2) and never
+ * more than w h. Configurations where that could pass 65535 are refused
+ * (rho 1: a side above 21845 pixels). */
+static int votes_fit_u16(const rte_hough_config *cfg)
+{
+    const int64_t side = cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height;
+    const int64_t per_line = (((int64_t)cfg->rho_q16 * 92682) >> 32) + 2; /* 92682 / 65536 > sqrt 2 */
+    const int64_t pixels = (int64_t)cfg->max_width * cfg->max_height;
+    return (side * per_line < pixels ? side * per_line : pixels) <= 65535;
+}
+
 /* Pixels one segment can consume: CONSUME_REACH either side of each step. */
 static size_t gone_capacity(size_t side) { return (2 * CONSUME_REACH + 1) * (side + 2); }
 
 size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
 {
-    if (!cfg)
+    if (!cfg || !votes_fit_u16(cfg))
         return 0;
     size_t pixels = (size_t)cfg->max_width * (size_t)cfg->max_height;
     size_t cells = (size_t)cfg->num_angles * (size_t)rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height);
@@ -379,6 +425,8 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     rte_status st = rte_hough_begin(cfg, edges, count, truncated);
     if (st != RTE_OK)
         return st;
+    if (!votes_fit_u16(cfg))
+        return RTE_ERR_ARGUMENT;
     const int32_t w = edges->width, h = edges->height;
 
     const int32_t numangle = cfg->num_angles, numrho = rte_hough_rho_bins(cfg, w, h);
@@ -387,7 +435,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     const size_t mark = rte_arena_mark(arena);
     uint32_t *pts = rte_arena_alloc(arena, pixels * sizeof(uint32_t));
     uint8_t *mask = rte_arena_alloc(arena, pixels);
-    int32_t *acc = rte_arena_alloc(arena, (size_t)numangle * numrho * sizeof(int32_t));
+    uint16_t *acc = rte_arena_alloc(arena, (size_t)numangle * numrho * sizeof(uint16_t));
     uint32_t *gone = rte_arena_alloc(arena, gone_capacity(side) * sizeof(uint32_t));
     int32_t *idx = rte_arena_alloc(arena, (size_t)numangle * sizeof(int32_t));
     uint32_t *hits = rte_arena_alloc(arena, (2 * side + 4) * sizeof(uint32_t));
@@ -423,7 +471,8 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         pts[j] = t;
     }
 
-    seg_ctx sc = { cfg, acc, numangle, numrho, rte_hough_rho_bias(cfg, numrho),
+    seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), acc, idx, numangle, numrho,
+                   rte_hough_rho_bias(cfg, numrho),
                    (int64_t)params->min_length * params->min_length, gone,
                    { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 } } };
     int32_t nseg = 0;
@@ -434,12 +483,11 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         if (*m != PX_EDGE)
             continue; /* consumed by an earlier line */
         *m = PX_VOTED;
-        int32_t best_n, best_v;
-        vote(acc, idx, cfg, numangle, numrho, sc.bias, x, y, &best_n, &best_v);
-        if (best_v < params->threshold)
+        const uint32_t best = vote(&sc, x, y);
+        if (best < (uint32_t)params->threshold)
             continue;
         rte_hough_segment seg;
-        if (!take_segment(&sc, x, y, best_n, &seg))
+        if (!take_segment(&sc, x, y, first_angle_with(&sc, best), &seg))
             continue;
         if (nseg == max_segments) {
             *truncated = 1;
