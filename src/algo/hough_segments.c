@@ -15,6 +15,8 @@
  *   - the minimum length is Euclidean. */
 #include "rtedge/hough.h"
 
+#include <string.h>
+
 #include "hough_internal.h"
 #include "hough_rows.h"
 #include "simd/rows.h"
@@ -85,15 +87,13 @@ static inline void stepper_at(const stepper *s, int32_t k, int32_t *x, int32_t *
     *y = s->major_x ? mn : maj;
 }
 
-/* The edge pixels hit at step k: the pixel on the line, else a neighbour
- * across the line, extended to the whole run of edge pixels across the
- * line (up to CONSUME_REACH). Returns 1 and the run's centre in half
+/* The edge pixels hit at the step on (x, y): the pixel on the line, else
+ * a neighbour across the line, extended to the whole run of edge pixels
+ * across the line (up to CONSUME_REACH). Returns 1 and the run's centre in half
  * pixels (doubled coordinates, so fits of thick edges follow their middle),
  * 2 when only consumed pixels are there, 0 when nothing is. */
-static int probe(const walk_ctx *c, const stepper *s, int32_t k, int32_t *hx2, int32_t *hy2)
+static int probe(const walk_ctx *c, const stepper *s, int32_t x, int32_t y, int32_t *hx2, int32_t *hy2)
 {
-    int32_t x, y;
-    stepper_at(s, k, &x, &y);
     int32_t ox = s->major_x ? 0 : 1, oy = s->major_x ? 1 : 0;
     uint8_t m0 = mask_at(c, x, y), mlo = mask_at(c, x - ox, y - oy), mhi = mask_at(c, x + ox, y + oy);
     int32_t lo;
@@ -115,10 +115,8 @@ static int probe(const walk_ctx *c, const stepper *s, int32_t k, int32_t *hx2, i
     return 1;
 }
 
-static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t k)
+static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t x, int32_t y)
 {
-    int32_t x, y;
-    stepper_at(s, k, &x, &y);
     /* One pixel of slack across the line so edges along the border count. */
     return x >= -1 && y >= -1 && x <= c->w && y <= c->h &&
            (s->major_x ? (uint32_t)x < (uint32_t)c->w : (uint32_t)y < (uint32_t)c->h);
@@ -136,9 +134,12 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
     *kmax = INT32_MIN;
     for (int32_t dir = 1; dir >= -1; dir -= 2) {
         int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits;
-        for (int32_t k = dir == 1 ? 0 : -1; in_image(c, s, k); k += dir) {
-            int32_t hx2, hy2;
-            int hit = probe(c, s, k, &hx2, &hy2);
+        for (int32_t k = dir == 1 ? 0 : -1;; k += dir) {
+            int32_t x, y, hx2, hy2;
+            stepper_at(s, k, &x, &y);
+            if (!in_image(c, s, x, y))
+                break;
+            int hit = probe(c, s, x, y, &hx2, &hy2);
             if (hit == 1) {
                 gap = 0;
                 run++;
@@ -397,6 +398,9 @@ static int votes_fit_u16(const rte_hough_config *cfg)
     return (side * per_line < pixels ? side * per_line : pixels) <= 65535;
 }
 
+/* How far ahead in the point order the mask is fetched. */
+#define MASK_AHEAD 8
+
 /* Pixels one segment can consume: CONSUME_REACH either side of each step. */
 static size_t gone_capacity(size_t side) { return (2 * CONSUME_REACH + 1) * (side + 2); }
 
@@ -448,11 +452,25 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     for (int32_t y = 0; y < h; y++) {
         const uint8_t *row = rte_u8_row(edges, y);
         uint8_t *mrow = mask + (size_t)y * w;
-        for (int32_t x = 0; x < w; x++) {
-            uint8_t e = row[x] != 0;
-            mrow[x] = e;
-            pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
-            npts += e;
+        int32_t x = 0;
+        for (;;) {
+            /* edge maps are sparse: skip 8 empty pixels at a time */
+            uint64_t word;
+            for (; x + 8 <= w; x += 8) {
+                memcpy(&word, row + x, sizeof word);
+                if (word)
+                    break;
+                memcpy(mrow + x, &word, sizeof word);
+            }
+            const int32_t end = x + 8 <= w ? x + 8 : w;
+            if (x >= end)
+                break;
+            for (; x < end; x++) {
+                uint8_t e = row[x] != 0;
+                mrow[x] = e;
+                pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
+                npts += e;
+            }
         }
     }
     for (size_t i = 0; i < (size_t)numangle * numrho; i++)
@@ -478,6 +496,10 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     int32_t nseg = 0;
 
     for (int32_t i = 0; i < npts; i++) {
+        /* the points come in a random order: fetch the mask byte of one
+         * further on while this one votes */
+        if (i + MASK_AHEAD < npts)
+            __builtin_prefetch(mask + (size_t)(pts[i + MASK_AHEAD] >> 16) * w + (pts[i + MASK_AHEAD] & 0xFFFF));
         const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
         uint8_t *m = mask + (size_t)y * w + x;
         if (*m != PX_EDGE)
