@@ -15,6 +15,7 @@
  *   - the minimum length is Euclidean. */
 #include "rtedge/hough.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "hough_internal.h"
@@ -77,25 +78,41 @@ static stepper make_stepper(const line_q16 *l, int32_t start_x, int32_t start_y)
     return s;
 }
 
+/* floor(v / 65536), also right for negative values */
+static inline int32_t floor_q16(int64_t v) { return (int32_t)(v >= 0 ? v >> 16 : -((-v + 65535) >> 16)); }
+
+/* The pixel of step k: the minor coordinate in Q16 plus a half, floored. */
 static inline void stepper_at(const stepper *s, int32_t k, int32_t *x, int32_t *y)
 {
     int32_t maj = s->maj0 + k * s->dmaj;
-    int64_t mq = s->min0_q16 + (int64_t)k * s->dmin_q16 + 32768;
-    /* floor division by 65536 that is also right for negative values */
-    int32_t mn = (int32_t)(mq >= 0 ? mq >> 16 : -((-mq + 65535) >> 16));
+    int32_t mn = floor_q16(s->min0_q16 + (int64_t)k * s->dmin_q16 + 32768);
     *x = s->major_x ? maj : mn;
     *y = s->major_x ? mn : maj;
 }
 
+/* The mask at `o` pixels across the line from (x, y); `p` is the pixel's
+ * byte when the whole reach across the line is inside the map (no bounds
+ * checks then), else NULL. */
+static inline uint8_t across(const walk_ctx *c, const uint8_t *p, int32_t major_x, int32_t x, int32_t y,
+                             int32_t o)
+{
+    if (p)
+        return p[major_x ? (ptrdiff_t)o * c->w : o];
+    return major_x ? mask_at(c, x, y + o) : mask_at(c, x + o, y);
+}
+
 /* The edge pixels hit at the step on (x, y): the pixel on the line, else
  * a neighbour across the line, extended to the whole run of edge pixels
- * across the line (up to CONSUME_REACH). Returns 1 and the run's centre in half
- * pixels (doubled coordinates, so fits of thick edges follow their middle),
- * 2 when only consumed pixels are there, 0 when nothing is. */
+ * across the line (up to CONSUME_REACH). Returns 1 and the run's centre in
+ * half pixels (doubled coordinates, so fits of thick edges follow their
+ * middle), 2 when only consumed pixels are there, 0 when nothing is. */
 static int probe(const walk_ctx *c, const stepper *s, int32_t x, int32_t y, int32_t *hx2, int32_t *hy2)
 {
-    int32_t ox = s->major_x ? 0 : 1, oy = s->major_x ? 1 : 0;
-    uint8_t m0 = mask_at(c, x, y), mlo = mask_at(c, x - ox, y - oy), mhi = mask_at(c, x + ox, y + oy);
+    const int32_t mj = s->major_x, mn = mj ? y : x, mn_size = mj ? c->h : c->w;
+    const int32_t ox = mj ? 0 : 1, oy = mj ? 1 : 0;
+    const uint8_t *p = (mn >= CONSUME_REACH && mn < mn_size - CONSUME_REACH && (uint32_t)(mj ? x : y) <
+                        (uint32_t)(mj ? c->w : c->h)) ? c->mask + (size_t)y * c->w + x : NULL;
+    uint8_t m0 = across(c, p, mj, x, y, 0), mlo = across(c, p, mj, x, y, -1), mhi = across(c, p, mj, x, y, 1);
     int32_t lo;
     if (live(m0))
         lo = 0;
@@ -106,9 +123,9 @@ static int probe(const walk_ctx *c, const stepper *s, int32_t x, int32_t y, int3
     else
         return (m0 | mlo | mhi) ? 2 : 0; /* 2: only consumed pixels, a bridge */
     int32_t hi = lo;
-    while (lo > -CONSUME_REACH && live(mask_at(c, x + (lo - 1) * ox, y + (lo - 1) * oy)))
+    while (lo > -CONSUME_REACH && live(across(c, p, mj, x, y, lo - 1)))
         lo--;
-    while (hi < CONSUME_REACH && live(mask_at(c, x + (hi + 1) * ox, y + (hi + 1) * oy)))
+    while (hi < CONSUME_REACH && live(across(c, p, mj, x, y, hi + 1)))
         hi++;
     *hx2 = 2 * x + (lo + hi) * ox;
     *hy2 = 2 * y + (lo + hi) * oy;
@@ -134,9 +151,14 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
     *kmax = INT32_MIN;
     for (int32_t dir = 1; dir >= -1; dir -= 2) {
         int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits;
-        for (int32_t k = dir == 1 ? 0 : -1;; k += dir) {
-            int32_t x, y, hx2, hy2;
-            stepper_at(s, k, &x, &y);
+        /* stepper_at(s, k), one addition per step */
+        const int32_t k0 = dir == 1 ? 0 : -1, dmaj = dir * s->dmaj;
+        const int64_t dmin = dir * s->dmin_q16;
+        int32_t maj = s->maj0 + k0 * s->dmaj;
+        int64_t mq = s->min0_q16 + (int64_t)k0 * s->dmin_q16 + 32768;
+        for (int32_t k = k0;; k += dir, maj += dmaj, mq += dmin) {
+            int32_t hx2, hy2, mn = floor_q16(mq);
+            const int32_t x = s->major_x ? maj : mn, y = s->major_x ? mn : maj;
             if (!in_image(c, s, x, y))
                 break;
             int hit = probe(c, s, x, y, &hx2, &hy2);
@@ -169,11 +191,7 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
 }
 
 /* floor(v / 65536 + 1/2) for any sign */
-static inline int32_t round_q16(int64_t v)
-{
-    v += 32768;
-    return (int32_t)(v >= 0 ? v >> 16 : -((-v + 65535) >> 16));
-}
+static inline int32_t round_q16(int64_t v) { return floor_q16(v + 32768); }
 
 /* The hit (half pixels) projected onto the line, rounded to a pixel. */
 static void project(const line_q16 *l, int32_t hx2, int32_t hy2, int32_t *x, int32_t *y)
