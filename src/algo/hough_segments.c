@@ -9,9 +9,8 @@
  *   - the walk accepts and consumes pixels within one pixel of the line
  *     (not only the pixel on it), so a 2-pixel-thick or slightly jagged
  *     edge gives one segment, not several overlapping ones;
- *   - only points that voted are un-voted when a line is consumed, angle by
- *     angle (the points are collinear, so each accumulator row is touched
- *     in a short range);
+ *   - only points that voted are un-voted when a line is consumed, so a
+ *     cell never goes negative and 16 bits hold it (votes_fit_u16);
  *   - the minimum length is Euclidean. */
 #include "rtedge/hough.h"
 
@@ -478,7 +477,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
                 memcpy(&word, row + x, sizeof word);
                 if (word)
                     break;
-                memcpy(mrow + x, &word, sizeof word);
+                memcpy(mrow + x, &word, sizeof word); /* 8 zeros */
             }
             const int32_t end = x + 8 <= w ? x + 8 : w;
             if (x >= end)
