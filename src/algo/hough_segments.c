@@ -28,6 +28,12 @@ enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2, PX_USED = 3 };
  * where they cross), but they neither extend nor fit the new segment. */
 static inline int live(uint8_t m) { return m == PX_EDGE || m == PX_VOTED; }
 
+/* A run of 2-3 hits after a gap of at least CROSS_GAP steps whose hits
+ * move more than CROSS_DRIFT_Q16 (1.5 px) across the walked line is another
+ * line crossing the extension, not this one going on: it does not move the
+ * end (a run that grows to 4 hits does). */
+#define CROSS_GAP 3
+#define CROSS_DRIFT_Q16 98304
 /* How far across the line a continuing run of edge pixels is consumed. */
 #define CONSUME_REACH 3
 
@@ -142,14 +148,16 @@ static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t x, i
  * row miss; returns the extreme steps with hits (kmin > kmax when there is
  * none), their hits in c->end2 and records the hits between them. Beyond a
  * gap, the end only moves on once two steps in a row hit, so a stray pixel
- * past the end of a line does not lengthen it. */
+ * past the end of a line does not lengthen it, and not on a short run that
+ * drifts across the line (CROSS_GAP). */
 static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
 {
     c->nhits = 0;
     *kmin = INT32_MAX;
     *kmax = INT32_MIN;
     for (int32_t dir = 1; dir >= -1; dir -= 2) {
-        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits;
+        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits, drift = 0, gap_before = 0;
+        int64_t off0 = 0;
         /* stepper_at(s, k), one addition per step */
         const int32_t k0 = dir == 1 ? 0 : -1, dmaj = dir * s->dmaj;
         const int64_t dmin = dir * s->dmin_q16;
@@ -162,10 +170,16 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
                 break;
             int hit = probe(c, s, x, y, &hx2, &hy2);
             if (hit == 1) {
-                gap = 0;
                 run++;
+                /* the hit's offset across the line (Q16 pixels) */
+                const int64_t off = ((int64_t)(s->major_x ? hy2 : hx2) << 15) - (mq - 32768);
+                if (run == 1)
+                    off0 = off, drift = 0, gap_before = gap;
+                else if (gap_before >= CROSS_GAP && (off - off0 > CROSS_DRIFT_Q16 || off0 - off > CROSS_DRIFT_Q16))
+                    drift = 1;
+                gap = 0;
                 c->hits[c->nhits++] = ((uint32_t)hy2 << 16) | (uint32_t)hx2;
-                if (seed_run || run >= 2) {
+                if (seed_run || (run >= 2 && (run >= 4 || !drift))) {
                     kept = c->nhits;
                     if (k > *kmax) {
                         *kmax = k;
