@@ -104,6 +104,11 @@ typedef struct rte_hough_segments_params {
  * platform visits the points in the same order. */
 #define RTE_HOUGH_SEGMENTS_SEED 0x2545F491u
 
+/* 0 for a configuration segments refuse: the accumulator is 16 bits, so
+ * max(max_width, max_height) * (rho * sqrt 2 + 2), the most pixels one
+ * cell can count, must stay below 65536 unless the whole map has fewer
+ * pixels (rho 1: sides up to 21845). rte_hough_segments returns
+ * RTE_ERR_ARGUMENT for such a configuration. */
 size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg);
 
 /* cv::HoughLinesP (progressive probabilistic Hough) with the fixes listed in

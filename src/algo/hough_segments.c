@@ -9,13 +9,17 @@
  *   - the walk accepts and consumes pixels within one pixel of the line
  *     (not only the pixel on it), so a 2-pixel-thick or slightly jagged
  *     edge gives one segment, not several overlapping ones;
- *   - only points that voted are un-voted when a line is consumed, angle by
- *     angle (the points are collinear, so each accumulator row is touched
- *     in a short range);
+ *   - only points that voted are un-voted when a line is consumed, so a
+ *     cell never goes negative and 16 bits hold it (votes_fit_u16);
  *   - the minimum length is Euclidean. */
 #include "rtedge/hough.h"
 
+#include <stddef.h>
+#include <string.h>
+
 #include "hough_internal.h"
+#include "hough_rows.h"
+#include "simd/rows.h"
 
 /* Mask states of a pixel. */
 enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2, PX_USED = 3 };
@@ -24,6 +28,12 @@ enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2, PX_USED = 3 };
  * where they cross), but they neither extend nor fit the new segment. */
 static inline int live(uint8_t m) { return m == PX_EDGE || m == PX_VOTED; }
 
+/* A run of 2-3 hits after a gap of at least CROSS_GAP steps whose hits
+ * move more than CROSS_DRIFT_Q16 (1.5 px) across the walked line is another
+ * line crossing the extension, not this one going on: it does not move the
+ * end (a run that grows to 4 hits does). */
+#define CROSS_GAP 3
+#define CROSS_DRIFT_Q16 98304
 /* How far across the line a continuing run of edge pixels is consumed. */
 #define CONSUME_REACH 3
 
@@ -73,27 +83,41 @@ static stepper make_stepper(const line_q16 *l, int32_t start_x, int32_t start_y)
     return s;
 }
 
+/* floor(v / 65536), also right for negative values */
+static inline int32_t floor_q16(int64_t v) { return (int32_t)(v >= 0 ? v >> 16 : -((-v + 65535) >> 16)); }
+
+/* The pixel of step k: the minor coordinate in Q16 plus a half, floored. */
 static inline void stepper_at(const stepper *s, int32_t k, int32_t *x, int32_t *y)
 {
     int32_t maj = s->maj0 + k * s->dmaj;
-    int64_t mq = s->min0_q16 + (int64_t)k * s->dmin_q16 + 32768;
-    /* floor division by 65536 that is also right for negative values */
-    int32_t mn = (int32_t)(mq >= 0 ? mq >> 16 : -((-mq + 65535) >> 16));
+    int32_t mn = floor_q16(s->min0_q16 + (int64_t)k * s->dmin_q16 + 32768);
     *x = s->major_x ? maj : mn;
     *y = s->major_x ? mn : maj;
 }
 
-/* The edge pixels hit at step k: the pixel on the line, else a neighbour
- * across the line, extended to the whole run of edge pixels across the
- * line (up to CONSUME_REACH). Returns 1 and the run's centre in half
- * pixels (doubled coordinates, so fits of thick edges follow their middle),
- * 2 when only consumed pixels are there, 0 when nothing is. */
-static int probe(const walk_ctx *c, const stepper *s, int32_t k, int32_t *hx2, int32_t *hy2)
+/* The mask at `o` pixels across the line from (x, y); `p` is the pixel's
+ * byte when the whole reach across the line is inside the map (no bounds
+ * checks then), else NULL. */
+static inline uint8_t across(const walk_ctx *c, const uint8_t *p, int32_t major_x, int32_t x, int32_t y,
+                             int32_t o)
 {
-    int32_t x, y;
-    stepper_at(s, k, &x, &y);
-    int32_t ox = s->major_x ? 0 : 1, oy = s->major_x ? 1 : 0;
-    uint8_t m0 = mask_at(c, x, y), mlo = mask_at(c, x - ox, y - oy), mhi = mask_at(c, x + ox, y + oy);
+    if (p)
+        return p[major_x ? (ptrdiff_t)o * c->w : o];
+    return major_x ? mask_at(c, x, y + o) : mask_at(c, x + o, y);
+}
+
+/* The edge pixels hit at the step on (x, y): the pixel on the line, else
+ * a neighbour across the line, extended to the whole run of edge pixels
+ * across the line (up to CONSUME_REACH). Returns 1 and the run's centre in
+ * half pixels (doubled coordinates, so fits of thick edges follow their
+ * middle), 2 when only consumed pixels are there, 0 when nothing is. */
+static int probe(const walk_ctx *c, const stepper *s, int32_t x, int32_t y, int32_t *hx2, int32_t *hy2)
+{
+    const int32_t mj = s->major_x, mn = mj ? y : x, mn_size = mj ? c->h : c->w;
+    const int32_t ox = mj ? 0 : 1, oy = mj ? 1 : 0;
+    const uint8_t *p = (mn >= CONSUME_REACH && mn < mn_size - CONSUME_REACH && (uint32_t)(mj ? x : y) <
+                        (uint32_t)(mj ? c->w : c->h)) ? c->mask + (size_t)y * c->w + x : NULL;
+    uint8_t m0 = across(c, p, mj, x, y, 0), mlo = across(c, p, mj, x, y, -1), mhi = across(c, p, mj, x, y, 1);
     int32_t lo;
     if (live(m0))
         lo = 0;
@@ -104,19 +128,17 @@ static int probe(const walk_ctx *c, const stepper *s, int32_t k, int32_t *hx2, i
     else
         return (m0 | mlo | mhi) ? 2 : 0; /* 2: only consumed pixels, a bridge */
     int32_t hi = lo;
-    while (lo > -CONSUME_REACH && live(mask_at(c, x + (lo - 1) * ox, y + (lo - 1) * oy)))
+    while (lo > -CONSUME_REACH && live(across(c, p, mj, x, y, lo - 1)))
         lo--;
-    while (hi < CONSUME_REACH && live(mask_at(c, x + (hi + 1) * ox, y + (hi + 1) * oy)))
+    while (hi < CONSUME_REACH && live(across(c, p, mj, x, y, hi + 1)))
         hi++;
     *hx2 = 2 * x + (lo + hi) * ox;
     *hy2 = 2 * y + (lo + hi) * oy;
     return 1;
 }
 
-static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t k)
+static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t x, int32_t y)
 {
-    int32_t x, y;
-    stepper_at(s, k, &x, &y);
     /* One pixel of slack across the line so edges along the border count. */
     return x >= -1 && y >= -1 && x <= c->w && y <= c->h &&
            (s->major_x ? (uint32_t)x < (uint32_t)c->w : (uint32_t)y < (uint32_t)c->h);
@@ -126,22 +148,38 @@ static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t k)
  * row miss; returns the extreme steps with hits (kmin > kmax when there is
  * none), their hits in c->end2 and records the hits between them. Beyond a
  * gap, the end only moves on once two steps in a row hit, so a stray pixel
- * past the end of a line does not lengthen it. */
+ * past the end of a line does not lengthen it, and not on a short run that
+ * drifts across the line (CROSS_GAP). */
 static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
 {
     c->nhits = 0;
     *kmin = INT32_MAX;
     *kmax = INT32_MIN;
     for (int32_t dir = 1; dir >= -1; dir -= 2) {
-        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits;
-        for (int32_t k = dir == 1 ? 0 : -1; in_image(c, s, k); k += dir) {
-            int32_t hx2, hy2;
-            int hit = probe(c, s, k, &hx2, &hy2);
+        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits, drift = 0, gap_before = 0;
+        int64_t off0 = 0;
+        /* stepper_at(s, k), one addition per step */
+        const int32_t k0 = dir == 1 ? 0 : -1, dmaj = dir * s->dmaj;
+        const int64_t dmin = dir * s->dmin_q16;
+        int32_t maj = s->maj0 + k0 * s->dmaj;
+        int64_t mq = s->min0_q16 + (int64_t)k0 * s->dmin_q16 + 32768;
+        for (int32_t k = k0;; k += dir, maj += dmaj, mq += dmin) {
+            int32_t hx2, hy2, mn = floor_q16(mq);
+            const int32_t x = s->major_x ? maj : mn, y = s->major_x ? mn : maj;
+            if (!in_image(c, s, x, y))
+                break;
+            int hit = probe(c, s, x, y, &hx2, &hy2);
             if (hit == 1) {
-                gap = 0;
                 run++;
+                /* the hit's offset across the line (Q16 pixels) */
+                const int64_t off = ((int64_t)(s->major_x ? hy2 : hx2) << 15) - (mq - 32768);
+                if (run == 1)
+                    off0 = off, drift = 0, gap_before = gap;
+                else if (gap_before >= CROSS_GAP && (off - off0 > CROSS_DRIFT_Q16 || off0 - off > CROSS_DRIFT_Q16))
+                    drift = 1;
+                gap = 0;
                 c->hits[c->nhits++] = ((uint32_t)hy2 << 16) | (uint32_t)hx2;
-                if (seed_run || run >= 2) {
+                if (seed_run || (run >= 2 && (run >= 4 || !drift))) {
                     kept = c->nhits;
                     if (k > *kmax) {
                         *kmax = k;
@@ -166,11 +204,7 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
 }
 
 /* floor(v / 65536 + 1/2) for any sign */
-static inline int32_t round_q16(int64_t v)
-{
-    v += 32768;
-    return (int32_t)(v >= 0 ? v >> 16 : -((-v + 65535) >> 16));
-}
+static inline int32_t round_q16(int64_t v) { return floor_q16(v + 32768); }
 
 /* The hit (half pixels) projected onto the line, rounded to a pixel. */
 static void project(const line_q16 *l, int32_t hx2, int32_t hy2, int32_t *x, int32_t *y)
@@ -225,47 +259,76 @@ static int fit_line(const walk_ctx *c, line_q16 *l)
     return 1;
 }
 
-/* Removes the votes of a list of packed points (any length). */
-static void unvote(int32_t *restrict acc, const rte_hough_config *cfg, int32_t numangle, int32_t numrho,
-                   int32_t bias, const uint32_t *restrict pts, int32_t n)
+void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
+                      int32_t bias, int32_t shift, int32_t stride, int32_t *idx)
 {
-    const int32_t shift = cfg->trig_shift;
-    for (int32_t a = 0; a < numangle; a++) {
-        int32_t *restrict row = acc + (size_t)a * numrho;
-        const int32_t c = cfg->rho_cos[a], sn = cfg->rho_sin[a];
-        for (int32_t i = 0; i < n; i++)
-            row[((int32_t)(pts[i] & 0xFFFF) * c + (int32_t)(pts[i] >> 16) * sn + bias) >> shift]--;
-    }
+    hough_bins_row(rho_cos, rho_sin, n, x, y, bias, shift, stride, idx);
 }
 
-/* Adds the votes of the point (x, y) and returns its strongest cell: the
- * first angle with the most votes, as OpenCV's `max_val < val` scan. The
- * cells are computed first so the scattered increments can overlap. */
-static void vote(int32_t *restrict acc, int32_t *restrict idx, const rte_hough_config *cfg, int32_t numangle,
-                 int32_t numrho, int32_t bias, int32_t x, int32_t y, int32_t *best_n, int32_t *best_v)
+rte_hough_bins_fn rte_hough_bins_select(uint32_t features)
 {
-    const int32_t shift = cfg->trig_shift;
-    for (int32_t a = 0; a < numangle; a++)
-        idx[a] = a * numrho + ((x * cfg->rho_cos[a] + y * cfg->rho_sin[a] + bias) >> shift);
-    int32_t bv = 0, bn = 0;
-    for (int32_t a = 0; a < numangle; a++) {
-        int32_t v = ++acc[idx[a]];
-        bn = v > bv ? a : bn;
-        bv = v > bv ? v : bv;
-    }
-    *best_n = bn;
-    *best_v = bv;
+    return RTE_SIMD_PICK(features, rte_hough_bins_c, rte_hough_bins_avx2, rte_hough_bins_c);
 }
 
 /* Everything the search shares. */
 typedef struct seg_ctx {
     const rte_hough_config *cfg;
-    int32_t *acc;
+    rte_hough_bins_fn bins;
+    uint16_t *acc; /* 16 bits: see votes_fit_u16 */
+    int32_t *idx;  /* the cells of one point, one per angle */
     int32_t numangle, numrho, bias;
     int64_t min_len2;
     uint32_t *gone; /* voted pixels of the segment being consumed */
     walk_ctx wc;
 } seg_ctx;
+
+/* The accumulator cells of the point (x, y), one per angle. */
+static inline void cells(const seg_ctx *sc, int32_t x, int32_t y, int32_t *idx)
+{
+    sc->bins(sc->cfg->rho_cos, sc->cfg->rho_sin, sc->numangle, x, y, sc->bias, sc->cfg->trig_shift, sc->numrho,
+             idx);
+}
+
+/* Adds the votes of the point (x, y); returns the most votes of its cells
+ * (in sc->idx). The cells are computed first so the scattered increments
+ * can overlap. */
+static uint32_t vote(const seg_ctx *sc, int32_t x, int32_t y)
+{
+    cells(sc, x, y, sc->idx);
+    uint16_t *restrict acc = sc->acc;
+    const int32_t *restrict idx = sc->idx;
+    uint32_t best = 0;
+    for (int32_t a = 0; a < sc->numangle; a++) {
+        uint32_t v = acc[idx[a]] + 1u;
+        acc[idx[a]] = (uint16_t)v;
+        best = v > best ? v : best;
+    }
+    return best;
+}
+
+/* The first angle whose cell (of the point just voted) holds `votes`:
+ * OpenCV's `max_val < val` scan. Only for points that reach the threshold. */
+static int32_t first_angle_with(const seg_ctx *sc, uint32_t votes)
+{
+    int32_t a = 0;
+    while (a < sc->numangle - 1 && sc->acc[sc->idx[a]] != votes)
+        a++;
+    return a;
+}
+
+/* Removes the votes of a list of packed points, point by point: they are
+ * neighbours along a line, so consecutive points hit the same or adjacent
+ * cells at every angle. */
+static void unvote(const seg_ctx *sc, const uint32_t *pts, int32_t n)
+{
+    uint16_t *restrict acc = sc->acc;
+    const int32_t *restrict idx = sc->idx;
+    for (int32_t i = 0; i < n; i++) {
+        cells(sc, (int32_t)(pts[i] & 0xFFFF), (int32_t)(pts[i] >> 16), sc->idx);
+        for (int32_t a = 0; a < sc->numangle; a++)
+            acc[idx[a]]--;
+    }
+}
 
 /* The cell (best_n) of the point (x, y) reached the threshold: follow the
  * line, refit, follow again. Returns 1 and the segment when it is long
@@ -341,7 +404,7 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
             }
         }
     }
-    unvote(sc->acc, cfg, sc->numangle, sc->numrho, sc->bias, sc->gone, ngone);
+    unvote(sc, sc->gone, ngone);
 
     /* The projection can fall a fraction outside the image. */
     out->x0 = x0 < 0 ? 0 : x0 >= w ? w - 1 : x0;
@@ -351,12 +414,30 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
     return 1;
 }
 
+/* The accumulator is 16 bits (half the memory traffic of 32). A cell
+ * counts the pixels whose x cos + y sin falls in one rho bin (each pixel
+ * votes once; only voted pixels are un-voted): along the line's major axis,
+ * at most floor(rho sqrt 2) + 1 per column or row, plus one for the
+ * fixed-point rounding, so at most max(w, h) (rho sqrt 2 + 2) and never
+ * more than w h. Configurations where that could pass 65535 are refused
+ * (rho 1: a side above 21845 pixels). */
+static int votes_fit_u16(const rte_hough_config *cfg)
+{
+    const int64_t side = cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height;
+    const int64_t per_line = (((int64_t)cfg->rho_q16 * 92682) >> 32) + 2; /* 92682 / 65536 > sqrt 2 */
+    const int64_t pixels = (int64_t)cfg->max_width * cfg->max_height;
+    return (side * per_line < pixels ? side * per_line : pixels) <= 65535;
+}
+
+/* How far ahead in the point order the mask is fetched. */
+#define MASK_AHEAD 8
+
 /* Pixels one segment can consume: CONSUME_REACH either side of each step. */
 static size_t gone_capacity(size_t side) { return (2 * CONSUME_REACH + 1) * (side + 2); }
 
 size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
 {
-    if (!cfg)
+    if (!cfg || !votes_fit_u16(cfg))
         return 0;
     size_t pixels = (size_t)cfg->max_width * (size_t)cfg->max_height;
     size_t cells = (size_t)cfg->num_angles * (size_t)rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height);
@@ -379,6 +460,8 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     rte_status st = rte_hough_begin(cfg, edges, count, truncated);
     if (st != RTE_OK)
         return st;
+    if (!votes_fit_u16(cfg))
+        return RTE_ERR_ARGUMENT;
     const int32_t w = edges->width, h = edges->height;
 
     const int32_t numangle = cfg->num_angles, numrho = rte_hough_rho_bins(cfg, w, h);
@@ -387,7 +470,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     const size_t mark = rte_arena_mark(arena);
     uint32_t *pts = rte_arena_alloc(arena, pixels * sizeof(uint32_t));
     uint8_t *mask = rte_arena_alloc(arena, pixels);
-    int32_t *acc = rte_arena_alloc(arena, (size_t)numangle * numrho * sizeof(int32_t));
+    uint16_t *acc = rte_arena_alloc(arena, (size_t)numangle * numrho * sizeof(uint16_t));
     uint32_t *gone = rte_arena_alloc(arena, gone_capacity(side) * sizeof(uint32_t));
     int32_t *idx = rte_arena_alloc(arena, (size_t)numangle * sizeof(int32_t));
     uint32_t *hits = rte_arena_alloc(arena, (2 * side + 4) * sizeof(uint32_t));
@@ -400,11 +483,25 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     for (int32_t y = 0; y < h; y++) {
         const uint8_t *row = rte_u8_row(edges, y);
         uint8_t *mrow = mask + (size_t)y * w;
-        for (int32_t x = 0; x < w; x++) {
-            uint8_t e = row[x] != 0;
-            mrow[x] = e;
-            pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
-            npts += e;
+        int32_t x = 0;
+        for (;;) {
+            /* edge maps are sparse: skip 8 empty pixels at a time */
+            uint64_t word;
+            for (; x + 8 <= w; x += 8) {
+                memcpy(&word, row + x, sizeof word);
+                if (word)
+                    break;
+                memcpy(mrow + x, &word, sizeof word); /* 8 zeros */
+            }
+            const int32_t end = x + 8 <= w ? x + 8 : w;
+            if (x >= end)
+                break;
+            for (; x < end; x++) {
+                uint8_t e = row[x] != 0;
+                mrow[x] = e;
+                pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
+                npts += e;
+            }
         }
     }
     for (size_t i = 0; i < (size_t)numangle * numrho; i++)
@@ -423,23 +520,27 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         pts[j] = t;
     }
 
-    seg_ctx sc = { cfg, acc, numangle, numrho, rte_hough_rho_bias(cfg, numrho),
+    seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), acc, idx, numangle, numrho,
+                   rte_hough_rho_bias(cfg, numrho),
                    (int64_t)params->min_length * params->min_length, gone,
                    { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 } } };
     int32_t nseg = 0;
 
     for (int32_t i = 0; i < npts; i++) {
+        /* the points come in a random order: fetch the mask byte of one
+         * further on while this one votes */
+        if (i + MASK_AHEAD < npts)
+            __builtin_prefetch(mask + (size_t)(pts[i + MASK_AHEAD] >> 16) * w + (pts[i + MASK_AHEAD] & 0xFFFF));
         const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
         uint8_t *m = mask + (size_t)y * w + x;
         if (*m != PX_EDGE)
             continue; /* consumed by an earlier line */
         *m = PX_VOTED;
-        int32_t best_n, best_v;
-        vote(acc, idx, cfg, numangle, numrho, sc.bias, x, y, &best_n, &best_v);
-        if (best_v < params->threshold)
+        const uint32_t best = vote(&sc, x, y);
+        if (best < (uint32_t)params->threshold)
             continue;
         rte_hough_segment seg;
-        if (!take_segment(&sc, x, y, best_n, &seg))
+        if (!take_segment(&sc, x, y, first_angle_with(&sc, best), &seg))
             continue;
         if (nseg == max_segments) {
             *truncated = 1;

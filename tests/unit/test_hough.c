@@ -323,6 +323,19 @@ static void test_argument_errors(void **state)
     p.threshold = 5;
     p.max_gap = -1;
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    /* configurations where a 16-bit segment accumulator cell could pass
+     * 65535 are refused; rho 1 up to a side of 21845 and any rho on a
+     * small map are fine */
+    rte_hough_config wide;
+    assert_int_equal(rte_hough_config_init(&wide, 1920, 1080, 40.0, PI / 180, 0.0, PI), RTE_OK);
+    assert_int_equal(rte_hough_segments_scratch_size(&wide), 0);
+    assert_int_equal(rte_hough_segments(&wide, &e, &p, &a, s, 4, &n, &tr), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_hough_config_init(&wide, 22000, 4, 1.0, PI / 180, 0.0, PI), RTE_OK);
+    assert_int_equal(rte_hough_segments_scratch_size(&wide), 0);
+    assert_int_equal(rte_hough_config_init(&wide, 21845, 4, 1.0, PI / 180, 0.0, PI), RTE_OK);
+    assert_true(rte_hough_segments_scratch_size(&wide) > 0);
+    assert_int_equal(rte_hough_config_init(&wide, 16, 16, 40.0, PI / 180, 0.0, PI), RTE_OK);
+    assert_true(rte_hough_segments_scratch_size(&wide) > 0);
     /* an arena too small: no memory, arena untouched */
     rte_arena tiny = arena_of(64);
     p.max_gap = 2;

@@ -12,10 +12,14 @@
 #include "rtedge/canny.h"
 #include "rtedge/color.h"
 #include "rtedge/cpu.h"
+#include "rtedge/hough.h"
 #include "rtedge/threshold.h"
 
 #include "../../src/algo/gradient_rows.h"
+#include "../../src/algo/hough_internal.h"
 #include "../../src/algo/simd/rows.h"
+
+#define PI_SIMD 3.14159265358979323846
 
 enum { GUARD = 64, MAX_OFFSET = 32 };
 
@@ -602,6 +606,48 @@ static void every_colour_matches_reference(void **state)
     test_free(want.buf);
 }
 
+/* Hough segment bins: each variant against the C reference on the trig
+ * tables of random configurations (sizes, rho, theta), random points of
+ * the configured size, angle counts that end anywhere in a vector. */
+typedef struct hough_bins_variant {
+    variant_head head;
+    rte_hough_bins_fn bins;
+} hough_bins_variant;
+
+static const hough_bins_variant hough_bins_variants[] = {
+#ifdef RTE_SIMD_X86
+    { { "hough_bins_avx2", RTE_CPU_X86_AVX2 }, rte_hough_bins_avx2 },
+#endif
+    { { "hough_bins_c", 0 }, rte_hough_bins_c },
+};
+
+static void hough_bins(const void *variant, uint32_t *seed)
+{
+    const hough_bins_variant *v = variant;
+    static const double rhos[] = { 1.0, 0.5, 2.5 }, thetas[] = { PI_SIMD / 180, PI_SIMD / 360, PI_SIMD / 1024 };
+    static rte_hough_config cfg;
+    int32_t want[RTE_HOUGH_MAX_ANGLES + GUARD], got[RTE_HOUGH_MAX_ANGLES + GUARD];
+    for (int k = 0; k < 60; k++) {
+        const int32_t w = 1 + (int32_t)(unit_rand(seed) % 4000), h = 1 + (int32_t)(unit_rand(seed) % 4000);
+        assert_int_equal(rte_hough_config_init(&cfg, w, h, rhos[k % 3], thetas[(k / 3) % 3], 0.0, PI_SIMD), RTE_OK);
+        const int32_t numrho = rte_hough_rho_bins(&cfg, w, h), bias = rte_hough_rho_bias(&cfg, numrho);
+        for (int p = 0; p < 20; p++) {
+            const int32_t n = p == 0 ? cfg.num_angles : 1 + (int32_t)(unit_rand(seed) % (uint32_t)cfg.num_angles);
+            const int32_t x = (int32_t)(unit_rand(seed) % (uint32_t)w), y = (int32_t)(unit_rand(seed) % (uint32_t)h);
+            memset(want, 0xEE, sizeof want);
+            memset(got, 0xEE, sizeof got);
+            rte_hough_bins_c(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, numrho, want);
+            v->bins(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, numrho, got);
+            if (memcmp(want, got, sizeof want) != 0)
+                fail_msg("%s %dx%d point (%d, %d) n %d differs", v->head.name, (int)w, (int)h, (int)x, (int)y, (int)n);
+            for (int32_t a = 0; a < n; a++)
+                assert_true(got[a] >= a * numrho && got[a] < (a + 1) * numrho);
+        }
+    }
+}
+
+VARIANTS_TEST(hough_bins, hough_bins_variants, 0x4B0Fu)
+
 static void force_c_selects_the_reference(void **state)
 {
     (void)state;
@@ -616,6 +662,7 @@ static void force_c_selects_the_reference(void **state)
     if (hw & RTE_CPU_X86_AVX2) {
         assert_true(rte_canny_rows_select(hw).sobel == rte_canny_sobel_row_avx2);
         assert_true(rte_threshold_row_select(hw) == rte_threshold_row_avx2);
+        assert_true(rte_hough_bins_select(hw) == rte_hough_bins_avx2);
     }
 #endif
 #ifdef RTE_SIMD_NEON
@@ -635,6 +682,7 @@ static void force_c_selects_the_reference(void **state)
     rte_canny_rows c = rte_canny_rows_select(rte_cpu_features());
     assert_true(c.sobel == rte_canny_sobel_row_c && c.nms == rte_canny_nms_row_c);
     assert_true(rte_threshold_row_select(rte_cpu_features()) == rte_threshold_row_c);
+    assert_true(rte_hough_bins_select(rte_cpu_features()) == rte_hough_bins_c);
     assert_true(rte_lane_cue_row_select(rte_cpu_features()) == rte_lane_cue_row_c);
     rte_grad_rows gr = rte_grad_rows_select(rte_cpu_features());
     assert_true(gr.column == rte_grad_column_c && gr.row == rte_grad_row_c);
@@ -728,6 +776,7 @@ int main(void)
         cmocka_unit_test(threshold_rows_match_reference),
         cmocka_unit_test(lane_cue_rows_match_reference),
         cmocka_unit_test(grad_rows_match_reference),
+        cmocka_unit_test(hough_bins_match_reference),
         cmocka_unit_test(force_c_selects_the_reference),
         cmocka_unit_test(forced_and_dispatched_images_agree),
         cmocka_unit_test(forced_and_dispatched_canny_and_threshold_agree),
