@@ -260,17 +260,50 @@ static int64_t seg_residual_q8(const lane_line *l, const rte_lane_segment *s)
     return r0 > r1 ? r0 : r1;
 }
 
-/* Length-weighted least squares of x on y over the inlier segments, each
- * taken as a uniform line of points (its second moment includes the
- * segment's own extent: d^2/12). Returns false when the rows do not spread
- * enough to give a slope. */
+/* What the least-squares fit knows besides the segments: the rows the lane
+ * spans, and a slope to lean on (the tracked lane's, as predicted for this
+ * frame) with the weight of R^3 in the units of the fit's row moment, i.e.
+ * as much as a marking along R rows would give: one short dash far up the
+ * image then moves the lane sideways but hardly turns it, while paint along
+ * the whole lane outweighs the prior. weight 0: no prior. */
+typedef struct lane_fit_hint {
+    int32_t y_top, y_bottom;
+    int64_t slope_q16;
+    int64_t weight;
+} lane_fit_hint;
+
+/* A segment's weight by its row, /256: the inverse variance of a pixel's
+ * lateral position on the road, which grows as (distance from the horizon)^2
+ * in perspective (the horizon taken an eighth of the lane above the ROI
+ * top). The lane near the camera is measured best and matters most: on a
+ * bend, far dashes must not turn the lane away from the near ones. */
+static int64_t row_weight_q8(const lane_fit_hint *h, const rte_lane_segment *s)
+{
+    const int64_t span = h->y_bottom - h->y_top, q = span / 8 + 1;
+    if (span <= 0)
+        return 256;
+    int64_t y = (s->y0 + s->y1) / 2 - h->y_top;
+    y = y < 0 ? 0 : y > span ? span : y;
+    return 256 * (y + q) * (y + q) / ((span + q) * (span + q)) + 1;
+}
+
+/* A segment's own direction counts this many times the spread of its
+ * pixels: it is fitted to all of them (the Hough refit), and on a bend the
+ * markings' local direction describes the lane near them better than the
+ * chord between dashes far apart. */
+#define LANE_DIRECTION_WEIGHT 4
+
+/* Weighted least squares of x on y over the inlier segments, each taken as
+ * a uniform line of points (its second moment includes the segment's own
+ * extent: d^2/12), weighted by length and row_weight_q8. Returns false
+ * when the rows do not spread enough to give a slope and there is no prior. */
 static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *members, int32_t n,
-                              lane_line *line)
+                              const lane_fit_hint *hint, lane_line *line)
 {
     int64_t w = 0, sx = 0, sy = 0;
     for (int32_t i = 0; i < n; i++) {
         const rte_lane_segment *s = &segs[members[i]];
-        const int64_t len = seg_length(s);
+        const int64_t len = seg_length(s) * row_weight_q8(hint, s);
         w += len;
         sx += len * (s->x0 + s->x1); /* Q1 */
         sy += len * (s->y0 + s->y1);
@@ -281,17 +314,20 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *membe
     int64_t cyy = 0, cxy = 0;
     for (int32_t i = 0; i < n; i++) {
         const rte_lane_segment *s = &segs[members[i]];
-        const int64_t len = seg_length(s);
+        const int64_t len = seg_length(s) * row_weight_q8(hint, s);
         const int64_t X = s->x0 + s->x1 - mx, Y = s->y0 + s->y1 - my;
         const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0;
         /* Q2 moments times 3: 3*X*Y + (2dx)(2dy)*3/12 = 3XY + dx*dy */
-        cyy += len * (3 * Y * Y + dy * dy);
-        cxy += len * (3 * X * Y + dx * dy);
+        cyy += len * (3 * Y * Y + LANE_DIRECTION_WEIGHT * dy * dy);
+        cxy += len * (3 * X * Y + LANE_DIRECTION_WEIGHT * dx * dy);
     }
-    /* Need a spread of rows: at least ~8 px of extent. */
-    if (cyy < w * 3 * 64 * 4)
+    if (hint->weight > 0) /* (cxy + weight slope) / (cyy + weight), in Q8 */
+        line->slope_q16 = lane_div_q16(cxy * 256 + ((hint->weight * hint->slope_q16) >> 8),
+                                       (cyy + hint->weight) * 256);
+    else if (cyy < w * 3 * 64 * 4) /* need a spread of rows: at least ~8 px */
         return false;
-    line->slope_q16 = lane_div_q16(cxy, cyy);
+    else
+        line->slope_q16 = lane_div_q16(cxy, cyy);
     if (lane_abs64(line->slope_q16) > 64 * 65536)
         return false;
     /* x at y_mid from the weighted means (Q8) */
@@ -303,8 +339,8 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *membe
  * squares, segments beyond outlier_px are marked and the rest refitted
  * (twice, so an outlier that pulled the start is caught on the second
  * pass). Returns the supporting length. */
-static int64_t fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, lane_line *line,
-                        rte_lane_segment_use use)
+static int64_t fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, const lane_fit_hint *hint,
+                        lane_line *line, rte_lane_segment_use use)
 {
     rte_lane_segment *segs = ctx->segments;
     if (n == 0)
@@ -332,7 +368,7 @@ static int64_t fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, lane
         if (ctx->params.fit == RTE_LANE_FIT_THEIL_SEN || n == 0)
             break;
         lane_line ls = *line;
-        if (fit_least_squares(segs, members, n, &ls))
+        if (fit_least_squares(segs, members, n, hint, &ls))
             *line = ls;
     }
     int64_t support = 0;
@@ -561,7 +597,15 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
         lane->y_bottom = y_bottom;
         lane->y_top = y_top;
         lane_line line = {0, 0, (y_bottom + y_top) / 2};
-        const int64_t support = fit_side(ctx, members[side], n[side], &line,
+        const lane_track *t = &ctx->track[side];
+        lane_fit_hint hint = {y_top, y_bottom, 0, 0};
+        if (t->valid && y_bottom > y_top) {
+            const int64_t dx = ((int64_t)t->x_top_q8 + t->v_top_q8) - ((int64_t)t->x_bottom_q8 + t->v_bottom_q8);
+            const int64_t rows = (y_bottom - y_top) / 5 + 1; /* a fifth of the lane */
+            hint.slope_q16 = clamp32(dx * 256 / (y_top - y_bottom), -64 * 65536, 64 * 65536);
+            hint.weight = rows * rows * rows * 128; /* 128: the mean row weight */
+        }
+        const int64_t support = fit_side(ctx, members[side], n[side], &hint, &line,
                                          side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
         const bool seen = support > 0 && support >= p->min_support_px;
         lane_track_update(ctx, side, seen, &line, support, lane);
