@@ -3,12 +3,14 @@
  * docs/hough.md):
  *   - the point order is a Fisher-Yates shuffle driven by a fixed-seed
  *     xorshift32, so the output is the same on every run and platform;
- *   - a detected line is refitted (integer principal axis of the pixels
- *     found) and followed again, so a long edge is not lost where the
- *     quantised angle drifts off it;
- *   - the walk accepts and consumes pixels within one pixel of the line
- *     (not only the pixel on it), so a 2-pixel-thick or slightly jagged
- *     edge gives one segment, not several overlapping ones;
+ *   - the walk of the cell's quantised line accepts pixels one pixel
+ *     across it too; the line is then refitted (integer principal axis of
+ *     the pixels found) and followed again, taking only pixels on it, so a
+ *     long edge is not lost where the quantised angle drifts off it and the
+ *     ends stop where the edge leaves the line;
+ *   - a segment consumes the run of edge pixels across it (up to two
+ *     pixels either side), so a 2-pixel-thick edge gives one segment, not
+ *     several overlapping ones;
  *   - only points that voted are un-voted when a line is consumed, so a
  *     cell never goes negative and 16 bits hold it (votes_fit_u16);
  *   - the minimum length is Euclidean. */
@@ -28,14 +30,9 @@ enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2, PX_USED = 3 };
  * where they cross), but they neither extend nor fit the new segment. */
 static inline int live(uint8_t m) { return m == PX_EDGE || m == PX_VOTED; }
 
-/* A run of 2-3 hits after a gap of at least CROSS_GAP steps whose hits
- * move more than CROSS_DRIFT_Q16 (1.5 px) across the walked line is another
- * line crossing the extension, not this one going on: it does not move the
- * end (a run that grows to 4 hits does). */
-#define CROSS_GAP 3
-#define CROSS_DRIFT_Q16 98304
-/* How far across the line a continuing run of edge pixels is consumed. */
-#define CONSUME_REACH 3
+/* How far across the line a continuing run of edge pixels is consumed
+ * (one pixel either side always). */
+#define CONSUME_REACH 2
 
 /* Fitted or quantised line: a point on it (Q16) and a unit direction (Q16). */
 typedef struct line_q16 {
@@ -49,6 +46,7 @@ typedef struct walk_ctx {
     uint32_t *hits; /* packed (2y << 16) | 2x: run centres in half pixels */
     int32_t nhits;
     int32_t end2[4]; /* the hits at the extreme steps (half pixels) */
+    int strict;      /* only the pixel on the line hits (walks of refitted lines) */
 } walk_ctx;
 
 static inline uint8_t mask_at(const walk_ctx *c, int32_t x, int32_t y)
@@ -107,10 +105,11 @@ static inline uint8_t across(const walk_ctx *c, const uint8_t *p, int32_t major_
 }
 
 /* The edge pixels hit at the step on (x, y): the pixel on the line, else
- * a neighbour across the line, extended to the whole run of edge pixels
- * across the line (up to CONSUME_REACH). Returns 1 and the run's centre in
- * half pixels (doubled coordinates, so fits of thick edges follow their
- * middle), 2 when only consumed pixels are there, 0 when nothing is. */
+ * (unless c->strict) a neighbour across the line, extended to the whole run
+ * of edge pixels across the line (up to CONSUME_REACH). Returns 1 and the
+ * run's centre in half pixels (doubled coordinates, so fits of thick edges
+ * follow their middle), 2 when only consumed pixels are there (a bridge),
+ * 0 otherwise. */
 static int probe(const walk_ctx *c, const stepper *s, int32_t x, int32_t y, int32_t *hx2, int32_t *hy2)
 {
     const int32_t mj = s->major_x, mn = mj ? y : x, mn_size = mj ? c->h : c->w;
@@ -121,12 +120,14 @@ static int probe(const walk_ctx *c, const stepper *s, int32_t x, int32_t y, int3
     int32_t lo;
     if (live(m0))
         lo = 0;
+    else if (c->strict && (live(mlo) || live(mhi)))
+        return 0; /* beside a refitted line: another edge, not this one */
     else if (live(mlo))
         lo = -1;
     else if (live(mhi))
         lo = 1;
     else
-        return (m0 | mlo | mhi) ? 2 : 0; /* 2: only consumed pixels, a bridge */
+        return (m0 | mlo | mhi) ? 2 : 0;
     int32_t hi = lo;
     while (lo > -CONSUME_REACH && live(across(c, p, mj, x, y, lo - 1)))
         lo--;
@@ -147,17 +148,15 @@ static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t x, i
 /* Follows the line both ways from step 0 until more than max_gap steps in a
  * row miss; returns the extreme steps with hits (kmin > kmax when there is
  * none), their hits in c->end2 and records the hits between them. Beyond a
- * gap, the end only moves on once two steps in a row hit, so a stray pixel
- * past the end of a line does not lengthen it, and not on a short run that
- * drifts across the line (CROSS_GAP). */
+ * gap of more than one step, the end only moves on once two steps in a row
+ * hit, so a stray pixel past the end of a line does not lengthen it. */
 static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
 {
     c->nhits = 0;
     *kmin = INT32_MAX;
     *kmax = INT32_MIN;
     for (int32_t dir = 1; dir >= -1; dir -= 2) {
-        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits, drift = 0, gap_before = 0;
-        int64_t off0 = 0;
+        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits, gap_before = 0;
         /* stepper_at(s, k), one addition per step */
         const int32_t k0 = dir == 1 ? 0 : -1, dmaj = dir * s->dmaj;
         const int64_t dmin = dir * s->dmin_q16;
@@ -170,16 +169,11 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
                 break;
             int hit = probe(c, s, x, y, &hx2, &hy2);
             if (hit == 1) {
-                run++;
-                /* the hit's offset across the line (Q16 pixels) */
-                const int64_t off = ((int64_t)(s->major_x ? hy2 : hx2) << 15) - (mq - 32768);
-                if (run == 1)
-                    off0 = off, drift = 0, gap_before = gap;
-                else if (gap_before >= CROSS_GAP && (off - off0 > CROSS_DRIFT_Q16 || off0 - off > CROSS_DRIFT_Q16))
-                    drift = 1;
+                if (run++ == 0)
+                    gap_before = gap;
                 gap = 0;
                 c->hits[c->nhits++] = ((uint32_t)hy2 << 16) | (uint32_t)hx2;
-                if (seed_run || (run >= 2 && (run >= 4 || !drift))) {
+                if (seed_run || run >= 2 || gap_before <= 1) {
                     kept = c->nhits;
                     if (k > *kmax) {
                         *kmax = k;
@@ -331,32 +325,29 @@ static void unvote(const seg_ctx *sc, const uint32_t *pts, int32_t n)
 }
 
 /* The cell (best_n) of the point (x, y) reached the threshold: follow the
- * line, refit, follow again. Returns 1 and the segment when it is long
- * enough, after consuming its pixels and removing their votes. */
+ * line, refit, follow the refitted line. Returns 1 and the segment when it
+ * is long enough, after consuming its pixels and removing their votes. */
 static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_hough_segment *out)
 {
     walk_ctx *wc = &sc->wc;
     const rte_hough_config *cfg = sc->cfg;
     const int32_t w = wc->w, h = wc->h;
     /* The line of the winning cell through this point: direction
-     * (-sin, cos). Follow it, refit, follow the refitted line. */
+     * (-sin, cos). Its walk takes pixels beside the line too (the cell's
+     * angle is quantised); the walk of the refitted line takes only the
+     * pixels on it, so its ends stop where the edge leaves the line (a
+     * curve, a crossing edge, texture), not a pixel further. */
     line_q16 l = { (int64_t)x << 16, (int64_t)y << 16, -cfg->unit_sin[best_n], cfg->unit_cos[best_n] };
     stepper s = make_stepper(&l, x, y);
     int32_t kmin, kmax;
+    wc->strict = 0;
     follow(wc, &s, &kmin, &kmax);
-    for (int iter = 0; iter < 2; iter++) {
-        line_q16 f = l;
-        if (!fit_line(wc, &f))
-            break;
-        stepper s2 = make_stepper(&f, x, y);
-        int32_t kmin2, kmax2;
-        follow(wc, &s2, &kmin2, &kmax2);
-        s = s2;
+    line_q16 f = l;
+    if (fit_line(wc, &f)) {
         l = f;
-        if (kmin2 == kmin && kmax2 == kmax)
-            break;
-        kmin = kmin2;
-        kmax = kmax2;
+        s = make_stepper(&l, x, y);
+        wc->strict = 1;
+        follow(wc, &s, &kmin, &kmax);
     }
     if (wc->nhits == 0)
         return 0;
@@ -523,7 +514,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), acc, idx, numangle, numrho,
                    rte_hough_rho_bias(cfg, numrho),
                    (int64_t)params->min_length * params->min_length, gone,
-                   { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 } } };
+                   { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 }, 0 } };
     int32_t nseg = 0;
 
     for (int32_t i = 0; i < npts; i++) {
