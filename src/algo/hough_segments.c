@@ -81,8 +81,12 @@ static stepper make_stepper(const line_q16 *l, int32_t start_x, int32_t start_y)
     return s;
 }
 
-/* floor(v / 65536), also right for negative values */
-static inline int32_t floor_q16(int64_t v) { return (int32_t)(v >= 0 ? v >> 16 : -((-v + 65535) >> 16)); }
+/* floor(v / 65536) for |v| < 2^47, also for negative values: shifted as a
+ * non-negative number (no branch, no implementation-defined shift) */
+static inline int32_t floor_q16(int64_t v)
+{
+    return (int32_t)((uint64_t)(v + ((int64_t)1 << 47)) >> 16) - (1 << 31);
+}
 
 /* The pixel of step k: the minor coordinate in Q16 plus a half, floored. */
 static inline void stepper_at(const stepper *s, int32_t k, int32_t *x, int32_t *y)
@@ -95,8 +99,8 @@ static inline void stepper_at(const stepper *s, int32_t k, int32_t *x, int32_t *
 
 /* The mask at `o` pixels across the line from (x, y); `p` is the pixel's
  * byte when the whole reach across the line is inside the map (no bounds
- * checks then), else NULL. */
-static inline uint8_t across(const walk_ctx *c, const uint8_t *p, int32_t major_x, int32_t x, int32_t y,
+ * checks then), else NULL. major_x is a constant in each copy of follow. */
+static inline uint8_t across(const walk_ctx *c, const uint8_t *p, const int major_x, int32_t x, int32_t y,
                              int32_t o)
 {
     if (p)
@@ -104,19 +108,20 @@ static inline uint8_t across(const walk_ctx *c, const uint8_t *p, int32_t major_
     return major_x ? mask_at(c, x, y + o) : mask_at(c, x + o, y);
 }
 
-/* The edge pixels hit at the step on (x, y): the pixel on the line, else
- * (unless c->strict) a neighbour across the line, extended to the whole run
- * of edge pixels across the line (up to CONSUME_REACH). Returns 1 and the
- * run's centre in half pixels (doubled coordinates, so fits of thick edges
- * follow their middle), 2 when only consumed pixels are there (a bridge),
- * 0 otherwise. */
-static int probe(const walk_ctx *c, const stepper *s, int32_t x, int32_t y, int32_t *hx2, int32_t *hy2)
+/* The edge pixels hit at the step on (x, y) (its major coordinate inside
+ * the map): the pixel on the line, else (unless c->strict) a neighbour
+ * across the line, extended to the whole run of edge pixels across the line
+ * (up to CONSUME_REACH). Returns 1 and the run's centre in half pixels
+ * (doubled coordinates, so fits of thick edges follow their middle), 2 when
+ * only consumed pixels are there (a bridge), 0 otherwise. */
+static inline __attribute__((always_inline)) int probe(const walk_ctx *c, const int major_x, int32_t x,
+                                                        int32_t y, int32_t *hx2, int32_t *hy2)
 {
-    const int32_t mj = s->major_x, mn = mj ? y : x, mn_size = mj ? c->h : c->w;
-    const int32_t ox = mj ? 0 : 1, oy = mj ? 1 : 0;
-    const uint8_t *p = (mn >= CONSUME_REACH && mn < mn_size - CONSUME_REACH && (uint32_t)(mj ? x : y) <
-                        (uint32_t)(mj ? c->w : c->h)) ? c->mask + (size_t)y * c->w + x : NULL;
-    uint8_t m0 = across(c, p, mj, x, y, 0), mlo = across(c, p, mj, x, y, -1), mhi = across(c, p, mj, x, y, 1);
+    const int32_t mn = major_x ? y : x, mn_size = major_x ? c->h : c->w;
+    const uint8_t *p = mn >= CONSUME_REACH && mn < mn_size - CONSUME_REACH ? c->mask + (size_t)y * c->w + x
+                                                                          : NULL;
+    uint8_t m0 = across(c, p, major_x, x, y, 0), mlo = across(c, p, major_x, x, y, -1);
+    uint8_t mhi = across(c, p, major_x, x, y, 1);
     int32_t lo;
     if (live(m0))
         lo = 0;
@@ -129,29 +134,26 @@ static int probe(const walk_ctx *c, const stepper *s, int32_t x, int32_t y, int3
     else
         return (m0 | mlo | mhi) ? 2 : 0;
     int32_t hi = lo;
-    while (lo > -CONSUME_REACH && live(across(c, p, mj, x, y, lo - 1)))
+    while (lo > -CONSUME_REACH && live(across(c, p, major_x, x, y, lo - 1)))
         lo--;
-    while (hi < CONSUME_REACH && live(across(c, p, mj, x, y, hi + 1)))
+    while (hi < CONSUME_REACH && live(across(c, p, major_x, x, y, hi + 1)))
         hi++;
-    *hx2 = 2 * x + (lo + hi) * ox;
-    *hy2 = 2 * y + (lo + hi) * oy;
+    *hx2 = 2 * x + (major_x ? 0 : lo + hi);
+    *hy2 = 2 * y + (major_x ? lo + hi : 0);
     return 1;
 }
 
-static inline int32_t in_image(const walk_ctx *c, const stepper *s, int32_t x, int32_t y)
-{
-    /* One pixel of slack across the line so edges along the border count. */
-    return x >= -1 && y >= -1 && x <= c->w && y <= c->h &&
-           (s->major_x ? (uint32_t)x < (uint32_t)c->w : (uint32_t)y < (uint32_t)c->h);
-}
-
 /* Follows the line both ways from step 0 until more than max_gap steps in a
- * row miss; returns the extreme steps with hits (kmin > kmax when there is
- * none), their hits in c->end2 and records the hits between them. Beyond a
- * gap of more than one step, the end only moves on once two steps in a row
- * hit, so a stray pixel past the end of a line does not lengthen it. */
-static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
+ * row miss or the line leaves the map (one pixel of slack across the line,
+ * so edges along the border count); returns the extreme steps with hits
+ * (kmin > kmax when there is none), their hits in c->end2 and records the
+ * hits between them. Beyond a gap of more than one step, the end only moves
+ * on once two steps in a row hit, so a stray pixel past the end of a line
+ * does not lengthen it. One copy per major axis (major_x constant). */
+static inline __attribute__((always_inline)) void follow_axis(walk_ctx *c, const stepper *s, const int major_x,
+                                                               int32_t *kmin, int32_t *kmax)
 {
+    const uint32_t maj_size = (uint32_t)(major_x ? c->w : c->h), mn_span = (uint32_t)(major_x ? c->h : c->w) + 1;
     c->nhits = 0;
     *kmin = INT32_MAX;
     *kmax = INT32_MIN;
@@ -164,10 +166,10 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
         int64_t mq = s->min0_q16 + (int64_t)k0 * s->dmin_q16 + 32768;
         for (int32_t k = k0;; k += dir, maj += dmaj, mq += dmin) {
             int32_t hx2, hy2, mn = floor_q16(mq);
-            const int32_t x = s->major_x ? maj : mn, y = s->major_x ? mn : maj;
-            if (!in_image(c, s, x, y))
+            if ((uint32_t)maj >= maj_size || (uint32_t)(mn + 1) > mn_span)
                 break;
-            int hit = probe(c, s, x, y, &hx2, &hy2);
+            const int32_t x = major_x ? maj : mn, y = major_x ? mn : maj;
+            int hit = probe(c, major_x, x, y, &hx2, &hy2);
             if (hit == 1) {
                 if (run++ == 0)
                     gap_before = gap;
@@ -195,6 +197,14 @@ static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
         }
         c->nhits = kept;
     }
+}
+
+static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
+{
+    if (s->major_x)
+        follow_axis(c, s, 1, kmin, kmax);
+    else
+        follow_axis(c, s, 0, kmin, kmax);
 }
 
 /* floor(v / 65536 + 1/2) for any sign */
@@ -291,13 +301,29 @@ static uint32_t vote(const seg_ctx *sc, int32_t x, int32_t y)
     cells(sc, x, y, sc->idx);
     uint16_t *restrict acc = sc->acc;
     const int32_t *restrict idx = sc->idx;
-    uint32_t best = 0;
-    for (int32_t a = 0; a < sc->numangle; a++) {
-        uint32_t v = acc[idx[a]] + 1u;
-        acc[idx[a]] = (uint16_t)v;
-        best = v > best ? v : best;
+    /* four running maxima: one would chain every increment to the last */
+    uint32_t b0 = 0, b1 = 0, b2 = 0, b3 = 0;
+    int32_t a = 0;
+    for (; a + 4 <= sc->numangle; a += 4) {
+        const uint32_t v0 = acc[idx[a]] + 1u, v1 = acc[idx[a + 1]] + 1u;
+        const uint32_t v2 = acc[idx[a + 2]] + 1u, v3 = acc[idx[a + 3]] + 1u;
+        acc[idx[a]] = (uint16_t)v0;
+        acc[idx[a + 1]] = (uint16_t)v1;
+        acc[idx[a + 2]] = (uint16_t)v2;
+        acc[idx[a + 3]] = (uint16_t)v3;
+        b0 = v0 > b0 ? v0 : b0;
+        b1 = v1 > b1 ? v1 : b1;
+        b2 = v2 > b2 ? v2 : b2;
+        b3 = v3 > b3 ? v3 : b3;
     }
-    return best;
+    for (; a < sc->numangle; a++) {
+        const uint32_t v = acc[idx[a]] + 1u;
+        acc[idx[a]] = (uint16_t)v;
+        b0 = v > b0 ? v : b0;
+    }
+    b0 = b1 > b0 ? b1 : b0;
+    b2 = b3 > b2 ? b3 : b2;
+    return b2 > b0 ? b2 : b0;
 }
 
 /* The first angle whose cell (of the point just voted) holds `votes`:
@@ -319,7 +345,14 @@ static void unvote(const seg_ctx *sc, const uint32_t *pts, int32_t n)
     const int32_t *restrict idx = sc->idx;
     for (int32_t i = 0; i < n; i++) {
         cells(sc, (int32_t)(pts[i] & 0xFFFF), (int32_t)(pts[i] >> 16), sc->idx);
-        for (int32_t a = 0; a < sc->numangle; a++)
+        int32_t a = 0;
+        for (; a + 4 <= sc->numangle; a += 4) {
+            acc[idx[a]]--;
+            acc[idx[a + 1]]--;
+            acc[idx[a + 2]]--;
+            acc[idx[a + 3]]--;
+        }
+        for (; a < sc->numangle; a++)
             acc[idx[a]]--;
     }
 }
