@@ -104,18 +104,21 @@ typedef struct rte_hough_segments_params {
  * platform visits the points in the same order. */
 #define RTE_HOUGH_SEGMENTS_SEED 0x2545F491u
 
-/* 0 for a configuration segments refuse: the accumulator is 16 bits, so
+/* 0 for a configuration segments refuse: the accumulator is 16 bits and a
+ * cell holds its count plus 32768 - threshold, so
  * max(max_width, max_height) * (rho * sqrt 2 + 2), the most pixels one
- * cell can count, must stay below 65536 unless the whole map has fewer
- * pixels (rho 1: sides up to 21845). rte_hough_segments returns
- * RTE_ERR_ARGUMENT for such a configuration. */
+ * cell can count, must stay at or below 32768 unless the whole map has
+ * fewer pixels (rho 1: sides up to 10922). rte_hough_segments returns
+ * RTE_ERR_ARGUMENT for such a configuration, and no segments (RTE_OK) for
+ * a threshold above that bound, which no cell can reach. */
 size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg);
 
 /* cv::HoughLinesP (progressive probabilistic Hough) with the fixes listed in
  * docs/hough.md: points are visited in a fixed pseudo-random order; once a
  * cell reaches the threshold the line is followed both ways, refitted to the
- * pixels found and followed again, and every pixel within one pixel of it is
- * consumed, so one straight edge gives one segment. At most `max_segments`
+ * pixels found and followed again along the refitted line, and the run of
+ * edge pixels across it (up to two pixels either side) is consumed, so one
+ * straight edge gives one segment. At most `max_segments`
  * are written; *truncated = 1 when the search stopped because the output
  * was full. */
 rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,

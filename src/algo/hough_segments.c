@@ -12,7 +12,7 @@
  *     pixels either side), so a 2-pixel-thick edge gives one segment, not
  *     several overlapping ones;
  *   - only points that voted are un-voted when a line is consumed, so a
- *     cell never goes negative and 16 bits hold it (votes_fit_u16);
+ *     cell never goes negative and 16 bits hold it (cell_bound);
  *   - the minimum length is Euclidean. */
 #include "rtedge/hough.h"
 
@@ -278,7 +278,7 @@ rte_hough_bins_fn rte_hough_bins_select(uint32_t features)
 typedef struct seg_ctx {
     const rte_hough_config *cfg;
     rte_hough_bins_fn bins;
-    uint16_t *acc; /* 16 bits: see votes_fit_u16 */
+    uint16_t *acc; /* 16 bits, count + 32768 - threshold: see cell_bound */
     int32_t *idx;  /* the cells of one point, one per angle */
     int32_t numangle, numrho, bias;
     int64_t min_len2;
@@ -293,47 +293,48 @@ static inline void cells(const seg_ctx *sc, int32_t x, int32_t y, int32_t *idx)
              idx);
 }
 
-/* Adds the votes of the point (x, y); returns the most votes of its cells
- * (in sc->idx). The cells are computed first so the scattered increments
- * can overlap. */
+/* Adds the votes of the point (x, y); returns nonzero when one of its
+ * cells (in sc->idx) reached the threshold. Cells hold the count plus
+ * 32768 - threshold, so a cell at the threshold or above has bit 15 set and
+ * an OR of the new values tells: one instruction per increment, and no
+ * chain of comparisons from one increment to the next (the increments
+ * overlap). */
 static uint32_t vote(const seg_ctx *sc, int32_t x, int32_t y)
 {
     cells(sc, x, y, sc->idx);
     uint16_t *restrict acc = sc->acc;
     const int32_t *restrict idx = sc->idx;
-    /* four running maxima: one would chain every increment to the last */
-    uint32_t b0 = 0, b1 = 0, b2 = 0, b3 = 0;
+    uint32_t o0 = 0, o1 = 0;
     int32_t a = 0;
     for (; a + 4 <= sc->numangle; a += 4) {
-        const uint32_t v0 = acc[idx[a]] + 1u, v1 = acc[idx[a + 1]] + 1u;
-        const uint32_t v2 = acc[idx[a + 2]] + 1u, v3 = acc[idx[a + 3]] + 1u;
-        acc[idx[a]] = (uint16_t)v0;
-        acc[idx[a + 1]] = (uint16_t)v1;
-        acc[idx[a + 2]] = (uint16_t)v2;
-        acc[idx[a + 3]] = (uint16_t)v3;
-        b0 = v0 > b0 ? v0 : b0;
-        b1 = v1 > b1 ? v1 : b1;
-        b2 = v2 > b2 ? v2 : b2;
-        b3 = v3 > b3 ? v3 : b3;
+        const uint16_t v0 = (uint16_t)(acc[idx[a]] + 1u), v1 = (uint16_t)(acc[idx[a + 1]] + 1u);
+        const uint16_t v2 = (uint16_t)(acc[idx[a + 2]] + 1u), v3 = (uint16_t)(acc[idx[a + 3]] + 1u);
+        acc[idx[a]] = v0;
+        acc[idx[a + 1]] = v1;
+        acc[idx[a + 2]] = v2;
+        acc[idx[a + 3]] = v3;
+        o0 |= v0 | v2;
+        o1 |= v1 | v3;
     }
     for (; a < sc->numangle; a++) {
-        const uint32_t v = acc[idx[a]] + 1u;
-        acc[idx[a]] = (uint16_t)v;
-        b0 = v > b0 ? v : b0;
+        const uint16_t v = (uint16_t)(acc[idx[a]] + 1u);
+        acc[idx[a]] = v;
+        o0 |= v;
     }
-    b0 = b1 > b0 ? b1 : b0;
-    b2 = b3 > b2 ? b3 : b2;
-    return b2 > b0 ? b2 : b0;
+    return (o0 | o1) & 0x8000u;
 }
 
-/* The first angle whose cell (of the point just voted) holds `votes`:
- * OpenCV's `max_val < val` scan. Only for points that reach the threshold. */
-static int32_t first_angle_with(const seg_ctx *sc, uint32_t votes)
+/* The first angle holding the most votes among the cells of the point just
+ * voted: OpenCV's `max_val < val` scan. Only for points that reach the
+ * threshold. */
+static int32_t strongest_angle(const seg_ctx *sc)
 {
-    int32_t a = 0;
-    while (a < sc->numangle - 1 && sc->acc[sc->idx[a]] != votes)
-        a++;
-    return a;
+    int32_t best_a = 0;
+    uint16_t best = 0;
+    for (int32_t a = 0; a < sc->numangle; a++)
+        if (sc->acc[sc->idx[a]] > best)
+            best = sc->acc[sc->idx[a]], best_a = a;
+    return best_a;
 }
 
 /* Removes the votes of a list of packed points, point by point: they are
@@ -438,19 +439,20 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
     return 1;
 }
 
-/* The accumulator is 16 bits (half the memory traffic of 32). A cell
- * counts the pixels whose x cos + y sin falls in one rho bin (each pixel
- * votes once; only voted pixels are un-voted): along the line's major axis,
- * at most floor(rho sqrt 2) + 1 per column or row, plus one for the
- * fixed-point rounding, so at most max(w, h) (rho sqrt 2 + 2) and never
- * more than w h. Configurations where that could pass 65535 are refused
- * (rho 1: a side above 21845 pixels). */
-static int votes_fit_u16(const rte_hough_config *cfg)
+/* The most votes one cell can hold. The accumulator is 16 bits (half the
+ * memory traffic of 32). A cell counts the pixels whose x cos + y sin falls
+ * in one rho bin (each pixel votes once; only voted pixels are un-voted):
+ * along the line's major axis, at most floor(rho sqrt 2) + 1 per column or
+ * row, plus one for the fixed-point rounding, so at most
+ * max(w, h) (rho sqrt 2 + 2) and never more than w h. Cells hold the count
+ * plus 32768 - threshold (see vote), so configurations where that could
+ * pass 32768 are refused (rho 1: a side above 10922 pixels). */
+static int64_t cell_bound(const rte_hough_config *cfg)
 {
     const int64_t side = cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height;
     const int64_t per_line = (((int64_t)cfg->rho_q16 * 92682) >> 32) + 2; /* 92682 / 65536 > sqrt 2 */
     const int64_t pixels = (int64_t)cfg->max_width * cfg->max_height;
-    return (side * per_line < pixels ? side * per_line : pixels) <= 65535;
+    return side * per_line < pixels ? side * per_line : pixels;
 }
 
 /* How far ahead in the point order the mask is fetched. */
@@ -461,7 +463,7 @@ static size_t gone_capacity(size_t side) { return (2 * CONSUME_REACH + 1) * (sid
 
 size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
 {
-    if (!cfg || !votes_fit_u16(cfg))
+    if (!cfg || cell_bound(cfg) > 32768)
         return 0;
     size_t pixels = (size_t)cfg->max_width * (size_t)cfg->max_height;
     size_t cells = (size_t)cfg->num_angles * (size_t)rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height);
@@ -484,8 +486,11 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     rte_status st = rte_hough_begin(cfg, edges, count, truncated);
     if (st != RTE_OK)
         return st;
-    if (!votes_fit_u16(cfg))
+    const int64_t bound = cell_bound(cfg);
+    if (bound > 32768)
         return RTE_ERR_ARGUMENT;
+    if (params->threshold > bound)
+        return RTE_OK; /* no cell can reach it: no segments */
     const int32_t w = edges->width, h = edges->height;
 
     const int32_t numangle = cfg->num_angles, numrho = rte_hough_rho_bins(cfg, w, h);
@@ -528,8 +533,11 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
             }
         }
     }
+    /* count + offset stays in [0, 65535]: counts up to bound <= 32768,
+     * 1 <= threshold <= bound */
+    const uint16_t offset = (uint16_t)(32768 - params->threshold);
     for (size_t i = 0; i < (size_t)numangle * numrho; i++)
-        acc[i] = 0;
+        acc[i] = offset;
 
     /* Fisher-Yates with xorshift32 and a multiply-shift range reduction:
      * the same order everywhere. */
@@ -560,11 +568,10 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         if (*m != PX_EDGE)
             continue; /* consumed by an earlier line */
         *m = PX_VOTED;
-        const uint32_t best = vote(&sc, x, y);
-        if (best < (uint32_t)params->threshold)
+        if (!vote(&sc, x, y))
             continue;
         rte_hough_segment seg;
-        if (!take_segment(&sc, x, y, first_angle_with(&sc, best), &seg))
+        if (!take_segment(&sc, x, y, strongest_angle(&sc), &seg))
             continue;
         if (nseg == max_segments) {
             *truncated = 1;

@@ -132,6 +132,23 @@ static void test_segments_gap_and_length(void **state)
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
     assert_int_equal(n, 0);
     assert_int_equal(a.used, 0);
+    /* thresholds up to the most votes a cell can hold (64 * 3 here; cells
+     * keep count + 32768 - threshold): a full 64-pixel column reaches 64,
+     * and a threshold above the bound finds nothing without running */
+    for (int32_t y = 0; y < 64; y++)
+        memset(e.buf + (size_t)y * e.stride, 255, 64);
+    p = (rte_hough_segments_params){ 64, 30, 4 };
+    assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
+    assert_true(n >= 1);
+    p.threshold = 192;
+    assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
+    assert_int_equal(n, 0);
+    p.threshold = 193;
+    n = -1;
+    assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
+    assert_int_equal(n, 0);
+    assert_int_equal(tr, 0);
+    assert_int_equal(a.used, 0);
     unit_assert_padding_u8(&e);
     test_free(e.buf);
     test_free(a.base);
@@ -323,16 +340,17 @@ static void test_argument_errors(void **state)
     p.threshold = 5;
     p.max_gap = -1;
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 4, &n, &tr), RTE_ERR_ARGUMENT);
-    /* configurations where a 16-bit segment accumulator cell could pass
-     * 65535 are refused; rho 1 up to a side of 21845 and any rho on a
-     * small map are fine */
+    /* configurations where a segment accumulator cell could count more
+     * than 32768 pixels (it holds count + 32768 - threshold in 16 bits)
+     * are refused; rho 1 up to a side of 10922 and any rho on a small map
+     * are fine */
     rte_hough_config wide;
-    assert_int_equal(rte_hough_config_init(&wide, 1920, 1080, 40.0, PI / 180, 0.0, PI), RTE_OK);
+    assert_int_equal(rte_hough_config_init(&wide, 1920, 1080, 20.0, PI / 180, 0.0, PI), RTE_OK);
     assert_int_equal(rte_hough_segments_scratch_size(&wide), 0);
     assert_int_equal(rte_hough_segments(&wide, &e, &p, &a, s, 4, &n, &tr), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_hough_config_init(&wide, 22000, 4, 1.0, PI / 180, 0.0, PI), RTE_OK);
+    assert_int_equal(rte_hough_config_init(&wide, 10923, 4, 1.0, PI / 180, 0.0, PI), RTE_OK);
     assert_int_equal(rte_hough_segments_scratch_size(&wide), 0);
-    assert_int_equal(rte_hough_config_init(&wide, 21845, 4, 1.0, PI / 180, 0.0, PI), RTE_OK);
+    assert_int_equal(rte_hough_config_init(&wide, 10922, 4, 1.0, PI / 180, 0.0, PI), RTE_OK);
     assert_true(rte_hough_segments_scratch_size(&wide) > 0);
     assert_int_equal(rte_hough_config_init(&wide, 16, 16, 40.0, PI / 180, 0.0, PI), RTE_OK);
     assert_true(rte_hough_segments_scratch_size(&wide) > 0);
