@@ -330,10 +330,12 @@ static uint32_t vote(const seg_ctx *sc, int32_t x, int32_t y)
 static int32_t strongest_angle(const seg_ctx *sc)
 {
     int32_t best_a = 0;
-    uint16_t best = 0;
-    for (int32_t a = 0; a < sc->numangle; a++)
-        if (sc->acc[sc->idx[a]] > best)
-            best = sc->acc[sc->idx[a]], best_a = a;
+    uint32_t best = 0;
+    for (int32_t a = 0; a < sc->numangle; a++) {
+        const uint32_t v = sc->acc[sc->idx[a]];
+        best_a = v > best ? a : best_a; /* selects, not branches: the maximum moves often */
+        best = v > best ? v : best;
+    }
     return best_a;
 }
 
