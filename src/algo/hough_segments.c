@@ -307,18 +307,19 @@ static uint32_t vote(const seg_ctx *sc, int32_t x, int32_t y)
     uint32_t o0 = 0, o1 = 0;
     int32_t a = 0;
     for (; a + 4 <= sc->numangle; a += 4) {
-        const uint16_t v0 = (uint16_t)(acc[idx[a]] + 1u), v1 = (uint16_t)(acc[idx[a + 1]] + 1u);
-        const uint16_t v2 = (uint16_t)(acc[idx[a + 2]] + 1u), v3 = (uint16_t)(acc[idx[a + 3]] + 1u);
-        acc[idx[a]] = v0;
-        acc[idx[a + 1]] = v1;
-        acc[idx[a + 2]] = v2;
-        acc[idx[a + 3]] = v3;
+        /* below 65536 (cell_bound): the same in 32 bits, no truncation */
+        const uint32_t v0 = acc[idx[a]] + 1u, v1 = acc[idx[a + 1]] + 1u;
+        const uint32_t v2 = acc[idx[a + 2]] + 1u, v3 = acc[idx[a + 3]] + 1u;
+        acc[idx[a]] = (uint16_t)v0;
+        acc[idx[a + 1]] = (uint16_t)v1;
+        acc[idx[a + 2]] = (uint16_t)v2;
+        acc[idx[a + 3]] = (uint16_t)v3;
         o0 |= v0 | v2;
         o1 |= v1 | v3;
     }
     for (; a < sc->numangle; a++) {
-        const uint16_t v = (uint16_t)(acc[idx[a]] + 1u);
-        acc[idx[a]] = v;
+        const uint32_t v = acc[idx[a]] + 1u;
+        acc[idx[a]] = (uint16_t)v;
         o0 |= v;
     }
     return (o0 | o1) & 0x8000u;
