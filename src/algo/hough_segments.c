@@ -85,7 +85,7 @@ static stepper make_stepper(const line_q16 *l, int32_t start_x, int32_t start_y)
  * non-negative number (no branch, no implementation-defined shift) */
 static inline int32_t floor_q16(int64_t v)
 {
-    return (int32_t)((uint64_t)(v + ((int64_t)1 << 47)) >> 16) - (1 << 31);
+    return (int32_t)((int64_t)((uint64_t)(v + ((int64_t)1 << 47)) >> 16) - ((int64_t)1 << 31));
 }
 
 /* The pixel of step k: the minor coordinate in Q16 plus a half, floored. */
