@@ -472,7 +472,7 @@ size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
     size_t cells = (size_t)cfg->num_angles * (size_t)rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height);
     size_t side = (size_t)(cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height);
     return rte_arena_piece_size(pixels * sizeof(uint32_t)) + rte_arena_piece_size(pixels) +
-           rte_arena_piece_size(cells * sizeof(int32_t)) +
+           rte_arena_piece_size(cells * sizeof(uint16_t)) +
            rte_arena_piece_size(gone_capacity(side) * sizeof(uint32_t)) +
            rte_arena_piece_size((size_t)cfg->num_angles * sizeof(int32_t)) +
            rte_arena_piece_size((2 * side + 4) * sizeof(uint32_t));
