@@ -8,16 +8,16 @@
 
 #include <stdint.h>
 
-/* idx[a] = a * stride + ((x * rho_cos[a] + y * rho_sin[a] + bias) >> shift)
+/* idx[a] = row_base[a] + ((x * rho_cos[a] + y * rho_sin[a] + bias) >> shift)
  * for a < n. The caller guarantees the sum is in [0, 2^31) (the
  * configuration's trig_shift keeps it there), so the shift of a signed
  * value is the same everywhere. */
 static inline void hough_bins_row(const int32_t *restrict rho_cos, const int32_t *restrict rho_sin,
                                   int32_t n, int32_t x, int32_t y, int32_t bias, int32_t shift,
-                                  int32_t stride, int32_t *restrict idx)
+                                  const int32_t *restrict row_base, int32_t *restrict idx)
 {
     for (int32_t a = 0; a < n; a++)
-        idx[a] = a * stride + ((x * rho_cos[a] + y * rho_sin[a] + bias) >> shift);
+        idx[a] = row_base[a] + ((x * rho_cos[a] + y * rho_sin[a] + bias) >> shift);
 }
 
 #endif

@@ -626,18 +626,20 @@ static void hough_bins(const void *variant, uint32_t *seed)
     const hough_bins_variant *v = variant;
     static const double rhos[] = { 1.0, 0.5, 2.5 }, thetas[] = { PI_SIMD / 180, PI_SIMD / 360, PI_SIMD / 1024 };
     static rte_hough_config cfg;
-    int32_t want[RTE_HOUGH_MAX_ANGLES + GUARD], got[RTE_HOUGH_MAX_ANGLES + GUARD];
+    int32_t want[RTE_HOUGH_MAX_ANGLES + GUARD], got[RTE_HOUGH_MAX_ANGLES + GUARD], row_base[RTE_HOUGH_MAX_ANGLES];
     for (int k = 0; k < 60; k++) {
         const int32_t w = 1 + (int32_t)(unit_rand(seed) % 4000), h = 1 + (int32_t)(unit_rand(seed) % 4000);
         assert_int_equal(rte_hough_config_init(&cfg, w, h, rhos[k % 3], thetas[(k / 3) % 3], 0.0, PI_SIMD), RTE_OK);
         const int32_t numrho = rte_hough_rho_bins(&cfg, w, h), bias = rte_hough_rho_bias(&cfg, numrho);
+        for (int32_t a = 0; a < cfg.num_angles; a++)
+            row_base[a] = a * numrho;
         for (int p = 0; p < 20; p++) {
             const int32_t n = p == 0 ? cfg.num_angles : 1 + (int32_t)(unit_rand(seed) % (uint32_t)cfg.num_angles);
             const int32_t x = (int32_t)(unit_rand(seed) % (uint32_t)w), y = (int32_t)(unit_rand(seed) % (uint32_t)h);
             memset(want, 0xEE, sizeof want);
             memset(got, 0xEE, sizeof got);
-            rte_hough_bins_c(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, numrho, want);
-            v->bins(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, numrho, got);
+            rte_hough_bins_c(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, row_base, want);
+            v->bins(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, row_base, got);
             if (memcmp(want, got, sizeof want) != 0)
                 fail_msg("%s %dx%d point (%d, %d) n %d differs", v->head.name, (int)w, (int)h, (int)x, (int)y, (int)n);
             for (int32_t a = 0; a < n; a++)

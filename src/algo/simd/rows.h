@@ -152,12 +152,12 @@ rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features);
 
 /* Hough segments (src/algo/hough_segments.c, hough_rows.h): the
  * accumulator index of the point (x, y) at each of n angles,
- * idx[a] = a * stride + ((x * rho_cos[a] + y * rho_sin[a] + bias) >> shift),
- * the sum in [0, 2^31). */
+ * idx[a] = row_base[a] + ((x * rho_cos[a] + y * rho_sin[a] + bias) >> shift),
+ * the sum in [0, 2^31); row_base[a] places the rho bins of angle a. */
 typedef void (*rte_hough_bins_fn)(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x,
-                                  int32_t y, int32_t bias, int32_t shift, int32_t stride, int32_t *idx);
+                                  int32_t y, int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx);
 void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
-                      int32_t bias, int32_t shift, int32_t stride, int32_t *idx);
+                      int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx);
 rte_hough_bins_fn rte_hough_bins_select(uint32_t features);
 
 #ifdef RTE_SIMD_X86
@@ -180,7 +180,7 @@ void rte_row_rgb_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_bgr_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
-                         int32_t bias, int32_t shift, int32_t stride, int32_t *idx);
+                         int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx);
 #endif
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
