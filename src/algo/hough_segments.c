@@ -12,7 +12,9 @@
  *     pixels either side), so a 2-pixel-thick edge gives one segment, not
  *     several overlapping ones;
  *   - only points that voted are un-voted when a line is consumed, so a
- *     cell never goes negative and 16 bits hold it (cell_bound);
+ *     cell never goes negative and 16 bits hold it (cell_bound); cells
+ *     start at 8 bits and widen to 16 the first time one overflows
+ *     (see vote_cells);
  *   - the minimum length is Euclidean. */
 #include "rtedge/hough.h"
 
@@ -279,12 +281,16 @@ typedef struct seg_ctx {
     const rte_hough_config *cfg;
     rte_hough_bins_fn bins;
     const int32_t *row_base; /* where each angle's rho bins start in acc (compact_rows) */
-    uint16_t *acc; /* 16 bits, count + 32768 - threshold: see cell_bound */
-    int32_t *idx;  /* the cells of one point, one per angle */
+    void *acc;    /* cells of 8 bits, or 16 once wide: see vote_cells */
+    int wide;
+    int32_t *idx; /* the cells of one point, one per angle */
     int32_t numangle, bias;
     int64_t min_len2;
     uint32_t *gone; /* voted pixels of the segment being consumed */
     walk_ctx wc;
+    rte_hough_segment *segments; /* the output */
+    int32_t max_segments, nseg;
+    int truncated;
 } seg_ctx;
 
 /* The accumulator cells of the point (x, y), one per angle. */
@@ -294,72 +300,152 @@ static inline void cells(const seg_ctx *sc, int32_t x, int32_t y, int32_t *idx)
              idx);
 }
 
-/* Adds the votes of the point (x, y); returns nonzero when one of its
- * cells (in sc->idx) reached the threshold. Cells hold the count plus
- * 32768 - threshold, so a cell at the threshold or above has bit 15 set and
- * an OR of the new values tells: one instruction per increment, and no
- * chain of comparisons from one increment to the next (the increments
- * overlap). */
-static uint32_t vote(const seg_ctx *sc, int32_t x, int32_t y)
+/* Cells hold a count biased so that bit 7 (8-bit cells) or bit 15 (16-bit
+ * cells) of a cell's value before an increment is set exactly when the
+ * increment brings the count to the threshold or above: the value is
+ * count + CELL_TOP + 1 - threshold. An OR of the old values then tells
+ * whether a point reached the threshold: one instruction per increment and
+ * no chain of comparisons from one increment to the next (they overlap).
+ *
+ * Cells start at 8 bits, which halves the accumulator (0.23 MB at
+ * 1280x720, where the vote runs at the speed of the second-level cache),
+ * and hold counts up to threshold + 126. A count goes past the threshold
+ * only while the walks from its cell fail, so that is rare; the increment
+ * that passes it wraps a cell to 0, which no count can give otherwise, and
+ * the whole accumulator widens to 16 bits in place there and then
+ * (widen). Thresholds above 128 start at 16 bits. */
+#define CELL8_TOP 128u
+#define CELL16_TOP 32768u
+/* The largest threshold that starts with 8-bit cells. tests/unit builds a
+ * copy of this file with 0 (16-bit cells only) as the reference the 8-bit
+ * path and its widening must match. */
+#ifndef HOUGH_CELL8_MAX_THRESHOLD
+#define HOUGH_CELL8_MAX_THRESHOLD 128
+#endif
+
+/* Adds the votes of the point (x, y) (its cells in sc->idx); returns
+ * nonzero when one of them reached the threshold. wide is a constant in
+ * each copy. */
+static inline __attribute__((always_inline)) uint32_t vote_cells(const seg_ctx *sc, const int wide)
 {
-    cells(sc, x, y, sc->idx);
-    uint16_t *restrict acc = sc->acc;
-    const int32_t *restrict idx = sc->idx;
+    /* locals: a byte store may alias any field of *sc */
+    const int32_t *restrict idx = sc->idx, n = sc->numangle;
     uint32_t o0 = 0, o1 = 0;
     int32_t a = 0;
-    for (; a + 4 <= sc->numangle; a += 4) {
-        /* below 65536 (cell_bound): the same in 32 bits, no truncation */
-        const uint32_t v0 = acc[idx[a]] + 1u, v1 = acc[idx[a + 1]] + 1u;
-        const uint32_t v2 = acc[idx[a + 2]] + 1u, v3 = acc[idx[a + 3]] + 1u;
-        acc[idx[a]] = (uint16_t)v0;
-        acc[idx[a + 1]] = (uint16_t)v1;
-        acc[idx[a + 2]] = (uint16_t)v2;
-        acc[idx[a + 3]] = (uint16_t)v3;
-        o0 |= v0 | v2;
-        o1 |= v1 | v3;
+    if (wide) {
+        uint16_t *restrict acc = sc->acc;
+        for (; a + 2 <= n; a += 2) {
+            const uint32_t v0 = acc[idx[a]], v1 = acc[idx[a + 1]];
+            acc[idx[a]] = (uint16_t)(v0 + 1);
+            acc[idx[a + 1]] = (uint16_t)(v1 + 1);
+            o0 |= v0;
+            o1 |= v1;
+        }
+        if (a < n)
+            o0 |= acc[idx[a]]++;
+        return (o0 | o1) & CELL16_TOP;
     }
-    for (; a < sc->numangle; a++) {
-        const uint32_t v = acc[idx[a]] + 1u;
-        acc[idx[a]] = (uint16_t)v;
-        o0 |= v;
+    uint8_t *restrict acc = sc->acc;
+    for (; a + 2 <= n; a += 2) {
+        const uint32_t v0 = acc[idx[a]], v1 = acc[idx[a + 1]];
+        acc[idx[a]] = (uint8_t)(v0 + 1);
+        acc[idx[a + 1]] = (uint8_t)(v1 + 1);
+        o0 |= v0;
+        o1 |= v1;
     }
-    return (o0 | o1) & 0x8000u;
+    if (a < n)
+        o0 |= acc[idx[a]]++;
+    return (o0 | o1) & CELL8_TOP;
+}
+
+/* 8-bit cells: did the last vote wrap one of its cells (count threshold +
+ * 127)? Only asked when it reached the threshold, which a wrap implies. */
+static int wrapped(const seg_ctx *sc)
+{
+    const uint8_t *acc = sc->acc;
+    const int32_t *idx = sc->idx, n = sc->numangle;
+    uint32_t zero = 0;
+    for (int32_t a = 0; a < n; a++)
+        zero |= acc[idx[a]] == 0;
+    return (int)zero;
+}
+
+/* 8-bit cells to 16 in place (the memory holds 16-bit cells): from the top
+ * down, so each 8-bit cell is read before its bytes are written over. A 0
+ * is a wrapped count of threshold + 127, the only way to reach 0. */
+static void widen(seg_ctx *sc, size_t ncells)
+{
+    const uint8_t *narrow = sc->acc;
+    uint16_t *wide = sc->acc;
+    for (size_t i = ncells; i-- > 0;) {
+        const uint32_t v = narrow[i];
+        wide[i] = (uint16_t)((v ? v : 256u) + (CELL16_TOP - CELL8_TOP));
+    }
+    sc->wide = 1;
 }
 
 /* The first angle holding the most votes among the cells of the point just
  * voted: OpenCV's `max_val < val` scan. Only for points that reach the
  * threshold. */
-static int32_t strongest_angle(const seg_ctx *sc)
+static inline __attribute__((always_inline)) int32_t strongest_cell(const seg_ctx *sc, const int wide)
 {
+    const int32_t *idx = sc->idx, n = sc->numangle;
     int32_t best_a = 0;
     uint32_t best = 0;
-    for (int32_t a = 0; a < sc->numangle; a++) {
-        const uint32_t v = sc->acc[sc->idx[a]];
+    for (int32_t a = 0; a < n; a++) {
+        const uint32_t v = wide ? ((const uint16_t *)sc->acc)[idx[a]] : ((const uint8_t *)sc->acc)[idx[a]];
         best_a = v > best ? a : best_a; /* selects, not branches: the maximum moves often */
         best = v > best ? v : best;
     }
     return best_a;
 }
 
+static int32_t strongest_angle(const seg_ctx *sc)
+{
+    return sc->wide ? strongest_cell(sc, 1) : strongest_cell(sc, 0);
+}
+
 /* Removes the votes of a list of packed points, point by point: they are
  * neighbours along a line, so consecutive points hit the same or adjacent
  * cells at every angle. */
+static inline __attribute__((always_inline)) void unvote_cells(const seg_ctx *sc, const uint32_t *pts, int32_t n,
+                                                                const int wide)
+{
+    int32_t *restrict idx = sc->idx;
+    const int32_t numangle = sc->numangle;
+    for (int32_t i = 0; i < n; i++) {
+        cells(sc, (int32_t)(pts[i] & 0xFFFF), (int32_t)(pts[i] >> 16), idx);
+        int32_t a = 0;
+        if (wide) {
+            uint16_t *restrict acc = sc->acc;
+            for (; a + 4 <= numangle; a += 4) {
+                acc[idx[a]]--;
+                acc[idx[a + 1]]--;
+                acc[idx[a + 2]]--;
+                acc[idx[a + 3]]--;
+            }
+            for (; a < numangle; a++)
+                acc[idx[a]]--;
+        } else {
+            uint8_t *restrict acc = sc->acc;
+            for (; a + 4 <= numangle; a += 4) {
+                acc[idx[a]]--;
+                acc[idx[a + 1]]--;
+                acc[idx[a + 2]]--;
+                acc[idx[a + 3]]--;
+            }
+            for (; a < numangle; a++)
+                acc[idx[a]]--;
+        }
+    }
+}
+
 static void unvote(const seg_ctx *sc, const uint32_t *pts, int32_t n)
 {
-    uint16_t *restrict acc = sc->acc;
-    const int32_t *restrict idx = sc->idx;
-    for (int32_t i = 0; i < n; i++) {
-        cells(sc, (int32_t)(pts[i] & 0xFFFF), (int32_t)(pts[i] >> 16), sc->idx);
-        int32_t a = 0;
-        for (; a + 4 <= sc->numangle; a += 4) {
-            acc[idx[a]]--;
-            acc[idx[a + 1]]--;
-            acc[idx[a + 2]]--;
-            acc[idx[a + 3]]--;
-        }
-        for (; a < sc->numangle; a++)
-            acc[idx[a]]--;
-    }
+    if (sc->wide)
+        unvote_cells(sc, pts, n, 1);
+    else
+        unvote_cells(sc, pts, n, 0);
 }
 
 /* The cell (best_n) of the point (x, y) reached the threshold: follow the
@@ -443,14 +529,64 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
     return 1;
 }
 
+/* The point (x, y) reached the threshold: take its segment if there is
+ * one. Returns 0 when the output is full (the search stops). */
+static int reached(seg_ctx *sc, int32_t x, int32_t y)
+{
+    rte_hough_segment seg;
+    if (!take_segment(sc, x, y, strongest_angle(sc), &seg))
+        return 1;
+    if (sc->nseg == sc->max_segments) {
+        sc->truncated = 1;
+        return 0;
+    }
+    sc->segments[sc->nseg++] = seg;
+    return 1;
+}
+
+/* How far ahead in the point order the mask is fetched. */
+#define MASK_AHEAD 8
+
+/* Votes the points from i on, in their order, with cells of one width (a
+ * constant in each copy). Returns where it stopped: npts at the end or
+ * when the output is full (sc->truncated), the point after the one whose
+ * vote widened 8-bit cells (the caller goes on with 16-bit ones). */
+static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const uint32_t *pts, int32_t i,
+                                                             int32_t npts, size_t ncells, const int wide)
+{
+    uint8_t *mask = sc->wc.mask;
+    const size_t w = (size_t)sc->wc.w;
+    for (; i < npts; i++) {
+        /* the points come in a random order: fetch the mask byte of one
+         * further on while this one votes */
+        if (i + MASK_AHEAD < npts)
+            __builtin_prefetch(mask + (pts[i + MASK_AHEAD] >> 16) * w + (pts[i + MASK_AHEAD] & 0xFFFF));
+        const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
+        uint8_t *m = mask + (size_t)y * w + (size_t)x;
+        if (*m != PX_EDGE)
+            continue; /* consumed by an earlier line */
+        *m = PX_VOTED;
+        cells(sc, x, y, sc->idx);
+        if (!vote_cells(sc, wide))
+            continue;
+        if (!wide && wrapped(sc)) {
+            widen(sc, ncells);
+            return reached(sc, x, y) ? i + 1 : npts;
+        }
+        if (!reached(sc, x, y))
+            return npts;
+    }
+    return npts;
+}
+
 /* The most votes one cell can hold. The accumulator is 16 bits (half the
  * memory traffic of 32). A cell counts the pixels whose x cos + y sin falls
  * in one rho bin (each pixel votes once; only voted pixels are un-voted):
  * along the line's major axis, at most floor(rho sqrt 2) + 1 per column or
  * row, plus one for the fixed-point rounding, so at most
- * max(w, h) (rho sqrt 2 + 2) and never more than w h. Cells hold the count
- * plus 32768 - threshold (see vote), so configurations where that could
- * pass 32768 are refused (rho 1: a side above 10922 pixels). */
+ * max(w, h) (rho sqrt 2 + 2) and never more than w h. 16-bit cells hold
+ * the count plus 32769 - threshold (see vote_cells), so configurations where a
+ * count could pass 32767 are refused (rho 1: a side above 10922 pixels). */
 static int64_t cell_bound(const rte_hough_config *cfg)
 {
     const int64_t side = cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height;
@@ -481,15 +617,12 @@ static size_t compact_rows(const rte_hough_config *cfg, int32_t w, int32_t h, in
     return cells;
 }
 
-/* How far ahead in the point order the mask is fetched. */
-#define MASK_AHEAD 8
-
 /* Pixels one segment can consume: CONSUME_REACH either side of each step. */
 static size_t gone_capacity(size_t side) { return (2 * CONSUME_REACH + 1) * (side + 2); }
 
 size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
 {
-    if (!cfg || cell_bound(cfg) > 32768)
+    if (!cfg || cell_bound(cfg) >= (int64_t)CELL16_TOP)
         return 0;
     size_t pixels = (size_t)cfg->max_width * (size_t)cfg->max_height;
     size_t cells = compact_rows(cfg, cfg->max_width, cfg->max_height, 0, NULL);
@@ -513,7 +646,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     if (st != RTE_OK)
         return st;
     const int64_t bound = cell_bound(cfg);
-    if (bound > 32768)
+    if (bound >= (int64_t)CELL16_TOP)
         return RTE_ERR_ARGUMENT;
     if (params->threshold > bound)
         return RTE_OK; /* no cell can reach it: no segments */
@@ -526,7 +659,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     const size_t mark = rte_arena_mark(arena);
     uint32_t *pts = rte_arena_alloc(arena, pixels * sizeof(uint32_t));
     uint8_t *mask = rte_arena_alloc(arena, pixels);
-    uint16_t *acc = rte_arena_alloc(arena, ncells * sizeof(uint16_t));
+    void *acc = rte_arena_alloc(arena, ncells * sizeof(uint16_t)); /* 16-bit cells once wide */
     int32_t *row_base = rte_arena_alloc(arena, (size_t)numangle * sizeof(int32_t));
     uint32_t *gone = rte_arena_alloc(arena, gone_capacity(side) * sizeof(uint32_t));
     int32_t *idx = rte_arena_alloc(arena, (size_t)numangle * sizeof(int32_t));
@@ -561,12 +694,18 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
             }
         }
     }
-    /* count + offset stays in [0, 65535]: counts up to bound <= 32768,
-     * 1 <= threshold <= bound */
-    const uint16_t offset = (uint16_t)(32768 - params->threshold);
+    /* 16 bits: count + 32769 - threshold stays in [1, 65535] (counts up to
+     * bound <= 32767, 1 <= threshold <= bound); 8 bits: count + 129 -
+     * threshold in [1, 255] until a wrap widens the cells */
     compact_rows(cfg, w, h, bias, row_base);
-    for (size_t i = 0; i < ncells; i++)
-        acc[i] = offset;
+    const int wide = params->threshold > HOUGH_CELL8_MAX_THRESHOLD;
+    if (wide) {
+        uint16_t *cells16 = acc;
+        for (size_t i = 0; i < ncells; i++)
+            cells16[i] = (uint16_t)(CELL16_TOP + 1 - (uint32_t)params->threshold);
+    } else {
+        memset(acc, (int)(CELL8_TOP + 1 - (uint32_t)params->threshold), ncells);
+    }
 
     /* Fisher-Yates with xorshift32 and a multiply-shift range reduction:
      * the same order everywhere. */
@@ -581,33 +720,16 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         pts[j] = t;
     }
 
-    seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), row_base, acc, idx, numangle, bias,
+    seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), row_base, acc, wide, idx, numangle, bias,
                    (int64_t)params->min_length * params->min_length, gone,
-                   { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 }, 0 } };
-    int32_t nseg = 0;
-
-    for (int32_t i = 0; i < npts; i++) {
-        /* the points come in a random order: fetch the mask byte of one
-         * further on while this one votes */
-        if (i + MASK_AHEAD < npts)
-            __builtin_prefetch(mask + (size_t)(pts[i + MASK_AHEAD] >> 16) * w + (pts[i + MASK_AHEAD] & 0xFFFF));
-        const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
-        uint8_t *m = mask + (size_t)y * w + x;
-        if (*m != PX_EDGE)
-            continue; /* consumed by an earlier line */
-        *m = PX_VOTED;
-        if (!vote(&sc, x, y))
-            continue;
-        rte_hough_segment seg;
-        if (!take_segment(&sc, x, y, strongest_angle(&sc), &seg))
-            continue;
-        if (nseg == max_segments) {
-            *truncated = 1;
-            break;
-        }
-        segments[nseg++] = seg;
-    }
-    *count = nseg;
+                   { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 }, 0 },
+                   segments, max_segments, 0, 0 };
+    /* 8-bit cells, then 16-bit ones from where they widened (if they do) */
+    const int32_t next = wide ? 0 : search(&sc, pts, 0, npts, ncells, 0);
+    if (!sc.truncated)
+        search(&sc, pts, next, npts, ncells, 1);
+    *count = sc.nseg;
+    *truncated = sc.truncated;
     rte_arena_reset(arena, mark);
     return RTE_OK;
 }
