@@ -323,39 +323,47 @@ static inline void cells(const seg_ctx *sc, int32_t x, int32_t y, int32_t *idx)
 #define HOUGH_CELL8_MAX_THRESHOLD 128
 #endif
 
+/* The accumulator as 8-bit or 16-bit cells; wide is a constant in each
+ * copy of the loops that use it. Both views are restrict (no other pointer
+ * reaches the cells) and a copy uses only one of them. */
+typedef struct cells_view {
+    uint8_t *restrict c8;
+    uint16_t *restrict c16;
+} cells_view;
+
+static inline cells_view cells_of(const seg_ctx *sc) { return (cells_view){ sc->acc, sc->acc }; }
+
+static inline uint32_t cell_get(cells_view v, const int wide, int32_t i) { return wide ? v.c16[i] : v.c8[i]; }
+
+static inline void cell_set(cells_view v, const int wide, int32_t i, uint32_t x)
+{
+    if (wide)
+        v.c16[i] = (uint16_t)x;
+    else
+        v.c8[i] = (uint8_t)x;
+}
+
 /* Adds the votes of the point (x, y) (its cells in sc->idx); returns
- * nonzero when one of them reached the threshold. wide is a constant in
- * each copy. */
+ * nonzero when one of them reached the threshold. */
 static inline __attribute__((always_inline)) uint32_t vote_cells(const seg_ctx *sc, const int wide)
 {
     /* locals: a byte store may alias any field of *sc */
     const int32_t *restrict idx = sc->idx, n = sc->numangle;
+    const cells_view acc = cells_of(sc);
     uint32_t o0 = 0, o1 = 0;
     int32_t a = 0;
-    if (wide) {
-        uint16_t *restrict acc = sc->acc;
-        for (; a + 2 <= n; a += 2) {
-            const uint32_t v0 = acc[idx[a]], v1 = acc[idx[a + 1]];
-            acc[idx[a]] = (uint16_t)(v0 + 1);
-            acc[idx[a + 1]] = (uint16_t)(v1 + 1);
-            o0 |= v0;
-            o1 |= v1;
-        }
-        if (a < n)
-            o0 |= acc[idx[a]]++;
-        return (o0 | o1) & CELL16_TOP;
-    }
-    uint8_t *restrict acc = sc->acc;
     for (; a + 2 <= n; a += 2) {
-        const uint32_t v0 = acc[idx[a]], v1 = acc[idx[a + 1]];
-        acc[idx[a]] = (uint8_t)(v0 + 1);
-        acc[idx[a + 1]] = (uint8_t)(v1 + 1);
+        const uint32_t v0 = cell_get(acc, wide, idx[a]), v1 = cell_get(acc, wide, idx[a + 1]);
+        cell_set(acc, wide, idx[a], v0 + 1);
+        cell_set(acc, wide, idx[a + 1], v1 + 1);
         o0 |= v0;
         o1 |= v1;
     }
-    if (a < n)
-        o0 |= acc[idx[a]]++;
-    return (o0 | o1) & CELL8_TOP;
+    if (a < n) {
+        o0 |= cell_get(acc, wide, idx[a]);
+        cell_set(acc, wide, idx[a], cell_get(acc, wide, idx[a]) + 1);
+    }
+    return (o0 | o1) & (wide ? CELL16_TOP : CELL8_TOP);
 }
 
 /* 8-bit cells: did the last vote wrap one of its cells (count threshold +
@@ -393,7 +401,7 @@ static inline __attribute__((always_inline)) int32_t strongest_cell(const seg_ct
     int32_t best_a = 0;
     uint32_t best = 0;
     for (int32_t a = 0; a < n; a++) {
-        const uint32_t v = wide ? ((const uint16_t *)sc->acc)[idx[a]] : ((const uint8_t *)sc->acc)[idx[a]];
+        const uint32_t v = cell_get(cells_of(sc), wide, idx[a]);
         best_a = v > best ? a : best_a; /* selects, not branches: the maximum moves often */
         best = v > best ? v : best;
     }
@@ -415,28 +423,16 @@ static inline __attribute__((always_inline)) void unvote_cells(const seg_ctx *sc
     const int32_t numangle = sc->numangle;
     for (int32_t i = 0; i < n; i++) {
         cells(sc, (int32_t)(pts[i] & 0xFFFF), (int32_t)(pts[i] >> 16), idx);
+        const cells_view acc = cells_of(sc);
         int32_t a = 0;
-        if (wide) {
-            uint16_t *restrict acc = sc->acc;
-            for (; a + 4 <= numangle; a += 4) {
-                acc[idx[a]]--;
-                acc[idx[a + 1]]--;
-                acc[idx[a + 2]]--;
-                acc[idx[a + 3]]--;
-            }
-            for (; a < numangle; a++)
-                acc[idx[a]]--;
-        } else {
-            uint8_t *restrict acc = sc->acc;
-            for (; a + 4 <= numangle; a += 4) {
-                acc[idx[a]]--;
-                acc[idx[a + 1]]--;
-                acc[idx[a + 2]]--;
-                acc[idx[a + 3]]--;
-            }
-            for (; a < numangle; a++)
-                acc[idx[a]]--;
+        for (; a + 4 <= numangle; a += 4) {
+            cell_set(acc, wide, idx[a], cell_get(acc, wide, idx[a]) - 1);
+            cell_set(acc, wide, idx[a + 1], cell_get(acc, wide, idx[a + 1]) - 1);
+            cell_set(acc, wide, idx[a + 2], cell_get(acc, wide, idx[a + 2]) - 1);
+            cell_set(acc, wide, idx[a + 3], cell_get(acc, wide, idx[a + 3]) - 1);
         }
+        for (; a < numangle; a++)
+            cell_set(acc, wide, idx[a], cell_get(acc, wide, idx[a]) - 1);
     }
 }
 
