@@ -283,6 +283,7 @@ typedef struct seg_ctx {
     const int32_t *row_base; /* where each angle's rho bins start in acc (compact_rows) */
     void *acc;    /* cells of 8 bits, or 16 once wide: see vote_cells */
     int wide;
+    size_t ncells;
     int32_t *idx; /* the cells of one point, one per angle */
     int32_t numangle, bias;
     int64_t min_len2;
@@ -366,26 +367,14 @@ static inline __attribute__((always_inline)) uint32_t vote_cells(const seg_ctx *
     return (o0 | o1) & (wide ? CELL16_TOP : CELL8_TOP);
 }
 
-/* 8-bit cells: did the last vote wrap one of its cells (count threshold +
- * 127)? Only asked when it reached the threshold, which a wrap implies. */
-static int wrapped(const seg_ctx *sc)
-{
-    const uint8_t *acc = sc->acc;
-    const int32_t *idx = sc->idx, n = sc->numangle;
-    uint32_t zero = 0;
-    for (int32_t a = 0; a < n; a++)
-        zero |= acc[idx[a]] == 0;
-    return (int)zero;
-}
-
 /* 8-bit cells to 16 in place (the memory holds 16-bit cells): from the top
  * down, so each 8-bit cell is read before its bytes are written over. A 0
  * is a wrapped count of threshold + 127, the only way to reach 0. */
-static void widen(seg_ctx *sc, size_t ncells)
+static void widen(seg_ctx *sc)
 {
     const uint8_t *narrow = sc->acc;
     uint16_t *wide = sc->acc;
-    for (size_t i = ncells; i-- > 0;) {
+    for (size_t i = sc->ncells; i-- > 0;) {
         const uint32_t v = narrow[i];
         wide[i] = (uint16_t)((v ? v : 256u) + (CELL16_TOP - CELL8_TOP));
     }
@@ -394,23 +383,40 @@ static void widen(seg_ctx *sc, size_t ncells)
 
 /* The first angle holding the most votes among the cells of the point just
  * voted: OpenCV's `max_val < val` scan. Only for points that reach the
- * threshold. */
-static inline __attribute__((always_inline)) int32_t strongest_cell(const seg_ctx *sc, const int wide)
+ * threshold. An 8-bit cell the vote wrapped (0) counts as 256, above the
+ * rest (the counts follow the values' order otherwise), and is reported in
+ * *wrapped. */
+static inline __attribute__((always_inline)) int32_t strongest_cell(const seg_ctx *sc, const int wide,
+                                                                     uint32_t *wrapped)
 {
     const int32_t *idx = sc->idx, n = sc->numangle;
     int32_t best_a = 0;
-    uint32_t best = 0;
+    uint32_t best = 0, zero = 0;
     for (int32_t a = 0; a < n; a++) {
-        const uint32_t v = cell_get(cells_of(sc), wide, idx[a]);
+        uint32_t v = cell_get(cells_of(sc), wide, idx[a]);
+        if (!wide) {
+            zero |= v == 0;
+            v = ((v - 1) & 0xFFu) + 1; /* 0 -> 256 */
+        }
         best_a = v > best ? a : best_a; /* selects, not branches: the maximum moves often */
         best = v > best ? v : best;
     }
+    *wrapped = zero;
     return best_a;
 }
 
-static int32_t strongest_angle(const seg_ctx *sc)
+/* The strongest angle of the point just voted; widens 8-bit cells when its
+ * vote wrapped one (the only place a wrap can happen: it passes the
+ * threshold). */
+static int32_t strongest_angle(seg_ctx *sc)
 {
-    return sc->wide ? strongest_cell(sc, 1) : strongest_cell(sc, 0);
+    uint32_t wrapped;
+    if (sc->wide)
+        return strongest_cell(sc, 1, &wrapped);
+    const int32_t a = strongest_cell(sc, 0, &wrapped);
+    if (wrapped)
+        widen(sc);
+    return a;
 }
 
 /* Removes the votes of a list of packed points, point by point: they are
@@ -526,7 +532,8 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
 }
 
 /* The point (x, y) reached the threshold: take its segment if there is
- * one. Returns 0 when the output is full (the search stops). */
+ * one (8-bit cells may widen on the way). Returns 0 when the output is full
+ * (the search stops). */
 static int reached(seg_ctx *sc, int32_t x, int32_t y)
 {
     rte_hough_segment seg;
@@ -548,7 +555,7 @@ static int reached(seg_ctx *sc, int32_t x, int32_t y)
  * when the output is full (sc->truncated), the point after the one whose
  * vote widened 8-bit cells (the caller goes on with 16-bit ones). */
 static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const uint32_t *pts, int32_t i,
-                                                             int32_t npts, size_t ncells, const int wide)
+                                                             int32_t npts, const int wide)
 {
     uint8_t *mask = sc->wc.mask;
     const size_t w = (size_t)sc->wc.w;
@@ -565,12 +572,10 @@ static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const u
         cells(sc, x, y, sc->idx);
         if (!vote_cells(sc, wide))
             continue;
-        if (!wide && wrapped(sc)) {
-            widen(sc, ncells);
-            return reached(sc, x, y) ? i + 1 : npts;
-        }
         if (!reached(sc, x, y))
             return npts;
+        if (sc->wide != wide)
+            return i + 1; /* widened: go on with 16-bit cells */
     }
     return npts;
 }
@@ -716,14 +721,14 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         pts[j] = t;
     }
 
-    seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), row_base, acc, wide, idx, numangle, bias,
+    seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), row_base, acc, wide, ncells, idx, numangle, bias,
                    (int64_t)params->min_length * params->min_length, gone,
                    { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 }, 0 },
                    segments, max_segments, 0, 0 };
     /* 8-bit cells, then 16-bit ones from where they widened (if they do) */
-    const int32_t next = wide ? 0 : search(&sc, pts, 0, npts, ncells, 0);
+    const int32_t next = wide ? 0 : search(&sc, pts, 0, npts, 0);
     if (!sc.truncated)
-        search(&sc, pts, next, npts, ncells, 1);
+        search(&sc, pts, next, npts, 1);
     *count = sc.nseg;
     *truncated = sc.truncated;
     rte_arena_reset(arena, mark);
