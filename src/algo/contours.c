@@ -181,19 +181,22 @@ size_t rte_contours_scratch_size(int32_t max_width, int32_t max_height, int32_t 
            rte_arena_piece_size((size_t)max_contours * sizeof(node) + 1);
 }
 
-/* Copies src into the label map as 0/1 with a zero frame. */
+/* Copies src into the label map as 0/1 with a zero frame. The width is a
+ * local: with src->width in the loop test, each byte store (which may
+ * alias it) forced a reload and kept the loop scalar. */
 static void fill_label_map(const rte_image_u8 *src, int8_t *map, int32_t ms)
 {
+    const int32_t w = src->width, h = src->height;
     memset(map, 0, (size_t)ms);
-    for (int32_t y = 0; y < src->height; y++) {
+    for (int32_t y = 0; y < h; y++) {
         const uint8_t *restrict s = rte_u8_row(src, y);
         int8_t *restrict m = map + (size_t)(y + 1) * ms;
         m[0] = 0;
-        for (int32_t x = 0; x < src->width; x++)
+        for (int32_t x = 0; x < w; x++)
             m[x + 1] = (int8_t)(s[x] != 0);
         m[ms - 1] = 0;
     }
-    memset(map + (size_t)(src->height + 1) * ms, 0, (size_t)ms);
+    memset(map + (size_t)(h + 1) * ms, 0, (size_t)ms);
 }
 
 /* Finds the parent of a border starting on row y whose nearest border pixel

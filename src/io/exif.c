@@ -62,10 +62,11 @@ void io_reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientat
     case 8: origin = (sw - 1) * c; step_x = sstride; step_y = -c; break;
     default: break;
     }
-    for (int32_t y = 0; y < dst->height; y++) {
+    const int32_t w = dst->width, h = dst->height; /* locals: byte stores could alias them */
+    for (int32_t y = 0; y < h; y++) {
         const uint8_t *s = src + origin + step_y * y;
         uint8_t *d = io_target_row(dst, y);
-        for (int32_t x = 0; x < dst->width; x++, s += step_x)
+        for (int32_t x = 0; x < w; x++, s += step_x)
             memcpy(d + (size_t)x * (size_t)c, s, (size_t)c);
     }
 }

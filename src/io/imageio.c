@@ -36,11 +36,12 @@ rte_status io_fail_errno(const io_msg *m, rte_status st, const char *what)
 void io_put_gray_row(const io_target *t, int32_t y, const uint8_t *gray)
 {
     uint8_t *restrict d = io_target_row(t, y);
+    const int32_t w = t->width; /* a local: byte stores could alias t->width */
     if (t->channels == 1) {
-        memcpy(d, gray, (size_t)t->width);
+        memcpy(d, gray, (size_t)w);
         return;
     }
-    for (int32_t x = 0; x < t->width; x++) {
+    for (int32_t x = 0; x < w; x++) {
         uint8_t v = gray[x];
         d[3 * x] = v;
         d[3 * x + 1] = v;
@@ -51,7 +52,8 @@ void io_put_gray_row(const io_target *t, int32_t y, const uint8_t *gray)
 void io_put_rgb_row(const io_target *t, int32_t y, const uint8_t *rgb)
 {
     uint8_t *restrict d = io_target_row(t, y);
-    for (int32_t x = 0; x < t->width; x++) {
+    const int32_t w = t->width;
+    for (int32_t x = 0; x < w; x++) {
         d[3 * x] = rgb[3 * x + 2];
         d[3 * x + 1] = rgb[3 * x + 1];
         d[3 * x + 2] = rgb[3 * x];
