@@ -44,6 +44,46 @@ static circle_geom geometry(int32_t w, int32_t h, const rte_hough_circles_params
     return g;
 }
 
+/* Radius bins without a square root per pixel: floor(sqrt(d2)) - min_r * 16
+ * for d2 in [rmin2, rmax2] is the last bin k with sq[k] <= d2. A coarse table
+ * gives the bin at the start of each 2^shift-wide range of d2 (at most
+ * RADIUS_COARSE entries), and a few steps up find it (the integer Newton
+ * square root, with its divisions, took a third of the transform). */
+#define RADIUS_COARSE 4096
+typedef struct radius_table {
+    int64_t *sq;     /* sq[k] = (min_r * 16 + k)^2 for k <= nbins (sq[nbins] stops the steps) */
+    int32_t *coarse; /* the bin of rmin2 + (i << shift) */
+    int64_t rmin2;
+    int32_t shift;
+} radius_table;
+
+static void radius_table_init(radius_table *t, const circle_geom *g)
+{
+    const int64_t r0 = (int64_t)g->min_r * 16;
+    for (int32_t k = 0; k <= g->nbins; k++)
+        t->sq[k] = (r0 + k) * (r0 + k);
+    t->rmin2 = t->sq[0];
+    const int64_t span = t->sq[g->nbins - 1] - t->rmin2;
+    t->shift = 0;
+    while ((span >> t->shift) >= RADIUS_COARSE)
+        t->shift++;
+    int32_t k = 0;
+    for (int64_t i = 0; i <= span >> t->shift; i++) {
+        const int64_t d2 = t->rmin2 + (i << t->shift);
+        while (t->sq[k + 1] <= d2)
+            k++;
+        t->coarse[i] = k;
+    }
+}
+
+static inline int32_t radius_bin(const radius_table *t, int64_t d2)
+{
+    int32_t k = t->coarse[(d2 - t->rmin2) >> t->shift];
+    while (t->sq[k + 1] <= d2)
+        k++;
+    return k;
+}
+
 static size_t cells_of(const circle_geom *g) { return (size_t)(g->arows + 2) * (size_t)(g->acols + 2); }
 
 static size_t candidates_of(const circle_geom *g)
@@ -65,7 +105,9 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
            rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t)) +
            rte_arena_piece_size(cand * sizeof(int32_t)) + rte_arena_piece_size(cand * sizeof(uint64_t)) +
            rte_arena_piece_size(cand * 3 * sizeof(int32_t)) +
-           rte_arena_piece_size((size_t)g.nbins * sizeof(int32_t));
+           rte_arena_piece_size((size_t)g.nbins * sizeof(int32_t)) +
+           rte_arena_piece_size(((size_t)g.nbins + 1) * sizeof(int64_t)) +
+           rte_arena_piece_size(RADIUS_COARSE * sizeof(int32_t));
 }
 
 /* round(num / den) for den > 0, halves away from zero. */
@@ -144,7 +186,7 @@ static inline void ring_window(const uint32_t *pts, const int32_t *row_start, in
 
 /* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. */
 static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, int32_t h, const circle_geom *g,
-                               int32_t cx, int32_t cy, int32_t *bins, int32_t *radius_q4)
+                               const radius_table *rt, int32_t cx, int32_t cy, int32_t *bins, int32_t *radius_q4)
 {
     const int64_t rmin2 = (int64_t)g->min_r * g->min_r * 256, rmax2 = (int64_t)g->max_r * g->max_r * 256;
     int32_t y_lo = (cy >> 4) - g->max_r - 1, y_hi = (cy >> 4) + g->max_r + 1;
@@ -161,8 +203,7 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
             int64_t d2 = ddx * ddx + ddy * ddy;
             if (d2 < rmin2 || d2 > rmax2)
                 continue;
-            int32_t b = (int32_t)rte_isqrt64((uint64_t)d2) - g->min_r * 16;
-            bins[b < 0 ? 0 : b >= g->nbins ? g->nbins - 1 : b]++;
+            bins[radius_bin(rt, d2)]++;
             any = 1;
         }
     }
@@ -205,8 +246,14 @@ static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t
 {
     *px = (int64_t)(p & 0xFFFF) * 16 - cx;
     *py = (int64_t)(p >> 16) * 16 - cy;
-    *d = (int64_t)rte_isqrt64((uint64_t)(*px * *px + *py * *py));
-    return *d >= r - band && *d <= r + band;
+    /* floor(sqrt(d2)) in [r - band, r + band] <=> (r - band)^2 <= d2 <
+     * (r + band + 1)^2: most pixels
+     * of the window are off the ring, and need no square root */
+    const int64_t d2 = *px * *px + *py * *py, lo = r - band > 0 ? r - band : 0, hi = r + band + 1;
+    if (d2 < lo * lo || d2 >= hi * hi)
+        return 0;
+    *d = (int64_t)rte_isqrt64((uint64_t)d2);
+    return 1;
 }
 
 static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, const rte_image_s16 *dx,
@@ -316,12 +363,15 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     uint64_t *keys = rte_arena_alloc(arena, cand_cap * sizeof(uint64_t));
     int32_t *est = rte_arena_alloc(arena, cand_cap * 3 * sizeof(int32_t));
     int32_t *bins = rte_arena_alloc(arena, (size_t)g.nbins * sizeof(int32_t));
-    if (!acc || !pts || !row_start || !centres || !keys || !est || !bins) {
+    radius_table rt = { rte_arena_alloc(arena, ((size_t)g.nbins + 1) * sizeof(int64_t)),
+                        rte_arena_alloc(arena, RADIUS_COARSE * sizeof(int32_t)), 0, 0 };
+    if (!acc || !pts || !row_start || !centres || !keys || !est || !bins || !rt.sq || !rt.coarse) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
     for (size_t i = 0; i < cells; i++)
         acc[i] = 0;
+    radius_table_init(&rt, &g);
     if (accumulate(edges, dx, dy, &g, params->dp_q8, acc, pts, row_start) == 0) {
         rte_arena_reset(arena, mark);
         return RTE_OK;
@@ -348,7 +398,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
         int32_t cx = (int32_t)(((int64_t)(2 * ax + 1) * params->dp_q8 + 16) / 32);
         int32_t cy = (int32_t)(((int64_t)(2 * ay + 1) * params->dp_q8 + 16) / 32);
         int32_t r = 0;
-        int32_t support = estimate_radius(pts, row_start, h, &g, cx, cy, bins, &r);
+        int32_t support = estimate_radius(pts, row_start, h, &g, &rt, cx, cy, bins, &r);
         if (support > thr) {
             refine(pts, row_start, h, dx, dy, params->dp_q8, &cx, &cy, &r);
             est[3 * nest] = cx;
