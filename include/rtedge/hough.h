@@ -104,11 +104,11 @@ typedef struct rte_hough_segments_params {
  * platform visits the points in the same order. */
 #define RTE_HOUGH_SEGMENTS_SEED 0x2545F491u
 
-/* 0 for a configuration segments refuse: the accumulator is 16 bits and a
- * cell holds its count plus 32768 - threshold, so
+/* 0 for a configuration segments refuse: accumulator cells are at most 16
+ * bits and hold their count plus 32769 - threshold, so
  * max(max_width, max_height) * (rho * sqrt 2 + 2), the most pixels one
- * cell can count, must stay at or below 32768 unless the whole map has
- * fewer pixels (rho 1: sides up to 10922). rte_hough_segments returns
+ * cell can count, must stay below 32768 unless the whole map has fewer
+ * pixels (rho 1: sides up to 10922). rte_hough_segments returns
  * RTE_ERR_ARGUMENT for such a configuration, and no segments (RTE_OK) for
  * a threshold above that bound, which no cell can reach. */
 size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg);

@@ -188,7 +188,7 @@ static inline void ring_window(const uint32_t *pts, const int32_t *row_start, in
 static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, int32_t h, const circle_geom *g,
                                const radius_table *rt, int32_t cx, int32_t cy, int32_t *bins, int32_t *radius_q4)
 {
-    const int64_t rmin2 = (int64_t)g->min_r * g->min_r * 256, rmax2 = (int64_t)g->max_r * g->max_r * 256;
+    const int64_t rmin2 = rt->rmin2, rmax2 = rt->sq[g->nbins - 1]; /* (min_r 16)^2, (max_r 16)^2 */
     int32_t y_lo = (cy >> 4) - g->max_r - 1, y_hi = (cy >> 4) + g->max_r + 1;
     y_lo = y_lo < 0 ? 0 : y_lo;
     y_hi = y_hi > h - 1 ? h - 1 : y_hi;
@@ -247,8 +247,8 @@ static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t
     *px = (int64_t)(p & 0xFFFF) * 16 - cx;
     *py = (int64_t)(p >> 16) * 16 - cy;
     /* floor(sqrt(d2)) in [r - band, r + band] <=> (r - band)^2 <= d2 <
-     * (r + band + 1)^2: most pixels
-     * of the window are off the ring, and need no square root */
+     * (r + band + 1)^2: most pixels of the window are off the ring, and
+     * need no square root */
     const int64_t d2 = *px * *px + *py * *py, lo = r - band > 0 ? r - band : 0, hi = r + band + 1;
     if (d2 < lo * lo || d2 >= hi * hi)
         return 0;
@@ -371,11 +371,11 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     }
     for (size_t i = 0; i < cells; i++)
         acc[i] = 0;
-    radius_table_init(&rt, &g);
     if (accumulate(edges, dx, dy, &g, params->dp_q8, acc, pts, row_start) == 0) {
         rte_arena_reset(arena, mark);
         return RTE_OK;
     }
+    radius_table_init(&rt, &g);
 
     /* Step 2: centres, in raster order of the accumulator. */
     const int32_t astep = g.acols + 2, thr = params->acc_threshold;

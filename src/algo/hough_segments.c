@@ -361,8 +361,9 @@ static inline __attribute__((always_inline)) uint32_t vote_cells(const seg_ctx *
         o1 |= v1;
     }
     if (a < n) {
-        o0 |= cell_get(acc, wide, idx[a]);
-        cell_set(acc, wide, idx[a], cell_get(acc, wide, idx[a]) + 1);
+        const uint32_t v = cell_get(acc, wide, idx[a]);
+        cell_set(acc, wide, idx[a], v + 1);
+        o0 |= v;
     }
     return (o0 | o1) & (wide ? CELL16_TOP : CELL8_TOP);
 }
@@ -580,9 +581,8 @@ static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const u
     return npts;
 }
 
-/* The most votes one cell can hold. The accumulator is 16 bits (half the
- * memory traffic of 32). A cell counts the pixels whose x cos + y sin falls
- * in one rho bin (each pixel votes once; only voted pixels are un-voted):
+/* The most votes one cell can hold. A cell counts the pixels whose
+ * x cos + y sin falls in one rho bin (each pixel votes once; only voted pixels are un-voted):
  * along the line's major axis, at most floor(rho sqrt 2) + 1 per column or
  * row, plus one for the fixed-point rounding, so at most
  * max(w, h) (rho sqrt 2 + 2) and never more than w h. 16-bit cells hold
@@ -654,14 +654,14 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     const int32_t w = edges->width, h = edges->height;
 
     const int32_t numangle = cfg->num_angles, bias = rte_hough_rho_bias(cfg, rte_hough_rho_bins(cfg, w, h));
-    const size_t ncells = compact_rows(cfg, w, h, bias, NULL);
     const size_t pixels = (size_t)w * (size_t)h;
     const size_t side = (size_t)(w > h ? w : h);
     const size_t mark = rte_arena_mark(arena);
     uint32_t *pts = rte_arena_alloc(arena, pixels * sizeof(uint32_t));
     uint8_t *mask = rte_arena_alloc(arena, pixels);
-    void *acc = rte_arena_alloc(arena, ncells * sizeof(uint16_t)); /* 16-bit cells once wide */
     int32_t *row_base = rte_arena_alloc(arena, (size_t)numangle * sizeof(int32_t));
+    const size_t ncells = row_base ? compact_rows(cfg, w, h, bias, row_base) : 0;
+    void *acc = rte_arena_alloc(arena, ncells * sizeof(uint16_t)); /* 16-bit cells once wide */
     uint32_t *gone = rte_arena_alloc(arena, gone_capacity(side) * sizeof(uint32_t));
     int32_t *idx = rte_arena_alloc(arena, (size_t)numangle * sizeof(int32_t));
     uint32_t *hits = rte_arena_alloc(arena, (2 * side + 4) * sizeof(uint32_t));
@@ -698,7 +698,6 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     /* 16 bits: count + 32769 - threshold stays in [1, 65535] (counts up to
      * bound <= 32767, 1 <= threshold <= bound); 8 bits: count + 129 -
      * threshold in [1, 255] until a wrap widens the cells */
-    compact_rows(cfg, w, h, bias, row_base);
     const int wide = params->threshold > HOUGH_CELL8_MAX_THRESHOLD;
     if (wide) {
         uint16_t *cells16 = acc;

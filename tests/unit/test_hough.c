@@ -133,7 +133,7 @@ static void test_segments_gap_and_length(void **state)
     assert_int_equal(n, 0);
     assert_int_equal(a.used, 0);
     /* thresholds up to the most votes a cell can hold (64 * 3 here; cells
-     * keep count + 32768 - threshold): a full 64-pixel column reaches 64,
+     * keep count + 129 or 32769 - threshold): a full 64-pixel column reaches 64,
      * and a threshold above the bound finds nothing without running */
     for (int32_t y = 0; y < 64; y++)
         memset(e.buf + (size_t)y * e.stride, 255, 64);
@@ -340,9 +340,9 @@ static void test_argument_errors(void **state)
     p.threshold = 5;
     p.max_gap = -1;
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 4, &n, &tr), RTE_ERR_ARGUMENT);
-    /* configurations where a segment accumulator cell could count more
-     * than 32768 pixels (it holds count + 32768 - threshold in 16 bits)
-     * are refused; rho 1 up to a side of 10922 and any rho on a small map
+    /* configurations where a segment accumulator cell could count 32768
+     * pixels or more (it holds count + 32769 - threshold in 16 bits) are
+     * refused; rho 1 up to a side of 10922 and any rho on a small map
      * are fine */
     rte_hough_config wide;
     assert_int_equal(rte_hough_config_init(&wide, 1920, 1080, 20.0, PI / 180, 0.0, PI), RTE_OK);
