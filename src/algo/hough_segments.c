@@ -203,10 +203,16 @@ static inline __attribute__((always_inline)) void follow_axis(walk_ctx *c, const
 
 static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
 {
+    /* a local copy: the stores of hits could alias the context's fields */
+    walk_ctx l = *c;
+    int32_t lo, hi;
     if (s->major_x)
-        follow_axis(c, s, 1, kmin, kmax);
+        follow_axis(&l, s, 1, &lo, &hi);
     else
-        follow_axis(c, s, 0, kmin, kmax);
+        follow_axis(&l, s, 0, &lo, &hi);
+    *c = l;
+    *kmin = lo;
+    *kmax = hi;
 }
 
 /* floor(v / 65536 + 1/2) for any sign */
@@ -351,21 +357,30 @@ static inline __attribute__((always_inline)) uint32_t vote_cells(const seg_ctx *
     /* locals: a byte store may alias any field of *sc */
     const int32_t *restrict idx = sc->idx, n = sc->numangle;
     const cells_view acc = cells_of(sc);
-    uint32_t o0 = 0, o1 = 0;
+    uint32_t o0 = 0, o1 = 0, o2 = 0, o3 = 0;
     int32_t a = 0;
-    for (; a + 2 <= n; a += 2) {
-        const uint32_t v0 = cell_get(acc, wide, idx[a]), v1 = cell_get(acc, wide, idx[a + 1]);
-        cell_set(acc, wide, idx[a], v0 + 1);
-        cell_set(acc, wide, idx[a + 1], v1 + 1);
+    /* the four bins are read before any cell is written: a byte store may
+     * alias idx, and the compiler would read each bin again after it */
+    for (; a + 4 <= n; a += 4) {
+        const int32_t i0 = idx[a], i1 = idx[a + 1], i2 = idx[a + 2], i3 = idx[a + 3];
+        const uint32_t v0 = cell_get(acc, wide, i0), v1 = cell_get(acc, wide, i1);
+        cell_set(acc, wide, i0, v0 + 1);
+        cell_set(acc, wide, i1, v1 + 1);
+        const uint32_t v2 = cell_get(acc, wide, i2), v3 = cell_get(acc, wide, i3);
+        cell_set(acc, wide, i2, v2 + 1);
+        cell_set(acc, wide, i3, v3 + 1);
         o0 |= v0;
         o1 |= v1;
+        o2 |= v2;
+        o3 |= v3;
     }
-    if (a < n) {
-        const uint32_t v = cell_get(acc, wide, idx[a]);
-        cell_set(acc, wide, idx[a], v + 1);
+    for (; a < n; a++) {
+        const int32_t i0 = idx[a];
+        const uint32_t v = cell_get(acc, wide, i0);
+        cell_set(acc, wide, i0, v + 1);
         o0 |= v;
     }
-    return (o0 | o1) & (wide ? CELL16_TOP : CELL8_TOP);
+    return (o0 | o1 | o2 | o3) & (wide ? CELL16_TOP : CELL8_TOP);
 }
 
 /* 8-bit cells to 16 in place (the memory holds 16-bit cells): from the top
