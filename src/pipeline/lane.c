@@ -277,16 +277,15 @@ typedef struct lane_fit_hint {
  * in perspective (the horizon taken an eighth of the lane above the ROI
  * top). The lane near the camera is measured best and matters most: on a
  * bend, far dashes must not turn the lane away from the near ones. */
-static int64_t row_weight_q8(const lane_fit_hint *h, const rte_lane_segment *s)
+static int64_t row_weight_q8(const lane_fit_hint *h, int64_t y)
 {
     const int64_t span = h->y_bottom - h->y_top, q = span / 8 + 1;
     if (span <= 0)
         return 256;
-    int64_t y = (s->y0 + s->y1) / 2 - h->y_top;
+    y -= h->y_top;
     y = y < 0 ? 0 : y > span ? span : y;
     return 256 * (y + q) * (y + q) / ((span + q) * (span + q)) + 1;
 }
-
 /* A segment's own direction counts this many times the spread of its
  * pixels: it is fitted to all of them (the Hough refit), and on a bend the
  * markings' local direction describes the lane near them better than the
@@ -303,7 +302,7 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *membe
     int64_t w = 0, sx = 0, sy = 0;
     for (int32_t i = 0; i < n; i++) {
         const rte_lane_segment *s = &segs[members[i]];
-        const int64_t len = seg_length(s) * row_weight_q8(hint, s);
+        const int64_t len = seg_length(s) * row_weight_q8(hint, (s->y0 + s->y1) / 2);
         w += len;
         sx += len * (s->x0 + s->x1); /* Q1 */
         sy += len * (s->y0 + s->y1);
@@ -314,7 +313,7 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *membe
     int64_t cyy = 0, cxy = 0;
     for (int32_t i = 0; i < n; i++) {
         const rte_lane_segment *s = &segs[members[i]];
-        const int64_t len = seg_length(s) * row_weight_q8(hint, s);
+        const int64_t len = seg_length(s) * row_weight_q8(hint, (s->y0 + s->y1) / 2);
         const int64_t X = s->x0 + s->x1 - mx, Y = s->y0 + s->y1 - my;
         const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0;
         /* Q2 moments times 3: 3*X*Y + (2dx)(2dy)*3/12 = 3XY + dx*dy */
@@ -375,6 +374,169 @@ static int64_t fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, cons
     for (int32_t i = 0; i < kept; i++)
         support += seg_length(&segs[members[i]]);
     return support;
+}
+
+/* Half-width of the band of edge pixels around a fitted lane at row y:
+ * `tol` on the bottom row, shrinking in perspective towards the horizon to
+ * about a quarter of it on the ROI's top row (near the top the two lanes
+ * are only tens of pixels apart), at least 5 px so both edges of a narrow
+ * far marking stay in, and at most LANE_BAND_MAX. */
+#define LANE_BAND_MAX 64
+static int64_t band_px(const lane_fit_hint *h, int64_t tol, int32_t y)
+{
+    const int64_t span = h->y_bottom - h->y_top, q = 3 * (span / 8 + 1);
+    if (span <= 0)
+        return tol < 5 ? 5 : tol > LANE_BAND_MAX ? LANE_BAND_MAX : tol;
+    int64_t d = y - h->y_top;
+    d = d < 0 ? 0 : d > span ? span : d;
+    const int64_t b = tol * (d + q) / (span + q);
+    return b < 5 ? 5 : b > LANE_BAND_MAX ? LANE_BAND_MAX : b;
+}
+
+/* The edge pixels of columns xa..xb of one row that run along a line. */
+typedef struct band_pixels {
+    int64_t n, sum_x;    /* how many, and the sum of their x */
+    int64_t first, last; /* the outermost */
+} band_pixels;
+
+/* Eight bytes, the first in the lowest bits whatever the byte order. */
+static inline uint64_t load_le64(const uint8_t *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    v = __builtin_bswap64(v);
+#endif
+    return v;
+}
+
+static inline void band_add(band_pixels *px, int64_t x)
+{
+    px->n++;
+    px->sum_x += x;
+    px->first = x < px->first ? x : px->first;
+    px->last = x > px->last ? x : px->last;
+}
+
+/* The edge pixels in columns xa..xb (inside the map) of row y of `edges`
+ * that run along a line of slope_q16 (x per row): each needs an edge pixel
+ * in the row above or below at one of the two columns the slope reaches
+ * there, so edges crossing the line (shadows, patch borders, car bumpers)
+ * do not count. Eight pixels at a time away from the map's borders. */
+static band_pixels band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16)
+{
+    band_pixels px = {0, 0, INT64_MAX, INT64_MIN};
+    const uint8_t *row = rte_u8_row(edges, y);
+    const uint8_t *up = y > 0 ? row - edges->stride : NULL;
+    const uint8_t *down = y < edges->height - 1 ? row + edges->stride : NULL;
+    /* below: x + slope lies in [x + step, x + step + 1]; above: x - slope
+     * in [x - back, x - back + 1] */
+    const int64_t step = slope_q16 >> 16, back = step + ((slope_q16 & 0xFFFF) != 0);
+    const int64_t words_end = xa + ((xb - xa) / 8 + 1) * 8; /* the word loop reads up to here + 1 */
+    if (up && down && xa - back >= 0 && xa + step >= 0 && words_end + 1 - back <= edges->width &&
+        words_end + 1 + step <= edges->width && words_end <= edges->width) {
+        const uint64_t low7 = 0x7F7F7F7F7F7F7F7Fu;
+        for (int64_t x = xa; x <= xb; x += 8) {
+            uint64_t h = load_le64(row + x);
+            if (xb - x < 7)
+                h &= ((uint64_t)1 << (8 * (xb - x + 1))) - 1; /* bytes past xb */
+            if (!h)
+                continue;
+            const uint64_t m = h & (load_le64(up + x - back) | load_le64(up + x - back + 1) |
+                                    load_le64(down + x + step) | load_le64(down + x + step + 1));
+            /* the top bit of each nonzero byte of m */
+            for (uint64_t nz = (((m & low7) + low7) | m) & ~low7; nz; nz &= nz - 1)
+                band_add(&px, x + (__builtin_ctzll(nz) >> 3));
+        }
+        return px;
+    }
+    for (int64_t x = xa; x <= xb; x++) {
+        if (!row[x])
+            continue;
+        bool along = false;
+        for (int64_t k = 0; k <= 1 && !along; k++) {
+            const int64_t xu = x - back + k, xd = x + step + k;
+            along = (up && xu >= 0 && xu < edges->width && up[xu]) ||
+                    (down && xd >= 0 && xd < edges->width && down[xd]);
+        }
+        if (along)
+            band_add(&px, x);
+    }
+    return px;
+}
+
+/* The segment fit refined on the edge pixels themselves: the edge pixels
+ * within band_px of the line that run along it (band_row; `edges` and the
+ * ROI mask `roi` are the crop at (cx0, cy0)) enter a weighted
+ * least-squares fit of their horizontal residuals to the line (row weights
+ * as for segments, the tracked slope as a prior). Up to three passes, each
+ * in the band around the line of the one before, until the line's ends
+ * move less than a quarter of a pixel (with two, 2 of the 136 photo runs
+ * of tests/unit/test_lane.c over eight point orders of the Hough search
+ * fail; with three or four, none). Short dashes and paint that the Hough search left
+ * without a segment (or split differently) then count by their pixels, so
+ * the lane does not depend on which segments the search happened to find,
+ * and a marking's two edges put the line on its centre. */
+static void refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
+                            const lane_fit_hint *hint, int64_t tol, lane_line *line)
+{
+    const int32_t y0 = hint->y_top > cy0 ? hint->y_top : cy0;
+    const int32_t y1 = hint->y_bottom < cy0 + edges->height - 1 ? hint->y_bottom : cy0 + edges->height - 1;
+    const int64_t half_span = (hint->y_bottom - hint->y_top) / 2 + 1;
+    for (int pass = 0; pass < 3; pass++) {
+        /* Sums over the pixels of rw, rw Y, rw r, rw Y^2 and rw Y r, with
+         * rw the row weight (<= 257, /256), Y = y - y_mid (|Y| <= 4096 px)
+         * and r the residual to the line (|r| <= 65 px, in 1/256 px): at
+         * most 8192 rows of 129 pixels keep every sum, and the products
+         * with the mean below, under 2^63. */
+        int64_t sw = 0, sy = 0, sr = 0, syy = 0, syr = 0;
+        for (int32_t y = y0; y <= y1; y++) {
+            const int64_t band = band_px(hint, tol, y);
+            const int64_t lx = line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0, xb = xa + 2 * band;
+            /* Only rows where the whole band is inside the ROI: where the
+             * ROI's border cuts a marking, its edge on the inside alone
+             * would pull the line off the marking's centre. */
+            if (xa < 0 || xb > edges->width - 1)
+                continue;
+            const uint8_t *inside = rte_u8_row(roi, y - cy0);
+            if (!inside[xa] || !inside[xb])
+                continue;
+            const band_pixels px = band_row(edges, y - cy0, xa, xb, line->slope_q16);
+            /* Both edges of the marking, one either side of the line: a row
+             * where one of them is missing (worn paint, a shadow's border on
+             * it, the end of a dash) would pull the line to the other. */
+            if (px.n == 0 || (px.first + cx0) * 256 >= lx || (px.last + cx0) * 256 <= lx)
+                continue;
+            const int64_t rw = row_weight_q8(hint, y), Y = y - line->y_mid;
+            const int64_t r = (px.sum_x + px.n * cx0) * 256 - px.n * lx; /* sum of the residuals */
+            sw += rw * px.n;
+            sy += rw * px.n * Y;
+            sr += rw * r;
+            syy += rw * px.n * Y * Y;
+            syr += rw * Y * r;
+        }
+        if (sw < 256 * 8)
+            return; /* hardly any paint near the line: keep it */
+        const int64_t my_q8 = sy * 256 / sw; /* mean Y */
+        const int64_t cyy = syy - ((my_q8 * sy) >> 8), cyr = syr - ((my_q8 * sr) >> 8);
+        /* The tracked slope as a prior with the weight of a marking along a
+         * fifth of the lane (both its edges: R^3 rw / 6 in these units). */
+        const int64_t prior = hint->weight / 6;
+        int64_t dslope_q16 = 0;
+        if (prior > 0)
+            dslope_q16 = lane_div_q16(cyr + (prior * (hint->slope_q16 - line->slope_q16) >> 8), (cyy + prior) * 256);
+        else if (cyy >= sw * 64) /* rows spread over ~8 px at least */
+            dslope_q16 = lane_div_q16(cyr, cyy * 256);
+        const int64_t slope = line->slope_q16 + dslope_q16;
+        if (lane_abs64(slope) > 64 * 65536)
+            return;
+        const int64_t dx_mid = sr / sw - ((dslope_q16 * my_q8) >> 16);
+        line->x_mid_q8 += dx_mid;
+        line->slope_q16 = slope;
+        /* settled: both ends moved less than a quarter of a pixel */
+        if (lane_abs64(dx_mid) + ((lane_abs64(dslope_q16) * half_span) >> 8) < 64)
+            return;
+    }
 }
 
 /* Tracked lane x at row y (1/256 px), from its bottom and top points. */
@@ -607,6 +769,8 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
         }
         const int64_t support = fit_side(ctx, members[side], n[side], &hint, &line,
                                          side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
+        if (support > 0 && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
+            refine_on_edges(&edges, &mask, cx0, cy0, &hint, (int64_t)p->outlier_px, &line);
         const bool seen = support > 0 && support >= p->min_support_px;
         lane_track_update(ctx, side, seen, &line, support, lane);
     }
