@@ -352,6 +352,39 @@ static void separable_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rt
 #undef SRC_ROW
 }
 
+/* The rows one output row is reduced from, handed to the row kernel up to
+ * 64 at a time. */
+typedef struct tap_list {
+    const uint8_t *rows[64];
+    int32_t count;
+    bool any; /* some were reduced into the output row already */
+} tap_list;
+
+static void taps_flush(const rte_morph_rows *kr, tap_list *t, uint8_t *d, int32_t w, bool is_max)
+{
+    if (t->count == 0)
+        return;
+    kr->reduce(d, t->rows, t->count, t->any, w, is_max);
+    t->any = true;
+    t->count = 0;
+}
+
+/* Room for `more` rows in the list, flushing it into d if needed. */
+static void taps_room(const rte_morph_rows *kr, tap_list *t, int32_t more, uint8_t *d, int32_t w, bool is_max)
+{
+    if (t->count + more > (int32_t)(sizeof t->rows / sizeof t->rows[0]))
+        taps_flush(kr, t, d, w, is_max);
+}
+
+/* The rest of the list into d; the neutral value when no row of the
+ * element was inside the image. */
+static void taps_finish(const rte_morph_rows *kr, tap_list *t, uint8_t *d, int32_t w, bool is_max)
+{
+    taps_flush(kr, t, d, w, is_max);
+    if (!t->any)
+        memset(d, is_max ? 0 : 255, (size_t)w);
+}
+
 /* Elements whose rows fall into few groups of equal runs (row_groups):
  * per output row, the column window of each group's source rows goes into
  * the middle of that group's padded row, and the runs take one tap per
@@ -375,9 +408,9 @@ static void grouped_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
             for (; loaded <= last; loaded++)
                 memcpy(ring + (size_t)(loaded % p->kh) * p->slot, rte_u8_row(src, loaded), (size_t)w);
         uint8_t *d = rte_u8_row(dst, y);
-        const uint8_t *taps[64];
-        int32_t count = 0;
-        bool any = false;
+        tap_list t; /* rows[] is filled before it is read */
+        t.count = 0;
+        t.any = false;
         for (int32_t g = 0; g < p->groups; g++) {
             const uint8_t *rows[RTE_MORPH_MAX_KSIZE];
             int32_t nrows = 0;
@@ -388,30 +421,21 @@ static void grouped_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
             }
             if (nrows == 0)
                 continue;
+            /* a group adds at most max(kw, kh) rows */
+            taps_room(kr, &t, RTE_MORPH_MAX_KSIZE, d, w, is_max);
             if (p->group_direct[g]) {
                 for (int32_t i = 0; i < nrows; i++)
-                    taps[count++] = rows[i];
+                    t.rows[t.count++] = rows[i];
             } else {
                 uint8_t *pad = work + (size_t)g * p->padded;
                 kr->reduce(pad + p->ax, rows, nrows, false, w, is_max);
                 for (int32_t i = 0; i < e->run_count; i++)
                     if (e->runs[i].dy == p->group_row[g])
                         for (int32_t k = 0; k < e->runs[i].len; k++)
-                            taps[count++] = pad + e->runs[i].dx + k;
-            }
-            /* a group adds at most max(kw, kh) taps */
-            if (count > 64 - RTE_MORPH_MAX_KSIZE) {
-                kr->reduce(d, taps, count, any, w, is_max);
-                any = true;
-                count = 0;
+                            t.rows[t.count++] = pad + e->runs[i].dx + k;
             }
         }
-        if (count) {
-            kr->reduce(d, taps, count, any, w, is_max);
-            any = true;
-        }
-        if (!any) /* every group's rows are outside the image */
-            memset(d, neutral, (size_t)w);
+        taps_finish(kr, &t, d, w, is_max);
     }
 }
 
@@ -433,12 +457,11 @@ static void general_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
             for (int32_t k = 1; k < p->levels; k++)
                 next_level(kr, slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n, k, is_max);
         }
-        /* Every run gives one or two rows of the levels; they are reduced
-         * a chunk at a time. */
+        /* Every run gives one or two rows of the levels. */
         uint8_t *d = rte_u8_row(dst, y);
-        const uint8_t *taps[64];
-        int32_t count = 0;
-        bool any = false;
+        tap_list t; /* rows[] is filled before it is read */
+        t.count = 0;
+        t.any = false;
         for (int32_t i = 0; i < e->run_count; i++) {
             const rte_morph_run run = e->runs[i];
             int32_t r = y + run.dy - p->ay;
@@ -446,21 +469,12 @@ static void general_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
                 continue;
             int32_t k = floor_log2(run.len);
             const uint8_t *level = ring + (size_t)(r % p->kh) * p->slot + (size_t)k * p->padded;
-            taps[count++] = level + run.dx;
+            taps_room(kr, &t, 2, d, w, is_max);
+            t.rows[t.count++] = level + run.dx;
             if (run.len != 1 << k)
-                taps[count++] = level + run.dx + run.len - (1 << k);
-            if (count >= 62) {
-                kr->reduce(d, taps, count, any, w, is_max);
-                any = true;
-                count = 0;
-            }
+                t.rows[t.count++] = level + run.dx + run.len - (1 << k);
         }
-        if (count) {
-            kr->reduce(d, taps, count, any, w, is_max);
-            any = true;
-        }
-        if (!any) /* every run's row is outside the image */
-            memset(d, neutral, (size_t)w);
+        taps_finish(kr, &t, d, w, is_max);
     }
 }
 
