@@ -21,21 +21,6 @@ static inline void row_op2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32
             d[x] = a[x] < b[x] ? a[x] : b[x];
 }
 
-/* d = op(d, op(a, b)) elementwise. */
-static inline void row_acc2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max)
-{
-    if (is_max)
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t v = a[x] > b[x] ? a[x] : b[x];
-            d[x] = d[x] > v ? d[x] : v;
-        }
-    else
-        for (int32_t x = 0; x < n; x++) {
-            uint8_t v = a[x] < b[x] ? a[x] : b[x];
-            d[x] = d[x] < v ? d[x] : v;
-        }
-}
-
 #define MIN8(u, v) ((u) < (v) ? (u) : (v))
 #define MAX8(u, v) ((u) > (v) ? (u) : (v))
 
