@@ -98,10 +98,12 @@ typedef struct rte_hough_segments_params {
     int32_t threshold;   /* accumulator votes a line needs (cv::HoughLinesP threshold) */
     int32_t min_length;  /* shortest segment kept, Euclidean length in pixels */
     int32_t max_gap;     /* longest run of missing pixels bridged along a segment */
+    uint32_t seed;       /* point-order seed; 0: RTE_HOUGH_SEGMENTS_SEED */
 } rte_hough_segments_params;
 
-/* Seed of the point-order shuffle (xorshift32); fixed, so every run on every
- * platform visits the points in the same order. */
+/* The default seed of the point-order shuffle (xorshift32). The order, and
+ * so the segments, depend only on the seed: every run on every platform
+ * with the same seed gives the same segments. */
 #define RTE_HOUGH_SEGMENTS_SEED 0x2545F491u
 
 /* 0 for a configuration segments refuse: accumulator cells are at most 16

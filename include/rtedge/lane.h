@@ -77,6 +77,7 @@ typedef struct rte_lane_params {
     int32_t dim_q8;                    /* 256 = leave non-marking pixels as they are */
     /* Segments (cv::HoughLinesP parameters) */
     int32_t hough_threshold, min_length, max_gap;
+    uint32_t hough_seed;               /* the search's point order; 0: RTE_HOUGH_SEGMENTS_SEED */
     /* Slope filter per side: min_slope_q8 <= |dy/dx| * 256 <= max_slope_q8 */
     int32_t left_min_slope_q8, left_max_slope_q8;
     int32_t right_min_slope_q8, right_max_slope_q8;

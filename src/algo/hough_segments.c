@@ -723,8 +723,8 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     }
 
     /* Fisher-Yates with xorshift32 and a multiply-shift range reduction:
-     * the same order everywhere. */
-    uint32_t rng = RTE_HOUGH_SEGMENTS_SEED;
+     * the same order everywhere for a seed. */
+    uint32_t rng = params->seed ? params->seed : RTE_HOUGH_SEGMENTS_SEED;
     for (int32_t i = npts - 1; i > 0; i--) {
         rng ^= rng << 13;
         rng ^= rng >> 17;

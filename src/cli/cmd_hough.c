@@ -26,7 +26,7 @@ typedef struct hough_run {
     const char *overlay;
     int max_out;
     double rho, theta, min_theta, max_theta;
-    int threshold, min_length, max_gap;
+    int threshold, min_length, max_gap, seed;
     double dp;
     int min_dist, votes, min_radius, max_radius;
 } hough_run;
@@ -172,7 +172,7 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
                                  &truncated);
             break;
         case HOUGH_SEGMENTS: {
-            rte_hough_segments_params p = {o->threshold, o->min_length, o->max_gap};
+            rte_hough_segments_params p = {o->threshold, o->min_length, o->max_gap, (uint32_t)o->seed};
             st = rte_hough_segments(&cfg, &b.edges, &p, &b.arena, b.out_mem, o->max_out, &count, &truncated);
             break;
         }
@@ -267,6 +267,7 @@ int cmd_segments(const cli_entry *self, int argc, char **argv)
         {"threshold", CLI_INT, &o.threshold, 1, 1e9, NULL, "accumulator votes a line needs", NULL},
         {"min-length", CLI_INT, &o.min_length, 0, 65535, NULL, "shortest segment (Euclidean), pixels", NULL},
         {"max-gap", CLI_INT, &o.max_gap, 0, 1e6, NULL, "longest gap bridged, pixels", NULL},
+        {"seed", CLI_INT, &o.seed, 0, INT32_MAX, NULL, "point order of the search, 0 = RTE_HOUGH_SEGMENTS_SEED", NULL},
         {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL, "most segments reported (then truncated: true)", NULL}};
     return hough_main(self, argc, argv, &o, extra, (int)(sizeof extra / sizeof extra[0]),
                       EDGES_DETAILS "~ cv2.HoughLinesP(edges, rho, theta, threshold, minLineLength=min-length,\n"

@@ -29,6 +29,7 @@ typedef struct lanes_options {
     int hold, gate, blur;
     int alpha, beta;
     int max_segments;
+    int hough_seed;
 } lanes_options;
 
 static const char *const auto_choices[] = {"none", "median", "otsu", NULL};
@@ -85,6 +86,7 @@ static int lanes_config(const char *name, const lanes_options *o, int32_t w, int
         p->min_length = o->min_length;
     if (o->max_gap >= 0)
         p->max_gap = o->max_gap;
+    p->hough_seed = (uint32_t)o->hough_seed;
     if (o->hold >= 0)
         p->hold_frames = o->hold;
     if (o->gate >= 0)
@@ -347,7 +349,7 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
 
 int cmd_lanes(const cli_entry *self, int argc, char **argv)
 {
-    lanes_options o = {NULL, NULL, NULL, -1, -1, 1, 0, false, -1, -1, -1, -1, -1, 5, -1, -1, 512};
+    lanes_options o = {NULL, NULL, NULL, -1, -1, 1, 0, false, -1, -1, -1, -1, -1, 5, -1, -1, 512, 0};
     cli_option options[] = {
         {"overlay", CLI_STRING, &o.overlay, 0, 0, NULL, "write IN with the lanes drawn (left blue, right red)", NULL},
         {"sequence", CLI_STRING, &o.sequence, 0, 0, NULL, "track over a directory of images or a .y4m file", NULL},
@@ -360,6 +362,7 @@ int cmd_lanes(const cli_entry *self, int argc, char **argv)
         {"hough-threshold", CLI_INT, &o.hough_threshold, -1, 100000, NULL, "segment votes, -1 = by height", NULL},
         {"min-length", CLI_INT, &o.min_length, -1, 100000, NULL, "shortest segment, -1 = by height", NULL},
         {"max-gap", CLI_INT, &o.max_gap, -1, 100000, NULL, "longest gap bridged, -1 = by height", NULL},
+        {"hough-seed", CLI_INT, &o.hough_seed, 0, INT32_MAX, NULL, "point order of the Hough search, 0 = built in", NULL},
         {"hold", CLI_INT, &o.hold, -1, 1000, NULL, "frames a lost lane is predicted, -1 = 5", NULL},
         {"gate", CLI_INT, &o.gate, -1, 10000, NULL, "segment gate around tracked lanes (px), -1 = by height", NULL},
         {"alpha", CLI_INT, &o.alpha, -1, 256, NULL, "tracker: share of a measurement taken, /256 (256 = no smoothing)", NULL},

@@ -87,6 +87,8 @@ static const key_def keys[] = {
         "shortest segment, pixels; -1: default for the frame height"),
     INT("lane", "max_gap", lane_max_gap, -1, 8192, true, "-1",
         "largest gap joined in a segment; -1: default for the frame height"),
+    INT("lane", "hough_seed", lane_hough_seed, 0, INT32_MAX, true, "0",
+        "point order of the Hough search; 0: the built-in seed"),
     INT("lane", "hold_frames", lane_hold_frames, -1, 1000, true, "-1",
         "frames a lost lane is predicted; -1: the lane default"),
     INT("lane", "gate_px", lane_gate_px, -1, 8192, true, "-1",

@@ -41,7 +41,7 @@ typedef struct rted_config {
     bool lane_enabled;
     int32_t lane_max_segments, lane_blur_ksize;
     int32_t lane_canny_mode, lane_canny_low, lane_canny_high;
-    int32_t lane_hough_threshold, lane_min_length, lane_max_gap;
+    int32_t lane_hough_threshold, lane_min_length, lane_max_gap, lane_hough_seed;
     int32_t lane_hold_frames, lane_gate_px;
     bool lane_use_color;
     char lane_roi[RTED_TEXT];

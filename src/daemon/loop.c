@@ -263,6 +263,7 @@ static bool lane_params(const rted_daemon *d, const rted_config *c, rte_lane_par
         p->min_length = c->lane_min_length;
     if (c->lane_max_gap >= 0)
         p->max_gap = c->lane_max_gap;
+    p->hough_seed = (uint32_t)c->lane_hough_seed;
     if (c->lane_hold_frames >= 0)
         p->hold_frames = c->lane_hold_frames;
     if (c->lane_gate_px >= 0)

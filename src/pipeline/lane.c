@@ -726,7 +726,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     out->stage_ns[RTE_LANE_STAGE_CANNY] = t1 - t0;
     t0 = t1;
 
-    const rte_hough_segments_params hp = {p->hough_threshold, p->min_length, p->max_gap};
+    const rte_hough_segments_params hp = {p->hough_threshold, p->min_length, p->max_gap, p->hough_seed};
     int32_t count = 0;
     int truncated = 0;
     if ((st = rte_hough_segments(ctx->hough, &edges, &hp, &ctx->arena, ctx->raw,

@@ -34,6 +34,7 @@ void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height
     p->hough_threshold = 15 * s / 540 > 8 ? 15 * s / 540 : 8;
     p->min_length = 20 * s / 540 > 8 ? 20 * s / 540 : 8;
     p->max_gap = 20 * s / 540 > 4 ? 20 * s / 540 : 4;
+    p->hough_seed = 0;
     p->left_min_slope_q8 = 128;   /* |dy/dx| >= 0.5: steeper than 27 degrees */
     p->left_max_slope_q8 = 2560;  /* <= 10: not vertical (image borders, poles) */
     p->right_min_slope_q8 = 128;

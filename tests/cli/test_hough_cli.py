@@ -9,7 +9,8 @@
 - circles: smarties.png gives exactly the 12 sweets, each within 3 px of
   cv2.HoughCircles' circle.
 - overlays are written at the input's size; --max truncates and says so;
-  bad options exit 2, a missing file 3; two runs print the same bytes.
+  bad options exit 2, a missing file 3; two runs print the same bytes;
+  --seed 0 is the default order, another seed another order.
 
 usage: test_hough_cli.py RTEDGE_EXE SHARED_DATA_DIR
 """
@@ -93,6 +94,15 @@ def main():
             check(c1 >= 0.80 and c2 >= 0.70, f"{name}: segment coverage {c1:.3f} / {c2:.3f}")
         r1, r2 = run("segments", path), run("segments", path)
         check(r1.stdout == r2.stdout, f"{name}: segments not deterministic")
+        # --seed: 0 is the built-in seed; another one visits the points in
+        # another order, and finds the same edges' segments
+        r0, rs = run("segments", path, "--seed", "0"), run("segments", path, "--seed", "12345")
+        check(r0.stdout == r1.stdout, f"{name}: --seed 0 differs from the default")
+        check(rs.returncode == 0 and rs.stdout != r1.stdout, f"{name}: --seed 12345 gives the same segments")
+        if a and rs.returncode == 0:
+            other = [(s["x1"], s["y1"], s["x2"], s["y2"]) for s in json.loads(rs.stdout)["segments"]]
+            c1, c2 = coverage(edges, mine, other), coverage(edges, other, mine)
+            check(c1 >= 0.80 and c2 >= 0.80, f"{name}: seeds 0 and 12345 cover each other {c1:.3f} / {c2:.3f}")
 
     # sudoku.png: Canny 50/150, threshold 150. Lines within 15 px and 0.1 rad
     # are one grid line; near-vertical lines at theta ~ pi have negative rho.

@@ -76,6 +76,13 @@ with tempfile.TemporaryDirectory() as tmp:
               "directory sequence: painted-over lane held as predicted")
 
     # errors
+    rc, out, err = run(photo, "--hough-seed", "12345")
+    check(rc == 0, "--hough-seed exits 0 (%s)" % err)
+    if rc == 0:
+        e = json.loads(out)
+        check(abs(e["left"]["x1"] - 153) < 38 and abs(e["right"]["x1"] - 852) < 38,
+              "another Hough point order: bottom-row x still near the eye's")
+    check(run(photo, "--hough-seed", "-1")[0] == 2, "negative --hough-seed: usage error")
     check(run()[0] == 2, "no input: usage error")
     check(run(photo, "--blur", "4")[0] == 2, "even blur: usage error")
     check(run(photo, "--roi", "0,1;1,1")[0] == 2, "ROI of 2 points: usage error")

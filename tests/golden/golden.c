@@ -816,10 +816,12 @@ static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
         }
         if (line_cases[i].min_theta != 0 || line_cases[i].max_theta != GOLDEN_PI)
             continue; /* segments take the full half turn */
-        static const rte_hough_segments_params seg_cases[] = {{50, 30, 10}, {20, 10, 3}, {80, 60, 25}};
+        static const rte_hough_segments_params seg_cases[] = {
+            {50, 30, 10, 0}, {20, 10, 3, 0}, {80, 60, 25, 0}, {50, 30, 10, 0x9E3779B9u}};
         for (size_t s = 0; s < sizeof seg_cases / sizeof seg_cases[0]; s++) {
-            snprintf(what, sizeof what, "hough.segments.r%g.v%d.l%d.g%d", line_cases[i].rho,
-                     seg_cases[s].threshold, seg_cases[s].min_length, seg_cases[s].max_gap);
+            snprintf(what, sizeof what, "hough.segments.r%g.v%d.l%d.g%d%s%.0x", line_cases[i].rho,
+                     seg_cases[s].threshold, seg_cases[s].min_length, seg_cases[s].max_gap,
+                     seg_cases[s].seed ? ".s" : "", seg_cases[s].seed); /* the seed, when not the default */
             if (emit_status(g, what,
                             rte_hough_segments(cfg, &edges, &seg_cases[s], &g->arena, segs,
                                                MAX_SEGMENTS, &count, &truncated)))

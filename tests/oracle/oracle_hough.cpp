@@ -204,7 +204,7 @@ void synthetic_segments(Runner &run)
     auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(g); };
     const int W = 640, H = 480, images = 30;
     rte_hough_config cfg = make_config(W, H, 1.0, CV_PI / 180);
-    rte_hough_segments_params p = { 30, 40, 6 };
+    rte_hough_segments_params p = { 30, 40, 6, 0 };
     Score mine, cv_score;
     double t_mine = 0, t_cv = 0;
     for (int img = 0; img < images; img++) {
@@ -488,7 +488,7 @@ void real_photos(Runner &run, const std::vector<oracle::Input> &inputs)
         matched_lines += m;
 
         // segments
-        rte_hough_segments_params p = { 50, 30, 10 };
+        rte_hough_segments_params p = { 50, 30, 10, 0 };
         auto t0 = std::chrono::steady_clock::now();
         auto segs = segments_of(run, "segments " + in.name, cfg, edges, p, 4096, &trunc);
         auto t1 = std::chrono::steady_clock::now();

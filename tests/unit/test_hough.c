@@ -89,7 +89,7 @@ static void test_sizes_and_truncation(void **state)
                 if (!fill)
                     assert_int_equal(n, 0);
                 assert_int_equal(a.used, 0);
-                rte_hough_segments_params p = { 1, 0, 0 };
+                rte_hough_segments_params p = { 1, 0, 0, 0 };
                 assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 1, &n, &tr), RTE_OK);
                 assert_int_equal(a.used, 0);
                 assert_int_equal(n, fill ? 1 : 0);
@@ -120,7 +120,7 @@ static void test_segments_gap_and_length(void **state)
     rte_hough_segment s[8];
     int32_t n = -1;
     int tr = -1;
-    rte_hough_segments_params p = { 10, 30, 4 };
+    rte_hough_segments_params p = { 10, 30, 4, 0 };
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
     assert_int_equal(n, 1);
     assert_int_equal(tr, 0);
@@ -137,7 +137,7 @@ static void test_segments_gap_and_length(void **state)
      * and a threshold above the bound finds nothing without running */
     for (int32_t y = 0; y < 64; y++)
         memset(e.buf + (size_t)y * e.stride, 255, 64);
-    p = (rte_hough_segments_params){ 64, 30, 4 };
+    p = (rte_hough_segments_params){ 64, 30, 4, 0 };
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
     assert_true(n >= 1);
     p.threshold = 192;
@@ -149,6 +149,44 @@ static void test_segments_gap_and_length(void **state)
     assert_int_equal(n, 0);
     assert_int_equal(tr, 0);
     assert_int_equal(a.used, 0);
+    unit_assert_padding_u8(&e);
+    test_free(e.buf);
+    test_free(a.base);
+}
+
+/* The point order comes from params->seed alone: 0 is the default seed,
+ * a seed gives the same segments on every call, and another seed visits
+ * the points in another order (on clutter, other segments). */
+static void test_segments_seed(void **state)
+{
+    (void)state;
+    rte_hough_config cfg = config_of(96, 96);
+    rte_arena a = arena_of(rte_hough_segments_scratch_size(&cfg));
+    rte_image_u8 e = unit_image_u8(96, 96, 5, 0);
+    uint32_t r = 7;
+    for (int i = 0; i < 2500; i++) /* clutter: lines through it depend on the order */
+        e.buf[(size_t)(unit_rand(&r) % 96) * e.stride + unit_rand(&r) % 96] = 255;
+    for (int i = 4; i < 92; i++) {
+        e.buf[(size_t)i * e.stride + i] = 255;
+        e.buf[(size_t)40 * e.stride + i] = 255;
+    }
+    enum { CAP = 64 };
+    rte_hough_segment s[4][CAP];
+    int32_t n[4];
+    int tr;
+    const uint32_t seeds[4] = { 0, RTE_HOUGH_SEGMENTS_SEED, 0, 12345 };
+    for (int k = 0; k < 4; k++) {
+        rte_hough_segments_params p = { 10, 10, 1, seeds[k] };
+        memset(s[k], 0, sizeof s[k]);
+        assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s[k], CAP, &n[k], &tr), RTE_OK);
+        assert_int_equal(tr, 0);
+        assert_true(n[k] >= 2); /* the diagonal and the row at least */
+    }
+    assert_int_equal(n[0], n[1]);
+    assert_memory_equal(s[0], s[1], sizeof s[0]);
+    assert_int_equal(n[0], n[2]);
+    assert_memory_equal(s[0], s[2], sizeof s[0]);
+    assert_true(n[3] != n[0] || memcmp(s[3], s[0], sizeof s[0]) != 0);
     unit_assert_padding_u8(&e);
     test_free(e.buf);
     test_free(a.base);
@@ -285,7 +323,7 @@ static void test_maximum_size_all_255(void **state)
     bytes = rte_hough_segments_scratch_size(&cfg);
     rte_arena_init(&a, test_malloc(bytes), bytes);
     rte_hough_segment sg[4];
-    rte_hough_segments_params sp = { 50, 30, 10 };
+    rte_hough_segments_params sp = { 50, 30, 10, 0 };
     assert_int_equal(rte_hough_segments(&cfg, &e, &sp, &a, sg, 4, &n, &tr), RTE_OK);
     assert_int_equal(n, 4);
     assert_int_equal(tr, 1);
@@ -328,7 +366,7 @@ static void test_argument_errors(void **state)
     rte_hough_segment s[4];
     int32_t n;
     int tr;
-    rte_hough_segments_params p = { 5, 5, 2 };
+    rte_hough_segments_params p = { 5, 5, 2, 0 };
     assert_int_equal(rte_hough_lines(NULL, &e, 1, &a, l, 4, &n, &tr), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_hough_lines(&cfg, &e, -1, &a, l, 4, &n, &tr), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_hough_lines(&cfg, &e, 1, &a, NULL, 4, &n, &tr), RTE_ERR_ARGUMENT);
@@ -373,6 +411,7 @@ int main(void)
         cmocka_unit_test(test_lines_row_and_column),
         cmocka_unit_test(test_sizes_and_truncation),
         cmocka_unit_test(test_segments_gap_and_length),
+        cmocka_unit_test(test_segments_seed),
         cmocka_unit_test(test_circle_disc),
         cmocka_unit_test(test_circle_on_border),
         cmocka_unit_test(test_maximum_size_all_255),

@@ -68,7 +68,7 @@ static void test_wrapped_cells_widen(void **state)
             e.buf[(size_t)(10 + i) * e.stride + 100 + i / 4] = 255; /* steep */
             e.buf[(size_t)(10 + i) * e.stride + 700] = 255;         /* a column */
         }
-        const rte_hough_segments_params p = { thresholds[t], 30, 1 };
+        const rte_hough_segments_params p = { thresholds[t], 30, 1, 0 };
         assert_true(same_segments(&e, &p, MAX_SEGS) >= 2); /* the solid ones */
         unit_assert_padding_u8(&e);
         test_free(e.buf);
@@ -99,7 +99,8 @@ static void test_random_maps(void **state)
         for (int32_t i = 0; i < noise; i++)
             e.buf[(size_t)(next_rand(&seed) % (uint32_t)h) * e.stride + next_rand(&seed) % (uint32_t)w] = 255;
         const rte_hough_segments_params p = { 1 + (int32_t)(next_rand(&seed) % 160),
-                                              (int32_t)(next_rand(&seed) % 60), (int32_t)(next_rand(&seed) % 12) };
+                                              (int32_t)(next_rand(&seed) % 60), (int32_t)(next_rand(&seed) % 12),
+                                              next_rand(&seed) };
         same_segments(&e, &p, k % 5 == 0 ? 3 : MAX_SEGS);
         unit_assert_padding_u8(&e);
         test_free(e.buf);

@@ -69,7 +69,7 @@ Register segments("hough", "segments (threshold 50, length 30, gap 10)", [](cons
     auto b = make(f, [](const rte_hough_config &c) { return rte_hough_segments_scratch_size(&c); });
     return Runners{[b] {
                        rte_image_u8 e = u8(b->edges);
-                       rte_hough_segments_params p = {50, 30, 10};
+                       rte_hough_segments_params p = {50, 30, 10, 0};
                        int32_t n;
                        int t;
                        rte_hough_segments(&b->cfg, &e, &p, &b->arena, b->segments.data(), 4096, &n, &t);
