@@ -277,6 +277,36 @@ static void next_level(const rte_morph_rows *kr, uint8_t *dst, const uint8_t *pr
     kr->op2(dst, prev, prev + half, n - 2 * half + 1, is_max);
 }
 
+/* Source rows when dst == src: each is copied into a ring of kh slots
+ * before the output row that overwrites it, and read from there. */
+typedef struct source_rows {
+    const rte_image_u8 *src;
+    uint8_t *ring; /* NULL: not in place, the rows are read from src */
+    size_t slot;
+    int32_t kh, loaded; /* loaded: the next row to copy */
+} source_rows;
+
+static source_rows source_rows_init(const rte_image_u8 *src, const rte_image_u8 *dst, uint8_t *ring,
+                                    const morph_plan *p)
+{
+    return (source_rows){ src, src->buf == dst->buf ? ring : NULL, p->slot, p->kh, 0 };
+}
+
+/* Copies the rows up to `last` into the ring (in place only). */
+static void source_rows_load(source_rows *s, int32_t last)
+{
+    if (s->ring)
+        for (; s->loaded <= last; s->loaded++)
+            memcpy(s->ring + (size_t)(s->loaded % s->kh) * s->slot, rte_u8_row(s->src, s->loaded),
+                   (size_t)s->src->width);
+}
+
+/* Source row v, inside the image. */
+static const uint8_t *source_row(const source_rows *s, int32_t v)
+{
+    return s->ring ? s->ring + (size_t)(v % s->kh) * s->slot : rte_u8_row(s->src, v);
+}
+
 /* Full rectangle, separable: the column window first, straight from the
  * source rows (or from copies of them when dst == src, so that rows still
  * needed are not lost), into the middle of a padded row; then the row
@@ -287,7 +317,7 @@ static void separable_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rt
     const int32_t w = src->width, h = src->height, kh = p->kh;
     const int32_t n = w + p->kw - 1;
     const uint8_t neutral = is_max ? 0 : 255;
-    const bool in_place = src->buf == dst->buf;
+    source_rows rows_in = source_rows_init(src, dst, ring, p);
     uint8_t *pad = work, *lv_a = work + p->padded, *lv_b = work + 2 * p->padded;
     uint8_t *suffix = work + 3 * p->padded, *prefix = suffix + (size_t)kh * p->slot;
     uint8_t *neutral_row = prefix + p->slot;
@@ -295,16 +325,12 @@ static void separable_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rt
     if (p->blocks)
         memset(neutral_row, neutral, (size_t)w);
     /* Source row v of the column window: rows outside the image are neutral. */
-#define SRC_ROW(v) ((v) < 0 || (v) >= h ? neutral_row \
-                    : in_place ? ring + (size_t)((v) % kh) * p->slot : rte_u8_row(src, (v)))
-    int32_t loaded = 0;
+#define SRC_ROW(v) ((v) < 0 || (v) >= h ? neutral_row : source_row(&rows_in, (v)))
     for (int32_t y = 0; y < h; y++) {
         const int32_t v0 = y - p->ay; /* the column window is v0 .. v0 + kh - 1 */
         int32_t r0 = v0 < 0 ? 0 : v0;
         int32_t last = v0 + kh - 1 > h - 1 ? h - 1 : v0 + kh - 1;
-        if (in_place)
-            for (; loaded <= last; loaded++)
-                memcpy(ring + (size_t)(loaded % kh) * p->slot, rte_u8_row(src, loaded), (size_t)w);
+        source_rows_load(&rows_in, last);
         uint8_t *d = rte_u8_row(dst, y);
         uint8_t *column = p->kw == 1 ? d : pad + p->ax;
         if (p->blocks) {
@@ -397,16 +423,11 @@ static void grouped_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
                          bool is_max)
 {
     const int32_t w = src->width, h = src->height;
-    const uint8_t neutral = is_max ? 0 : 255;
-    const bool in_place = src->buf == dst->buf;
+    source_rows rows_in = source_rows_init(src, dst, ring, p);
     /* the margins stay neutral; the middle is rewritten per output row */
-    memset(work, neutral, (size_t)p->groups * p->padded);
-    int32_t loaded = 0;
+    memset(work, is_max ? 0 : 255, (size_t)p->groups * p->padded);
     for (int32_t y = 0; y < h; y++) {
-        const int32_t last = y - p->ay + p->kh - 1 > h - 1 ? h - 1 : y - p->ay + p->kh - 1;
-        if (in_place)
-            for (; loaded <= last; loaded++)
-                memcpy(ring + (size_t)(loaded % p->kh) * p->slot, rte_u8_row(src, loaded), (size_t)w);
+        source_rows_load(&rows_in, y - p->ay + p->kh - 1 > h - 1 ? h - 1 : y - p->ay + p->kh - 1);
         uint8_t *d = rte_u8_row(dst, y);
         tap_list t; /* rows[] is filled before it is read */
         t.count = 0;
@@ -417,7 +438,7 @@ static void grouped_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
             for (uint32_t m = p->group_rows[g]; m; m &= m - 1) {
                 const int32_t v = y + __builtin_ctz(m) - p->ay;
                 if (v >= 0 && v < h)
-                    rows[nrows++] = in_place ? ring + (size_t)(v % p->kh) * p->slot : rte_u8_row(src, v);
+                    rows[nrows++] = source_row(&rows_in, v);
             }
             if (nrows == 0)
                 continue;
@@ -492,8 +513,9 @@ rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_mor
     const size_t mark = rte_arena_mark(arena);
     morph_plan p = make_plan(src->width, element, iterations);
     uint8_t *ring = (uint8_t *)rte_arena_alloc(arena, p.slot * (size_t)p.kh);
-    uint8_t *work = work_bytes(&p) ? (uint8_t *)rte_arena_alloc(arena, work_bytes(&p)) : NULL;
-    if (!ring || (work_bytes(&p) && !work)) {
+    const size_t work_size = work_bytes(&p);
+    uint8_t *work = work_size ? (uint8_t *)rte_arena_alloc(arena, work_size) : NULL;
+    if (!ring || (work_size && !work)) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
