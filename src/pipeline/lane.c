@@ -272,6 +272,13 @@ typedef struct lane_fit_hint {
     int64_t weight;
 } lane_fit_hint;
 
+/* Rows from the ROI's top row down to y, within the lane's span. */
+static int64_t rows_below_top(const lane_fit_hint *h, int64_t y)
+{
+    const int64_t span = h->y_bottom - h->y_top, d = y - h->y_top;
+    return d < 0 || span <= 0 ? 0 : d > span ? span : d;
+}
+
 /* A segment's weight by its row, /256: the inverse variance of a pixel's
  * lateral position on the road, which grows as (distance from the horizon)^2
  * in perspective (the horizon taken an eighth of the lane above the ROI
@@ -279,13 +286,12 @@ typedef struct lane_fit_hint {
  * bend, far dashes must not turn the lane away from the near ones. */
 static int64_t row_weight_q8(const lane_fit_hint *h, int64_t y)
 {
-    const int64_t span = h->y_bottom - h->y_top, q = span / 8 + 1;
+    const int64_t span = h->y_bottom - h->y_top, q = span / 8 + 1, d = rows_below_top(h, y);
     if (span <= 0)
         return 256;
-    y -= h->y_top;
-    y = y < 0 ? 0 : y > span ? span : y;
-    return 256 * (y + q) * (y + q) / ((span + q) * (span + q)) + 1;
+    return 256 * (d + q) * (d + q) / ((span + q) * (span + q)) + 1;
 }
+
 /* A segment's own direction counts this many times the spread of its
  * pixels: it is fitted to all of them (the Hough refit), and on a bend the
  * markings' local direction describes the lane near them better than the
@@ -385,11 +391,7 @@ static int64_t fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, cons
 static int64_t band_px(const lane_fit_hint *h, int64_t tol, int32_t y)
 {
     const int64_t span = h->y_bottom - h->y_top, q = 3 * (span / 8 + 1);
-    if (span <= 0)
-        return tol < 5 ? 5 : tol > LANE_BAND_MAX ? LANE_BAND_MAX : tol;
-    int64_t d = y - h->y_top;
-    d = d < 0 ? 0 : d > span ? span : d;
-    const int64_t b = tol * (d + q) / (span + q);
+    const int64_t b = span > 0 ? tol * (rows_below_top(h, y) + q) / (span + q) : tol;
     return b < 5 ? 5 : b > LANE_BAND_MAX ? LANE_BAND_MAX : b;
 }
 
@@ -473,10 +475,10 @@ static band_pixels band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, in
  * in the band around the line of the one before, until the line's ends
  * move less than a quarter of a pixel (with two, 2 of the 136 photo runs
  * of tests/unit/test_lane.c over eight point orders of the Hough search
- * fail; with three or four, none). Short dashes and paint that the Hough search left
- * without a segment (or split differently) then count by their pixels, so
- * the lane does not depend on which segments the search happened to find,
- * and a marking's two edges put the line on its centre. */
+ * fail; with three or four, none). Short dashes and paint that the Hough
+ * search left without a segment (or split differently) then count by
+ * their pixels, so the lane does not depend on which segments the search
+ * happened to find, and a marking's two edges put the line on its centre. */
 static void refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
                             const lane_fit_hint *hint, int64_t tol, lane_line *line)
 {
