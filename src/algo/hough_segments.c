@@ -597,12 +597,13 @@ static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const u
 }
 
 /* The most votes one cell can hold. A cell counts the pixels whose
- * x cos + y sin falls in one rho bin (each pixel votes once; only voted pixels are un-voted):
- * along the line's major axis, at most floor(rho sqrt 2) + 1 per column or
- * row, plus one for the fixed-point rounding, so at most
- * max(w, h) (rho sqrt 2 + 2) and never more than w h. 16-bit cells hold
- * the count plus 32769 - threshold (see vote_cells), so configurations where a
- * count could pass 32767 are refused (rho 1: a side above 10922 pixels). */
+ * x cos + y sin falls in one rho bin (each pixel votes once; only voted
+ * pixels are un-voted): along the line's major axis, at most
+ * floor(rho sqrt 2) + 1 per column or row, plus one for the fixed-point
+ * rounding, so at most max(w, h) (rho sqrt 2 + 2) and never more than w h.
+ * 16-bit cells hold the count plus 32769 - threshold (see vote_cells), so
+ * configurations where a count could pass 32767 are refused (rho 1: a side
+ * above 10922 pixels). */
 static int64_t cell_bound(const rte_hough_config *cfg)
 {
     const int64_t side = cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height;
