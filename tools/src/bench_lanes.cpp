@@ -3,7 +3,8 @@
 // GaussianBlur 5x5, Canny 50/150, fillPoly + bitwise_and with the same ROI
 // trapezoid, HoughLinesP with the same parameters, then the same slope
 // filter and length-weighted least-squares fit (with one outlier pass) in
-// plain C++ doubles. Single thread.
+// plain C++ doubles. Single thread. Also the lane path's Hough stage alone
+// against cv::HoughLinesP on the same edge map.
 //
 // Differences worth knowing when reading the ratio: rtedge also computes
 // its colour cue and its automatic (median) Canny thresholds each frame,
@@ -62,14 +63,13 @@ CvLane fit_side(const std::vector<cv::Vec4i> &segs, int y_bottom, int y_top, dou
     return out;
 }
 
-struct CvPipeline {
+// The tutorial's edge map: grey, 5x5 Gaussian blur, Canny 50/150, then
+// only the pixels inside the ROI trapezoid.
+struct CvLaneEdges {
     cv::Mat gray, blurred, edges, mask, masked;
     std::vector<cv::Point> roi;
-    rte_lane_params p;
-    std::vector<cv::Vec4i> lines, left, right;
-    CvLane lanes[2];
 
-    CvPipeline(const Frame &f, const rte_lane_config &cfg) : p(cfg.params)
+    CvLaneEdges(const Frame &f, const rte_lane_params &p)
     {
         std::vector<rte_vertex> px(p.roi_count);
         rte_polygon_from_fractions(p.roi, p.roi_count, f.bgr.cols, f.bgr.rows, px.data());
@@ -87,7 +87,21 @@ struct CvPipeline {
         cv::Canny(blurred, edges, 50, 150);
         masked = cv::Mat::zeros(edges.size(), CV_8UC1);
         cv::bitwise_and(edges, mask, masked);
-        cv::HoughLinesP(masked, lines, 1, CV_PI / 180, p.hough_threshold, p.min_length, p.max_gap);
+    }
+};
+
+struct CvPipeline {
+    CvLaneEdges in;
+    rte_lane_params p;
+    std::vector<cv::Vec4i> lines, left, right;
+    CvLane lanes[2];
+
+    CvPipeline(const Frame &f, const rte_lane_config &cfg) : in(f, cfg.params), p(cfg.params) {}
+
+    void run(const cv::Mat &bgr)
+    {
+        in.run(bgr);
+        cv::HoughLinesP(in.masked, lines, 1, CV_PI / 180, p.hough_threshold, p.min_length, p.max_gap);
         left.clear();
         right.clear();
         const int w = bgr.cols;
@@ -104,7 +118,7 @@ struct CvPipeline {
                 right.push_back(l);
         }
         int y_top = bgr.rows;
-        for (const auto &v : roi)
+        for (const auto &v : in.roi)
             y_top = std::min(y_top, v.y);
         lanes[0] = fit_side(left, bgr.rows - 1, y_top, p.outlier_px);
         lanes[1] = fit_side(right, bgr.rows - 1, y_top, p.outlier_px);
@@ -141,3 +155,58 @@ bench::Runners bench::lane_path_runners(const Frame &f)
 
 static Register lane_path("pipeline", "lane path (rte_lane_process vs OpenCV lane tutorial)",
                           bench::lane_path_runners);
+
+namespace {
+
+// The Hough stage alone, as the lane path runs it: the tutorial's edge map
+// (made before timing), the lane parameters for the frame height (threshold,
+// minimum length, gap, seed), against cv::HoughLinesP with the same
+// parameters on the same map. The output holds 4096 segments, so the search
+// is not cut short where OpenCV's goes on (rte_lane_create's default is 512;
+// the preparation checks). The generic segments case (bench_hough.cpp) runs
+// on unmasked edges instead.
+struct LaneSegments {
+    rte_lane_config cfg;
+    CvLaneEdges in;
+    rte_hough_config hough;
+    std::vector<uint8_t> scratch;
+    rte_arena arena;
+    std::vector<rte_hough_segment> segments;
+    std::vector<cv::Vec4i> cv_segments;
+    int truncated = 0;
+    LaneSegments(const Frame &f, const rte_lane_config &c) : cfg(c), in(f, c.params), segments(4096)
+    {
+        in.run(f.bgr);
+        if (rte_hough_config_init(&hough, f.bgr.cols, f.bgr.rows, 1.0, CV_PI / 180, 0.0, CV_PI) != RTE_OK)
+            throw std::runtime_error("rte_hough_config_init failed");
+        scratch.resize(rte_hough_segments_scratch_size(&hough));
+        rte_arena_init(&arena, scratch.data(), scratch.size());
+        if (run_rtedge() != RTE_OK || truncated) // either would time as faster
+            throw std::runtime_error("rte_hough_segments failed or filled its output");
+    }
+
+    rte_status run_rtedge()
+    {
+        const rte_lane_params &p = cfg.params;
+        const rte_hough_segments_params hp = {p.hough_threshold, p.min_length, p.max_gap, p.hough_seed};
+        rte_image_u8 e{in.masked.cols, in.masked.rows, (int32_t)in.masked.step1(), in.masked.ptr<uint8_t>()};
+        int32_t n;
+        return rte_hough_segments(&hough, &e, &hp, &arena, segments.data(), (int32_t)segments.size(), &n,
+                                  &truncated);
+    }
+
+    void run_opencv()
+    {
+        const rte_lane_params &p = cfg.params;
+        cv::HoughLinesP(in.masked, cv_segments, 1, CV_PI / 180, p.hough_threshold, p.min_length, p.max_gap);
+    }
+};
+
+Register lane_segments("hough", "segments, lane path (tutorial's ROI edges, lane parameters)", [](const Frame &f) {
+    rte_lane_config cfg;
+    rte_lane_config_default(&cfg, f.bgr.cols, f.bgr.rows);
+    auto b = std::make_shared<LaneSegments>(f, cfg);
+    return Runners{[b] { b->run_rtedge(); }, [b] { b->run_opencv(); }};
+});
+
+} // namespace
