@@ -65,9 +65,12 @@ rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *
 /* Otsu's threshold of a histogram exactly as OpenCV 4.6 computes it for
  * THRESH_OTSU: OpenCV works in IEEE double precision, and near-ties (for
  * example every empty bin between the two levels of a two-valued image)
- * are decided by its rounding, so rtedge replays those double operations
- * in integer arithmetic. A histogram with all pixels in one bin gives 0.
- * RTE_ERR_ARGUMENT when the histogram is empty. */
+ * are decided by its rounding. rtedge finds the bin of largest
+ * between-class variance in exact integers and, when another bin comes
+ * within 2^-15 of it or the histogram holds more than 2^22 pixels, replays
+ * OpenCV's double operations in integer arithmetic instead (about 1 us
+ * against 30 per histogram). A histogram with all pixels in one bin
+ * gives 0. RTE_ERR_ARGUMENT when the histogram is empty. */
 rte_status rte_threshold_otsu_histogram(const uint32_t hist[256], int32_t *thresh);
 
 /* Otsu's threshold of an image (its histogram, then the above). */

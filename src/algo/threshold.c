@@ -85,6 +85,58 @@ rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *
 #define F64_FLT_EPSILON UINT64_C(0x3E80000000000000)
 #define F64_ONE_MINUS_FLT_EPSILON UINT64_C(0x3FEFFFFFC0000000)
 
+/* Images up to this many pixels may be decided by otsu_exact. */
+#ifndef OTSU_EXACT_MAX_PIXELS
+#define OTSU_EXACT_MAX_PIXELS (UINT64_C(1) << 22)
+#endif
+
+/* Otsu's threshold decided in exact integers, when no near-tie needs
+ * OpenCV's double rounding; -1 when one does (the caller then replays the
+ * doubles). With N pixels summing to M, and H_i pixels summing to M_i in
+ * the bins up to i, the between-class variance OpenCV computes at bin i is,
+ * up to its rounding,
+ *     sigma_i = (M H_i - N M_i)^2 / (N^2 H_i (N - H_i)).
+ * For N <= 2^22 OpenCV's skip test (q1 or q2 below FLT_EPSILON = 2^-23,
+ * or above 1 - FLT_EPSILON) holds exactly where H_i is 0 or N: otherwise
+ * both are at least 1/N >= 2^-22, and q1, a sum of at most 256 rounded
+ * terms, is off by less than 2^-44. Its sigma is then within 2^-25 of the
+ * exact value (rounding through q2 = 1 - q1 and mu2 = (mu - q1 mu1) / q2
+ * dominates; 2^-31 was the worst seen over 9000 adversarial histograms in
+ * Python's doubles). So when the exact maximum leads every other bin by
+ * more than 2 x 2^-16, OpenCV's doubles pick that bin too. The values are
+ * kept as sigma N^2 (below 2^58), floored. */
+static int32_t otsu_exact(const uint32_t hist[256], uint64_t total, uint64_t moment)
+{
+    if (total > OTSU_EXACT_MAX_PIXELS)
+        return -1;
+    const int64_t n = (int64_t)total, m = (int64_t)moment; /* m < 2^30 */
+    int64_t h = 0, mi = 0;
+    uint64_t best = 0, second = 0;
+    int32_t best_bin = -1;
+    for (int32_t i = 0; i < 256; i++) {
+        h += hist[i];
+        mi += (int64_t)i * hist[i];
+        if (h == 0 || h == n)
+            continue; /* OpenCV's skipped bins */
+        best_bin = best_bin < 0 ? i : best_bin;
+        const int64_t d = m * h - n * mi; /* |d| < 2^52 */
+        const uint64_t ad = (uint64_t)(d < 0 ? -d : d);
+        const uint64_t v = (uint64_t)((f64_u128)ad * ad / ((uint64_t)h * (uint64_t)(n - h)));
+        if (v > best) {
+            second = best;
+            best = v;
+            best_bin = i;
+        } else if (v > second) {
+            second = v;
+        }
+    }
+    if (best_bin < 0)
+        return 0; /* every bin skipped: OpenCV keeps 0 */
+    /* 2^-15 N^2, plus the floors (a best of 0 never passes) */
+    const uint64_t margin = (((uint64_t)n * (uint64_t)n) >> 15) + 2;
+    return best - second > margin ? best_bin : -1;
+}
+
 rte_status rte_threshold_otsu_histogram(const uint32_t hist[256], int32_t *thresh)
 {
     if (!hist || !thresh)
@@ -96,6 +148,11 @@ rte_status rte_threshold_otsu_histogram(const uint32_t hist[256], int32_t *thres
     }
     if (total == 0)
         return RTE_ERR_ARGUMENT;
+    const int32_t exact = otsu_exact(hist, total, moment);
+    if (exact >= 0) {
+        *thresh = exact;
+        return RTE_OK;
+    }
 
     /* The same double operations, in the same order, as OpenCV 4.6's
      * getThreshVal_Otsu_8u: mu is a sum of exact integer products, so one

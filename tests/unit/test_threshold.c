@@ -230,15 +230,34 @@ static int32_t otsu_double(const uint32_t hist[256])
     return best;
 }
 
+/* Few bins (ties and near-ties: the double replay decides), all bins, and
+ * smooth photo-like mixtures (decided in exact integers), with totals on
+ * both sides of the 2^22 pixels up to which the integers may decide. */
 static void otsu_matches_double_replay_on_adversarial_histograms(void **state)
 {
     uint32_t rng = 99;
-    for (int n = 0; n < 20000; n++) {
+    for (int n = 0; n < 40000; n++) {
         uint32_t hist[256] = { 0 };
-        int kind = n % 5, bins = kind == 0 ? 2 : kind == 1 ? 3 : kind == 2 ? 1 : kind == 3 ? 6 : 256;
-        for (int b = 0; b < bins; b++) {
-            uint32_t v = kind == 0 && b == 0 && n % 3 ? 0 : kind == 0 && n % 3 ? 255 : unit_rand(&rng) % 256;
-            hist[v] += 1 + unit_rand(&rng) % (1u << (unit_rand(&rng) % 21));
+        int kind = n % 7, bins = kind == 0 ? 2 : kind == 1 ? 3 : kind == 2 ? 1 : kind == 3 ? 6 : 256;
+        if (kind >= 5) {
+            /* two or three bumps, 10^3 to 2^23 pixels in all */
+            const uint32_t scale = 1u << (unit_rand(&rng) % 14);
+            for (int bump = 0; bump < 2 + kind % 2; bump++) {
+                const int32_t centre = (int32_t)(unit_rand(&rng) % 256), width = 2 + (int32_t)(unit_rand(&rng) % 40);
+                const uint32_t height = 1 + unit_rand(&rng) % 1000;
+                for (int32_t v = centre - 3 * width; v <= centre + 3 * width; v++)
+                    if (v >= 0 && v < 256) {
+                        const int32_t dv = v - centre, dist = dv < 0 ? -dv : dv;
+                        hist[v] += height * scale * (uint32_t)(3 * width - dist) / (uint32_t)(3 * width) +
+                                   unit_rand(&rng) % 8;
+                    }
+            }
+            hist[unit_rand(&rng) % 256] += 1;
+        } else {
+            for (int b = 0; b < bins; b++) {
+                uint32_t v = kind == 0 && b == 0 && n % 3 ? 0 : kind == 0 && n % 3 ? 255 : unit_rand(&rng) % 256;
+                hist[v] += 1 + unit_rand(&rng) % (1u << (unit_rand(&rng) % 21));
+            }
         }
         int32_t got = -1;
         assert_int_equal(rte_threshold_otsu_histogram(hist, &got), RTE_OK);
