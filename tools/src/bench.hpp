@@ -13,7 +13,15 @@
 
 #include <opencv2/core.hpp>
 
+extern "C" {
+#include "rtedge/image.h"
+}
+
 namespace bench {
+
+// rtedge views of an OpenCV image's pixels (strides in elements).
+inline rte_image_u8 u8(cv::Mat &m) { return rte_image_u8{m.cols, m.rows, (int32_t)m.step1(), m.ptr<uint8_t>()}; }
+inline rte_image_s16 s16(cv::Mat &m) { return rte_image_s16{m.cols, m.rows, (int32_t)m.step1(), m.ptr<int16_t>()}; }
 
 // One frame at one size, in the forms the cases need.
 struct Frame {

@@ -63,7 +63,7 @@ struct Buffers {
 
     void rte_find()
     {
-        rte_image_u8 in{bin.cols, bin.rows, (int32_t)bin.step1(), bin.ptr<uint8_t>()};
+        rte_image_u8 in = bench::u8(bin);
         rte_contours_find(&in, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_SIMPLE, &out, &arena);
     }
 

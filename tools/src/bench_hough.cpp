@@ -21,9 +21,9 @@ namespace {
 using bench::Frame;
 using bench::Register;
 using bench::Runners;
+using bench::s16;
+using bench::u8;
 
-rte_image_u8 u8(cv::Mat &m) { return rte_image_u8{m.cols, m.rows, (int32_t)m.step1(), m.ptr<uint8_t>()}; }
-rte_image_s16 s16(cv::Mat &m) { return rte_image_s16{m.cols, m.rows, (int32_t)m.step1(), m.ptr<int16_t>()}; }
 
 struct HoughBuffers {
     cv::Mat gray, edges, dx, dy, cedges;

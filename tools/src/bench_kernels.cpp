@@ -22,6 +22,8 @@ namespace {
 using bench::Frame;
 using bench::Register;
 using bench::Runners;
+using bench::s16;
+using bench::u8;
 
 // Per-frame buffers shared by a case's two closures (kept alive by them).
 struct Buffers {
@@ -35,8 +37,6 @@ struct Buffers {
     {
         rte_arena_init(&arena, scratch.data(), scratch_bytes);
     }
-    rte_image_u8 u8(cv::Mat &m) { return rte_image_u8{m.cols, m.rows, (int32_t)m.step1(), m.ptr<uint8_t>()}; }
-    rte_image_s16 s16(cv::Mat &m) { return rte_image_s16{m.cols, m.rows, (int32_t)m.step1(), m.ptr<int16_t>()}; }
 };
 
 std::shared_ptr<Buffers> buffers(const Frame &f, size_t scratch) { return std::make_shared<Buffers>(f, scratch); }
@@ -46,7 +46,7 @@ Register gray("kernels", "bgr to grey", [](const Frame &f) {
     auto bgr = std::make_shared<cv::Mat>(f.bgr.clone());
     return Runners{[b, bgr] {
                        rte_image_u8c3 in{bgr->cols, bgr->rows, (int32_t)bgr->step, bgr->ptr<uint8_t>()};
-                       rte_image_u8 out = b->u8(b->out);
+                       rte_image_u8 out = u8(b->out);
                        rte_color_bgr_to_gray(&in, &out);
                    },
                    [b, bgr] { cv::cvtColor(*bgr, b->out2, cv::COLOR_BGR2GRAY); }};
@@ -61,7 +61,7 @@ void register_gaussian(int ksize)
                           rte_gaussian_kernel_init(&k, ksize, ksize, 0, 0);
                           auto b = buffers(f, rte_gaussian_blur_u8_scratch_size(f.gray.cols, f.gray.rows, &k));
                           return Runners{[b, k] {
-                                             rte_image_u8 in = b->u8(b->src), out = b->u8(b->out);
+                                             rte_image_u8 in = u8(b->src), out = u8(b->out);
                                              rte_gaussian_blur_u8(&in, &out, &k, &b->arena);
                                          },
                                          [b, ksize] { cv::GaussianBlur(b->src, b->out2, cv::Size(ksize, ksize), 0); }};
@@ -80,7 +80,7 @@ struct GaussianCases {
 Register median("kernels", "median 5x5", [](const Frame &f) {
     auto b = buffers(f, rte_median_blur_u8_scratch_size(f.gray.cols, f.gray.rows, 5));
     return Runners{[b] {
-                       rte_image_u8 in = b->u8(b->src), out = b->u8(b->out);
+                       rte_image_u8 in = u8(b->src), out = u8(b->out);
                        rte_median_blur_u8(&in, &out, 5, &b->arena);
                    },
                    [b] { cv::medianBlur(b->src, b->out2, 5); }};
@@ -89,8 +89,8 @@ Register median("kernels", "median 5x5", [](const Frame &f) {
 Register sobel("kernels", "sobel dx 3x3", [](const Frame &f) {
     auto b = buffers(f, rte_sobel_scratch_size(f.gray.cols, f.gray.rows, 3));
     return Runners{[b] {
-                       rte_image_u8 in = b->u8(b->src);
-                       rte_image_s16 out = b->s16(b->s16a);
+                       rte_image_u8 in = u8(b->src);
+                       rte_image_s16 out = s16(b->s16a);
                        rte_sobel_s16(&in, &out, 1, 0, 3, &b->arena);
                    },
                    [b] { cv::Sobel(b->src, b->s16b, CV_16S, 1, 0, 3); }};
@@ -101,7 +101,7 @@ Register canny("kernels", "canny 50/150 L1", [](const Frame &f) {
     rte_canny_params_init(&p, 50, 150, 3, false);
     auto b = buffers(f, rte_canny_scratch_size(f.gray.cols, f.gray.rows, 3));
     return Runners{[b, p] {
-                       rte_image_u8 in = b->u8(b->src), out = b->u8(b->out);
+                       rte_image_u8 in = u8(b->src), out = u8(b->out);
                        rte_canny_u8(&in, &out, &p, &b->arena);
                    },
                    [b] { cv::Canny(b->src, b->out2, 50, 150, 3, false); }};
@@ -112,7 +112,7 @@ Register threshold_otsu("kernels", "threshold otsu", [](const Frame &f) {
     rte_threshold_params_init(&p, RTE_THRESH_BINARY, 0, 255, true);
     auto b = buffers(f, 0);
     return Runners{[b, p] {
-                       rte_image_u8 in = b->u8(b->src), out = b->u8(b->out);
+                       rte_image_u8 in = u8(b->src), out = u8(b->out);
                        int32_t t;
                        rte_threshold_u8(&in, &out, &p, &t);
                    },
@@ -128,7 +128,7 @@ void register_morphology(rte_morph_shape shape, int cv_shape, const char *name)
         auto b = buffers(f, rte_morphology_scratch_size(f.gray.cols, f.gray.rows, &e, 1));
         cv::Mat k = cv::getStructuringElement(cv_shape, cv::Size(5, 5));
         return Runners{[b, e] {
-                           rte_image_u8 in = b->u8(b->src), out = b->u8(b->out);
+                           rte_image_u8 in = u8(b->src), out = u8(b->out);
                            rte_morphology_dilate_u8(&in, &out, &e, 1, &b->arena);
                        },
                        [b, k] { cv::dilate(b->src, b->out2, k); }};
@@ -153,7 +153,7 @@ Register roi_mask("kernels", "polygon mask + apply", [](const Frame &f) {
                        for (int i = 0; i < 4; i++)
                            v[i] = rte_vertex{(*pts)[i].x, (*pts)[i].y};
                        rte_polygon poly{v, 4};
-                       rte_image_u8 in = b->u8(b->src), mask = b->u8(b->mask), out = b->u8(b->out);
+                       rte_image_u8 in = u8(b->src), mask = u8(b->mask), out = u8(b->out);
                        rte_polygon_mask_build(&mask, &poly, 1, &b->arena);
                        rte_polygon_mask_apply(&in, &mask, &out);
                    },

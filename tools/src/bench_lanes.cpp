@@ -189,7 +189,7 @@ struct LaneSegments {
     {
         const rte_lane_params &p = cfg.params;
         const rte_hough_segments_params hp = {p.hough_threshold, p.min_length, p.max_gap, p.hough_seed};
-        rte_image_u8 e{in.masked.cols, in.masked.rows, (int32_t)in.masked.step1(), in.masked.ptr<uint8_t>()};
+        rte_image_u8 e = bench::u8(in.masked);
         int32_t n;
         return rte_hough_segments(&hough, &e, &hp, &arena, segments.data(), (int32_t)segments.size(), &n,
                                   &truncated);

@@ -46,7 +46,7 @@ struct GraspBench {
 
     void rte()
     {
-        rte_image_u8 in{gray.cols, gray.rows, (int32_t)gray.step1(), gray.ptr<uint8_t>()};
+        rte_image_u8 in = bench::u8(gray);
         rte_grasp_process(ctx, &in, &result);
     }
 
