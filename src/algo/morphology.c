@@ -292,11 +292,12 @@ static source_rows source_rows_init(const rte_image_u8 *src, const rte_image_u8 
     return (source_rows){ src, src->buf == dst->buf ? ring : NULL, p->slot, p->kh, 0 };
 }
 
-/* Copies the rows up to `last` into the ring (in place only). */
+/* Copies the rows up to `last` (at most the image's last) into the ring
+ * (in place only). */
 static void source_rows_load(source_rows *s, int32_t last)
 {
     if (s->ring)
-        for (; s->loaded <= last; s->loaded++)
+        for (; s->loaded <= last && s->loaded < s->src->height; s->loaded++)
             memcpy(s->ring + (size_t)(s->loaded % s->kh) * s->slot, rte_u8_row(s->src, s->loaded),
                    (size_t)s->src->width);
 }
@@ -427,7 +428,7 @@ static void grouped_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
     /* the margins stay neutral; the middle is rewritten per output row */
     memset(work, is_max ? 0 : 255, (size_t)p->groups * p->padded);
     for (int32_t y = 0; y < h; y++) {
-        source_rows_load(&rows_in, y - p->ay + p->kh - 1 > h - 1 ? h - 1 : y - p->ay + p->kh - 1);
+        source_rows_load(&rows_in, y - p->ay + p->kh - 1);
         uint8_t *d = rte_u8_row(dst, y);
         tap_list t; /* rows[] is filled before it is read */
         t.count = 0;

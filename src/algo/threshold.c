@@ -86,9 +86,7 @@ rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *
 #define F64_ONE_MINUS_FLT_EPSILON UINT64_C(0x3FEFFFFFC0000000)
 
 /* Images up to this many pixels may be decided by otsu_exact. */
-#ifndef OTSU_EXACT_MAX_PIXELS
 #define OTSU_EXACT_MAX_PIXELS (UINT64_C(1) << 22)
-#endif
 
 /* Otsu's threshold decided in exact integers, when no near-tie needs
  * OpenCV's double rounding; -1 when one does (the caller then replays the
