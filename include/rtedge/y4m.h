@@ -25,6 +25,14 @@ typedef struct rte_y4m_info {
     char chroma[16];            /* the C tag's value, e.g. "420jpeg", "mono" */
 } rte_y4m_info;
 
+/* Parses a stream header line ("YUV4MPEG2 W.. H.. ...", without its '\n';
+ * the line is split in place) into *info. Sizes must be 1..RTE_MAX_SIDE
+ * and F's numerator and denominator 0..INT32_MAX (F0:0: unknown), each
+ * number whole and without overflow. RTE_ERR_FORMAT (not a header, a bad
+ * or missing size, a bad rate) or RTE_ERR_UNSUPPORTED (interlaced, chroma
+ * other than 420*, 422, 444 or mono), with the reason in why. */
+rte_status rte_y4m_parse_header(char *line, rte_y4m_info *info, char *why, size_t why_size);
+
 /* Opens `path` and reads its header. RTE_ERR_FORMAT for a file that is not
  * YUV4MPEG2 or has no size, RTE_ERR_UNSUPPORTED for interlacing other than
  * progressive/unknown or chroma of more than 8 bits, RTE_ERR_TOO_LARGE when

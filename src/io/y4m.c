@@ -1,5 +1,7 @@
 /* YUV4MPEG2 reader: header "YUV4MPEG2 W.. H.. [F..] [I..] [A..] [C..] [X..]",
  * then per frame "FRAME[ params]\n", the Y plane and the chroma planes. */
+#include <errno.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,6 +53,86 @@ static int64_t y4m_chroma_bytes(const char *tag, int64_t w, int64_t h)
     return -1;
 }
 
+/* A decimal number in lo..hi that ends at the end of the text or at `stop`
+ * (then *rest points past it); false for anything else, overflow included. */
+static bool y4m_number(const char *text, long lo, long hi, char stop, long *value,
+                       const char **rest)
+{
+    if (*text < '0' || *text > '9')
+        return false;
+    char *end;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    if (errno || v < lo || v > hi || (*end && (*end != stop || !rest)))
+        return false;
+    if (rest)
+        *rest = *end ? end + 1 : end;
+    *value = v;
+    return true;
+}
+
+rte_status rte_y4m_parse_header(char *line, rte_y4m_info *info, char *why, size_t why_size)
+{
+    rte_y4m_info in = {0};
+    strcpy(in.chroma, "420jpeg");
+    if (strncmp(line, "YUV4MPEG2", 9) != 0 || (line[9] != ' ' && line[9] != 0)) {
+        snprintf(why, why_size, "not a YUV4MPEG2 file");
+        return RTE_ERR_FORMAT;
+    }
+    char *save = NULL;
+    for (char *tok = strtok_r(line + 9, " ", &save); tok; tok = strtok_r(NULL, " ", &save)) {
+        long a, b;
+        const char *rest;
+        switch (tok[0]) {
+        case 'W':
+        case 'H':
+            if (!y4m_number(tok + 1, 1, RTE_MAX_SIDE, 0, &a, NULL)) {
+                snprintf(why, why_size, "bad frame %s in tag '%.32s' (1..%d)",
+                         tok[0] == 'W' ? "width" : "height", tok, RTE_MAX_SIDE);
+                return RTE_ERR_FORMAT;
+            }
+            *(tok[0] == 'W' ? &in.width : &in.height) = (int32_t)a;
+            break;
+        case 'F':
+            if (!y4m_number(tok + 1, 0, INT32_MAX, ':', &a, &rest) ||
+                !y4m_number(rest, 0, INT32_MAX, 0, &b, NULL) || (a == 0) != (b == 0)) {
+                snprintf(why, why_size, "bad frame rate tag '%.32s' (F<num>:<den>)", tok);
+                return RTE_ERR_FORMAT;
+            }
+            in.fps_num = (int32_t)a; /* 0:0 is "unknown" */
+            in.fps_den = (int32_t)b;
+            break;
+        case 'I':
+            if (tok[1] != 'p' && tok[1] != '?') {
+                snprintf(why, why_size, "interlaced streams (%.32s) are not supported", tok);
+                return RTE_ERR_UNSUPPORTED;
+            }
+            break;
+        case 'C':
+            if (strlen(tok + 1) >= sizeof in.chroma) {
+                snprintf(why, why_size, "unknown chroma tag '%.32s'", tok);
+                return RTE_ERR_UNSUPPORTED;
+            }
+            strcpy(in.chroma, tok + 1);
+            break;
+        default: break; /* A (aspect), X (extensions) */
+        }
+    }
+    if (in.width == 0 || in.height == 0) {
+        snprintf(why, why_size, "no frame size (W and H tags)");
+        return RTE_ERR_FORMAT;
+    }
+    int64_t chroma = y4m_chroma_bytes(in.chroma, in.width, in.height);
+    if (chroma < 0) {
+        snprintf(why, why_size, "chroma C%s is not supported (8-bit 420, 422, 444 and mono are)",
+                 in.chroma);
+        return RTE_ERR_UNSUPPORTED;
+    }
+    in.chroma_bytes = (int32_t)chroma;
+    *info = in;
+    return RTE_OK;
+}
+
 rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
                         rte_y4m_reader **reader, rte_y4m_info *info, char *msg, size_t msg_size)
 {
@@ -62,82 +144,29 @@ rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
     FILE *f = fopen(path, "rb");
     if (!f)
         return y4m_fail(RTE_ERR_IO, msg, msg_size, "cannot open", path);
-    char line[512];
-    rte_y4m_info in = {0};
-    strcpy(in.chroma, "420jpeg");
+    char line[512], why[160] = "";
+    rte_y4m_info in;
     rte_status st = RTE_OK;
-    const char *why = NULL;
-    if (y4m_line(f, line, sizeof line) != 0 || strncmp(line, "YUV4MPEG2", 9) != 0 ||
-        (line[9] != ' ' && line[9] != 0)) {
+    if (y4m_line(f, line, sizeof line) != 0) {
         st = RTE_ERR_FORMAT;
-        why = "not a YUV4MPEG2 file";
-    }
-    for (char *tok = st == RTE_OK ? strtok(line + 9, " ") : NULL; tok && st == RTE_OK;
-         tok = strtok(NULL, " ")) {
-        char *end;
-        long a, b;
-        switch (tok[0]) {
-        case 'W':
-        case 'H':
-            a = strtol(tok + 1, &end, 10);
-            if (*end || a < 1 || a > RTE_MAX_SIDE) {
-                st = RTE_ERR_FORMAT;
-                why = "bad frame size";
-            } else if (tok[0] == 'W') {
-                in.width = (int32_t)a;
-            } else {
-                in.height = (int32_t)a;
-            }
-            break;
-        case 'F':
-            a = strtol(tok + 1, &end, 10);
-            b = *end == ':' ? strtol(end + 1, &end, 10) : 0;
-            if (!*end && a > 0 && b > 0 && a <= INT32_MAX && b <= INT32_MAX) {
-                in.fps_num = (int32_t)a;
-                in.fps_den = (int32_t)b;
-            }
-            break;
-        case 'I':
-            if (tok[1] != 'p' && tok[1] != '?') {
-                st = RTE_ERR_UNSUPPORTED;
-                why = "interlaced streams are not supported";
-            }
-            break;
-        case 'C':
-            if (strlen(tok + 1) >= sizeof in.chroma) {
-                st = RTE_ERR_UNSUPPORTED;
-                why = "unknown chroma";
-            } else {
-                strcpy(in.chroma, tok + 1);
-            }
-            break;
-        default: break; /* A (aspect), X (extensions) */
-        }
-    }
-    if (st == RTE_OK && (in.width == 0 || in.height == 0)) {
-        st = RTE_ERR_FORMAT;
-        why = "no frame size";
-    }
-    int64_t chroma = st == RTE_OK ? y4m_chroma_bytes(in.chroma, in.width, in.height) : 0;
-    if (st == RTE_OK && chroma < 0) {
-        st = RTE_ERR_UNSUPPORTED;
-        why = "chroma format not supported (8-bit 420, 422, 444 and mono are)";
+        snprintf(why, sizeof why, "not a YUV4MPEG2 file");
+    } else {
+        st = rte_y4m_parse_header(line, &in, why, sizeof why);
     }
     if (st == RTE_OK && ((max_width > 0 && in.width > max_width) ||
                          (max_height > 0 && in.height > max_height))) {
         st = RTE_ERR_TOO_LARGE;
-        why = "frame larger than allowed";
+        snprintf(why, sizeof why, "frame larger than allowed");
     }
     rte_y4m_reader *r = st == RTE_OK ? calloc(1, sizeof *r) : NULL;
     if (st == RTE_OK && !r) {
         st = RTE_ERR_NO_MEMORY;
-        why = "out of memory";
+        snprintf(why, sizeof why, "out of memory");
     }
     if (st != RTE_OK) {
         fclose(f);
         return y4m_fail(st, msg, msg_size, why, path);
     }
-    in.chroma_bytes = (int32_t)chroma;
     r->file = f;
     r->info = in;
     if (info)

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "recorded.h"
+#include "rtedge/y4m.h"
 
 #define Y4M_LINE_MAX 1024
 #define Y4M_READ_BUFFER (64 * 1024)
@@ -101,64 +102,28 @@ static int read_line(y4m_file *f, char *line)
     return n;
 }
 
-/* Parses the stream header's tags. */
+/* The stream header (rte_y4m_parse_header), then what this source delivers:
+ * mono as GREY, 4:2:0 as NV12. */
 static rte_status parse_header(y4m_source *s, char *line, char *msg, size_t msg_size)
 {
-    if (strncmp(line, "YUV4MPEG2", 9) != 0 || (line[9] != ' ' && line[9] != '\0')) {
-        rte_source_msgf(msg, msg_size, "%s: not a YUV4MPEG2 file", s->path_name);
-        return RTE_ERR_FORMAT;
+    rte_y4m_info info;
+    char why[160];
+    rte_status st = rte_y4m_parse_header(line, &info, why, sizeof why);
+    if (st != RTE_OK) {
+        rte_source_msgf(msg, msg_size, "%s: %s", s->path_name, why);
+        return st;
     }
-    const char *colour = "420jpeg";
-    char *save = NULL;
-    for (char *tok = strtok_r(line + 9, " ", &save); tok; tok = strtok_r(NULL, " ", &save)) {
-        char *end = NULL;
-        switch (tok[0]) {
-        case 'W':
-            s->width = (int32_t)strtol(tok + 1, &end, 10);
-            break;
-        case 'H':
-            s->height = (int32_t)strtol(tok + 1, &end, 10);
-            break;
-        case 'F':
-            s->fps_num = (int32_t)strtol(tok + 1, &end, 10);
-            if (*end == ':')
-                s->fps_den = (int32_t)strtol(end + 1, &end, 10);
-            break;
-        case 'I':
-            if (tok[1] != 'p' && tok[1] != '?') {
-                rte_source_msgf(msg, msg_size, "%s: interlaced (%s) is not supported",
-                                s->path_name, tok);
-                return RTE_ERR_UNSUPPORTED;
-            }
-            break;
-        case 'C':
-            colour = tok + 1;
-            break;
-        default: /* A (aspect), X (extensions): nothing to do */
-            break;
-        }
-        if (end && *end != '\0') {
-            rte_source_msgf(msg, msg_size, "%s: bad header tag %s", s->path_name, tok);
-            return RTE_ERR_FORMAT;
-        }
-    }
-    if (strcmp(colour, "mono") == 0)
+    if (strcmp(info.chroma, "mono") == 0) {
         s->mono = 1;
-    else if (strncmp(colour, "420", 3) != 0 ||
-             !(colour[3] == '\0' || strcmp(colour + 3, "jpeg") == 0 ||
-               strcmp(colour + 3, "paldv") == 0 || strcmp(colour + 3, "mpeg2") == 0)) {
+    } else if (strncmp(info.chroma, "420", 3) != 0) {
         rte_source_msgf(msg, msg_size, "%s: colour space C%s is not supported (mono and 420 are)",
-                        s->path_name, colour);
+                        s->path_name, info.chroma);
         return RTE_ERR_UNSUPPORTED;
     }
-    if (s->width < 1 || s->height < 1 || s->width > RTE_MAX_SIDE || s->height > RTE_MAX_SIDE) {
-        rte_source_msgf(msg, msg_size, "%s: bad size %dx%d", s->path_name, s->width, s->height);
-        return RTE_ERR_FORMAT;
-    }
-    if (s->fps_num == 0 && s->fps_den == 0) {
-        s->fps_num = RTE_RECORDED_DEFAULT_FPS;
-        s->fps_den = 1;
-    }
+    s->width = info.width;
+    s->height = info.height;
+    s->fps_num = info.fps_num;
+    s->fps_den = info.fps_den;
     return rte_recording_check_fps(&s->fps_num, &s->fps_den, msg, msg_size);
 }
 
