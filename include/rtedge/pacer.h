@@ -16,7 +16,11 @@
  * dropped). A frame more than max_late_ns past its due time is dropped
  * (stale: processing it would only delay the ones after it); negative: never
  * drop. Looping (--loop) needs nothing here: a rewound recording's
- * recorded_ns keeps growing (rte_recorded_source_rewind). */
+ * recorded_ns keeps growing (rte_recorded_source_rewind).
+ * RECORDED starts the pace again (the frame is due at once and becomes the
+ * new origin) when a frame was recorded before the previous one (a log
+ * with another appended) or more than max_pause_ns after it (a pause in the
+ * recording, or a damaged timestamp that would otherwise be waited out). */
 #ifndef RTEDGE_PACER_H
 #define RTEDGE_PACER_H
 
@@ -39,6 +43,7 @@ typedef struct rte_pacer_config {
     int32_t speed_permille;     /* RECORDED: 1..1000000 (0: 1000) */
     int32_t fps_num, fps_den;   /* FPS: both > 0 */
     int64_t max_late_ns;        /* drop frames later than this; < 0: never */
+    int64_t max_pause_ns;       /* RECORDED: longer pauses start the pace again; <= 0: none */
 } rte_pacer_config;
 
 typedef enum rte_pace_action {
@@ -52,8 +57,10 @@ typedef struct rte_pacer {
     int started;
     int64_t origin_ns;          /* when the first frame was due */
     int64_t first_recorded_ns;
+    int64_t last_recorded_ns;   /* of the last frame processed or dropped */
     uint64_t frames;            /* processed or dropped since the origin */
     uint64_t dropped;
+    uint64_t restarts;          /* RECORDED: pace started again (back in time, a pause) */
 } rte_pacer;
 
 /* RTE_ERR_ARGUMENT for a bad mode, speed or frame rate. */

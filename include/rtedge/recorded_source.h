@@ -26,6 +26,10 @@ extern "C" {
 
 /* Frame spacing for recordings without timestamps, when none is given. */
 #define RTE_RECORDED_DEFAULT_FPS 30
+/* The latest image_t utime taken (microseconds; 2^52 is the year 2112 as
+ * Unix time): later ones, and negative ones, are bad frames, so that a
+ * recording's times in nanoseconds never overflow. */
+#define RTE_RECORDED_MAX_UTIME ((int64_t)1 << 52)
 
 /* Image files: PGM, PPM, PNG, JPEG. */
 typedef struct rte_images_source_config {
@@ -98,7 +102,9 @@ rte_status rte_lcm_live_source_open(rte_source *source, const rte_lcm_source_con
                                     char *msg, size_t msg_size);
 
 /* Starts a recording (images, y4m, raw, lcm-log) from its first frame again;
- * sequence numbers and recorded_ns go on growing, so pacing stays monotonic.
+ * sequence numbers and recorded_ns go on growing, so pacing stays monotonic
+ * (recorded_ns starts again from the recording's own times only when going
+ * on would overflow; the pacer then starts its pace again).
  * RTE_ERR_UNSUPPORTED for other sources. */
 rte_status rte_recorded_source_rewind(rte_source *source);
 

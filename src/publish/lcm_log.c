@@ -177,8 +177,8 @@ static int64_t resync(int fd, int64_t at)
     return next >= 0 ? next : (int64_t)lseek(fd, 0, SEEK_END);
 }
 
-rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *msg,
-                            size_t msg_size)
+static rte_status read_event(rte_lcm_log_reader *r, rte_lcm_log_event *ev, int head_only,
+                             char *msg, size_t msg_size)
 {
     uint8_t h[RTE_LCM_LOG_HEADER_SIZE];
     ssize_t n = read_at(r->fd, h, sizeof h, r->offset);
@@ -220,20 +220,23 @@ rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *
     ev->eventnum = (int64_t)get_be64(h + 4);
     ev->utime = (int64_t)get_be64(h + 12);
     if (size > r->capacity) {
-        /* Skip it, but only if it is all there. */
+        /* Skip it (or read its head), but only if it is all there. */
         uint8_t last;
         if (read_at(r->fd, &last, 1, end - 1) != 1) {
             r->offset = (int64_t)lseek(r->fd, 0, SEEK_END);
             rte_source_msgf(msg, msg_size, "log offset %lld: event cut short", (long long)at);
             return RTE_ERR_TRUNCATED;
         }
-        r->offset = end;
-        rte_source_msgf(msg, msg_size, "log event %lld on %s: %u bytes, more than %zu",
-                        (long long)ev->eventnum, ev->channel, size, r->capacity);
-        return RTE_ERR_TOO_LARGE;
+        if (!head_only) {
+            r->offset = end;
+            rte_source_msgf(msg, msg_size, "log event %lld on %s: %u bytes, more than %zu",
+                            (long long)ev->eventnum, ev->channel, size, r->capacity);
+            return RTE_ERR_TOO_LARGE;
+        }
     }
-    n = read_at(r->fd, r->buf, size, at + (int64_t)sizeof h + channel_len);
-    if (n != (ssize_t)size) {
+    size_t want = size < r->capacity ? size : r->capacity;
+    n = read_at(r->fd, r->buf, want, at + (int64_t)sizeof h + channel_len);
+    if (n != (ssize_t)want) {
         r->offset = (int64_t)lseek(r->fd, 0, SEEK_END);
         rte_source_msgf(msg, msg_size, "log event %lld on %s: data cut short (%zd of %u bytes)",
              (long long)ev->eventnum, ev->channel, n, size);
@@ -244,6 +247,18 @@ rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *
     ev->size = (int32_t)size;
     rte_source_msgf(msg, msg_size, "%s", "");
     return RTE_OK;
+}
+
+rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *msg,
+                            size_t msg_size)
+{
+    return read_event(r, ev, 0, msg, msg_size);
+}
+
+rte_status rte_lcm_log_read_head(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *msg,
+                                 size_t msg_size)
+{
+    return read_event(r, ev, 1, msg, msg_size);
 }
 
 void rte_lcm_log_reader_close(rte_lcm_log_reader *r)

@@ -57,6 +57,12 @@ rte_status rte_lcm_log_reader_open(rte_lcm_log_reader *r, const char *path,
  * RTE_ERR_TOO_LARGE (skipped). No allocation. */
 rte_status rte_lcm_log_read(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *msg,
                             size_t msg_size);
+/* As rte_lcm_log_read, but an event larger than the buffer is not skipped:
+ * its first max_event_bytes are read (ev->size is still the whole event's
+ * size; ev->data holds min(size, max_event_bytes) bytes). For looking at
+ * headers without a buffer for the largest event. */
+rte_status rte_lcm_log_read_head(rte_lcm_log_reader *r, rte_lcm_log_event *ev, char *msg,
+                                 size_t msg_size);
 void rte_lcm_log_reader_close(rte_lcm_log_reader *r);
 
 #endif

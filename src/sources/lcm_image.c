@@ -18,8 +18,6 @@
 #define IMAGE_FIXED_BYTES (8 + 8 + 5 * 4)
 /* Room for metadata and row padding beyond the packed pixels. */
 #define IMAGE_SLACK_BYTES (256 * 1024)
-/* The buffer for finding a log's first image when no size is configured. */
-#define IMAGE_PEEK_BYTES ((size_t)1 << 27)
 
 static uint32_t be32(const uint8_t *p)
 {
@@ -61,11 +59,18 @@ static int is_image(const uint8_t *data, int32_t size)
     return size >= 8 && be64(data) == __rtedge_image_t_get_hash();
 }
 
-/* Decodes an image_t's header and makes *frame a view of its pixels.
- * want: the required format (0: any). */
-static rte_status decode_image(const uint8_t *data, int32_t size, rte_pixel_format want,
-                               int32_t max_w, int32_t max_h, rte_frame *frame, int64_t *utime,
-                               char *msg, size_t msg_size)
+/* An image_t's fields before its pixels. */
+typedef struct image_header {
+    int64_t utime;
+    rte_pixel_format format;
+    int32_t width, height, stride;
+} image_header;
+
+/* Decodes and checks an image_t's header: of a message of `size` bytes, only
+ * the first IMAGE_FIXED_BYTES are read. want: the required format (0: any). */
+static rte_status decode_header(const uint8_t *data, int32_t size, rte_pixel_format want,
+                                int32_t max_w, int32_t max_h, image_header *hd, char *msg,
+                                size_t msg_size)
 {
     if (!is_image(data, size)) {
         rte_source_msgf(msg, msg_size, "not an image_t (fingerprint)");
@@ -75,7 +80,12 @@ static rte_status decode_image(const uint8_t *data, int32_t size, rte_pixel_form
         rte_source_msgf(msg, msg_size, "image_t of %d bytes: cut short", size);
         return RTE_ERR_TRUNCATED;
     }
-    *utime = be64(data + 8);
+    hd->utime = be64(data + 8);
+    if (hd->utime < 0 || hd->utime > RTE_RECORDED_MAX_UTIME) {
+        rte_source_msgf(msg, msg_size, "image_t utime %lld is outside 0..2^52 microseconds",
+                        (long long)hd->utime);
+        return RTE_ERR_CORRUPT;
+    }
     int32_t w = (int32_t)be32(data + 16), h = (int32_t)be32(data + 20);
     int32_t stride = (int32_t)be32(data + 24), pixelformat = (int32_t)be32(data + 28);
     int32_t bytes = (int32_t)be32(data + 32);
@@ -105,15 +115,30 @@ static rte_status decode_image(const uint8_t *data, int32_t size, rte_pixel_form
                         "message: inconsistent", w, h, stride, bytes, size);
         return RTE_ERR_CORRUPT;
     }
-    uint8_t *pixels = (uint8_t *)(uintptr_t)(data + IMAGE_FIXED_BYTES);
-    *frame = (rte_frame){f, w, h, {pixels, NULL}, {stride, 0}};
-    if (f == RTE_PIXEL_NV12) {
-        frame->plane[1] = pixels + (size_t)stride * (size_t)h;
-        frame->stride[1] = stride;
-    }
-    rte_status st = rte_frame_check(frame);
+    *hd = (image_header){hd->utime, f, w, h, stride};
+    return RTE_OK;
+}
+
+/* Decodes a whole image_t and makes *frame a view of its pixels. */
+static rte_status decode_image(const uint8_t *data, int32_t size, rte_pixel_format want,
+                               int32_t max_w, int32_t max_h, rte_frame *frame, int64_t *utime,
+                               char *msg, size_t msg_size)
+{
+    image_header hd;
+    rte_status st = decode_header(data, size, want, max_w, max_h, &hd, msg, msg_size);
     if (st != RTE_OK)
-        rte_source_msgf(msg, msg_size, "image_t %dx%d: %s", w, h, rte_status_message(st));
+        return st;
+    *utime = hd.utime;
+    uint8_t *pixels = (uint8_t *)(uintptr_t)(data + IMAGE_FIXED_BYTES);
+    *frame = (rte_frame){hd.format, hd.width, hd.height, {pixels, NULL}, {hd.stride, 0}};
+    if (hd.format == RTE_PIXEL_NV12) {
+        frame->plane[1] = pixels + (size_t)hd.stride * (size_t)hd.height;
+        frame->stride[1] = hd.stride;
+    }
+    st = rte_frame_check(frame);
+    if (st != RTE_OK)
+        rte_source_msgf(msg, msg_size, "image_t %dx%d: %s", hd.width, hd.height,
+                        rte_status_message(st));
     return st;
 }
 
@@ -189,24 +214,24 @@ static const char *log_path(const char *url)
 static rte_status peek_first_image(const char *path, const char *channel, rte_pixel_format *f,
                                    int32_t *w, int32_t *h, char *msg, size_t msg_size)
 {
+    /* Only each event's first bytes: the image_t header decides. */
     rte_lcm_log_reader r;
-    rte_status st = rte_lcm_log_reader_open(&r, path, IMAGE_PEEK_BYTES, msg, msg_size);
+    rte_status st = rte_lcm_log_reader_open(&r, path, IMAGE_FIXED_BYTES, msg, msg_size);
     if (st != RTE_OK)
         return st;
     for (;;) {
         rte_lcm_log_event ev;
-        st = rte_lcm_log_read(&r, &ev, msg, msg_size);
+        st = rte_lcm_log_read_head(&r, &ev, msg, msg_size);
         if (st == RTE_ERR_END || st == RTE_ERR_IO)
             break;
         if (st != RTE_OK || (channel[0] && strcmp(ev.channel, channel) != 0))
             continue;
-        rte_frame frame;
-        int64_t utime;
-        if (decode_image(ev.data, ev.size, *f, RTE_MAX_SIDE, RTE_MAX_SIDE, &frame, &utime, NULL,
-                         0) == RTE_OK) {
-            *f = frame.format;
-            *w = frame.width;
-            *h = frame.height;
+        image_header hd;
+        if (decode_header(ev.data, ev.size, *f, RTE_MAX_SIDE, RTE_MAX_SIDE, &hd, NULL, 0) ==
+            RTE_OK) {
+            *f = hd.format;
+            *w = hd.width;
+            *h = hd.height;
             break;
         }
     }

@@ -30,6 +30,20 @@ void rte_pacer_restart(rte_pacer *pacer)
     pacer->frames = 0;
 }
 
+/* RECORDED: does this frame start the pace again (back in time, or after a
+ * pause longer than max_pause_ns)? Differences in unsigned arithmetic: the
+ * times may lie anywhere in int64. */
+static int starts_again(const rte_pacer *pacer, int64_t recorded_ns)
+{
+    const rte_pacer_config *c = &pacer->config;
+    if (!pacer->frames)
+        return 0;
+    if (recorded_ns < pacer->last_recorded_ns)
+        return 1;
+    return c->max_pause_ns > 0 &&
+           (uint64_t)recorded_ns - (uint64_t)pacer->last_recorded_ns > (uint64_t)c->max_pause_ns;
+}
+
 rte_pace_action rte_pacer_decide(rte_pacer *pacer, int64_t recorded_ns, int64_t now_ns,
                                  int64_t *wait_ns)
 {
@@ -38,6 +52,10 @@ rte_pace_action rte_pacer_decide(rte_pacer *pacer, int64_t recorded_ns, int64_t 
     if (c->mode == RTE_PACE_FAST) {
         pacer->frames++;
         return RTE_PACE_PROCESS;
+    }
+    if (c->mode == RTE_PACE_RECORDED && pacer->started && starts_again(pacer, recorded_ns)) {
+        pacer->started = 0;
+        pacer->restarts++;
     }
     if (!pacer->started) {
         pacer->started = 1;
@@ -48,11 +66,13 @@ rte_pace_action rte_pacer_decide(rte_pacer *pacer, int64_t recorded_ns, int64_t 
     if (c->mode == RTE_PACE_FPS) {
         offset = rte_recording_frame_ns(pacer->frames, c->fps_num, c->fps_den);
     } else {
-        /* A recording that goes back in time (a new log appended) is due
-         * at once, not in the past. */
-        int64_t span = recorded_ns - pacer->first_recorded_ns;
-        offset = span <= 0 ? 0 : span / c->speed_permille * 1000 +
-                                     span % c->speed_permille * 1000 / c->speed_permille;
+        /* span * 1000 / speed, clamped far in the future rather than
+         * overflowing (only a max_pause_ns of 0 lets spans grow that far). */
+        uint64_t span = (uint64_t)recorded_ns - (uint64_t)pacer->first_recorded_ns;
+        uint64_t speed = (uint64_t)c->speed_permille, q = span / speed;
+        offset = q > (uint64_t)INT64_MAX / 4000
+                     ? INT64_MAX / 4
+                     : (int64_t)(q * 1000 + span % speed * 1000 / speed);
     }
     int64_t due = pacer->origin_ns + offset;
     if (due > now_ns) {
@@ -60,6 +80,7 @@ rte_pace_action rte_pacer_decide(rte_pacer *pacer, int64_t recorded_ns, int64_t 
         return RTE_PACE_WAIT;
     }
     pacer->frames++;
+    pacer->last_recorded_ns = recorded_ns;
     if (c->max_late_ns >= 0 && now_ns - due > c->max_late_ns) {
         pacer->dropped++;
         return RTE_PACE_DROP;

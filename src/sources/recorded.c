@@ -96,9 +96,14 @@ rte_status rte_recorded_source_rewind(rte_source *source)
         return RTE_ERR_UNSUPPORTED;
     rte_recording *rec = source->impl;
     /* Keep time and sequence growing: the first frame again comes one frame
-     * interval after the last one. */
-    if (rec->last_ns >= 0 && rec->first_ns >= 0)
-        rec->ns_offset = rec->last_ns + rec->frame_ns - rec->first_ns;
+     * interval after the last one. Recorded times are at most
+     * RTE_RECORDED_MAX_UTIME microseconds; an offset that could overflow
+     * with them starts the times over (the pacer takes that as a restart). */
+    int64_t offset;
+    const int64_t max_ns = RTE_RECORDED_MAX_UTIME * 1000;
+    if (rec->last_ns >= 0 && rec->first_ns >= 0 &&
+        !__builtin_add_overflow(rec->last_ns, rec->frame_ns, &offset))
+        rec->ns_offset = offset - rec->first_ns <= INT64_MAX - max_ns ? offset - rec->first_ns : 0;
     rec->sequence_base += rec->index;
     rec->index = 0;
     rec->stats.state = RTE_SOURCE_STREAMING;

@@ -18,6 +18,7 @@
 #include "rtedge/pacer.h"
 #include "rtedge/publish.h"
 #include "rtedge/recorded_source.h"
+#include "rtedge/y4m.h"
 
 static char tmpdir[512];
 
@@ -323,14 +324,41 @@ static void test_y4m_damaged(void **state)
     rte_source_close(&src);
 
     /* Headers rtedge refuses. */
-    const char *bad[] = {"YUV4MPEG2 W6 H2 C444\n", "YUV4MPEG2 W0 H2\n", "YUV4MPEG W6 H2\n",
-                         "YUV4MPEG2 W6 H2 It\n", "YUV4MPEG2 W6x H2\n", "YUV4MPEG2 W6 H2"};
-    const rte_status why[] = {RTE_ERR_UNSUPPORTED, RTE_ERR_FORMAT, RTE_ERR_FORMAT,
-                              RTE_ERR_UNSUPPORTED, RTE_ERR_FORMAT, RTE_ERR_FORMAT};
+    /* Headers rtedge refuses, numbers that overflow an int32 or a long
+     * among them (W4294967300 used to wrap to a width of 4). */
+    const struct {
+        const char *header;
+        rte_status st;
+        const char *why;
+    } bad[] = {
+        {"YUV4MPEG2 W6 H2 C444\n", RTE_ERR_UNSUPPORTED, "colour space C444"},
+        {"YUV4MPEG2 W0 H2\n", RTE_ERR_FORMAT, "bad frame width in tag 'W0'"},
+        {"YUV4MPEG W6 H2\n", RTE_ERR_FORMAT, "not a YUV4MPEG2 file"},
+        {"YUV4MPEG2 W6 H2 It\n", RTE_ERR_UNSUPPORTED, "interlaced"},
+        {"YUV4MPEG2 W6x H2\n", RTE_ERR_FORMAT, "bad frame width"},
+        {"YUV4MPEG2 W6 H2", RTE_ERR_FORMAT, "no YUV4MPEG2 header"},
+        {"YUV4MPEG2 W4294967300 H2\n", RTE_ERR_FORMAT, "bad frame width in tag 'W4294967300'"},
+        {"YUV4MPEG2 W6 H18446744073709551620\n", RTE_ERR_FORMAT, "bad frame height"},
+        {"YUV4MPEG2 W-6 H2\n", RTE_ERR_FORMAT, "bad frame width"},
+        {"YUV4MPEG2 W6 H40000\n", RTE_ERR_FORMAT, "bad frame height in tag 'H40000' (1..32767)"},
+        {"YUV4MPEG2 W6 H2 F4294967326:1\n", RTE_ERR_FORMAT, "bad frame rate tag"},
+        {"YUV4MPEG2 W6 H2 F30:-1\n", RTE_ERR_FORMAT, "bad frame rate tag"},
+        {"YUV4MPEG2 W6 H2 F30\n", RTE_ERR_FORMAT, "bad frame rate tag"},
+        {"YUV4MPEG2 W6 H2 F0:1\n", RTE_ERR_FORMAT, "bad frame rate tag"},
+        {"YUV4MPEG2 W6 H2 F2000000:1\n", RTE_ERR_ARGUMENT, "bad frame rate 2000000/1"},
+        {"YUV4MPEG2 H2\n", RTE_ERR_FORMAT, "no frame size"},
+    };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        write_file(path, bad[i], strlen(bad[i]));
-        assert_int_equal(rte_y4m_source_open(&src, path, msg, sizeof msg), why[i]);
+        write_file(path, bad[i].header, strlen(bad[i].header));
+        assert_int_equal(rte_y4m_source_open(&src, path, msg, sizeof msg), bad[i].st);
+        if (!strstr(msg, bad[i].why))
+            print_error("%s: '%s'\n", bad[i].header, msg);
+        assert_non_null(strstr(msg, bad[i].why));
         assert_null(src.ops);
+        /* rtedge_io's reader parses the same header. */
+        rte_y4m_reader *r;
+        if (bad[i].st == RTE_ERR_FORMAT)
+            assert_int_equal(rte_y4m_open(path, 0, 0, &r, NULL, msg, sizeof msg), RTE_ERR_FORMAT);
     }
     assert_int_equal(rte_y4m_source_open(&src, "/nonexistent.y4m", msg, sizeof msg), RTE_ERR_IO);
 }
@@ -534,6 +562,35 @@ static void test_lcm_log_images(void **state)
     rte_lcm_source_config live = {"memq://", NULL, RTE_PIXEL_GREY, 8, 8};
     assert_int_equal(rte_lcm_live_source_open(&src, &live, msg, sizeof msg), RTE_ERR_ARGUMENT);
     assert_null(src.ops);
+
+    /* Forged times (found by fuzz_lcm_log: utime * 1000 overflowed): bad
+     * frames, the ones after them read. */
+    assert_int_equal(rte_publisher_create(&pub, url, &limits, msg, sizeof msg), RTE_OK);
+    const int64_t utimes[] = {-1, INT64_MAX, RTE_RECORDED_MAX_UTIME + 1, 5000,
+                              RTE_RECORDED_MAX_UTIME};
+    img.pixelformat = RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY;
+    for (int k = 0; k < 5; k++) {
+        img.utime = utimes[k];
+        assert_int_equal(rte_publish_image(pub, "CAM", &img, msg, sizeof msg), RTE_OK);
+    }
+    rte_publisher_destroy(pub);
+    assert_int_equal(rte_lcm_log_source_open(&src, &any, msg, sizeof msg), RTE_OK);
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_ERR_CORRUPT);
+        assert_non_null(strstr(msg, "is outside 0..2^52 microseconds"));
+    }
+    assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_OK);
+    assert_int_equal(f.recorded_ns, 5000000);
+    assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_OK);
+    assert_int_equal(f.recorded_ns, RTE_RECORDED_MAX_UTIME * 1000);
+    /* Rewinds cannot overflow the times either (UBSan in the sanitizer run). */
+    for (int pass = 0; pass < 4; pass++) {
+        assert_int_equal(rte_recorded_source_rewind(&src), RTE_OK);
+        while ((st = rte_source_next(&src, &f, 0, msg, sizeof msg)) != RTE_ERR_END)
+            if (st == RTE_OK)
+                assert_true(f.recorded_ns >= 0);
+    }
+    rte_source_close(&src);
 }
 
 /* ---- no heap calls per frame ---- */
@@ -614,7 +671,7 @@ static void test_pacer_recorded(void **state)
 {
     (void)state;
     rte_pacer p;
-    rte_pacer_config c = {RTE_PACE_RECORDED, 2000, 0, 0, 50 * MS}; /* twice as fast */
+    rte_pacer_config c = {RTE_PACE_RECORDED, 2000, 0, 0, 50 * MS, 0}; /* twice as fast */
     assert_int_equal(rte_pacer_init(&p, &c), RTE_OK);
     int64_t wait;
     /* frames recorded every 100 ms from t = 5 s; the clock starts at 1000 */
@@ -629,15 +686,39 @@ static void test_pacer_recorded(void **state)
     assert_int_equal(rte_pacer_decide(&p, 5400 * MS, 1210 * MS, &wait), RTE_PACE_PROCESS);
     assert_int_equal(p.dropped, 1);
     assert_int_equal(p.frames, 5);
-    /* time going back (a second log): due at once */
-    assert_int_equal(rte_pacer_decide(&p, 100 * MS, 1220 * MS, &wait), RTE_PACE_DROP);
-    rte_pacer_restart(&p);
+    /* time going back (a second log): due at once, the pace starts again from it */
     assert_int_equal(rte_pacer_decide(&p, 100 * MS, 1220 * MS, &wait), RTE_PACE_PROCESS);
+    assert_int_equal(p.restarts, 1);
     assert_int_equal(rte_pacer_decide(&p, 110 * MS, 1220 * MS, &wait), RTE_PACE_WAIT);
     assert_int_equal(wait, 5 * MS);
+    rte_pacer_restart(&p);
+    assert_int_equal(rte_pacer_decide(&p, 110 * MS, 1300 * MS, &wait), RTE_PACE_PROCESS);
+    assert_int_equal(rte_pacer_decide(&p, 120 * MS, 1300 * MS, &wait), RTE_PACE_WAIT);
+    assert_int_equal(wait, 5 * MS);
+
+    /* A pause longer than max_pause_ns (a damaged timestamp 30 years on) is
+     * not waited out: the pace starts again. */
+    c = (rte_pacer_config){RTE_PACE_RECORDED, 1000, 0, 0, -1, 10000 * MS};
+    assert_int_equal(rte_pacer_init(&p, &c), RTE_OK);
+    assert_int_equal(rte_pacer_decide(&p, 0, 0, &wait), RTE_PACE_PROCESS);
+    assert_int_equal(rte_pacer_decide(&p, 33 * MS, 33 * MS, &wait), RTE_PACE_PROCESS);
+    assert_int_equal(rte_pacer_decide(&p, 9000 * MS, 40 * MS, &wait), RTE_PACE_WAIT); /* 9 s: waited */
+    assert_int_equal(rte_pacer_decide(&p, 9000 * MS, 9000 * MS, &wait), RTE_PACE_PROCESS);
+    const int64_t forged = 946080000000000000LL;
+    assert_int_equal(rte_pacer_decide(&p, forged, 9010 * MS, &wait), RTE_PACE_PROCESS);
+    assert_int_equal(p.restarts, 1);
+    assert_int_equal(rte_pacer_decide(&p, forged + 33 * MS, 9010 * MS, &wait), RTE_PACE_WAIT);
+    assert_int_equal(wait, 33 * MS);
+    /* Without a limit, spans that would overflow once scaled wait "for ever"
+     * (a quarter of int64) instead. */
+    c = (rte_pacer_config){RTE_PACE_RECORDED, 1, 0, 0, -1, 0};
+    assert_int_equal(rte_pacer_init(&p, &c), RTE_OK);
+    assert_int_equal(rte_pacer_decide(&p, INT64_MIN, 0, &wait), RTE_PACE_PROCESS);
+    assert_int_equal(rte_pacer_decide(&p, INT64_MAX, 0, &wait), RTE_PACE_WAIT);
+    assert_int_equal(wait, INT64_MAX / 4);
 
     /* real time, never dropping */
-    c = (rte_pacer_config){RTE_PACE_RECORDED, 0, 0, 0, -1};
+    c = (rte_pacer_config){RTE_PACE_RECORDED, 0, 0, 0, -1, 0};
     assert_int_equal(rte_pacer_init(&p, &c), RTE_OK);
     assert_int_equal(rte_pacer_decide(&p, 0, 0, &wait), RTE_PACE_PROCESS);
     assert_int_equal(rte_pacer_decide(&p, 33 * MS, 10 * MS, &wait), RTE_PACE_WAIT);
@@ -655,7 +736,7 @@ static void test_pacer_fps_and_fast(void **state)
 {
     (void)state;
     rte_pacer p;
-    rte_pacer_config c = {RTE_PACE_FPS, 0, 30000, 1001, 100 * MS};
+    rte_pacer_config c = {RTE_PACE_FPS, 0, 30000, 1001, 100 * MS, 0};
     assert_int_equal(rte_pacer_init(&p, &c), RTE_OK);
     int64_t wait;
     /* recorded times do not matter */
@@ -669,15 +750,16 @@ static void test_pacer_fps_and_fast(void **state)
     assert_int_equal(wait, 1);
     assert_int_equal(rte_pacer_decide(&p, 0, 33366666666LL + 200 * MS, &wait), RTE_PACE_DROP);
 
-    c = (rte_pacer_config){RTE_PACE_FAST, 0, 0, 0, 0};
+    c = (rte_pacer_config){RTE_PACE_FAST, 0, 0, 0, 0, 0};
     assert_int_equal(rte_pacer_init(&p, &c), RTE_OK);
     for (int i = 0; i < 3; i++) {
         assert_int_equal(rte_pacer_decide(&p, 1000000 * MS * i, 0, &wait), RTE_PACE_PROCESS);
         assert_int_equal(wait, 0);
     }
 
-    rte_pacer_config bad[] = {{RTE_PACE_FPS, 0, 0, 1, 0}, {RTE_PACE_FPS, 0, 30, -1, 0},
-                              {RTE_PACE_RECORDED, -5, 0, 0, 0}, {(rte_pace_mode)7, 0, 0, 0, 0}};
+    rte_pacer_config bad[] = {{RTE_PACE_FPS, 0, 0, 1, 0, 0}, {RTE_PACE_FPS, 0, 30, -1, 0, 0},
+                              {RTE_PACE_RECORDED, -5, 0, 0, 0, 0},
+                              {(rte_pace_mode)7, 0, 0, 0, 0, 0}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
         assert_int_equal(rte_pacer_init(&p, &bad[i]), RTE_ERR_ARGUMENT);
 }
