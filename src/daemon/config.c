@@ -12,18 +12,28 @@
 #include <string.h>
 #include <strings.h>
 
-typedef enum key_type { K_INT, K_REAL, K_BOOL, K_TEXT, K_ENUM } key_type;
+#include "rtedge/lane.h"
+#include "rtedge/polygon_mask.h"
 
-typedef struct key_def {
+#define K_INT RTED_KEY_INT
+#define K_REAL RTED_KEY_REAL
+#define K_BOOL RTED_KEY_BOOL
+#define K_TEXT RTED_KEY_TEXT
+#define K_ENUM RTED_KEY_CHOICE
+
+struct rted_key {
     const char *section, *key;
-    key_type type;
+    rted_key_type type;
     size_t offset, size;      /* size: K_TEXT capacity */
     double min, max;          /* K_INT, K_REAL */
+    bool has_unset;           /* `unset` is allowed besides min..max ("the default") */
+    double unset;
     const char *const *choices; /* K_ENUM, NULL-terminated */
     bool runtime;             /* may change while running (SIGHUP, params_t) */
     const char *def;
     const char *help;
-} key_def;
+};
+typedef struct rted_key key_def;
 
 static const char *const source_kinds[] = {"auto", "y4m", "images", "raw", "lcm-log", "lcm",
                                            "v4l2", "libcamera", NULL};
@@ -33,11 +43,15 @@ static const char *const binarizers[] = {"otsu", "fixed", "canny-close", NULL};
 static const char *const polarities[] = {"auto", "dark", "bright", NULL};
 
 #define OFF(f) offsetof(rted_config, f)
-#define INT(s, k, f, lo, hi, rt, d, h) {s, k, K_INT, OFF(f), 0, lo, hi, NULL, rt, d, h}
-#define REAL(s, k, f, lo, hi, rt, d, h) {s, k, K_REAL, OFF(f), 0, lo, hi, NULL, rt, d, h}
-#define BOOL(s, k, f, rt, d, h) {s, k, K_BOOL, OFF(f), 0, 0, 1, NULL, rt, d, h}
-#define TEXT(s, k, f, rt, d, h) {s, k, K_TEXT, OFF(f), sizeof(((rted_config *)0)->f), 0, 0, NULL, rt, d, h}
-#define ENUM(s, k, f, ch, rt, d, h) {s, k, K_ENUM, OFF(f), 0, 0, 0, ch, rt, d, h}
+#define INT(s, k, f, lo, hi, rt, d, h) {s, k, K_INT, OFF(f), 0, lo, hi, false, 0, NULL, rt, d, h}
+/* An integer or real key whose value `u` means "the default" besides lo..hi. */
+#define INTU(s, k, f, u, lo, hi, rt, d, h) {s, k, K_INT, OFF(f), 0, lo, hi, true, u, NULL, rt, d, h}
+#define REAL(s, k, f, lo, hi, rt, d, h) {s, k, K_REAL, OFF(f), 0, lo, hi, false, 0, NULL, rt, d, h}
+#define REALU(s, k, f, u, lo, hi, rt, d, h) {s, k, K_REAL, OFF(f), 0, lo, hi, true, u, NULL, rt, d, h}
+#define BOOL(s, k, f, rt, d, h) {s, k, K_BOOL, OFF(f), 0, 0, 1, false, 0, NULL, rt, d, h}
+#define TEXT(s, k, f, rt, d, h) \
+    {s, k, K_TEXT, OFF(f), sizeof(((rted_config *)0)->f), 0, 0, false, 0, NULL, rt, d, h}
+#define ENUM(s, k, f, ch, rt, d, h) {s, k, K_ENUM, OFF(f), 0, 0, 0, false, 0, ch, rt, d, h}
 
 static const key_def keys[] = {
     ENUM("source", "kind", source_kind, source_kinds, false, "auto",
@@ -60,6 +74,10 @@ static const key_def keys[] = {
          "fast: as fast as possible (never drops)"),
     REAL("source", "fps", fps, 0.1, 1000, false, "30", "the rate of pace = fps"),
     REAL("source", "speed", speed, 0.001, 1000, false, "1", "pace = recorded: 2 = twice real time"),
+    INT("source", "max_pause_ms", max_pause_ms, 0, 86400000, false, "10000",
+        "pace = recorded: a frame recorded longer than this after the one before\n"
+        "is due at once, and the pace starts again from it (a pause in a log, a\n"
+        "damaged timestamp); 0: wait out any pause"),
     BOOL("source", "loop", loop, false, "false", "start a recording again at its end"),
     INT("source", "max_frames", max_frames, 0, 2147483647, false, "0",
         "stop after this many processed frames; 0: never"),
@@ -78,21 +96,25 @@ static const key_def keys[] = {
     INT("lane", "blur_ksize", lane_blur_ksize, 1, 15, false, "5", "Gaussian kernel size (odd)"),
     ENUM("lane", "canny_mode", lane_canny_mode, canny_modes, true, "median",
          "Canny thresholds: fixed (canny_low/high) or from the ROI's histogram"),
-    INT("lane", "canny_low", lane_canny_low, -1, 2040, true, "-1",
-        "fixed mode, L1 gradient; -1: the lane default"),
-    INT("lane", "canny_high", lane_canny_high, -1, 2040, true, "-1", "as canny_low"),
-    INT("lane", "hough_threshold", lane_hough_threshold, -1, 100000, true, "-1",
-        "Hough votes; -1: the lane default for the frame height"),
-    INT("lane", "min_length", lane_min_length, -1, 8192, true, "-1",
-        "shortest segment, pixels; -1: default for the frame height"),
-    INT("lane", "max_gap", lane_max_gap, -1, 8192, true, "-1",
-        "largest gap joined in a segment; -1: default for the frame height"),
+    INTU("lane", "canny_low", lane_canny_low, -1, 0, 2040, true, "-1",
+         "fixed mode, L1 gradient; -1: the lane default"),
+    INTU("lane", "canny_high", lane_canny_high, -1, 0, 2040, true, "-1", "as canny_low"),
+    INTU("lane", "hough_threshold", lane_hough_threshold, -1, 1, 16384, true, "-1",
+         "Hough votes; -1: the lane default for the frame height; at most the\n"
+         "frame's width + height (more could never be reached)"),
+    INTU("lane", "min_length", lane_min_length, -1, 0, 16384, true, "-1",
+         "shortest segment, pixels; -1: default for the frame height; at most\n"
+         "the frame's width + height"),
+    INTU("lane", "max_gap", lane_max_gap, -1, 0, 16384, true, "-1",
+         "largest gap joined in a segment; -1: default for the frame height; at\n"
+         "most the frame's width + height"),
     INT("lane", "hough_seed", lane_hough_seed, 0, INT32_MAX, true, "0",
         "point order of the Hough search; 0: the built-in seed"),
-    INT("lane", "hold_frames", lane_hold_frames, -1, 1000, true, "-1",
-        "frames a lost lane is predicted; -1: the lane default"),
-    INT("lane", "gate_px", lane_gate_px, -1, 8192, true, "-1",
-        "segments farther from a tracked lane are ignored; -1: default"),
+    INTU("lane", "hold_frames", lane_hold_frames, -1, 0, 1000, true, "-1",
+         "frames a lost lane is predicted; -1: the lane default"),
+    INTU("lane", "gate_px", lane_gate_px, -1, 0, 16384, true, "-1",
+         "segments farther from a tracked lane are ignored; -1: default; at most\n"
+         "the frame's width + height"),
     BOOL("lane", "use_color", lane_use_color, true, "true",
          "colour frames: white/yellow paint cue"),
     TEXT("lane", "roi", lane_roi, true, "0,1;0.45,0.6;0.55,0.6;1,1",
@@ -112,9 +134,10 @@ static const key_def keys[] = {
     INT("grasp", "threshold", grasp_threshold, 0, 255, true, "128", "binarize = fixed"),
     ENUM("grasp", "polarity", grasp_polarity, polarities, true, "auto",
          "objects darker or brighter than the table; auto: not the border's side"),
-    INT("grasp", "min_area", grasp_min_area, 0, 100000000, true, "100", "smallest object, px"),
-    INT("grasp", "max_area", grasp_max_area, 0, 100000000, true, "0",
-        "largest object, px; 0: no limit"),
+    INT("grasp", "min_area", grasp_min_area, 0, 67108864, true, "100",
+        "smallest object, px; at most the frame's area"),
+    INTU("grasp", "max_area", grasp_max_area, 0, 1, 67108864, true, "0",
+         "largest object, px; 0: no limit"),
     BOOL("grasp", "skip_border", grasp_skip_border, true, "false",
          "drop objects touching the image border"),
 
@@ -124,21 +147,30 @@ static const key_def keys[] = {
     TEXT("publish", "grasp_channel", grasp_channel, false, "RTEDGE_GRASP", "grasp_detection_t"),
     TEXT("publish", "status_channel", status_channel, false, "RTEDGE_STATUS",
          "status_t, once per status_period_ms"),
-    TEXT("publish", "params_channel", params_channel, false, "RTEDGE_PARAMS",
-         "params_t in: runtime parameters (udpm://, memq://)"),
-    BOOL("publish", "params_enabled", params_enabled, false, "false",
-         "listen on params_channel (an unauthenticated control input: off by default)"),
     BOOL("publish", "images", publish_images, false, "false",
          "also publish each analysed grey frame as image_t (for tools/render_log)"),
     TEXT("publish", "image_channel", image_channel, false, "RTEDGE_IMAGE", "image_t"),
     INT("publish", "status_period_ms", status_period_ms, 10, 60000, false, "1000",
         "status_t period and latency window"),
 
-    REAL("deadline", "ms", deadline_ms, 0, 60000, true, "0",
+    BOOL("params", "enabled", params_enabled, false, "false",
+         "take run-time parameter changes (params_t) on `channel`. The channel is\n"
+         "unauthenticated: anyone who can send to publish.url can change the keys\n"
+         "below; keep udpm:// on a private interface (docs/daemon.md)"),
+    TEXT("params", "channel", params_channel, false, "RTEDGE_PARAMS",
+         "params_t in (udpm://, memq://)"),
+    TEXT("params", "keys", params_keys, false, "",
+         "the keys params_t may change, 'section.key' separated by ','; empty:\n"
+         "every (runtime) key that takes a number or a boolean"),
+    INT("params", "max_per_second", params_max_per_second, 1, 1000, false, "10",
+        "params_t messages handled per second (a burst of as many); more are\n"
+        "counted in status_t's config_rate_limited and dropped, not queued"),
+
+    REALU("deadline", "ms", deadline_ms, 0, 0.1, 10000, true, "0",
          "per-frame budget, capture to publish; 0: 1000 / source.fps"),
-    REAL("deadline", "grasp_min_budget_ms", grasp_min_budget_ms, 0, 60000, true, "2",
+    REAL("deadline", "grasp_min_budget_ms", grasp_min_budget_ms, 0, 10000, true, "2",
          "skip the grasp path when less than this is left of the budget"),
-    REAL("deadline", "max_late_ms", max_late_ms, -1, 60000, false, "100",
+    REALU("deadline", "max_late_ms", max_late_ms, -1, 0, 60000, false, "100",
          "drop frames later than this behind their pace; -1: never"),
 
     INT("realtime", "priority", rt_priority, 0, 99, false, "0",
@@ -148,6 +180,10 @@ static const key_def keys[] = {
          "lock all memory (a warning if not permitted)"),
 };
 #define N_KEYS (sizeof keys / sizeof keys[0])
+/* The longest line of a configuration file (without its newline). */
+#define RTED_LINE_MAX 1022
+
+static void say(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 static void say(char *msg, size_t size, const char *fmt, ...)
 {
@@ -180,34 +216,71 @@ static char *trim(char *s)
     return s;
 }
 
-/* Stores `value` into the key's field; false and a reason otherwise. */
+/* " (or -1)" for keys with an unset value, "" for the others. */
+static const char *unset_text(const key_def *k, char *buf, size_t size)
+{
+    if (!k->has_unset)
+        return "";
+    snprintf(buf, size, " (or %g)", k->unset);
+    return buf;
+}
+
+/* Integer keys: v in range (or the unset value), stored. */
+static bool store_int(rted_config *c, const key_def *k, long long v, char *why, size_t why_size)
+{
+    if (!(k->has_unset && (double)v == k->unset) && ((double)v < k->min || (double)v > k->max)) {
+        char u[32];
+        say(why, why_size, "%lld is out of range %.0f..%.0f%s", v, k->min, k->max,
+            unset_text(k, u, sizeof u));
+        return false;
+    }
+    *(int32_t *)((char *)c + k->offset) = (int32_t)v;
+    return true;
+}
+
+/* Real keys: finite, in range (or the unset value), stored. */
+static bool store_real(rted_config *c, const key_def *k, double v, char *why, size_t why_size)
+{
+    if (!isfinite(v)) {
+        say(why, why_size, "%g is not a finite number", v);
+        return false;
+    }
+    if (!(k->has_unset && v == k->unset) && (v < k->min || v > k->max)) {
+        char u[32];
+        say(why, why_size, "%g is out of range %g..%g%s", v, k->min, k->max,
+            unset_text(k, u, sizeof u));
+        return false;
+    }
+    *(double *)((char *)c + k->offset) = v;
+    return true;
+}
+
+/* Stores `value` (text, as in the file) into the key's field; false and a
+ * reason otherwise. */
 static bool set_value(rted_config *c, const key_def *k, const char *value, char *why,
                       size_t why_size)
 {
     char *field = (char *)c + k->offset;
     char *end;
     switch (k->type) {
-    case K_INT:
-    case K_REAL: {
-        /* Both parsed to double: every int32 is exact in it, and the table's
-         * ranges are doubles. */
-        const bool integer = k->type == K_INT;
+    case K_INT: {
         errno = 0;
-        double v = integer ? (double)strtoll(value, &end, 10) : strtod(value, &end);
+        long long v = strtoll(value, &end, 10);
+        if (end == value || *end || errno) {
+            say(why, why_size, "'%s' is not an integer%s", value,
+                errno == ERANGE ? " of 64 bits" : "");
+            return false;
+        }
+        return store_int(c, k, v, why, why_size);
+    }
+    case K_REAL: {
+        errno = 0;
+        double v = strtod(value, &end);
         if (end == value || *end || errno || !isfinite(v)) {
-            say(why, why_size, "'%s' is not %s", value, integer ? "an integer" : "a number");
+            say(why, why_size, "'%s' is not a number", value);
             return false;
         }
-        if (v < k->min || v > k->max) {
-            say(why, why_size, integer ? "%.0f is out of range %.0f..%.0f" : "%g is out of range %g..%g", v,
-                k->min, k->max);
-            return false;
-        }
-        if (integer)
-            *(int32_t *)field = (int32_t)v;
-        else
-            *(double *)field = v;
-        return true;
+        return store_real(c, k, v, why, why_size);
     }
     case K_BOOL:
         if (!strcasecmp(value, "true") || !strcasecmp(value, "yes") || !strcmp(value, "1") ||
@@ -244,6 +317,133 @@ static bool set_value(rted_config *c, const key_def *k, const char *value, char 
     return false;
 }
 
+const rted_key *rted_config_find_key(const char *name)
+{
+    const char *dot = strchr(name, '.');
+    if (!dot)
+        return NULL;
+    for (size_t i = 0; i < N_KEYS; i++) {
+        size_t n = strlen(keys[i].section);
+        if ((size_t)(dot - name) == n && !strncmp(name, keys[i].section, n) &&
+            !strcmp(dot + 1, keys[i].key))
+            return &keys[i];
+    }
+    return NULL;
+}
+
+const rted_key *rted_config_key_at(size_t index) { return index < N_KEYS ? &keys[index] : NULL; }
+
+void rted_key_get_name(const rted_key *k, char *name, size_t name_size)
+{
+    snprintf(name, name_size, "%s.%s", k->section, k->key);
+}
+
+rted_key_type rted_key_get_type(const rted_key *k) { return k->type; }
+
+bool rted_key_is_runtime(const rted_key *k) { return k->runtime; }
+
+static bool wrong_type(const key_def *k, const char *given, char *why, size_t why_size)
+{
+    static const char *const names[] = {"an integer", "a real number", "a boolean", "text",
+                                        "a choice"};
+    say(why, why_size, "%s.%s takes %s, not %s", k->section, k->key, names[k->type], given);
+    return false;
+}
+
+bool rted_config_set_int(rted_config *c, const rted_key *k, int64_t value, char *why,
+                         size_t why_size)
+{
+    if (k->type != K_INT)
+        return wrong_type(k, "an integer", why, why_size);
+    return store_int(c, k, (long long)value, why, why_size);
+}
+
+bool rted_config_set_real(rted_config *c, const rted_key *k, double value, char *why,
+                          size_t why_size)
+{
+    if (k->type != K_REAL)
+        return wrong_type(k, "a real number", why, why_size);
+    return store_real(c, k, value, why, why_size);
+}
+
+bool rted_config_set_bool(rted_config *c, const rted_key *k, bool value, char *why,
+                          size_t why_size)
+{
+    if (k->type != K_BOOL)
+        return wrong_type(k, "a boolean", why, why_size);
+    *(bool *)((char *)c + k->offset) = value;
+    return true;
+}
+
+/* Calls each(name, len, user) for the ','-separated names of a list (blanks
+ * around them trimmed); stops and returns false when each does. */
+static bool each_listed(const char *list, bool (*each)(const char *name, size_t len, void *user),
+                        void *user)
+{
+    const char *s = list;
+    while (*s) {
+        const char *e = strchr(s, ',');
+        if (!e)
+            e = s + strlen(s);
+        const char *a = s, *b = e;
+        while (a < b && (*a == ' ' || *a == '\t'))
+            a++;
+        while (b > a && (b[-1] == ' ' || b[-1] == '\t'))
+            b--;
+        if (!each(a, (size_t)(b - a), user))
+            return false;
+        s = *e ? e + 1 : e;
+    }
+    return true;
+}
+
+typedef struct name_match {
+    const char *name;
+    bool found;
+} name_match;
+
+static bool match_name(const char *name, size_t len, void *user)
+{
+    name_match *m = user;
+    m->found = strlen(m->name) == len && !strncmp(m->name, name, len);
+    return !m->found;
+}
+
+bool rted_config_params_allowed(const rted_config *c, const char *name)
+{
+    if (!c->params_keys[0])
+        return true;
+    name_match m = {name, false};
+    each_listed(c->params_keys, match_name, &m);
+    return m.found;
+}
+
+typedef struct list_check {
+    char *msg;
+    size_t msg_size;
+} list_check;
+
+/* params.keys: every name a numeric or boolean runtime key. */
+static bool check_listed(const char *name, size_t len, void *user)
+{
+    list_check *lc = user;
+    char buf[128];
+    if (len == 0 || len >= sizeof buf) {
+        say(lc->msg, lc->msg_size, "params.keys: an empty or overlong name in the list");
+        return false;
+    }
+    memcpy(buf, name, len);
+    buf[len] = 0;
+    const key_def *k = rted_config_find_key(buf);
+    if (!k || !k->runtime || k->type == K_TEXT || k->type == K_ENUM) {
+        say(lc->msg, lc->msg_size, "params.keys: '%s' is not %s", buf,
+            !k ? "a key" : !k->runtime ? "a runtime key (it fixes sizes or the source)"
+                                       : "a numeric or boolean key (params_t carries no text)");
+        return false;
+    }
+    return true;
+}
+
 void rted_config_defaults(rted_config *c)
 {
     memset(c, 0, sizeof *c);
@@ -261,14 +461,21 @@ bool rted_config_load(rted_config *c, const char *path, char *msg, size_t msg_si
         return false;
     }
     bool seen[N_KEYS] = {false};
-    char line[1024], section[64] = "";
+    char *line = NULL, section[64] = "";
+    size_t line_capacity = 0;
+    ssize_t len;
     int lineno = 0;
     bool ok = true;
-    while (ok && fgets(line, sizeof line, f)) {
+    while (ok && (len = getline(&line, &line_capacity, f)) >= 0) {
         lineno++;
-        if (!strchr(line, '\n') && !feof(f)) {
-            say(msg, msg_size, "%s:%d: line longer than %zu characters", path, lineno,
-                sizeof line - 2);
+        if (memchr(line, 0, (size_t)len)) {
+            say(msg, msg_size, "%s:%d: a NUL byte in the line (not a text file?)", path, lineno);
+            ok = false;
+            break;
+        }
+        if (len > RTED_LINE_MAX) {
+            say(msg, msg_size, "%s:%d: line longer than %d characters", path, lineno,
+                RTED_LINE_MAX);
             ok = false;
             break;
         }
@@ -325,6 +532,11 @@ bool rted_config_load(rted_config *c, const char *path, char *msg, size_t msg_si
             ok = false;
         }
     }
+    if (ok && ferror(f)) {
+        say(msg, msg_size, "%s:%d: %s", path, lineno + 1, strerror(errno));
+        ok = false;
+    }
+    free(line);
     fclose(f);
     return ok;
 }
@@ -451,6 +663,100 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
         say(msg, msg_size, "publish.url is empty");
         return false;
     }
+    list_check lc = {msg, msg_size};
+    if (!each_listed(c->params_keys, check_listed, &lc))
+        return false;
+    /* liblcm takes a subscription's channel as a regular expression: a plain
+     * name only, and none of the daemon's own (it would read its output). */
+    if (!c->params_channel[0] || strspn(c->params_channel, "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                        "abcdefghijklmnopqrstuvwxyz0123456789_-") !=
+                                     strlen(c->params_channel)) {
+        say(msg, msg_size, "params.channel: '%s' is not a channel name of letters, digits, "
+            "'_' and '-'", c->params_channel);
+        return false;
+    }
+    const char *own[] = {c->lane_channel, c->grasp_channel, c->status_channel, c->image_channel};
+    for (size_t i = 0; i < sizeof own / sizeof own[0]; i++)
+        if (!strcmp(own[i], c->params_channel)) {
+            say(msg, msg_size, "params.channel: %s is also one of the channels rtedged "
+                "publishes on", c->params_channel);
+            return false;
+        }
+    return true;
+}
+
+/* Twice the signed area of a polygon of n points (x, y pairs). */
+static int64_t polygon_area2(const rte_vertex *v, int32_t n)
+{
+    int64_t a = 0;
+    for (int32_t i = 0, j = n - 1; i < n; j = i++)
+        a += (int64_t)v[j].x * v[i].y - (int64_t)v[i].x * v[j].y;
+    return a < 0 ? -a : a;
+}
+
+bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height, char *msg,
+                             size_t msg_size)
+{
+    const int64_t span = (int64_t)width + height, area = (int64_t)width * height;
+    const struct {
+        const char *name;
+        int32_t value;
+    } lengths[] = {{"lane.hough_threshold", c->lane_hough_threshold},
+                   {"lane.min_length", c->lane_min_length},
+                   {"lane.max_gap", c->lane_max_gap},
+                   {"lane.gate_px", c->lane_gate_px}};
+    for (size_t i = 0; i < sizeof lengths / sizeof lengths[0]; i++)
+        if (lengths[i].value > span) {
+            say(msg, msg_size, "%s = %d is beyond the %dx%d frame's width + height (%lld): "
+                "nothing could ever reach it", lengths[i].name, lengths[i].value, width, height,
+                (long long)span);
+            return false;
+        }
+    if (c->grasp_min_area > area) {
+        say(msg, msg_size, "grasp.min_area = %d px is beyond the %dx%d frame's %lld px: no "
+            "object could ever be found", c->grasp_min_area, width, height, (long long)area);
+        return false;
+    }
+    int32_t xy[2 * RTE_LANE_MAX_ROI_VERTICES];
+    int32_t n = rted_parse_roi(c->lane_roi, xy, RTE_LANE_MAX_ROI_VERTICES);
+    if (n < 0) {
+        say(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
+            c->lane_roi);
+        return false;
+    }
+    rte_vertex q16[RTE_LANE_MAX_ROI_VERTICES], px[RTE_LANE_MAX_ROI_VERTICES];
+    for (int32_t i = 0; i < n; i++)
+        q16[i] = (rte_vertex){xy[2 * i], xy[2 * i + 1]};
+    if (rte_polygon_from_fractions(q16, n, width, height, px) != RTE_OK) {
+        say(msg, msg_size, "lane.roi: '%s' cannot be placed on a %dx%d frame", c->lane_roi, width,
+            height);
+        return false;
+    }
+    int32_t x0 = INT32_MAX, y0 = INT32_MAX, x1 = INT32_MIN, y1 = INT32_MIN;
+    for (int32_t i = 0; i < n; i++) {
+        x0 = px[i].x < x0 ? px[i].x : x0;
+        y0 = px[i].y < y0 ? px[i].y : y0;
+        x1 = px[i].x > x1 ? px[i].x : x1;
+        y1 = px[i].y > y1 ? px[i].y : y1;
+    }
+    /* The part of the bounding box inside the frame (as the lane path crops). */
+    x0 = x0 < 0 ? 0 : x0;
+    y0 = y0 < 0 ? 0 : y0;
+    x1 = x1 + 1 > width ? width : x1 + 1;
+    y1 = y1 + 1 > height ? height : y1 + 1;
+    int64_t inside_w = x1 - x0, inside_h = y1 - y0;
+    if (inside_w < RTED_ROI_MIN_SIDE || inside_h < RTED_ROI_MIN_SIDE) {
+        say(msg, msg_size, "lane.roi: '%s' covers %lldx%lld px of the %dx%d frame: at least "
+            "%dx%d are needed", c->lane_roi, inside_w > 0 ? (long long)inside_w : 0,
+            inside_h > 0 ? (long long)inside_h : 0, width, height, RTED_ROI_MIN_SIDE,
+            RTED_ROI_MIN_SIDE);
+        return false;
+    }
+    if (polygon_area2(px, n) * 1000 < 2 * area) {
+        say(msg, msg_size, "lane.roi: '%s' encloses less than 1/1000 of the %dx%d frame",
+            c->lane_roi, width, height);
+        return false;
+    }
     return true;
 }
 
@@ -459,7 +765,18 @@ static void print_value(const rted_config *c, const key_def *k, FILE *f)
     const char *field = (const char *)c + k->offset;
     switch (k->type) {
     case K_INT: fprintf(f, "%d", *(const int32_t *)field); break;
-    case K_REAL: fprintf(f, "%g", *(const double *)field); break;
+    case K_REAL: {
+        /* The shortest text that reads back as the same double. */
+        double v = *(const double *)field;
+        char text[32];
+        for (int digits = 6; digits <= 17; digits++) {
+            snprintf(text, sizeof text, "%.*g", digits, v);
+            if (strtod(text, NULL) == v)
+                break;
+        }
+        fputs(text, f);
+        break;
+    }
     case K_BOOL: fputs(*(const bool *)field ? "true" : "false", f); break;
     case K_TEXT: fputs(field, f); break;
     case K_ENUM: fputs(k->choices[*(const int32_t *)field], f); break;
@@ -514,6 +831,8 @@ void rted_config_print_help(FILE *f)
                 fprintf(f, " %s", k->choices[j]);
             break;
         }
+        if (k->has_unset)
+            fprintf(f, ", or %g", k->unset);
         fprintf(f, "; default %s%s\n%s = %s\n", k->def[0] ? k->def : "(empty)",
                 k->runtime ? " (runtime)" : "", k->key, k->def);
     }

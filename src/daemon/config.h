@@ -35,6 +35,7 @@ typedef struct rted_config {
     double speed;
     bool loop;
     int32_t max_frames;             /* stop after this many processed frames; 0 = never */
+    int32_t max_pause_ms;           /* pace = recorded: longer pauses are not waited out */
     char source_controls[RTED_TEXT]; /* v4l2: "name=value;..." */
     char record_path[RTED_TEXT];    /* LCM log of the delivered frames; "" = none */
     /* [lane] */
@@ -53,11 +54,15 @@ typedef struct rted_config {
     bool grasp_skip_border;
     /* [publish] */
     char lcm_url[RTED_TEXT];
-    char lane_channel[64], grasp_channel[64], status_channel[64], params_channel[64];
+    char lane_channel[64], grasp_channel[64], status_channel[64];
     char image_channel[64];
-    bool params_enabled;
     bool publish_images;
     int32_t status_period_ms;
+    /* [params] */
+    bool params_enabled;
+    char params_channel[64];
+    char params_keys[RTED_TEXT];    /* "section.key,..."; "" = every numeric runtime key */
+    int32_t params_max_per_second;
     /* [deadline] */
     double deadline_ms;             /* 0 = 1000 / fps (or 1000 / 30) */
     double grasp_min_budget_ms;     /* skip grasp when less than this is left */
@@ -67,6 +72,32 @@ typedef struct rted_config {
     int32_t rt_cpu;                 /* -1 = no affinity */
     bool rt_mlockall;
 } rted_config;
+
+/* One key of the table (config.c), for typed access (params_t). */
+typedef struct rted_key rted_key;
+typedef enum rted_key_type {
+    RTED_KEY_INT = 0, RTED_KEY_REAL, RTED_KEY_BOOL, RTED_KEY_TEXT, RTED_KEY_CHOICE,
+} rted_key_type;
+
+/* The key named "section.key" (NULL when there is none). */
+const rted_key *rted_config_find_key(const char *name);
+/* The table's keys in order: index 0, 1, ... until NULL. */
+const rted_key *rted_config_key_at(size_t index);
+/* "section.key" into name (at most name_size bytes, NUL-terminated). */
+void rted_key_get_name(const rted_key *k, char *name, size_t name_size);
+rted_key_type rted_key_get_type(const rted_key *k);
+/* true for keys that may change while running (SIGHUP, params_t). */
+bool rted_key_is_runtime(const rted_key *k);
+/* Typed setters: the value is checked against the key's type and range as
+ * the file's text would be; false and *why otherwise (c unchanged). */
+bool rted_config_set_int(rted_config *c, const rted_key *k, int64_t value, char *why,
+                         size_t why_size);
+bool rted_config_set_real(rted_config *c, const rted_key *k, double value, char *why,
+                          size_t why_size);
+bool rted_config_set_bool(rted_config *c, const rted_key *k, bool value, char *why,
+                          size_t why_size);
+/* true when params.keys lets params_t change `name` ("section.key"). */
+bool rted_config_params_allowed(const rted_config *c, const char *name);
 
 /* Fills the table's defaults. */
 void rted_config_defaults(rted_config *c);
@@ -78,6 +109,14 @@ bool rted_config_set(rted_config *c, const char *assignment, const char *origin,
                      size_t msg_size);
 /* Cross-key checks (canny low <= high, ROI syntax, ...). */
 bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size);
+/* Checks against the source's largest frame (width x height): a lane ROI
+ * that leaves less than RTED_ROI_MIN_SIDE x RTED_ROI_MIN_SIDE pixels of the
+ * frame or encloses less than 1/1000 of it, Hough lengths and thresholds
+ * beyond width + height, a grasp.min_area beyond the frame's area: values
+ * with which a path could never find anything (or fails every frame). */
+bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height, char *msg,
+                             size_t msg_size);
+#define RTED_ROI_MIN_SIDE 16
 /* The effective configuration as INI. */
 void rted_config_print(const rted_config *c, FILE *f);
 /* The documented default file: every key with help, range and default. */

@@ -7,6 +7,7 @@
 
 #include <signal.h>
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include <lcm/lcm.h>
@@ -29,13 +30,25 @@ typedef struct rted_counters {
     uint64_t reloads;         /* configurations applied at run time (SIGHUP, params_t) */
     uint64_t refused;         /* run-time changes refused (fixed keys, bad values) */
     uint64_t rewinds;         /* a looping recording started again */
+    uint64_t params_received; /* params_t messages handled (applied or refused) */
+    uint64_t rate_limited;    /* params_t messages dropped over params.max_per_second */
+    uint64_t path_errors;     /* frames a path could not process (e.g. a ROI that misses them) */
 } rted_counters;
+
+/* rtedged's exit codes (docs/daemon.md). */
+enum {
+    RTED_EXIT_OK = 0,         /* the recording ended, max_frames, or SIGINT/SIGTERM */
+    RTED_EXIT_FAILED = 1,     /* cannot start (source, transport, memory) or the source failed */
+    RTED_EXIT_CONFIG = 2,     /* a bad configuration or command line */
+    RTED_EXIT_NO_FRAMES = 3,  /* a recording (or a whole pass of a looping one) had no readable frame */
+};
 
 typedef enum rted_step {
     RTED_STEP_FRAME = 0,  /* a frame was processed */
     RTED_STEP_IDLE,       /* nothing processed (waited, dropped, bad frame, timeout) */
     RTED_STEP_END,        /* the recording ended (and does not loop) or max_frames reached */
     RTED_STEP_FAILED,     /* the source failed */
+    RTED_STEP_EMPTY,      /* a recording, or a pass of a looping one, had no readable frame */
 } rted_step;
 
 /* config_path: re-read on SIGHUP (NULL: reload refused). */
@@ -56,6 +69,14 @@ bool rted_daemon_reload(rted_daemon *d, char *msg, size_t msg_size);
 void rted_daemon_set_overrides(rted_daemon *d, char *const *sets, int n_sets);
 void rted_daemon_publish_status(rted_daemon *d);
 void rted_daemon_get_counters(const rted_daemon *d, rted_counters *c);
+/* The configuration in force. */
+const rted_config *rted_daemon_config(const rted_daemon *d);
+/* One params_t message as it arrived (params.max_per_second is the
+ * caller's): decoded without allocating, checked, applied whole or refused
+ * with the reason on stderr; counted in params_received and reloads or
+ * refused. What the params channel's callback runs; tests and fuzzers call
+ * it directly. */
+void rted_daemon_handle_params(rted_daemon *d, const void *data, size_t size);
 /* The publisher's lcm_t (memq://, udpm://), for in-process subscribers. */
 lcm_t *rted_daemon_lcm(rted_daemon *d);
 /* The latency of the last status window, microseconds: p50, p99, max. */

@@ -8,12 +8,10 @@
  * into its own buffer. Latency is capture -> publish on CLOCK_MONOTONIC; a
  * frame whose budget runs short skips the grasp path (counted). */
 #define _GNU_SOURCE
-#include "daemon.h"
-
 #include <errno.h>
 #include <math.h>
-#include <poll.h>
 #include <sched.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,78 +21,21 @@
 
 #include <linux/videodev2.h>
 
-#include "rtedge/arena.h"
-#include "rtedge/grasp.h"
+#include "daemon_internal.h"
 #ifdef RTE_HAVE_LIBCAMERA
 #include "rtedge/libcamera_source.h"
 #endif
-#include "rtedge/lane.h"
-#include "rtedge/pacer.h"
-#include "rtedge/publish.h"
 #include "rtedge/recorded_source.h"
 #include "rtedge/v4l2_source.h"
 
-/* Latencies kept per status window (the newest ones when more frames came). */
-#define RTED_RING 8192
-#define RTED_MAX_SETS 64
+static void say(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
-struct rted_daemon {
-    rted_config cfg;
-    const char *config_path;
-    char *const *sets;
-    int n_sets;
-    uint64_t config_hash;
-    int64_t deadline_ns, grasp_min_ns;
-
-    rte_source source;
-    bool recorded;
-    char source_id[RTED_TEXT + 16];
-    int32_t width, height; /* the source's maxima */
-    rte_pacer pacer;
-
-    rte_lane_context *lane;
-    rte_lane_config lane_base; /* defaults for the frame size, before the file's keys */
-    rte_grasp_ctx *grasp;
-    rte_publisher *pub;
-    lcm_subscription_t *params_sub;
-
-    /* source.record: every delivered frame, packed, as image_t. */
-    rte_publisher *rec;
-    uint8_t *rec_buf;
-    rtedge_image_t rec_msg;
-
-    void *memory;
-    rte_arena arena;
-    rte_image_u8 gray;
-    rtedge_segment_t *segments;
-    rtedge_grasp_object_t *objects;
-    rtedge_point_t roi[RTE_LANE_MAX_ROI_VERTICES];
-    rtedge_lane_detection_t lane_msg;
-    rtedge_grasp_detection_t grasp_msg;
-    rtedge_image_t image_msg;
-    rtedge_status_t status_msg;
-
-    rted_counters n;
-    int32_t ring[RTED_RING], sorted[RTED_RING];
-    uint32_t ring_n;          /* latencies in the window (may exceed RTED_RING) */
-    int32_t window_max;
-    uint64_t window_processed;
-    int64_t window_start_ns;
-    rte_source_state state;
-    rte_source_state reported_state; /* the source's state in the last status */
-    volatile sig_atomic_t *stop; /* rted_daemon_run's flag: ends a wait for a frame's time */
-};
-
-static int64_t now_ns(void)
+static void say(char *msg, size_t size, const char *fmt, ...)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
-}
-
-static void say(char *msg, size_t size, const char *what, const char *detail)
-{
-    snprintf(msg, size, "%s%s%s", what, detail && *detail ? ": " : "", detail ? detail : "");
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, size, fmt, ap);
+    va_end(ap);
 }
 
 static bool ends_with(const char *s, const char *suffix)
@@ -154,13 +95,13 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
     uint32_t fourcc = 0;
     if (kind == RTED_SOURCE_V4L2 && !v4l2_format(c->source_format, &fourcc)) {
         say(msg, msg_size, "source.format: a V4L2 camera is read as yuyv, uyvy, grey, nv12 or "
-            "mjpeg, not", c->source_format);
+            "mjpeg, not: %s", c->source_format);
         return false;
     }
     rte_pixel_format fmt = c->source_format[0] && kind != RTED_SOURCE_V4L2
                                ? rte_pixel_format_parse(c->source_format) : 0;
     if (c->source_format[0] && kind != RTED_SOURCE_V4L2 && !fmt) {
-        say(msg, msg_size, "source.format: unknown pixel format", c->source_format);
+        say(msg, msg_size, "source.format: unknown pixel format: %s", c->source_format);
         return false;
     }
     char why[RTE_SOURCE_MESSAGE_SIZE] = "";
@@ -206,9 +147,11 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
     case RTED_SOURCE_LIBCAMERA: {
 #ifdef RTE_HAVE_LIBCAMERA
         rte_libcamera_config lc = {NULL, 0, fmt, c->width, c->height, 0};
+        /* An index in --list-cameras (a few digits), else the camera's id. */
         char *end;
+        errno = 0;
         long index = strtol(c->source_path, &end, 10);
-        if (*end || end == c->source_path)
+        if (*end || end == c->source_path || errno || index < 0 || index > 1000)
             lc.camera = c->source_path;
         else
             lc.index = (int32_t)index;
@@ -239,71 +182,6 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
     return true;
 }
 
-/* The lane parameters: the size's defaults with the configured keys over them. */
-static bool lane_params(const rted_daemon *d, const rted_config *c, rte_lane_params *p)
-{
-    *p = d->lane_base.params;
-    int32_t xy[2 * RTE_LANE_MAX_ROI_VERTICES];
-    int32_t n = rted_parse_roi(c->lane_roi, xy, RTE_LANE_MAX_ROI_VERTICES);
-    if (n < 0)
-        return false;
-    for (int32_t i = 0; i < n; i++) {
-        p->roi[i].x = xy[2 * i];
-        p->roi[i].y = xy[2 * i + 1];
-    }
-    p->roi_count = n;
-    p->canny_mode = (rte_lane_canny_mode)c->lane_canny_mode;
-    if (c->lane_canny_low >= 0) {
-        p->canny_low = c->lane_canny_low;
-        p->canny_high = c->lane_canny_high;
-    }
-    if (c->lane_hough_threshold >= 0)
-        p->hough_threshold = c->lane_hough_threshold;
-    if (c->lane_min_length >= 0)
-        p->min_length = c->lane_min_length;
-    if (c->lane_max_gap >= 0)
-        p->max_gap = c->lane_max_gap;
-    p->hough_seed = (uint32_t)c->lane_hough_seed;
-    if (c->lane_hold_frames >= 0)
-        p->hold_frames = c->lane_hold_frames;
-    if (c->lane_gate_px >= 0)
-        p->gate_px = c->lane_gate_px;
-    p->use_color = c->lane_use_color;
-    return true;
-}
-
-static void grasp_params(const rted_config *c, rte_grasp_params *p)
-{
-    p->binarize = (rte_grasp_binarize)c->grasp_binarize;
-    p->threshold = c->grasp_threshold;
-    p->polarity = (rte_grasp_polarity)c->grasp_polarity;
-    p->min_area = c->grasp_min_area;
-    p->max_area = c->grasp_max_area;
-    p->skip_border = c->grasp_skip_border;
-    p->max_objects = c->grasp_max_objects;
-}
-
-static void derive(rted_daemon *d)
-{
-    const rted_config *c = &d->cfg;
-    double ms = c->deadline_ms > 0 ? c->deadline_ms : 1000.0 / c->fps;
-    d->deadline_ns = (int64_t)llround(ms * 1e6);
-    d->grasp_min_ns = (int64_t)llround(c->grasp_min_budget_ms * 1e6);
-    d->config_hash = rted_config_hash(c);
-    /* The header's ROI in pixels of the analysed frame. */
-    const rte_lane_params *p = &d->lane_base.params;
-    rte_lane_params lp;
-    if (!lane_params(d, c, &lp))
-        lp = *p;
-    for (int32_t i = 0; i < lp.roi_count; i++) {
-        d->roi[i].x = (int32_t)(((int64_t)lp.roi[i].x * d->width + 32768) >> 16);
-        d->roi[i].y = (int32_t)(((int64_t)lp.roi[i].y * d->height + 32768) >> 16);
-    }
-    d->lane_msg.header.roi_npoints = (int16_t)lp.roi_count;
-    d->grasp_msg.header.roi_npoints = 0;
-}
-
-static void on_params(const lcm_recv_buf_t *rbuf, const char *channel, void *user);
 
 /* image_t's code for a delivered pixel format. */
 static int32_t image_t_format(rte_pixel_format f)
@@ -350,7 +228,7 @@ static bool open_recording(rted_daemon *d, char *msg, size_t msg_size)
     }
     d->rec_buf = malloc(bytes);
     if (!d->rec_buf) {
-        say(msg, msg_size, "out of memory", NULL);
+        say(msg, msg_size, "out of memory");
         return false;
     }
     char url[RTED_TEXT + 16], why[RTE_PUBLISH_MESSAGE_SIZE] = "";
@@ -423,17 +301,23 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     *out = NULL;
     rted_daemon *d = calloc(1, sizeof *d);
     if (!d) {
-        say(msg, msg_size, "out of memory", NULL);
+        say(msg, msg_size, "out of memory");
         return false;
     }
     d->cfg = *cfg;
     d->config_path = config_path;
+    d->log_frames.what = "bad-frame";
     if (!open_source(d, msg, msg_size))
         goto fail;
     const rted_config *c = &d->cfg;
+    char why[RTED_MSG];
+    if (!rted_config_check_frame(c, d->width, d->height, why, sizeof why)) {
+        say(msg, msg_size, "the configuration does not fit the source: %s", why);
+        goto fail;
+    }
 
     /* Pacing: recordings at their pace, live sources as they come. */
-    rte_pacer_config pc = {RTE_PACE_FAST, 1000, 1, 1, -1};
+    rte_pacer_config pc = {RTE_PACE_FAST, 1000, 1, 1, -1, 0};
     if (d->recorded && c->pace == RTED_PACE_RECORDED)
         pc.mode = RTE_PACE_RECORDED;
     else if (d->recorded && c->pace == RTED_PACE_FPS)
@@ -444,8 +328,9 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     pc.fps_num = (int32_t)lround(c->fps * 1000);
     pc.fps_den = 1000;
     pc.max_late_ns = c->max_late_ms < 0 ? -1 : (int64_t)llround(c->max_late_ms * 1e6);
+    pc.max_pause_ns = (int64_t)c->max_pause_ms * 1000000;
     if (rte_pacer_init(&d->pacer, &pc) != RTE_OK) {
-        say(msg, msg_size, "bad pacing (source.fps, source.speed)", NULL);
+        say(msg, msg_size, "bad pacing (source.fps, source.speed)");
         goto fail;
     }
 
@@ -456,8 +341,8 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     d->lane_base.blur_ksize = c->lane_blur_ksize;
     if (c->lane_enabled) {
         rte_lane_config lc = d->lane_base;
-        if (!lane_params(d, c, &lc.params)) {
-            say(msg, msg_size, "the lane configuration is invalid for this source", NULL);
+        if (!rted_lane_params(d, c, &lc.params)) {
+            say(msg, msg_size, "the lane configuration is invalid for this source");
             goto fail;
         }
         rte_status st = rte_lane_create(&lc, &d->lane);
@@ -475,10 +360,10 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
         gc.max_points = c->grasp_max_points;
         gc.max_objects = c->grasp_max_objects;
         gc.blur_ksize = c->grasp_blur_ksize;
-        grasp_params(c, &gc.params);
+        rted_grasp_params(c, &gc.params);
         rte_status st = rte_grasp_create(&gc, &d->grasp);
         if (st != RTE_OK) {
-            say(msg, msg_size, "the grasp configuration is invalid for this source",
+            say(msg, msg_size, "the grasp configuration is invalid for this source: %s",
                 rte_status_message(st));
             goto fail;
         }
@@ -492,7 +377,7 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
                    rte_arena_piece_size(obj_bytes) + RTE_ARENA_ALIGN;
     d->memory = malloc(total);
     if (!d->memory) {
-        say(msg, msg_size, "out of memory", NULL);
+        say(msg, msg_size, "out of memory");
         goto fail;
     }
     rte_arena_init(&d->arena, d->memory, total);
@@ -505,19 +390,11 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     rte_publish_limits lim = {RTED_TEXT + 16, RTE_LANE_MAX_ROI_VERTICES, c->lane_max_segments,
                               c->grasp_max_objects, RTED_MAX_SETS,
                               c->publish_images ? (int32_t)gray_bytes : 0, 0};
-    char why[RTE_PUBLISH_MESSAGE_SIZE] = "";
     if (rte_publisher_create(&d->pub, c->lcm_url, &lim, why, sizeof why) != RTE_OK) {
         snprintf(msg, msg_size, "cannot publish to %s: %s", c->lcm_url, why);
         goto fail;
     }
-    if (c->params_enabled) {
-        lcm_t *lcm = rte_publisher_lcm(d->pub);
-        if (!lcm)
-            fprintf(stderr, "rtedged: warning: publish.params_enabled needs an LCM transport, "
-                            "not %s: no params channel\n", c->lcm_url);
-        else
-            d->params_sub = lcm_subscribe(lcm, c->params_channel, on_params, d);
-    }
+    rted_params_open(d);
 
     if (c->record_path[0] && !open_recording(d, msg, msg_size))
         goto fail;
@@ -530,9 +407,9 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     d->grasp_msg.objects = d->objects;
     d->status_msg.source_id = d->source_id;
     d->image_msg.pixelformat = RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY;
-    derive(d);
+    rted_derive(d);
     realtime(c);
-    d->window_start_ns = now_ns();
+    d->window_start_ns = rted_now_ns();
     /* A first status says the daemon is up; it also makes liblcm cache the
      * channel (memq:// strdup()s a channel's name on its first message). */
     rted_daemon_publish_status(d);
@@ -547,8 +424,7 @@ void rted_daemon_close(rted_daemon *d)
 {
     if (!d)
         return;
-    if (d->params_sub && d->pub)
-        lcm_unsubscribe(rte_publisher_lcm(d->pub), d->params_sub);
+    rted_params_close(d);
     rte_publisher_destroy(d->pub);
     rte_publisher_destroy(d->rec);
     free(d->rec_buf);
@@ -563,203 +439,12 @@ lcm_t *rted_daemon_lcm(rted_daemon *d) { return rte_publisher_lcm(d->pub); }
 
 void rted_daemon_get_counters(const rted_daemon *d, rted_counters *c) { *c = d->n; }
 
+const rted_config *rted_daemon_config(const rted_daemon *d) { return &d->cfg; }
+
 void rted_daemon_set_overrides(rted_daemon *d, char *const *sets, int n_sets)
 {
     d->sets = sets;
     d->n_sets = n_sets;
-}
-
-/* ---- run-time configuration ---- */
-
-bool rted_daemon_apply(rted_daemon *d, const rted_config *next, char *msg, size_t msg_size)
-{
-    char fixed[160];
-    if (rted_config_fixed_change(&d->cfg, next, fixed, sizeof fixed)) {
-        snprintf(msg, msg_size, "%s cannot change while running (it fixes sizes or the source): "
-                 "restart rtedged", fixed);
-        d->n.refused++;
-        return false;
-    }
-    if (!rted_config_validate(next, msg, msg_size)) {
-        d->n.refused++;
-        return false;
-    }
-    rte_lane_params lp;
-    if (d->lane && (!lane_params(d, next, &lp) || rte_lane_set_params(d->lane, &lp) != RTE_OK)) {
-        snprintf(msg, msg_size, "the lane parameters were refused by the lane path");
-        d->n.refused++;
-        return false;
-    }
-    if (d->grasp) {
-        rte_grasp_params gp;
-        rte_grasp_get_params(d->grasp, &gp);
-        grasp_params(next, &gp);
-        if (rte_grasp_set_params(d->grasp, &gp) != RTE_OK) {
-            snprintf(msg, msg_size, "the grasp parameters were refused by the grasp path");
-            d->n.refused++;
-            return false;
-        }
-    }
-    d->cfg = *next;
-    derive(d);
-    d->n.reloads++;
-    msg[0] = 0;
-    return true;
-}
-
-bool rted_daemon_reload(rted_daemon *d, char *msg, size_t msg_size)
-{
-    if (!d->config_path) {
-        snprintf(msg, msg_size, "no configuration file to re-read (started without --config)");
-        d->n.refused++;
-        return false;
-    }
-    rted_config next;
-    rted_config_defaults(&next);
-    bool ok = rted_config_load(&next, d->config_path, msg, msg_size);
-    for (int i = 0; ok && i < d->n_sets; i++)
-        ok = rted_config_set(&next, d->sets[i], "--set", msg, msg_size);
-    if (!ok) {
-        d->n.refused++;
-        return false;
-    }
-    return rted_daemon_apply(d, &next, msg, msg_size);
-}
-
-/* params_t: each "section.key" set on a copy, then applied as one change. */
-static void on_params(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
-{
-    rted_daemon *d = user;
-    rtedge_params_t m;
-    char msg[RTED_MSG];
-    if (rtedge_params_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0) {
-        fprintf(stderr, "rtedged: %s: not a params_t message: ignored\n", channel);
-        d->n.refused++;
-        return;
-    }
-    rted_config next = d->cfg;
-    bool ok = true;
-    for (int32_t i = 0; ok && i < m.nparams; i++) {
-        const rtedge_param_t *p = &m.params[i];
-        char set[RTED_TEXT + 128];
-        if (p->kind == RTEDGE_PARAM_T_KIND_REAL)
-            snprintf(set, sizeof set, "%s=%.17g", p->name, p->real_value);
-        else if (p->kind == RTEDGE_PARAM_T_KIND_BOOL)
-            snprintf(set, sizeof set, "%s=%s", p->name, p->int_value ? "true" : "false");
-        else
-            snprintf(set, sizeof set, "%s=%lld", p->name, (long long)p->int_value);
-        ok = rted_config_set(&next, set, channel, msg, sizeof msg);
-    }
-    if (!ok)
-        d->n.refused++;
-    else
-        ok = rted_daemon_apply(d, &next, msg, sizeof msg);
-    if (!ok)
-        fprintf(stderr, "rtedged: params request %lld refused: %s\n", (long long)m.request_id, msg);
-    else
-        fprintf(stderr, "rtedged: params request %lld applied (%d values)\n",
-                (long long)m.request_id, m.nparams);
-    rtedge_params_t_decode_cleanup(&m);
-}
-
-static void poll_params(rted_daemon *d)
-{
-    if (!d->params_sub)
-        return;
-    lcm_t *lcm = rte_publisher_lcm(d->pub);
-    struct pollfd pfd = {lcm_get_fileno(lcm), POLLIN, 0};
-    while (poll(&pfd, 1, 0) > 0 && (pfd.revents & POLLIN))
-        if (lcm_handle(lcm) != 0)
-            break;
-}
-
-/* ---- latency window ---- */
-
-static void sift(int32_t *a, uint32_t root, uint32_t n)
-{
-    for (;;) {
-        uint32_t child = 2 * root + 1;
-        if (child >= n)
-            return;
-        if (child + 1 < n && a[child + 1] > a[child])
-            child++;
-        if (a[root] >= a[child])
-            return;
-        int32_t t = a[root];
-        a[root] = a[child];
-        a[child] = t;
-        root = child;
-    }
-}
-
-/* In-place heap sort: bounded time, no allocation. */
-static void sort_i32(int32_t *a, uint32_t n)
-{
-    for (uint32_t i = n / 2; i-- > 0;)
-        sift(a, i, n);
-    for (uint32_t i = n; i-- > 1;) {
-        int32_t t = a[0];
-        a[0] = a[i];
-        a[i] = t;
-        sift(a, 0, i);
-    }
-}
-
-static void window_latency(rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *max)
-{
-    uint32_t n = d->ring_n < RTED_RING ? d->ring_n : RTED_RING;
-    *p50 = *p99 = 0;
-    *max = d->window_max;
-    if (!n)
-        return;
-    memcpy(d->sorted, d->ring, n * sizeof d->ring[0]);
-    sort_i32(d->sorted, n);
-    *p50 = d->sorted[(uint64_t)(n - 1) * 50 / 100];
-    *p99 = d->sorted[(uint64_t)(n - 1) * 99 / 100];
-}
-
-void rted_daemon_publish_status(rted_daemon *d)
-{
-    int64_t t = now_ns();
-    rte_source_stats ss;
-    rte_source_get_stats(&d->source, &ss);
-    rtedge_status_t *s = &d->status_msg;
-    s->utime = t / 1000;
-    s->source_state = (int8_t)ss.state;
-    d->reported_state = ss.state;
-    s->frames_received = (int64_t)d->n.received;
-    s->frames_processed = (int64_t)d->n.processed;
-    d->n.bad_frames = ss.bad_frames;
-    s->frames_dropped = (int64_t)(d->n.dropped + ss.driver_drops + ss.skipped);
-    s->deadline_misses = (int64_t)d->n.deadline_misses;
-    s->stages_skipped = (int64_t)d->n.stages_skipped;
-    s->frames_bad = (int64_t)ss.bad_frames;
-    s->source_reconnects = (int64_t)ss.reconnects;
-    s->config_reloads = (int64_t)d->n.reloads;
-    s->config_refused = (int64_t)d->n.refused;
-    s->window_us = (t - d->window_start_ns) / 1000;
-    window_latency(d, &s->latency_p50_us, &s->latency_p99_us, &s->latency_max_us);
-    s->fps = s->window_us > 0 ? (float)((double)d->window_processed * 1e6 / (double)s->window_us)
-                              : 0.0f;
-    s->arena_bytes = (int64_t)d->arena.size;
-    s->arena_peak_bytes = (int64_t)d->arena.high_water;
-    s->config_hash = (int64_t)d->config_hash;
-    char msg[RTE_PUBLISH_MESSAGE_SIZE];
-    if (rte_publish_status(d->pub, d->cfg.status_channel, s, msg, sizeof msg) == RTE_OK)
-        d->n.status_sent++;
-    else
-        d->n.publish_errors++;
-    d->ring_n = 0;
-    d->window_max = 0;
-    d->window_processed = 0;
-    d->window_start_ns = t;
-}
-
-void rted_daemon_latency(const rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *max)
-{
-    *p50 = d->status_msg.latency_p50_us;
-    *p99 = d->status_msg.latency_p99_us;
-    *max = d->status_msg.latency_max_us;
 }
 
 /* ---- one frame ---- */
@@ -807,7 +492,7 @@ static void publish_lane(rted_daemon *d, const rte_source_frame *f, const rte_la
     m->centre_offset_px = (float)r->offset_q8 / RTE_LANE_ONE;
     m->centre_offset_frac = (float)r->offset_permille / 1000.0f;
     m->heading_rad = (float)r->heading_mrad / 1000.0f;
-    fill_header(d, &m->header, f, now_ns());
+    fill_header(d, &m->header, f, rted_now_ns());
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
     if (rte_publish_lane(d->pub, d->cfg.lane_channel, m, msg, sizeof msg) == RTE_OK)
         d->n.published++;
@@ -852,7 +537,7 @@ static void publish_grasp(rted_daemon *d, const rte_source_frame *f, const rte_g
     }
     m->nobjects = n;
     m->objects_truncated = r->truncated || n < r->n_objects;
-    fill_header(d, &m->header, f, now_ns());
+    fill_header(d, &m->header, f, rted_now_ns());
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
     if (rte_publish_grasp(d->pub, d->cfg.grasp_channel, m, msg, sizeof msg) == RTE_OK)
         d->n.published++;
@@ -884,14 +569,22 @@ static void publish_image(rted_daemon *d, const rte_source_frame *f, const rte_i
         d->n.publish_errors++;
 }
 
-static void record_latency(rted_daemon *d, int64_t lat_ns)
+/* A path (0 lane, 1 grasp) that could not process a frame: counted, and
+ * said once for each new reason (a failure that persists, such as a ROI
+ * that misses smaller frames of an image directory, is not repeated). */
+static void path_error(rted_daemon *d, int path, const rte_source_frame *f, rte_status st)
 {
-    int64_t us = lat_ns / 1000;
-    int32_t v = us > INT32_MAX ? INT32_MAX : (int32_t)us;
-    d->ring[d->ring_n % RTED_RING] = v;
-    d->ring_n++;
-    if (v > d->window_max)
-        d->window_max = v;
+    if (st == RTE_OK) {
+        d->path_said[path] = RTE_OK;
+        return;
+    }
+    d->n.path_errors++;
+    if (d->path_said[path] == st)
+        return;
+    d->path_said[path] = st;
+    rted_log("%s path: frame %llu (%dx%d) not processed: %s (said once; status_t counts "
+             "path_errors)", path ? "grasp" : "lane", (unsigned long long)f->sequence,
+             f->frame.width, f->frame.height, rte_status_message(st));
 }
 
 static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
@@ -899,10 +592,10 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
     const int64_t t0 = f->capture_ns;
     if (d->lane) {
         rte_lane_result lr;
-        if (rte_lane_process(d->lane, &f->frame, f->recorded_ns, &lr) == RTE_OK)
+        rte_status st = rte_lane_process(d->lane, &f->frame, f->recorded_ns, &lr);
+        if (st == RTE_OK)
             publish_lane(d, f, &lr);
-        else
-            d->n.publish_errors++;
+        path_error(d, 0, f, st);
     }
     rte_image_u8 gray;
     bool need_gray = d->grasp || d->cfg.publish_images;
@@ -914,29 +607,54 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
     }
     if (d->grasp) {
         /* The optional stage: only when the budget still holds it. */
-        if (d->deadline_ns - (now_ns() - t0) < d->grasp_min_ns) {
+        if (d->deadline_ns - (rted_now_ns() - t0) < d->grasp_min_ns) {
             d->n.stages_skipped++;
         } else {
             rte_grasp_result gr;
-            if (rte_grasp_process(d->grasp, &gray, &gr) == RTE_OK)
+            rte_status st = rte_grasp_process(d->grasp, &gray, &gr);
+            if (st == RTE_OK)
                 publish_grasp(d, f, &gr);
-            else
-                d->n.publish_errors++;
+            path_error(d, 1, f, st);
         }
     }
     if (d->cfg.publish_images) {
-        if (d->deadline_ns - (now_ns() - t0) < d->grasp_min_ns)
+        if (d->deadline_ns - (rted_now_ns() - t0) < d->grasp_min_ns)
             d->n.stages_skipped++;
         else
             publish_image(d, f, &gray);
     }
-    int64_t lat = now_ns() - t0;
-    record_latency(d, lat);
+    int64_t lat = rted_now_ns() - t0;
+    rted_record_latency(d, lat);
     if (lat > d->deadline_ns)
         d->n.deadline_misses++;
     d->n.processed++;
     d->window_processed++;
     return RTED_STEP_FRAME;
+}
+
+/* The end of a recording: start again (source.loop), or stop. A pass that
+ * gave no readable frame stops the daemon either way, rather than rewinding
+ * without end or ending as if all was well. A rewind is not a reconnection:
+ * no message, no status, the latency window goes on. */
+static rted_step end_of_pass(rted_daemon *d)
+{
+    rte_source_stats ss;
+    rte_source_get_stats(&d->source, &ss);
+    d->n.bad_frames = ss.bad_frames;
+    d->state = RTE_SOURCE_ENDED;
+    if (!d->pass_frames) {
+        rted_log("%s: %s gave no readable frame (%llu bad frames in all): stopping",
+                 d->source_id, d->passes ? "a whole pass of the recording" : "the recording",
+                 (unsigned long long)ss.bad_frames);
+        return RTED_STEP_EMPTY;
+    }
+    if (!d->cfg.loop || rte_recorded_source_rewind(&d->source) != RTE_OK)
+        return RTED_STEP_END;
+    d->state = RTE_SOURCE_STREAMING;
+    d->n.rewinds++;
+    d->passes++;
+    d->pass_frames = 0;
+    return RTED_STEP_IDLE;
 }
 
 static void sleep_ns(int64_t ns)
@@ -949,49 +667,47 @@ rted_step rted_daemon_step(rted_daemon *d)
 {
     if (d->cfg.max_frames && d->n.processed >= (uint64_t)d->cfg.max_frames)
         return RTED_STEP_END;
-    poll_params(d);
-    if (now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
+    rted_params_poll(d);
+    if (rted_now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
         rted_daemon_publish_status(d);
 
     rte_source_frame f;
     char why[RTE_SOURCE_MESSAGE_SIZE] = "";
     rte_status st = rte_source_next(&d->source, &f, 100, why, sizeof why);
+    if (st == RTE_ERR_END)
+        return end_of_pass(d);
     rte_source_stats ss;
     rte_source_get_stats(&d->source, &ss);
     d->n.bad_frames = ss.bad_frames;
     if (ss.state != d->reported_state) {
         /* A camera lost or back: said at once, not at the next period. */
         if (ss.state == RTE_SOURCE_STREAMING)
-            fprintf(stderr, "rtedged: source streaming again (reconnection %llu)\n",
-                    (unsigned long long)ss.reconnects);
+            rted_log("source streaming again (reconnection %llu)",
+                     (unsigned long long)ss.reconnects);
         rted_daemon_publish_status(d);
-    }
-    if (st == RTE_ERR_END) {
-        if (d->cfg.loop && rte_recorded_source_rewind(&d->source) == RTE_OK) {
-            d->n.rewinds++;
-            return RTED_STEP_IDLE;
-        }
-        d->state = RTE_SOURCE_ENDED;
-        return RTED_STEP_END;
     }
     if (st == RTE_ERR_TIMEOUT)
         return RTED_STEP_IDLE;
     if (st != RTE_OK) {
         if (ss.state == RTE_SOURCE_FAILED) {
-            fprintf(stderr, "rtedged: source failed: %s\n", why);
+            rted_log("source failed: %s", why);
             return RTED_STEP_FAILED;
         }
-        fprintf(stderr, "rtedged: %s: %s\n", st == RTE_ERR_DEVICE ? "source" : "frame skipped",
-                why[0] ? why : rte_status_message(st));
+        /* A looping recording's bad frames were said in its first pass. */
+        if (!d->passes)
+            rted_log_limited(&d->log_frames, "%s: %s",
+                             st == RTE_ERR_DEVICE ? "source" : "frame skipped",
+                             why[0] ? why : rte_status_message(st));
         return RTED_STEP_IDLE;
     }
+    d->pass_frames++;
     d->n.received++;
     if (d->rec)
         record_frame(d, &f);
     bool waited = false;
     for (;;) {
         int64_t wait = 0;
-        rte_pace_action a = rte_pacer_decide(&d->pacer, f.recorded_ns, now_ns(), &wait);
+        rte_pace_action a = rte_pacer_decide(&d->pacer, f.recorded_ns, rted_now_ns(), &wait);
         if (a == RTE_PACE_DROP) {
             d->n.dropped++;
             return RTED_STEP_IDLE;
@@ -1003,35 +719,35 @@ rted_step rted_daemon_step(rted_daemon *d)
         sleep_ns(wait > 50000000 ? 50000000 : wait);
         waited = true;
         if (d->cfg.status_period_ms &&
-            now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
+            rted_now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
             rted_daemon_publish_status(d);
     }
     /* Recordings: the frame is "captured" when it is due, not when it was
      * read ahead of its time. */
     if (d->recorded && waited)
-        f.capture_ns = now_ns();
+        f.capture_ns = rted_now_ns();
     return analyse(d, &f);
 }
 
 int rted_daemon_run(rted_daemon *d, volatile sig_atomic_t *stop, volatile sig_atomic_t *reload)
 {
-    int code = 0;
+    int code = RTED_EXIT_OK;
     d->stop = stop;
     while (!*stop) {
         if (*reload) {
             *reload = 0;
             char msg[RTED_MSG];
             if (rted_daemon_reload(d, msg, sizeof msg))
-                fprintf(stderr, "rtedged: configuration re-read and applied (hash %016llx)\n",
-                        (unsigned long long)d->config_hash);
+                rted_log("configuration re-read and applied (hash %016llx)",
+                         (unsigned long long)d->config_hash);
             else
-                fprintf(stderr, "rtedged: configuration change refused: %s\n", msg);
+                rted_log("configuration change refused: %s", msg);
         }
         rted_step s = rted_daemon_step(d);
         if (s == RTED_STEP_END)
             break;
-        if (s == RTED_STEP_FAILED) {
-            code = 1;
+        if (s == RTED_STEP_FAILED || s == RTED_STEP_EMPTY) {
+            code = s == RTED_STEP_FAILED ? RTED_EXIT_FAILED : RTED_EXIT_NO_FRAMES;
             break;
         }
     }

@@ -9,7 +9,6 @@
 #include "daemon.h"
 #include "rtedge/v4l2_source.h"
 
-#define EXIT_CONFIG 2
 #define MAX_SETS 64
 
 static volatile sig_atomic_t stop_flag, reload_flag;
@@ -40,7 +39,10 @@ static void usage(FILE *f)
           "  --help-config       print every key with its help, range and default\n"
           "  --bench             run, then print latency p50/p99/max and peak RSS\n"
           "Signals: SIGINT/SIGTERM finish the frame, publish a final status and exit 0;\n"
-          "SIGHUP re-reads the configuration file (runtime keys only).\n",
+          "SIGHUP re-reads the configuration file (runtime keys only).\n"
+          "Exit codes: 0 the recording ended (or a signal), 1 cannot start or the source\n"
+          "failed, 2 a bad configuration or option, 3 a recording (or a whole pass of a\n"
+          "looping one) had no readable frame.\n",
           f);
 }
 
@@ -87,7 +89,7 @@ int main(int argc, char **argv)
                 goto missing;
             if (n_sets == MAX_SETS) {
                 fprintf(stderr, "rtedged: more than %d --set options\n", MAX_SETS);
-                return EXIT_CONFIG;
+                return RTED_EXIT_CONFIG;
             }
             sets[n_sets++] = argv[++i];
             continue;
@@ -108,11 +110,11 @@ int main(int argc, char **argv)
         } else {
             fprintf(stderr, "rtedged: unknown option '%s'\n", a);
             usage(stderr);
-            return EXIT_CONFIG;
+            return RTED_EXIT_CONFIG;
         }
         if (n_direct == 16 || n_sets + 2 > MAX_SETS) {
             fprintf(stderr, "rtedged: too many options\n");
-            return EXIT_CONFIG;
+            return RTED_EXIT_CONFIG;
         }
         if (key) {
             if (!v)
@@ -130,7 +132,7 @@ int main(int argc, char **argv)
         continue;
     missing:
         fprintf(stderr, "rtedged: %s needs a value\n", a);
-        return EXIT_CONFIG;
+        return RTED_EXIT_CONFIG;
     }
 
     rted_config cfg;
@@ -138,17 +140,17 @@ int main(int argc, char **argv)
     rted_config_defaults(&cfg);
     if (config_path && !rted_config_load(&cfg, config_path, msg, sizeof msg)) {
         fprintf(stderr, "rtedged: %s\n", msg);
-        return EXIT_CONFIG;
+        return RTED_EXIT_CONFIG;
     }
     for (int i = 0; i < n_sets; i++)
         if (!rted_config_set(&cfg, sets[i], "command line", msg, sizeof msg)) {
             fprintf(stderr, "rtedged: %s\n", msg);
-            return EXIT_CONFIG;
+            return RTED_EXIT_CONFIG;
         }
     if (!rted_config_validate(&cfg, msg, sizeof msg)) {
         fprintf(stderr, "rtedged: %s%s%s\n", config_path ? config_path : "",
                 config_path ? ": " : "", msg);
-        return EXIT_CONFIG;
+        return RTED_EXIT_CONFIG;
     }
     if (check) {
         printf("# effective configuration (hash %016llx)\n",
@@ -160,7 +162,7 @@ int main(int argc, char **argv)
     rted_daemon *d;
     if (!rted_daemon_open(&d, &cfg, config_path, msg, sizeof msg)) {
         fprintf(stderr, "rtedged: %s\n", msg);
-        return 1;
+        return RTED_EXIT_FAILED;
     }
     rted_daemon_set_overrides(d, sets, n_sets);
     struct sigaction sa;
@@ -188,12 +190,14 @@ int main(int argc, char **argv)
     fprintf(stderr,
             "rtedged: %llu frames received, %llu processed, %llu dropped, %llu bad, "
             "%llu deadline misses, %llu stages skipped, %llu messages, %llu publish errors, "
-            "%llu reloads, %llu refused\n",
+            "%llu reloads, %llu refused, %llu rate-limited, %llu path errors, %llu rewinds\n",
             (unsigned long long)n.received, (unsigned long long)n.processed,
             (unsigned long long)n.dropped, (unsigned long long)n.bad_frames,
             (unsigned long long)n.deadline_misses, (unsigned long long)n.stages_skipped,
             (unsigned long long)n.published, (unsigned long long)n.publish_errors,
-            (unsigned long long)n.reloads, (unsigned long long)n.refused);
+            (unsigned long long)n.reloads, (unsigned long long)n.refused,
+            (unsigned long long)n.rate_limited, (unsigned long long)n.path_errors,
+            (unsigned long long)n.rewinds);
     rted_daemon_close(d);
     return code;
 }

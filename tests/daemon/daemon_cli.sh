@@ -48,7 +48,68 @@ bad no_section 1 "outside a \[section\]" 'threshold = 3\n'
 [ $? -eq 2 ] || fail "--deadline-ms abc"
 "$RTEDGED" --bogus 2>/dev/null >/dev/null
 [ $? -eq 2 ] || fail "unknown option"
+# Values that are in a type's range but nonsense for a daemon.
+for set in 'deadline.ms=1e-300:out of range 0.1..10000 (or 0)' \
+           'lane.hough_threshold=100000:out of range 1..16384 (or -1)' \
+           'grasp.min_area=100000000:out of range 0..67108864' \
+           'params.keys=lane.roi:params_t carries no text' \
+           'params.keys=source.path:not a runtime key' \
+           'params.channel=RTEDGE_.*:not a channel name'; do
+    "$RTEDGED" --set "${set%%:*}" --check-config 2>"$TMP/err" >/dev/null
+    [ $? -eq 2 ] && grep -qF "${set#*:}" "$TMP/err" || fail "--set ${set%%:*}: $(cat "$TMP/err")"
+done
+# A NUL byte in a configuration line is said as such.
+printf '[grasp]\nthreshold = 3\0\n' >"$TMP/nul.conf"
+"$RTEDGED" --config "$TMP/nul.conf" --check-config 2>"$TMP/err" >/dev/null
+[ $? -eq 2 ] && grep -q "nul.conf:2: a NUL byte in the line" "$TMP/err" || fail "NUL: $(cat "$TMP/err")"
 echo "ok: command-line errors"
+
+# Values that do not fit the source's frames (480x270): refused at start, exit 1.
+for set in 'grasp.min_area=200000:grasp.min_area = 200000 px is beyond the 480x270 frame' \
+           'lane.roi=0.5,0.5;0.51,0.5;0.5,0.51:lane.roi: '"'"'0.5,0.5;0.51,0.5;0.5,0.51'"'"' covers 6x4 px' \
+           'lane.max_gap=2000:lane.max_gap = 2000 is beyond'; do
+    "$RTEDGED" --source "$Y4M" --fast --max-frames 2 --lcm-url "file://$TMP/fit.lcm" \
+        --set "${set%%:*}" 2>"$TMP/err" >/dev/null
+    [ $? -eq 1 ] && grep -qF "does not fit the source: ${set#*:}" "$TMP/err" ||
+        fail "--set ${set%%:*}: $(cat "$TMP/err")"
+done
+echo "ok: values that do not fit the source"
+
+# Recordings that cannot spin: a header whose size overflows is refused; a
+# looping recording without one readable frame stops (exit 3) at once; one
+# with a bad frame among good ones says it once, not at every pass.
+printf 'YUV4MPEG2 W4294967300 H2 F30:1 Cmono\nFRAME\n' >"$TMP/wrap.y4m"
+"$RTEDGED" --source "$TMP/wrap.y4m" --lcm-url "file://$TMP/wrap.lcm" 2>"$TMP/err" >/dev/null
+[ $? -eq 1 ] && grep -q "bad frame width in tag 'W4294967300'" "$TMP/err" ||
+    fail "W4294967300: $(cat "$TMP/err")"
+printf 'YUV4MPEG2 W64 H48 F30:1 Cmono\n' >"$TMP/header.y4m"
+printf 'YUV4MPEG2 W64 H48 F30:1 Cmono\nFRAME\nabc' >"$TMP/cut.y4m"
+for rec in header cut; do
+    timeout 10 "$RTEDGED" --source "$TMP/$rec.y4m" --loop --fast --lcm-url "file://$TMP/$rec.lcm" \
+        2>"$TMP/err" >/dev/null
+    rc=$?
+    [ $rc -eq 3 ] && grep -q "gave no readable frame" "$TMP/err" && [ "$(wc -l <"$TMP/err")" -le 3 ] ||
+        fail "$rec.y4m --loop: exit $rc, $(wc -l <"$TMP/err") lines: $(head -5 "$TMP/err")"
+done
+$PY - "$Y4M" "$TMP/onebad.y4m" <<'EOP' || fail "cannot make onebad.y4m"
+import sys
+src, dst = open(sys.argv[1], "rb"), open(sys.argv[2], "wb")
+header = src.readline()
+w, h = [int(t[1:]) for t in header.split()[1:3]]
+dst.write(header)
+for i in range(4):
+    src.readline()
+    frame = src.read(w * h)
+    dst.write((b"FRAMX\n" if i == 2 else b"FRAME\n") + frame)
+EOP
+"$RTEDGED" --source "$TMP/onebad.y4m" --loop --fast --max-frames 600 --lcm-url "file://$TMP/ob.lcm" \
+    --set publish.status_period_ms=60000 2>"$TMP/err" >/dev/null || fail "onebad: exit $?"
+lines=$(wc -l <"$TMP/err")
+[ "$lines" -le 3 ] && grep -q "600 processed" "$TMP/err" && ! grep -q "streaming again" "$TMP/err" ||
+    fail "onebad.y4m looped: $lines lines: $(head -5 "$TMP/err")"
+s=$(summary "$TMP/ob.lcm")
+[ "$(field "$s" 'd["statuses"]')" -eq 2 ] || fail "onebad.y4m: statuses: $s"
+echo "ok: recordings that cannot spin ($lines stderr lines for 600 frames over 199 rewinds)"
 
 # SIGTERM: finish the frame, final status, exit 0.
 "$RTEDGED" --source "$Y4M" --loop --fps 50 --lcm-url "file://$TMP/term.lcm" 2>"$TMP/term.err" &
@@ -79,7 +140,8 @@ EOC
 "$RTEDGED" --config "$TMP/hup.conf" 2>"$TMP/hup.err" &
 pid=$!
 sleep 1
-printf '[grasp]\nmin_area = 100000000\n' >>"$TMP/hup.conf"
+# the clip's frame area (480x270): no object is that large
+printf '[grasp]\nmin_area = 129600\n' >>"$TMP/hup.conf"
 kill -HUP $pid
 sleep 1
 printf 'max_objects = 5\n' >>"$TMP/hup.conf"

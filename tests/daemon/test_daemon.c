@@ -20,6 +20,7 @@
 
 #include "config.h"
 #include "daemon.h"
+#include "daemon_fixtures.h"
 #include "heapcount.h"
 #include "rtedge/publish.h"
 
@@ -28,66 +29,6 @@ static const char *build_dir;
 static void path(char *out, size_t size, const char *name)
 {
     snprintf(out, size, "%s/daemon_%s", build_dir, name);
-}
-
-/* ---- the objects sequence: two bright rectangles moving on a dark table ---- */
-
-#define OW 160
-#define OH 120
-typedef struct rect {
-    int x0, y0, w, h;
-} rect;
-
-static void objects_at(int k, rect r[2])
-{
-    r[0] = (rect){20 + k, 20, 40, 24};
-    r[1] = (rect){100, 50 + k, 30, 30};
-}
-
-static void objects_frame(int k, uint8_t *img)
-{
-    rect r[2];
-    objects_at(k, r);
-    memset(img, 40, OW * OH);
-    for (int i = 0; i < 2; i++)
-        for (int y = r[i].y0; y < r[i].y0 + r[i].h; y++)
-            memset(img + y * OW + r[i].x0, 200, (size_t)r[i].w);
-}
-
-/* damage: 0 none; 1 a corrupt FRAME header at frame 3 and a truncated last frame. */
-static void write_objects_y4m(const char *file, int frames, int damage)
-{
-    FILE *f = fopen(file, "wb");
-    assert_non_null(f);
-    fprintf(f, "YUV4MPEG2 W%d H%d F30:1 Ip A1:1 Cmono\n", OW, OH);
-    static uint8_t img[OW * OH];
-    for (int k = 0; k < frames; k++) {
-        objects_frame(k, img);
-        fputs(damage && k == 3 ? "FRAMX\n" : "FRAME\n", f);
-        fwrite(img, 1, damage && k == frames - 1 ? OW * OH / 2 : OW * OH, f);
-    }
-    fclose(f);
-}
-
-static void base_config(rted_config *c, const char *source, const char *url)
-{
-    rted_config_defaults(c);
-    assert_true(strlen(source) < sizeof c->source_path && strlen(url) < sizeof c->lcm_url);
-    memcpy(c->source_path, source, strlen(source) + 1);
-    memcpy(c->lcm_url, url, strlen(url) + 1);
-    c->pace = RTED_PACE_FAST;
-    c->deadline_ms = 1000; /* generous: sanitizer builds are slow */
-}
-
-static rted_daemon *open_daemon(const rted_config *c, const char *config_path)
-{
-    rted_daemon *d;
-    char msg[RTED_MSG];
-    bool ok = rted_daemon_open(&d, c, config_path, msg, sizeof msg);
-    if (!ok)
-        print_error("%s\n", msg);
-    assert_true(ok);
-    return d;
 }
 
 /* ---- a memq:// subscriber ---- */
@@ -579,6 +520,135 @@ static void test_params_channel(void **state)
     rted_daemon_close(d);
 }
 
+/* A looping recording: a rewind is not a reconnection (no status between
+ * the first and the final one, so the latency window spans the run). */
+static void test_loop_rewinds_quietly(void **state)
+{
+    char y4m[512];
+    path(y4m, sizeof y4m, "objects_loop.y4m");
+    write_objects_y4m(y4m, 5, 0);
+    rted_config c;
+    base_config(&c, y4m, "memq://");
+    c.loop = true;
+    c.max_frames = 23;
+    c.status_period_ms = 60000;
+    rted_daemon *d = open_daemon(&c, NULL);
+    static seen s;
+    memset(&s, 0, sizeof s);
+    run_memq(d, &s);
+    rted_counters n;
+    rted_daemon_get_counters(d, &n);
+    int32_t p50, p99, max;
+    rted_daemon_latency(d, &p50, &p99, &max);
+    rted_daemon_close(d);
+    assert_int_equal(n.processed, 23);
+    assert_int_equal(n.rewinds, 4);
+    /* Only the final status (the one at start went out before the subscriber
+     * came); each rewind used to publish two, and reset the window. */
+    assert_int_equal(s.statuses, 1);
+    assert_int_equal(s.last_status.frames_processed, 23);
+    assert_int_equal(s.last_status.source_reconnects, 0);
+    assert_true(s.last_status.fps > 0);
+    assert_true(p50 > 0 && p50 <= p99 && p99 <= max);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
+/* A Y4M of the given frames: 'g' good, 'c' cut short (only at the end), 'x'
+ * a damaged FRAME header. */
+static void write_frames_y4m(const char *file, const char *frames)
+{
+    FILE *f = fopen(file, "wb");
+    assert_non_null(f);
+    fprintf(f, "YUV4MPEG2 W%d H%d F30:1 Ip A1:1 Cmono\n", OW, OH);
+    static uint8_t img[OW * OH];
+    for (int k = 0; frames[k]; k++) {
+        objects_frame(k, img);
+        fputs(frames[k] == 'x' ? "FRAMX\n" : "FRAME\n", f);
+        fwrite(img, 1, frames[k] == 'c' ? OW * OH / 3 : OW * OH, f);
+    }
+    fclose(f);
+}
+
+/* A recording with no readable frame stops with RTED_STEP_EMPTY (exit code
+ * 3) instead of rewinding without end; one with a readable frame loops. */
+static void test_loop_without_good_frame(void **state)
+{
+    const struct {
+        const char *frames;
+        bool loop;
+        rted_step last;
+        int max_steps;
+    } cases[] = {
+        {"c", true, RTED_STEP_EMPTY, 3},    /* issue 18: one cut-short frame */
+        {"", true, RTED_STEP_EMPTY, 1},     /* a header only */
+        {"xc", true, RTED_STEP_EMPTY, 4},
+        {"", false, RTED_STEP_EMPTY, 1},
+        {"gc", false, RTED_STEP_END, 4},
+        {"xgc", true, RTED_STEP_END, 40},   /* loops until max_frames */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char y4m[512];
+        path(y4m, sizeof y4m, "nogood.y4m");
+        write_frames_y4m(y4m, cases[i].frames);
+        rted_config c;
+        base_config(&c, y4m, "memq://");
+        c.loop = cases[i].loop;
+        c.max_frames = 10;
+        rted_daemon *d = open_daemon(&c, NULL);
+        rted_step st = RTED_STEP_IDLE;
+        int steps = 0;
+        while (steps < 100 && (st == RTED_STEP_IDLE || st == RTED_STEP_FRAME)) {
+            st = rted_daemon_step(d);
+            steps++;
+        }
+        rted_counters n;
+        rted_daemon_get_counters(d, &n);
+        rted_daemon_close(d);
+        print_message("'%s'%s: step %d gave %d (%llu frames, %llu bad, %llu rewinds)\n",
+                      cases[i].frames, cases[i].loop ? " looped" : "", steps, st,
+                      (unsigned long long)n.processed, (unsigned long long)n.bad_frames,
+                      (unsigned long long)n.rewinds);
+        assert_int_equal(st, cases[i].last);
+        assert_true(steps <= cases[i].max_steps);
+    }
+}
+
+/* A frame a path cannot process (here a 2x2 image among 160x120 ones: the
+ * lane ROI leaves it no rows) is counted in path_errors, not as a publish
+ * error, and the daemon goes on. */
+static void test_path_errors(void **state)
+{
+    char dir[512], file[600];
+    path(dir, sizeof dir, "images_tiny");
+    mkdir(dir, 0755);
+    static uint8_t img[OW * OH];
+    for (int k = 0; k < 6; k++) {
+        snprintf(file, sizeof file, "%s/frame_%02d.pgm", dir, k);
+        FILE *f = fopen(file, "wb");
+        assert_non_null(f);
+        objects_frame(k, img);
+        int w = k == 3 ? 2 : OW, h = k == 3 ? 2 : OH;
+        fprintf(f, "P5\n%d %d\n255\n", w, h);
+        fwrite(img, 1, (size_t)(w * h), f);
+        fclose(f);
+    }
+    static seen s;
+    memset(&s, 0, sizeof s);
+    rted_config c;
+    base_config(&c, dir, "memq://");
+    rted_daemon *d = open_daemon(&c, NULL);
+    run_memq(d, &s);
+    rted_counters n;
+    rted_daemon_get_counters(d, &n);
+    rted_daemon_close(d);
+    assert_int_equal(n.processed, 6);
+    assert_int_equal(n.path_errors, 1);
+    assert_int_equal(n.publish_errors, 0);
+    assert_int_equal(s.lanes, 5);
+    assert_int_equal(s.last_status.path_errors, 1);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
 /* 1000 frames, looped, as fast as possible, lane and grasp paths, status
  * messages (and the frames recorded: record != NULL): no heap call after
  * the first frame. */
@@ -662,6 +732,9 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_lcm_log_source),
         cmocka_unit_test(test_reload),
         cmocka_unit_test(test_params_channel),
+        cmocka_unit_test(test_loop_rewinds_quietly),
+        cmocka_unit_test(test_loop_without_good_frame),
+        cmocka_unit_test(test_path_errors),
         cmocka_unit_test(test_no_heap_calls_file),
         cmocka_unit_test(test_no_heap_calls_memq),
     };

@@ -1,0 +1,104 @@
+/* What the daemon's files share (internal to src/daemon): the daemon's
+ * state, and the functions one file provides to the others.
+ *   loop.c         opening, the source, recording, the per-frame step
+ *   reconfigure.c  run-time configuration: SIGHUP, the params_t channel
+ *   status.c       the latency window and the status message */
+#ifndef RTEDGED_DAEMON_INTERNAL_H
+#define RTEDGED_DAEMON_INTERNAL_H
+
+#include <stdint.h>
+
+#include "daemon.h"
+#include "log.h"
+#include "params.h"
+#include "rtedge/arena.h"
+#include "rtedge/grasp.h"
+#include "rtedge/lane.h"
+#include "rtedge/pacer.h"
+#include "rtedge/publish.h"
+#include "rtedge/source.h"
+
+/* Latencies kept per status window (the newest ones when more frames came). */
+#define RTED_RING 8192
+#define RTED_MAX_SETS 64
+/* params_t messages handled per step at most (the rest wait in the socket,
+ * where the kernel drops what does not fit). */
+#define RTED_PARAMS_PER_STEP 16
+
+struct rted_daemon {
+    rted_config cfg;
+    const char *config_path;
+    char *const *sets;
+    int n_sets;
+    uint64_t config_hash;
+    int64_t deadline_ns, grasp_min_ns;
+
+    rte_source source;
+    bool recorded;
+    char source_id[RTED_TEXT + 16];
+    int32_t width, height; /* the source's maxima */
+    rte_pacer pacer;
+    uint64_t passes;        /* rewinds of a looping recording so far */
+    uint64_t pass_frames;   /* frames the source delivered in this pass */
+
+    rte_lane_context *lane;
+    rte_lane_config lane_base; /* defaults for the frame size, before the file's keys */
+    rte_grasp_ctx *grasp;
+    rte_publisher *pub;
+
+    /* The params_t channel: at most params_max_per_second messages in each
+     * second from params_window_ns, decoded into params_req. */
+    lcm_subscription_t *params_sub;
+    int64_t params_window_ns;
+    int32_t params_in_window;
+    rted_params_request params_req;
+
+    /* source.record: every delivered frame, packed, as image_t. */
+    rte_publisher *rec;
+    uint8_t *rec_buf;
+    rtedge_image_t rec_msg;
+
+    void *memory;
+    rte_arena arena;
+    rte_image_u8 gray;
+    rtedge_segment_t *segments;
+    rtedge_grasp_object_t *objects;
+    rtedge_point_t roi[RTE_LANE_MAX_ROI_VERTICES];
+    rtedge_lane_detection_t lane_msg;
+    rtedge_grasp_detection_t grasp_msg;
+    rtedge_image_t image_msg;
+    rtedge_status_t status_msg;
+
+    rted_counters n;
+    int32_t ring[RTED_RING], sorted[RTED_RING];
+    uint32_t ring_n;          /* latencies in the window (may exceed RTED_RING) */
+    int32_t window_max;
+    uint64_t window_processed;
+    int64_t window_start_ns;
+    rte_source_state state;
+    rte_source_state reported_state; /* the source's state in the last status */
+    volatile sig_atomic_t *stop; /* rted_daemon_run's flag: ends a wait for a frame's time */
+
+    /* stderr lines that could repeat without end */
+    rted_log_limit log_frames, log_params;
+    rte_status path_said[2];  /* the lane's and grasp path's last failure said */
+};
+
+/* reconfigure.c */
+/* The lane parameters: the frame size's defaults with c's keys over them
+ * (false: c's ROI does not parse). */
+bool rted_lane_params(const rted_daemon *d, const rted_config *c, rte_lane_params *p);
+void rted_grasp_params(const rted_config *c, rte_grasp_params *p);
+/* What follows from d->cfg: deadline, hash, the messages' ROI. */
+void rted_derive(rted_daemon *d);
+/* Subscribes to params.channel when params.enabled (a warning when the
+ * transport has no LCM). */
+void rted_params_open(rted_daemon *d);
+void rted_params_close(rted_daemon *d);
+/* Handles the params_t messages waiting, within the rate and per-step limits. */
+void rted_params_poll(rted_daemon *d);
+
+/* status.c */
+void rted_record_latency(rted_daemon *d, int64_t lat_ns);
+
+#endif

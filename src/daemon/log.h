@@ -1,0 +1,35 @@
+/* rtedged's stderr lines ("rtedged: ..."), and a limit for lines that a
+ * recording, a failing path or the network could repeat without end: at
+ * most RTED_LOG_BURST lines of one kind per RTED_LOG_WINDOW_NS, then one line
+ * saying how many were left out (the status message counts every case).
+ * Nothing here allocates: stderr is unbuffered. */
+#ifndef RTEDGED_LOG_H
+#define RTEDGED_LOG_H
+
+#include <stdint.h>
+
+#define RTED_LOG_BURST 5
+#define RTED_LOG_WINDOW_NS 10000000000LL
+
+typedef struct rted_log_limit {
+    const char *what;          /* e.g. "bad-frame", for the summary line */
+    int64_t window_start_ns;
+    uint32_t lines;            /* printed in this window */
+    uint64_t suppressed;       /* left out in this window */
+} rted_log_limit;
+
+/* CLOCK_MONOTONIC in nanoseconds. */
+int64_t rted_now_ns(void);
+
+/* "rtedged: " and the formatted line. */
+void rted_log(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* As rted_log, within l's limit. */
+void rted_log_limited(rted_log_limit *l, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* Says how many lines l left out, once its window has passed (called with
+ * each status message, so that a burst that stopped is still reported). */
+void rted_log_flush(rted_log_limit *l, int64_t now_ns);
+
+#endif

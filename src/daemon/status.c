@@ -1,0 +1,108 @@
+/* The status message and the latency window it reports: capture-to-publish
+ * latencies in a fixed ring, sorted in place when a status goes out (an
+ * integer heap sort: bounded time, no allocation). */
+#include <string.h>
+
+#include "daemon_internal.h"
+
+static void sift(int32_t *a, uint32_t root, uint32_t n)
+{
+    for (;;) {
+        uint32_t child = 2 * root + 1;
+        if (child >= n)
+            return;
+        if (child + 1 < n && a[child + 1] > a[child])
+            child++;
+        if (a[root] >= a[child])
+            return;
+        int32_t t = a[root];
+        a[root] = a[child];
+        a[child] = t;
+        root = child;
+    }
+}
+
+/* In-place heap sort: bounded time, no allocation. */
+static void sort_i32(int32_t *a, uint32_t n)
+{
+    for (uint32_t i = n / 2; i-- > 0;)
+        sift(a, i, n);
+    for (uint32_t i = n; i-- > 1;) {
+        int32_t t = a[0];
+        a[0] = a[i];
+        a[i] = t;
+        sift(a, 0, i);
+    }
+}
+
+static void window_latency(rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *max)
+{
+    uint32_t n = d->ring_n < RTED_RING ? d->ring_n : RTED_RING;
+    *p50 = *p99 = 0;
+    *max = d->window_max;
+    if (!n)
+        return;
+    memcpy(d->sorted, d->ring, n * sizeof d->ring[0]);
+    sort_i32(d->sorted, n);
+    *p50 = d->sorted[(uint64_t)(n - 1) * 50 / 100];
+    *p99 = d->sorted[(uint64_t)(n - 1) * 99 / 100];
+}
+
+void rted_daemon_publish_status(rted_daemon *d)
+{
+    int64_t t = rted_now_ns();
+    rte_source_stats ss;
+    rte_source_get_stats(&d->source, &ss);
+    rtedge_status_t *s = &d->status_msg;
+    s->utime = t / 1000;
+    s->source_state = (int8_t)ss.state;
+    d->reported_state = ss.state;
+    s->frames_received = (int64_t)d->n.received;
+    s->frames_processed = (int64_t)d->n.processed;
+    d->n.bad_frames = ss.bad_frames;
+    s->frames_dropped = (int64_t)(d->n.dropped + ss.driver_drops + ss.skipped);
+    s->deadline_misses = (int64_t)d->n.deadline_misses;
+    s->stages_skipped = (int64_t)d->n.stages_skipped;
+    s->frames_bad = (int64_t)ss.bad_frames;
+    s->source_reconnects = (int64_t)ss.reconnects;
+    s->config_reloads = (int64_t)d->n.reloads;
+    s->config_refused = (int64_t)d->n.refused;
+    s->config_rate_limited = (int64_t)d->n.rate_limited;
+    s->path_errors = (int64_t)d->n.path_errors;
+    s->window_us = (t - d->window_start_ns) / 1000;
+    window_latency(d, &s->latency_p50_us, &s->latency_p99_us, &s->latency_max_us);
+    s->fps = s->window_us > 0 ? (float)((double)d->window_processed * 1e6 / (double)s->window_us)
+                              : 0.0f;
+    s->arena_bytes = (int64_t)d->arena.size;
+    s->arena_peak_bytes = (int64_t)d->arena.high_water;
+    s->config_hash = (int64_t)d->config_hash;
+    char msg[RTE_PUBLISH_MESSAGE_SIZE];
+    if (rte_publish_status(d->pub, d->cfg.status_channel, s, msg, sizeof msg) == RTE_OK)
+        d->n.status_sent++;
+    else
+        d->n.publish_errors++;
+    d->ring_n = 0;
+    d->window_max = 0;
+    d->window_processed = 0;
+    d->window_start_ns = t;
+    rted_log_flush(&d->log_frames, t);
+    rted_log_flush(&d->log_params, t);
+}
+
+void rted_daemon_latency(const rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *max)
+{
+    *p50 = d->status_msg.latency_p50_us;
+    *p99 = d->status_msg.latency_p99_us;
+    *max = d->status_msg.latency_max_us;
+}
+
+void rted_record_latency(rted_daemon *d, int64_t lat_ns)
+{
+    int64_t us = lat_ns / 1000;
+    int32_t v = us > INT32_MAX ? INT32_MAX : (int32_t)us;
+    d->ring[d->ring_n % RTED_RING] = v;
+    d->ring_n++;
+    if (v > d->window_max)
+        d->window_max = v;
+}
+
