@@ -7,11 +7,11 @@
 
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
+#include "log.h"
 #include "rtedge/lane.h"
 #include "rtedge/polygon_mask.h"
 
@@ -183,16 +183,6 @@ static const key_def keys[] = {
 /* The longest line of a configuration file (without its newline). */
 #define RTED_LINE_MAX 1022
 
-static void say(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-
-static void say(char *msg, size_t size, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, size, fmt, ap);
-    va_end(ap);
-}
-
 static const key_def *find_key(const char *section, const char *key, bool *section_known)
 {
     *section_known = false;
@@ -230,7 +220,7 @@ static bool store_int(rted_config *c, const key_def *k, long long v, char *why, 
 {
     if (!(k->has_unset && (double)v == k->unset) && ((double)v < k->min || (double)v > k->max)) {
         char u[32];
-        say(why, why_size, "%lld is out of range %.0f..%.0f%s", v, k->min, k->max,
+        rted_msgf(why, why_size, "%lld is out of range %.0f..%.0f%s", v, k->min, k->max,
             unset_text(k, u, sizeof u));
         return false;
     }
@@ -242,12 +232,12 @@ static bool store_int(rted_config *c, const key_def *k, long long v, char *why, 
 static bool store_real(rted_config *c, const key_def *k, double v, char *why, size_t why_size)
 {
     if (!isfinite(v)) {
-        say(why, why_size, "%g is not a finite number", v);
+        rted_msgf(why, why_size, "%g is not a finite number", v);
         return false;
     }
     if (!(k->has_unset && v == k->unset) && (v < k->min || v > k->max)) {
         char u[32];
-        say(why, why_size, "%g is out of range %g..%g%s", v, k->min, k->max,
+        rted_msgf(why, why_size, "%g is out of range %g..%g%s", v, k->min, k->max,
             unset_text(k, u, sizeof u));
         return false;
     }
@@ -267,7 +257,7 @@ static bool set_value(rted_config *c, const key_def *k, const char *value, char 
         errno = 0;
         long long v = strtoll(value, &end, 10);
         if (end == value || *end || errno) {
-            say(why, why_size, "'%s' is not an integer%s", value,
+            rted_msgf(why, why_size, "'%s' is not an integer%s", value,
                 errno == ERANGE ? " of 64 bits" : "");
             return false;
         }
@@ -277,7 +267,7 @@ static bool set_value(rted_config *c, const key_def *k, const char *value, char 
         errno = 0;
         double v = strtod(value, &end);
         if (end == value || *end || errno || !isfinite(v)) {
-            say(why, why_size, "'%s' is not a number", value);
+            rted_msgf(why, why_size, "'%s' is not a number", value);
             return false;
         }
         return store_real(c, k, v, why, why_size);
@@ -290,13 +280,13 @@ static bool set_value(rted_config *c, const key_def *k, const char *value, char 
                  !strcmp(value, "0") || !strcasecmp(value, "off"))
             *(bool *)field = false;
         else {
-            say(why, why_size, "'%s' is not a boolean (true/false)", value);
+            rted_msgf(why, why_size, "'%s' is not a boolean (true/false)", value);
             return false;
         }
         return true;
     case K_TEXT:
         if (strlen(value) >= k->size) {
-            say(why, why_size, "longer than %zu characters", k->size - 1);
+            rted_msgf(why, why_size, "longer than %zu characters", k->size - 1);
             return false;
         }
         memcpy(field, value, strlen(value) + 1);
@@ -346,7 +336,7 @@ static bool wrong_type(const key_def *k, const char *given, char *why, size_t wh
 {
     static const char *const names[] = {"an integer", "a real number", "a boolean", "text",
                                         "a choice"};
-    say(why, why_size, "%s.%s takes %s, not %s", k->section, k->key, names[k->type], given);
+    rted_msgf(why, why_size, "%s.%s takes %s, not %s", k->section, k->key, names[k->type], given);
     return false;
 }
 
@@ -429,14 +419,14 @@ static bool check_listed(const char *name, size_t len, void *user)
     list_check *lc = user;
     char buf[128];
     if (len == 0 || len >= sizeof buf) {
-        say(lc->msg, lc->msg_size, "params.keys: an empty or overlong name in the list");
+        rted_msgf(lc->msg, lc->msg_size, "params.keys: an empty or overlong name in the list");
         return false;
     }
     memcpy(buf, name, len);
     buf[len] = 0;
     const key_def *k = rted_config_find_key(buf);
     if (!k || !k->runtime || k->type == K_TEXT || k->type == K_ENUM) {
-        say(lc->msg, lc->msg_size, "params.keys: '%s' is not %s", buf,
+        rted_msgf(lc->msg, lc->msg_size, "params.keys: '%s' is not %s", buf,
             !k ? "a key" : !k->runtime ? "a runtime key (it fixes sizes or the source)"
                                        : "a numeric or boolean key (params_t carries no text)");
         return false;
@@ -457,7 +447,7 @@ bool rted_config_load(rted_config *c, const char *path, char *msg, size_t msg_si
 {
     FILE *f = fopen(path, "r");
     if (!f) {
-        say(msg, msg_size, "%s: %s", path, strerror(errno));
+        rted_msgf(msg, msg_size, "%s: %s", path, strerror(errno));
         return false;
     }
     bool seen[N_KEYS] = {false};
@@ -469,12 +459,12 @@ bool rted_config_load(rted_config *c, const char *path, char *msg, size_t msg_si
     while (ok && (len = getline(&line, &line_capacity, f)) >= 0) {
         lineno++;
         if (memchr(line, 0, (size_t)len)) {
-            say(msg, msg_size, "%s:%d: a NUL byte in the line (not a text file?)", path, lineno);
+            rted_msgf(msg, msg_size, "%s:%d: a NUL byte in the line (not a text file?)", path, lineno);
             ok = false;
             break;
         }
         if (len > RTED_LINE_MAX) {
-            say(msg, msg_size, "%s:%d: line longer than %d characters", path, lineno,
+            rted_msgf(msg, msg_size, "%s:%d: line longer than %d characters", path, lineno,
                 RTED_LINE_MAX);
             ok = false;
             break;
@@ -485,7 +475,7 @@ bool rted_config_load(rted_config *c, const char *path, char *msg, size_t msg_si
         if (*s == '[') {
             char *e = strchr(s, ']');
             if (!e || e[1] || (size_t)(e - s - 1) >= sizeof section) {
-                say(msg, msg_size, "%s:%d: bad section header '%s'", path, lineno, s);
+                rted_msgf(msg, msg_size, "%s:%d: bad section header '%s'", path, lineno, s);
                 ok = false;
                 break;
             }
@@ -495,45 +485,45 @@ bool rted_config_load(rted_config *c, const char *path, char *msg, size_t msg_si
             for (size_t i = 0; i < N_KEYS; i++)
                 known |= !strcmp(keys[i].section, section);
             if (!known) {
-                say(msg, msg_size, "%s:%d: unknown section [%s]", path, lineno, section);
+                rted_msgf(msg, msg_size, "%s:%d: unknown section [%s]", path, lineno, section);
                 ok = false;
             }
             continue;
         }
         char *eq = strchr(s, '=');
         if (!eq) {
-            say(msg, msg_size, "%s:%d: expected 'key = value', not '%s'", path, lineno, s);
+            rted_msgf(msg, msg_size, "%s:%d: expected 'key = value', not '%s'", path, lineno, s);
             ok = false;
             break;
         }
         *eq = 0;
         char *key = trim(s), *value = trim(eq + 1);
         if (!*section) {
-            say(msg, msg_size, "%s:%d: key '%s' outside a [section]", path, lineno, key);
+            rted_msgf(msg, msg_size, "%s:%d: key '%s' outside a [section]", path, lineno, key);
             ok = false;
             break;
         }
         bool known;
         const key_def *k = find_key(section, key, &known);
         if (!k) {
-            say(msg, msg_size, "%s:%d: unknown key '%s' in [%s]", path, lineno, key, section);
+            rted_msgf(msg, msg_size, "%s:%d: unknown key '%s' in [%s]", path, lineno, key, section);
             ok = false;
             break;
         }
         if (seen[k - keys]) {
-            say(msg, msg_size, "%s:%d: duplicate key %s.%s", path, lineno, section, key);
+            rted_msgf(msg, msg_size, "%s:%d: duplicate key %s.%s", path, lineno, section, key);
             ok = false;
             break;
         }
         seen[k - keys] = true;
         char why[RTED_MSG];
         if (!set_value(c, k, value, why, sizeof why)) {
-            say(msg, msg_size, "%s:%d: %s.%s: %s", path, lineno, section, key, why);
+            rted_msgf(msg, msg_size, "%s:%d: %s.%s: %s", path, lineno, section, key, why);
             ok = false;
         }
     }
     if (ok && ferror(f)) {
-        say(msg, msg_size, "%s:%d: %s", path, lineno + 1, strerror(errno));
+        rted_msgf(msg, msg_size, "%s:%d: %s", path, lineno + 1, strerror(errno));
         ok = false;
     }
     free(line);
@@ -549,20 +539,20 @@ bool rted_config_set(rted_config *c, const char *assignment, const char *origin,
     char *eq = strchr(buf, '=');
     char *dot = strchr(buf, '.');
     if (!eq || !dot || dot > eq) {
-        say(msg, msg_size, "%s: expected section.key=value, not '%s'", origin, assignment);
+        rted_msgf(msg, msg_size, "%s: expected section.key=value, not '%s'", origin, assignment);
         return false;
     }
     *eq = *dot = 0;
     bool known;
     const key_def *k = find_key(trim(buf), trim(dot + 1), &known);
     if (!k) {
-        say(msg, msg_size, known ? "%s: unknown key '%s.%s'" : "%s: unknown section '%s'%.0s",
+        rted_msgf(msg, msg_size, known ? "%s: unknown key '%s.%s'" : "%s: unknown section '%s'%.0s",
             origin, trim(buf), trim(dot + 1));
         return false;
     }
     char why[RTED_MSG];
     if (!set_value(c, k, trim(eq + 1), why, sizeof why)) {
-        say(msg, msg_size, "%s: %s.%s: %s", origin, k->section, k->key, why);
+        rted_msgf(msg, msg_size, "%s: %s.%s: %s", origin, k->section, k->key, why);
         return false;
     }
     return true;
@@ -628,39 +618,39 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
 {
     int32_t xy[16];
     if (rted_parse_roi(c->lane_roi, xy, 8) < 0) {
-        say(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
+        rted_msgf(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
             c->lane_roi);
         return false;
     }
     if (c->lane_canny_low >= 0 && c->lane_canny_high >= 0 && c->lane_canny_low > c->lane_canny_high) {
-        say(msg, msg_size, "lane.canny_low (%d) exceeds lane.canny_high (%d)", c->lane_canny_low,
+        rted_msgf(msg, msg_size, "lane.canny_low (%d) exceeds lane.canny_high (%d)", c->lane_canny_low,
             c->lane_canny_high);
         return false;
     }
     if ((c->lane_canny_low < 0) != (c->lane_canny_high < 0)) {
-        say(msg, msg_size, "lane.canny_low and lane.canny_high: set both or neither");
+        rted_msgf(msg, msg_size, "lane.canny_low and lane.canny_high: set both or neither");
         return false;
     }
     if (c->lane_blur_ksize % 2 == 0 || c->grasp_blur_ksize % 2 == 0) {
-        say(msg, msg_size, "lane.blur_ksize and grasp.blur_ksize must be odd");
+        rted_msgf(msg, msg_size, "lane.blur_ksize and grasp.blur_ksize must be odd");
         return false;
     }
     if (c->grasp_max_area && c->grasp_max_area < c->grasp_min_area) {
-        say(msg, msg_size, "grasp.max_area is below grasp.min_area");
+        rted_msgf(msg, msg_size, "grasp.max_area is below grasp.min_area");
         return false;
     }
     if (!c->source_path[0]) {
-        say(msg, msg_size, "source.path is empty");
+        rted_msgf(msg, msg_size, "source.path is empty");
         return false;
     }
     if (rted_parse_controls(c->source_controls, NULL, 0) < 0) {
-        say(msg, msg_size, "source.controls: '%s' is not 'name=value;...' with at most %d "
+        rted_msgf(msg, msg_size, "source.controls: '%s' is not 'name=value;...' with at most %d "
             "integer values and names of at most %d characters", c->source_controls,
             RTE_V4L2_MAX_CONTROLS, RTE_V4L2_NAME_SIZE - 1);
         return false;
     }
     if (!c->lcm_url[0]) {
-        say(msg, msg_size, "publish.url is empty");
+        rted_msgf(msg, msg_size, "publish.url is empty");
         return false;
     }
     list_check lc = {msg, msg_size};
@@ -671,14 +661,14 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
     if (!c->params_channel[0] || strspn(c->params_channel, "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
                                         "abcdefghijklmnopqrstuvwxyz0123456789_-") !=
                                      strlen(c->params_channel)) {
-        say(msg, msg_size, "params.channel: '%s' is not a channel name of letters, digits, "
+        rted_msgf(msg, msg_size, "params.channel: '%s' is not a channel name of letters, digits, "
             "'_' and '-'", c->params_channel);
         return false;
     }
     const char *own[] = {c->lane_channel, c->grasp_channel, c->status_channel, c->image_channel};
     for (size_t i = 0; i < sizeof own / sizeof own[0]; i++)
         if (!strcmp(own[i], c->params_channel)) {
-            say(msg, msg_size, "params.channel: %s is also one of the channels rtedged "
+            rted_msgf(msg, msg_size, "params.channel: %s is also one of the channels rtedged "
                 "publishes on", c->params_channel);
             return false;
         }
@@ -707,20 +697,20 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
                    {"lane.gate_px", c->lane_gate_px}};
     for (size_t i = 0; i < sizeof lengths / sizeof lengths[0]; i++)
         if (lengths[i].value > span) {
-            say(msg, msg_size, "%s = %d is beyond the %dx%d frame's width + height (%lld): "
+            rted_msgf(msg, msg_size, "%s = %d is beyond the %dx%d frame's width + height (%lld): "
                 "nothing could ever reach it", lengths[i].name, lengths[i].value, width, height,
                 (long long)span);
             return false;
         }
     if (c->grasp_min_area > area) {
-        say(msg, msg_size, "grasp.min_area = %d px is beyond the %dx%d frame's %lld px: no "
+        rted_msgf(msg, msg_size, "grasp.min_area = %d px is beyond the %dx%d frame's %lld px: no "
             "object could ever be found", c->grasp_min_area, width, height, (long long)area);
         return false;
     }
     int32_t xy[2 * RTE_LANE_MAX_ROI_VERTICES];
     int32_t n = rted_parse_roi(c->lane_roi, xy, RTE_LANE_MAX_ROI_VERTICES);
     if (n < 0) {
-        say(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
+        rted_msgf(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
             c->lane_roi);
         return false;
     }
@@ -728,7 +718,7 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
     for (int32_t i = 0; i < n; i++)
         q16[i] = (rte_vertex){xy[2 * i], xy[2 * i + 1]};
     if (rte_polygon_from_fractions(q16, n, width, height, px) != RTE_OK) {
-        say(msg, msg_size, "lane.roi: '%s' cannot be placed on a %dx%d frame", c->lane_roi, width,
+        rted_msgf(msg, msg_size, "lane.roi: '%s' cannot be placed on a %dx%d frame", c->lane_roi, width,
             height);
         return false;
     }
@@ -746,14 +736,14 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
     y1 = y1 + 1 > height ? height : y1 + 1;
     int64_t inside_w = x1 - x0, inside_h = y1 - y0;
     if (inside_w < RTED_ROI_MIN_SIDE || inside_h < RTED_ROI_MIN_SIDE) {
-        say(msg, msg_size, "lane.roi: '%s' covers %lldx%lld px of the %dx%d frame: at least "
+        rted_msgf(msg, msg_size, "lane.roi: '%s' covers %lldx%lld px of the %dx%d frame: at least "
             "%dx%d are needed", c->lane_roi, inside_w > 0 ? (long long)inside_w : 0,
             inside_h > 0 ? (long long)inside_h : 0, width, height, RTED_ROI_MIN_SIDE,
             RTED_ROI_MIN_SIDE);
         return false;
     }
     if (polygon_area2(px, n) * 1000 < 2 * area) {
-        say(msg, msg_size, "lane.roi: '%s' encloses less than 1/1000 of the %dx%d frame",
+        rted_msgf(msg, msg_size, "lane.roi: '%s' encloses less than 1/1000 of the %dx%d frame",
             c->lane_roi, width, height);
         return false;
     }

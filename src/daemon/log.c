@@ -5,6 +5,16 @@
 #include <stdio.h>
 #include <time.h>
 
+void rted_msgf(char *msg, size_t size, const char *fmt, ...)
+{
+    if (!size)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, size, fmt, ap);
+    va_end(ap);
+}
+
 int64_t rted_now_ns(void)
 {
     struct timespec ts;
@@ -43,7 +53,7 @@ void rted_log_flush(rted_log_limit *l, int64_t now_ns)
 void rted_log_limited(rted_log_limit *l, const char *fmt, ...)
 {
     rted_log_flush(l, rted_now_ns());
-    if (l->lines >= RTED_LOG_BURST) {
+    if (l->lines >= l->burst) {
         l->suppressed++;
         return;
     }

@@ -1,22 +1,26 @@
 /* rtedged's stderr lines ("rtedged: ..."), and a limit for lines that a
  * recording, a failing path or the network could repeat without end: at
- * most RTED_LOG_BURST lines of one kind per RTED_LOG_WINDOW_NS, then one line
+ * most `burst` lines of one kind per RTED_LOG_WINDOW_NS, then one line
  * saying how many were left out (the status message counts every case).
  * Nothing here allocates: stderr is unbuffered. */
 #ifndef RTEDGED_LOG_H
 #define RTEDGED_LOG_H
 
+#include <stddef.h>
 #include <stdint.h>
 
-#define RTED_LOG_BURST 5
 #define RTED_LOG_WINDOW_NS 10000000000LL
 
 typedef struct rted_log_limit {
     const char *what;          /* e.g. "bad-frame", for the summary line */
+    uint32_t burst;            /* lines per window */
     int64_t window_start_ns;
     uint32_t lines;            /* printed in this window */
     uint64_t suppressed;       /* left out in this window */
 } rted_log_limit;
+
+/* printf into a caller's message buffer (nothing when size is 0). */
+void rted_msgf(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 /* CLOCK_MONOTONIC in nanoseconds. */
 int64_t rted_now_ns(void);

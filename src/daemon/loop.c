@@ -11,7 +11,6 @@
 #include <errno.h>
 #include <math.h>
 #include <sched.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,16 +26,6 @@
 #endif
 #include "rtedge/recorded_source.h"
 #include "rtedge/v4l2_source.h"
-
-static void say(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-
-static void say(char *msg, size_t size, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, size, fmt, ap);
-    va_end(ap);
-}
 
 static bool ends_with(const char *s, const char *suffix)
 {
@@ -94,14 +83,14 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
                                            : guess_kind(c->source_path);
     uint32_t fourcc = 0;
     if (kind == RTED_SOURCE_V4L2 && !v4l2_format(c->source_format, &fourcc)) {
-        say(msg, msg_size, "source.format: a V4L2 camera is read as yuyv, uyvy, grey, nv12 or "
+        rted_msgf(msg, msg_size, "source.format: a V4L2 camera is read as yuyv, uyvy, grey, nv12 or "
             "mjpeg, not: %s", c->source_format);
         return false;
     }
     rte_pixel_format fmt = c->source_format[0] && kind != RTED_SOURCE_V4L2
                                ? rte_pixel_format_parse(c->source_format) : 0;
     if (c->source_format[0] && kind != RTED_SOURCE_V4L2 && !fmt) {
-        say(msg, msg_size, "source.format: unknown pixel format: %s", c->source_format);
+        rted_msgf(msg, msg_size, "source.format: unknown pixel format: %s", c->source_format);
         return false;
     }
     char why[RTE_SOURCE_MESSAGE_SIZE] = "";
@@ -228,7 +217,7 @@ static bool open_recording(rted_daemon *d, char *msg, size_t msg_size)
     }
     d->rec_buf = malloc(bytes);
     if (!d->rec_buf) {
-        say(msg, msg_size, "out of memory");
+        rted_msgf(msg, msg_size, "out of memory");
         return false;
     }
     char url[RTED_TEXT + 16], why[RTE_PUBLISH_MESSAGE_SIZE] = "";
@@ -301,18 +290,18 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     *out = NULL;
     rted_daemon *d = calloc(1, sizeof *d);
     if (!d) {
-        say(msg, msg_size, "out of memory");
+        rted_msgf(msg, msg_size, "out of memory");
         return false;
     }
     d->cfg = *cfg;
     d->config_path = config_path;
-    d->log_frames.what = "bad-frame";
+    d->log_frames = (rted_log_limit){.what = "bad-frame", .burst = 5};
     if (!open_source(d, msg, msg_size))
         goto fail;
     const rted_config *c = &d->cfg;
     char why[RTED_MSG];
     if (!rted_config_check_frame(c, d->width, d->height, why, sizeof why)) {
-        say(msg, msg_size, "the configuration does not fit the source: %s", why);
+        rted_msgf(msg, msg_size, "the configuration does not fit the source: %s", why);
         goto fail;
     }
 
@@ -330,7 +319,7 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     pc.max_late_ns = c->max_late_ms < 0 ? -1 : (int64_t)llround(c->max_late_ms * 1e6);
     pc.max_pause_ns = (int64_t)c->max_pause_ms * 1000000;
     if (rte_pacer_init(&d->pacer, &pc) != RTE_OK) {
-        say(msg, msg_size, "bad pacing (source.fps, source.speed)");
+        rted_msgf(msg, msg_size, "bad pacing (source.fps, source.speed)");
         goto fail;
     }
 
@@ -342,12 +331,12 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     if (c->lane_enabled) {
         rte_lane_config lc = d->lane_base;
         if (!rted_lane_params(d, c, &lc.params)) {
-            say(msg, msg_size, "the lane configuration is invalid for this source");
+            rted_msgf(msg, msg_size, "the lane configuration is invalid for this source");
             goto fail;
         }
         rte_status st = rte_lane_create(&lc, &d->lane);
         if (st != RTE_OK) {
-            say(msg, msg_size, "lane path: %s", rte_status_message(st));
+            rted_msgf(msg, msg_size, "lane path: %s", rte_status_message(st));
             goto fail;
         }
     }
@@ -363,7 +352,7 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
         rted_grasp_params(c, &gc.params);
         rte_status st = rte_grasp_create(&gc, &d->grasp);
         if (st != RTE_OK) {
-            say(msg, msg_size, "the grasp configuration is invalid for this source: %s",
+            rted_msgf(msg, msg_size, "the grasp configuration is invalid for this source: %s",
                 rte_status_message(st));
             goto fail;
         }
@@ -377,7 +366,7 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
                    rte_arena_piece_size(obj_bytes) + RTE_ARENA_ALIGN;
     d->memory = malloc(total);
     if (!d->memory) {
-        say(msg, msg_size, "out of memory");
+        rted_msgf(msg, msg_size, "out of memory");
         goto fail;
     }
     rte_arena_init(&d->arena, d->memory, total);

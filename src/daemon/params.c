@@ -1,24 +1,15 @@
 /* params_t from the network: see params.h. */
 #include "params.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "log.h"
 #include "rtedge_param_t.h"
 #include "rtedge_params_t.h"
 
-static bool refuse(char *why, size_t why_size, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-
-static bool refuse(char *why, size_t why_size, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(why, why_size, fmt, ap);
-    va_end(ap);
-    return false;
-}
+/* The reason into why, and false. */
+#define refuse(...) (rted_msgf(__VA_ARGS__), false)
 
 /* A bounds-checked reader of big-endian fields. */
 typedef struct reader {

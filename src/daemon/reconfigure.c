@@ -172,7 +172,9 @@ static void on_params(const lcm_recv_buf_t *rbuf, const char *channel, void *use
 void rted_params_open(rted_daemon *d)
 {
     const rted_config *c = &d->cfg;
-    d->log_params.what = "params";
+    /* A person tuning sends a request now and then: each is said; a flood
+     * is not. */
+    d->log_params = (rted_log_limit){.what = "params", .burst = 20};
     if (!c->params_enabled)
         return;
     lcm_t *lcm = rte_publisher_lcm(d->pub);

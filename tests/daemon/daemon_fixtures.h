@@ -70,4 +70,13 @@ static inline rted_daemon *open_daemon(const rted_config *c, const char *config_
     return d;
 }
 
+/* A looping objects sequence of `frames` frames written to y4m, and the test
+ * configuration on it (memq://). */
+static inline void looping_objects_config(rted_config *c, const char *y4m, int frames)
+{
+    write_objects_y4m(y4m, frames, 0);
+    base_config(c, y4m, "memq://");
+    c->loop = true;
+}
+
 #endif

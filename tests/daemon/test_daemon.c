@@ -143,6 +143,16 @@ static void run_memq(rted_daemon *d, seen *s)
     lcm_unsubscribe(lcm, sub);
 }
 
+/* The daemon on c to the end, over memq://: what the subscriber saw, the
+ * counters. */
+static void run_config(const rted_config *c, seen *s, rted_counters *n)
+{
+    rted_daemon *d = open_daemon(c, NULL);
+    run_memq(d, s);
+    rted_daemon_get_counters(d, n);
+    rted_daemon_close(d);
+}
+
 static void read_csv(seen *s, const char *file)
 {
     FILE *f = fopen(file, "r");
@@ -178,11 +188,8 @@ static void test_memq_road_lanes(void **state)
     rted_config c;
     base_config(&c, y4m, "memq://");
     c.grasp_enabled = false;
-    rted_daemon *d = open_daemon(&c, NULL);
-    run_memq(d, &s);
     rted_counters n;
-    rted_daemon_get_counters(d, &n);
-    rted_daemon_close(d);
+    run_config(&c, &s, &n);
     assert_int_equal(n.processed, 60);
     assert_int_equal(s.lanes, 60);
     assert_int_equal(s.grasps, 0);
@@ -213,10 +220,7 @@ static void objects_run(const char *name, int frames, int damage, void (*tweak)(
     base_config(&c, y4m, "memq://");
     if (tweak)
         tweak(&c);
-    rted_daemon *d = open_daemon(&c, NULL);
-    run_memq(d, s);
-    rted_daemon_get_counters(d, n);
-    rted_daemon_close(d);
+    run_config(&c, s, n);
 }
 
 static void with_images(rted_config *c) { c->publish_images = true; }
@@ -265,22 +269,31 @@ static void test_damaged_frames(void **state)
     rtedge_status_t_decode_cleanup(&s.last_status);
 }
 
-/* An image directory (PGM files) as the source. */
-static void test_images_source(void **state)
+/* A directory of six objects frames as PGM files; frame `tiny` (-1: none)
+ * is 2x2 instead. */
+static void write_objects_pgm_dir(const char *dir, int tiny)
 {
-    char dir[512], file[600];
-    path(dir, sizeof dir, "images");
     mkdir(dir, 0755);
     static uint8_t img[OW * OH];
     for (int k = 0; k < 6; k++) {
+        char file[600];
         snprintf(file, sizeof file, "%s/frame_%02d.pgm", dir, k);
         FILE *f = fopen(file, "wb");
         assert_non_null(f);
         objects_frame(k, img);
-        fprintf(f, "P5\n%d %d\n255\n", OW, OH);
-        fwrite(img, 1, sizeof img, f);
+        int w = k == tiny ? 2 : OW, h = k == tiny ? 2 : OH;
+        fprintf(f, "P5\n%d %d\n255\n", w, h);
+        fwrite(img, 1, (size_t)(w * h), f);
         fclose(f);
     }
+}
+
+/* An image directory (PGM files) as the source. */
+static void test_images_source(void **state)
+{
+    char dir[512];
+    path(dir, sizeof dir, "images");
+    write_objects_pgm_dir(dir, -1);
     static seen s;
     memset(&s, 0, sizeof s);
     rted_config c;
@@ -467,10 +480,8 @@ static void test_params_channel(void **state)
 {
     char y4m[512];
     path(y4m, sizeof y4m, "objects_params.y4m");
-    write_objects_y4m(y4m, 5, 0);
     rted_config c;
-    base_config(&c, y4m, "memq://");
-    c.loop = true;
+    looping_objects_config(&c, y4m, 5);
     c.params_enabled = true;
     rted_daemon *d = open_daemon(&c, NULL);
     lcm_t *lcm = rted_daemon_lcm(d);
@@ -526,10 +537,8 @@ static void test_loop_rewinds_quietly(void **state)
 {
     char y4m[512];
     path(y4m, sizeof y4m, "objects_loop.y4m");
-    write_objects_y4m(y4m, 5, 0);
     rted_config c;
-    base_config(&c, y4m, "memq://");
-    c.loop = true;
+    looping_objects_config(&c, y4m, 5);
     c.max_frames = 23;
     c.status_period_ms = 60000;
     rted_daemon *d = open_daemon(&c, NULL);
@@ -618,29 +627,15 @@ static void test_loop_without_good_frame(void **state)
  * error, and the daemon goes on. */
 static void test_path_errors(void **state)
 {
-    char dir[512], file[600];
+    char dir[512];
     path(dir, sizeof dir, "images_tiny");
-    mkdir(dir, 0755);
-    static uint8_t img[OW * OH];
-    for (int k = 0; k < 6; k++) {
-        snprintf(file, sizeof file, "%s/frame_%02d.pgm", dir, k);
-        FILE *f = fopen(file, "wb");
-        assert_non_null(f);
-        objects_frame(k, img);
-        int w = k == 3 ? 2 : OW, h = k == 3 ? 2 : OH;
-        fprintf(f, "P5\n%d %d\n255\n", w, h);
-        fwrite(img, 1, (size_t)(w * h), f);
-        fclose(f);
-    }
+    write_objects_pgm_dir(dir, 3);
     static seen s;
     memset(&s, 0, sizeof s);
     rted_config c;
     base_config(&c, dir, "memq://");
-    rted_daemon *d = open_daemon(&c, NULL);
-    run_memq(d, &s);
     rted_counters n;
-    rted_daemon_get_counters(d, &n);
-    rted_daemon_close(d);
+    run_config(&c, &s, &n);
     assert_int_equal(n.processed, 6);
     assert_int_equal(n.path_errors, 1);
     assert_int_equal(n.publish_errors, 0);

@@ -292,6 +292,22 @@ static void test_to_config_whole(void **state)
     assert_non_null(strstr(why, "value 3 (grasp.min_area): given twice (values 1 and 3)"));
 }
 
+/* `set` applied to a copy of c is refused: by the cross-key checks or, with
+ * frame, by the checks against a 160x120 frame; the reason contains `why`. */
+static void expect_invalid(const rted_config *c, const char *set, bool frame, const char *why)
+{
+    rted_config t = *c;
+    char msg[RTED_MSG];
+    assert_true(rted_config_set(&t, set, "test", msg, sizeof msg));
+    bool valid = rted_config_validate(&t, msg, sizeof msg);
+    assert_true(valid == frame);
+    if (frame)
+        assert_false(rted_config_check_frame(&t, OW, OH, msg, sizeof msg));
+    if (!strstr(msg, why))
+        print_error("%s: '%s'\n", set, msg);
+    assert_non_null(strstr(msg, why));
+}
+
 static void test_config_lists(void **state)
 {
     rted_config c;
@@ -305,14 +321,8 @@ static void test_config_lists(void **state)
         {"params.channel=RTEDGE_.*", "is not a channel name"},
         {"params.channel=RTEDGE_LANES", "also one of the channels rtedged publishes on"},
     };
-    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        rted_config t = c;
-        assert_true(rted_config_set(&t, bad[i][0], "test", msg, sizeof msg));
-        assert_false(rted_config_validate(&t, msg, sizeof msg));
-        if (!strstr(msg, bad[i][1]))
-            print_error("%s: '%s'\n", bad[i][0], msg);
-        assert_non_null(strstr(msg, bad[i][1]));
-    }
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        expect_invalid(&c, bad[i][0], false, bad[i][1]);
     /* The frame checks: values that could never find anything on 160x120. */
     const char *frame[][2] = {
         {"grasp.min_area=19201", "grasp.min_area = 19201 px is beyond the 160x120 frame's 19200 px"},
@@ -322,15 +332,8 @@ static void test_config_lists(void **state)
         {"lane.roi=2,2;3,2;3,3", "covers 0x0 px"},
         {"lane.roi=0,0;0.5,0.5;1,1", "encloses less than 1/1000"},
     };
-    for (size_t i = 0; i < sizeof frame / sizeof frame[0]; i++) {
-        rted_config t = c;
-        assert_true(rted_config_set(&t, frame[i][0], "test", msg, sizeof msg));
-        assert_true(rted_config_validate(&t, msg, sizeof msg));
-        assert_false(rted_config_check_frame(&t, OW, OH, msg, sizeof msg));
-        if (!strstr(msg, frame[i][1]))
-            print_error("%s: '%s'\n", frame[i][0], msg);
-        assert_non_null(strstr(msg, frame[i][1]));
-    }
+    for (size_t i = 0; i < sizeof frame / sizeof frame[0]; i++)
+        expect_invalid(&c, frame[i][0], true, frame[i][1]);
     assert_true(rted_config_check_frame(&c, OW, OH, msg, sizeof msg));
     assert_true(rted_config_check_frame(&c, 1280, 720, msg, sizeof msg));
 }
@@ -346,9 +349,7 @@ static rted_daemon *objects_daemon(const char *name, rted_config *c)
 {
     char y4m[512];
     path(y4m, sizeof y4m, name);
-    write_objects_y4m(y4m, 5, 0);
-    base_config(c, y4m, "memq://");
-    c->loop = true;
+    looping_objects_config(c, y4m, 5);
     c->params_enabled = true;
     c->status_period_ms = 60000;
     return open_daemon(c, NULL);
@@ -362,8 +363,25 @@ typedef struct hostile {
 /* The cases of issue 18, as messages. */
 static int issue_cases(hostile *h)
 {
+    static const struct {
+        const char *what, *name;
+        int8_t kind;
+        int64_t i;
+        double r;
+        uint32_t count;
+    } values[] = {
+        {"injection", "lane.canny_mode=fixed   ", RTEDGE_PARAM_T_KIND_INT, 0, 0, 1},
+        {"REAL for an INT key", "grasp.min_area", RTEDGE_PARAM_T_KIND_REAL, 0, 5000, 1},
+        {"kind 7", "grasp.min_area", 7, 5000, 0, 1},
+        {"a negative count", "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 5000, 0, 0x80000000u},
+        {"deadline.ms = 1e-300", "deadline.ms", RTEDGE_PARAM_T_KIND_REAL, 0, 1e-300, 1},
+        {"lane.hough_threshold = 100000", "lane.hough_threshold", RTEDGE_PARAM_T_KIND_INT,
+         100000, 0, 1},
+        {"grasp.min_area = 1e8", "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 100000000, 0, 1},
+        {"grasp.min_area beyond the frame", "grasp.min_area", RTEDGE_PARAM_T_KIND_INT,
+         OW * OH + 1, 0, 1},
+    };
     int n = 0;
-    const int8_t I = RTEDGE_PARAM_T_KIND_INT, R = RTEDGE_PARAM_T_KIND_REAL;
     h[n].what = "nparams = 0x7fffffff";
     put_head(&h[n].w, 1, 0x7fffffff);
     memset(h[n].w.buf + h[n].w.n, 0, 53 - h[n].w.n);
@@ -378,34 +396,15 @@ static int issue_cases(hostile *h)
     put_head(&h[n].w, 3, 1);
     memset(h[n].w.buf + h[n].w.n, 0xff, 57000 - h[n].w.n);
     h[n++].w.n = 57000;
-    h[n].what = "injection";
-    put_head(&h[n].w, 4, 1);
-    put_value(&h[n++].w, "lane.canny_mode=fixed   ", I, 0, 0);
-    h[n].what = "REAL for an INT key";
-    put_head(&h[n].w, 5, 1);
-    put_value(&h[n++].w, "grasp.min_area", R, 0, 5000);
-    h[n].what = "kind 7";
-    put_head(&h[n].w, 6, 1);
-    put_value(&h[n++].w, "grasp.min_area", 7, 5000, 0);
-    h[n].what = "a negative count";
-    put_head(&h[n].w, 7, 0x80000000u);
-    put_value(&h[n++].w, "grasp.min_area", I, 5000, 0);
-    h[n].what = "deadline.ms = 1e-300";
-    put_head(&h[n].w, 8, 1);
-    put_value(&h[n++].w, "deadline.ms", R, 0, 1e-300);
-    h[n].what = "lane.hough_threshold = 100000";
-    put_head(&h[n].w, 9, 1);
-    put_value(&h[n++].w, "lane.hough_threshold", I, 100000, 0);
-    h[n].what = "grasp.min_area = 1e8";
-    put_head(&h[n].w, 10, 1);
-    put_value(&h[n++].w, "grasp.min_area", I, 100000000, 0);
-    h[n].what = "grasp.min_area beyond the frame";
-    put_head(&h[n].w, 11, 1);
-    put_value(&h[n++].w, "grasp.min_area", I, OW * OH + 1, 0);
+    for (size_t k = 0; k < sizeof values / sizeof values[0]; k++, n++) {
+        h[n].what = values[k].what;
+        put_head(&h[n].w, n + 1, values[k].count);
+        put_value(&h[n].w, values[k].name, values[k].kind, values[k].i, values[k].r);
+    }
     h[n].what = "a good value and a bad one";
-    put_head(&h[n].w, 12, 2);
-    put_value(&h[n].w, "grasp.min_area", I, 920, 0);
-    put_value(&h[n++].w, "lane.canny_low", I, 5000, 0);
+    put_head(&h[n].w, n + 1, 2);
+    put_value(&h[n].w, "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 920, 0);
+    put_value(&h[n++].w, "lane.canny_low", RTEDGE_PARAM_T_KIND_INT, 5000, 0);
     return n;
 }
 

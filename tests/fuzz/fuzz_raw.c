@@ -1,9 +1,7 @@
 /* Raw frame dumps: the first three bytes choose the pixel format and a size
  * up to 64x64 (as source.format, width and height would), the rest is the
  * file: whole frames, a last one cut short, a rewind. */
-#include "fuzz.h"
-
-#include "rtedge/recorded_source.h"
+#include "fuzz_source.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -21,29 +19,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     rte_status st = rte_raw_source_open(&src, &c, msg, sizeof msg);
     fuzz_check_message(msg, sizeof msg);
     if (st == RTE_OK) {
+        fuzz_passes passes;
+        fuzz_read_passes(&src, 256, &passes);
+        /* Every whole frame delivered, in each pass; a cut one refused as such. */
         size_t frame_size = rte_frame_packed_size(c.format, c.width, c.height);
-        uint64_t good = 0, bad = 0;
-        for (int pass = 0; pass < 2; pass++) {
-            for (int i = 0; i < 256; i++) {
-                rte_source_frame f;
-                st = rte_source_next(&src, &f, 0, msg, sizeof msg);
-                fuzz_check_message(msg, sizeof msg);
-                if (st == RTE_ERR_END)
-                    break;
-                if (st == RTE_OK) {
-                    FUZZ_ASSERT(rte_frame_check(&f.frame) == RTE_OK);
-                    good++;
-                } else {
-                    FUZZ_ASSERT(st == RTE_ERR_TRUNCATED);
-                    bad++;
-                }
-            }
-            FUZZ_ASSERT(rte_recorded_source_rewind(&src) == RTE_OK);
-        }
-        /* Every whole frame was delivered, a cut one counted as bad. */
-        size_t whole = (size - 3) / frame_size;
-        if (whole < 256)
-            FUZZ_ASSERT(good == 2 * whole && bad == ((size - 3) % frame_size ? 2u : 0u));
+        size_t whole = (size - 3) / frame_size, cut = (size - 3) % frame_size ? 1 : 0;
+        if (!passes.capped[0] && !passes.capped[1])
+            for (int pass = 0; pass < 2; pass++)
+                FUZZ_ASSERT(passes.good[pass] == whole && passes.bad[pass] == cut);
+        FUZZ_ASSERT(!passes.bad_kinds || passes.bad_kinds == 1u << RTE_ERR_TRUNCATED);
         rte_source_close(&src);
     } else {
         FUZZ_ASSERT(!src.ops);
