@@ -203,7 +203,9 @@ class Printer:
                 "frames_dropped": m.frames_dropped, "deadline_misses": m.deadline_misses,
                 "stages_skipped": m.stages_skipped, "frames_bad": m.frames_bad,
                 "source_reconnects": m.source_reconnects, "config_reloads": m.config_reloads,
-                "config_refused": m.config_refused, "latency_p50_us": m.latency_p50_us,
+                "config_refused": m.config_refused,
+                "config_rate_limited": m.config_rate_limited, "path_errors": m.path_errors,
+                "latency_p50_us": m.latency_p50_us,
                 "latency_p99_us": m.latency_p99_us, "latency_max_us": m.latency_max_us,
                 "fps": round(m.fps, 2), "source_state": m.source_state,
                 "config_hash": "%016x" % (m.config_hash & (2**64 - 1))}
@@ -217,10 +219,12 @@ class Printer:
                           % (s["latency_p50_us"], s["latency_p99_us"], s["latency_max_us"], s["fps"])
                           if s["latency_max_us"] > 0 else "no frames since the previous status")
                 print("status: %d received, %d processed, %d dropped, %d bad, %d deadline misses, "
-                      "%d stages skipped, %d reconnects, %d changes refused, %s"
+                      "%d stages skipped, %d path errors, %d reconnects, %d changes refused, "
+                      "%d rate-limited, %s"
                       % (s["frames_received"], s["frames_processed"], s["frames_dropped"],
                          s["frames_bad"], s["deadline_misses"], s["stages_skipped"],
-                         s["source_reconnects"], s["config_refused"], window),
+                         s["path_errors"], s["source_reconnects"], s["config_refused"],
+                         s["config_rate_limited"], window),
                       file=self.out, flush=True)
         elif name == "image_t":
             self.counts["images"] += 1
