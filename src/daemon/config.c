@@ -695,18 +695,20 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
                    {"lane.min_length", c->lane_min_length},
                    {"lane.max_gap", c->lane_max_gap},
                    {"lane.gate_px", c->lane_gate_px}};
-    for (size_t i = 0; i < sizeof lengths / sizeof lengths[0]; i++)
+    for (size_t i = 0; c->lane_enabled && i < sizeof lengths / sizeof lengths[0]; i++)
         if (lengths[i].value > span) {
             rted_msgf(msg, msg_size, "%s = %d is beyond the %dx%d frame's width + height (%lld): "
                 "nothing could ever reach it", lengths[i].name, lengths[i].value, width, height,
                 (long long)span);
             return false;
         }
-    if (c->grasp_min_area > area) {
+    if (c->grasp_enabled && c->grasp_min_area > area) {
         rted_msgf(msg, msg_size, "grasp.min_area = %d px is beyond the %dx%d frame's %lld px: no "
             "object could ever be found", c->grasp_min_area, width, height, (long long)area);
         return false;
     }
+    if (!c->lane_enabled)
+        return true;
     int32_t xy[2 * RTE_LANE_MAX_ROI_VERTICES];
     int32_t n = rted_parse_roi(c->lane_roi, xy, RTE_LANE_MAX_ROI_VERTICES);
     if (n < 0) {

@@ -113,7 +113,8 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size);
  * that leaves less than RTED_ROI_MIN_SIDE x RTED_ROI_MIN_SIDE pixels of the
  * frame or encloses less than 1/1000 of it, Hough lengths and thresholds
  * beyond width + height, a grasp.min_area beyond the frame's area: values
- * with which a path could never find anything (or fails every frame). */
+ * with which a path could never find anything (or fails every frame). A
+ * path that is not enabled is not checked. */
 bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height, char *msg,
                              size_t msg_size);
 #define RTED_ROI_MIN_SIDE 16

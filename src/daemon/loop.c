@@ -171,7 +171,6 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
     return true;
 }
 
-
 /* image_t's code for a delivered pixel format. */
 static int32_t image_t_format(rte_pixel_format f)
 {

@@ -97,6 +97,9 @@ bool rted_daemon_apply(rted_daemon *d, const rted_config *next, char *msg, size_
         rte_grasp_get_params(d->grasp, &gp);
         rted_grasp_params(next, &gp);
         if (rte_grasp_set_params(d->grasp, &gp) != RTE_OK) {
+            /* All or nothing: the lane path goes back to the configuration in force. */
+            if (d->lane && rted_lane_params(d, &d->cfg, &lp))
+                rte_lane_set_params(d->lane, &lp);
             snprintf(msg, msg_size, "the grasp parameters were refused by the grasp path");
             d->n.refused++;
             return false;

@@ -336,6 +336,15 @@ static void test_config_lists(void **state)
         expect_invalid(&c, frame[i][0], true, frame[i][1]);
     assert_true(rted_config_check_frame(&c, OW, OH, msg, sizeof msg));
     assert_true(rted_config_check_frame(&c, 1280, 720, msg, sizeof msg));
+    /* A path that does not run is not checked: an arm's tiny frames, no lane path. */
+    rted_config arm = c;
+    arm.lane_enabled = false;
+    assert_false(rted_config_check_frame(&c, 24, 20, msg, sizeof msg));
+    assert_true(rted_config_check_frame(&arm, 24, 20, msg, sizeof msg));
+    arm.grasp_min_area = 1000;
+    assert_false(rted_config_check_frame(&arm, 24, 20, msg, sizeof msg));
+    arm.grasp_enabled = false;
+    assert_true(rted_config_check_frame(&arm, 24, 20, msg, sizeof msg));
 }
 
 /* ---- the daemon's handler ---- */
