@@ -89,9 +89,10 @@ bool rted_params_decode(const void *data, size_t size, rted_params_request *req,
     if (size < RTED_PARAMS_MIN_BYTES || size > RTED_PARAMS_MAX_BYTES)
         return refuse(why, why_size, "a message of %zu bytes (a params_t has %d..%d)", size,
                       RTED_PARAMS_MIN_BYTES, RTED_PARAMS_MAX_BYTES);
+    /* The size check above guarantees these four fields. */
     reader r = {data, size};
-    int64_t hash;
-    uint32_t count;
+    int64_t hash = 0;
+    uint32_t count = 0;
     get_i64(&r, &hash);
     if (hash != __rtedge_params_t_get_hash())
         return refuse(why, why_size, "not a params_t (fingerprint %016llx)",
