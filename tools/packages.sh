@@ -62,6 +62,17 @@ rte_install_python_lcm() {
     return 1
 }
 
+# rte_build_daemon DIR: rtedged and lcm-gen's Python types, release, no
+# tests (what tools/demo and tools/soak run), with what they need installed.
+rte_build_daemon() {
+    local dir=$1
+    rte_install_packages "${RTE_BUILD_PACKAGES[@]}" python3 iproute2 util-linux || return 1
+    if [ ! -f "$dir/build.ninja" ]; then
+        meson setup "$dir" --buildtype=release -Dtests=false -Doracle=disabled >/dev/null || return 1
+    fi
+    ninja -C "$dir" -j2 src/daemon/rtedged src/publish/python >/dev/null
+}
+
 rte_install_aarch64() {
     if ! dpkg --print-foreign-architectures | grep -qx arm64; then
         local sudo=

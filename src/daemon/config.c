@@ -14,6 +14,7 @@
 #include "log.h"
 #include "rtedge/lane.h"
 #include "rtedge/polygon_mask.h"
+#include "rtedge/shape.h"
 
 #define K_INT RTED_KEY_INT
 #define K_REAL RTED_KEY_REAL
@@ -310,15 +311,13 @@ static bool set_value(rted_config *c, const key_def *k, const char *value, char 
 const rted_key *rted_config_find_key(const char *name)
 {
     const char *dot = strchr(name, '.');
-    if (!dot)
+    char section[64];
+    bool known;
+    if (!dot || (size_t)(dot - name) >= sizeof section)
         return NULL;
-    for (size_t i = 0; i < N_KEYS; i++) {
-        size_t n = strlen(keys[i].section);
-        if ((size_t)(dot - name) == n && !strncmp(name, keys[i].section, n) &&
-            !strcmp(dot + 1, keys[i].key))
-            return &keys[i];
-    }
-    return NULL;
+    memcpy(section, name, (size_t)(dot - name));
+    section[dot - name] = 0;
+    return find_key(section, dot + 1, &known);
 }
 
 const rted_key *rted_config_key_at(size_t index) { return index < N_KEYS ? &keys[index] : NULL; }
@@ -675,15 +674,6 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
     return true;
 }
 
-/* Twice the signed area of a polygon of n points (x, y pairs). */
-static int64_t polygon_area2(const rte_vertex *v, int32_t n)
-{
-    int64_t a = 0;
-    for (int32_t i = 0, j = n - 1; i < n; j = i++)
-        a += (int64_t)v[j].x * v[i].y - (int64_t)v[i].x * v[j].y;
-    return a < 0 ? -a : a;
-}
-
 bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height, char *msg,
                              size_t msg_size)
 {
@@ -724,18 +714,14 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
             height);
         return false;
     }
-    int32_t x0 = INT32_MAX, y0 = INT32_MAX, x1 = INT32_MIN, y1 = INT32_MIN;
-    for (int32_t i = 0; i < n; i++) {
-        x0 = px[i].x < x0 ? px[i].x : x0;
-        y0 = px[i].y < y0 ? px[i].y : y0;
-        x1 = px[i].x > x1 ? px[i].x : x1;
-        y1 = px[i].y > y1 ? px[i].y : y1;
-    }
+    rte_point pts[RTE_LANE_MAX_ROI_VERTICES];
+    for (int32_t i = 0; i < n; i++)
+        pts[i] = (rte_point){px[i].x, px[i].y};
     /* The part of the bounding box inside the frame (as the lane path crops). */
-    x0 = x0 < 0 ? 0 : x0;
-    y0 = y0 < 0 ? 0 : y0;
-    x1 = x1 + 1 > width ? width : x1 + 1;
-    y1 = y1 + 1 > height ? height : y1 + 1;
+    rte_rect box = rte_shape_bounding_rect(pts, n);
+    int32_t x0 = box.x < 0 ? 0 : box.x, y0 = box.y < 0 ? 0 : box.y;
+    int32_t x1 = box.x + box.width > width ? width : box.x + box.width;
+    int32_t y1 = box.y + box.height > height ? height : box.y + box.height;
     int64_t inside_w = x1 - x0, inside_h = y1 - y0;
     if (inside_w < RTED_ROI_MIN_SIDE || inside_h < RTED_ROI_MIN_SIDE) {
         rted_msgf(msg, msg_size, "lane.roi: '%s' covers %lldx%lld px of the %dx%d frame: at least "
@@ -744,7 +730,7 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
             RTED_ROI_MIN_SIDE);
         return false;
     }
-    if (polygon_area2(px, n) * 1000 < 2 * area) {
+    if (llabs(rte_shape_area2(pts, n)) * 1000 < 2 * area) {
         rted_msgf(msg, msg_size, "lane.roi: '%s' encloses less than 1/1000 of the %dx%d frame",
             c->lane_roi, width, height);
         return false;

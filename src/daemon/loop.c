@@ -162,7 +162,7 @@ static bool open_source(rted_daemon *d, char *msg, size_t msg_size)
     }
     /* Cameras say what they settled on (size, format, rate, adjustments). */
     if (why[0] && (kind == RTED_SOURCE_V4L2 || kind == RTED_SOURCE_LIBCAMERA))
-        fprintf(stderr, "rtedged: %s source: %s\n", kind_name(kind), why);
+        rted_log("%s source: %s", kind_name(kind), why);
     d->recorded = kind != RTED_SOURCE_LCM && kind != RTED_SOURCE_V4L2 &&
                   kind != RTED_SOURCE_LIBCAMERA;
     snprintf(d->source_id, sizeof d->source_id, "%s:%s", kind_name(kind), c->source_path);
@@ -266,20 +266,19 @@ static void record_frame(rted_daemon *d, const rte_source_frame *f)
 static void realtime(const rted_config *c)
 {
     if (c->rt_mlockall && mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
-        fprintf(stderr, "rtedged: warning: mlockall: %s (memory not locked)\n", strerror(errno));
+        rted_log("warning: mlockall: %s (memory not locked)", strerror(errno));
     if (c->rt_cpu >= 0) {
         cpu_set_t set;
         CPU_ZERO(&set);
         CPU_SET(c->rt_cpu, &set);
         if (sched_setaffinity(0, sizeof set, &set) != 0)
-            fprintf(stderr, "rtedged: warning: CPU affinity %d: %s (not pinned)\n", c->rt_cpu,
-                    strerror(errno));
+            rted_log("warning: CPU affinity %d: %s (not pinned)", c->rt_cpu, strerror(errno));
     }
     if (c->rt_priority > 0) {
         struct sched_param sp = {.sched_priority = c->rt_priority};
         if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0)
-            fprintf(stderr, "rtedged: warning: SCHED_FIFO priority %d: %s (normal scheduling)\n",
-                    c->rt_priority, strerror(errno));
+            rted_log("warning: SCHED_FIFO priority %d: %s (normal scheduling)", c->rt_priority,
+                     strerror(errno));
     }
 }
 

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "lcm_wire.h"
 #include "log.h"
 #include "rtedge_param_t.h"
 #include "rtedge_params_t.h"
@@ -32,16 +33,16 @@ static bool get_u32(reader *r, uint32_t *v)
     const uint8_t *b;
     if (!take(r, 4, &b))
         return false;
-    *v = (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | b[3];
+    *v = rte_lcm_get_u32(b);
     return true;
 }
 
 static bool get_u64(reader *r, uint64_t *v)
 {
-    uint32_t hi, lo;
-    if (!get_u32(r, &hi) || !get_u32(r, &lo))
+    const uint8_t *b;
+    if (!take(r, 8, &b))
         return false;
-    *v = (uint64_t)hi << 32 | lo;
+    *v = rte_lcm_get_u64(b);
     return true;
 }
 

@@ -1,5 +1,6 @@
 /* LCM log files: see lcm_log.h. */
 #include "lcm_log.h"
+#include "lcm_wire.h"
 
 #include "source_msg.h"
 
@@ -10,30 +11,6 @@
 #include <string.h>
 #include <sys/uio.h>
 #include <unistd.h>
-
-static void put_be32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v >> 24);
-    p[1] = (uint8_t)(v >> 16);
-    p[2] = (uint8_t)(v >> 8);
-    p[3] = (uint8_t)v;
-}
-
-static void put_be64(uint8_t *p, uint64_t v)
-{
-    put_be32(p, (uint32_t)(v >> 32));
-    put_be32(p + 4, (uint32_t)v);
-}
-
-static uint32_t get_be32(const uint8_t *p)
-{
-    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
-}
-
-static uint64_t get_be64(const uint8_t *p)
-{
-    return (uint64_t)get_be32(p) << 32 | get_be32(p + 4);
-}
 
 /* ---- writing ---- */
 
@@ -62,11 +39,11 @@ rte_status rte_lcm_log_write(rte_lcm_log_writer *w, int64_t utime, const char *c
         return RTE_ERR_ARGUMENT;
     }
     uint8_t header[RTE_LCM_LOG_HEADER_SIZE];
-    put_be32(header, RTE_LCM_LOG_SYNC);
-    put_be64(header + 4, (uint64_t)w->next_event);
-    put_be64(header + 12, (uint64_t)utime);
-    put_be32(header + 20, (uint32_t)channel_len);
-    put_be32(header + 24, (uint32_t)size);
+    rte_lcm_put_u32(header, RTE_LCM_LOG_SYNC);
+    rte_lcm_put_u64(header + 4, (uint64_t)w->next_event);
+    rte_lcm_put_u64(header + 12, (uint64_t)utime);
+    rte_lcm_put_u32(header + 20, (uint32_t)channel_len);
+    rte_lcm_put_u32(header + 24, (uint32_t)size);
     struct iovec iov[3] = {
         {header, sizeof header},
         {(void *)(uintptr_t)channel, channel_len},
@@ -163,7 +140,7 @@ static int64_t find_sync(int fd, int64_t from)
         if (n < 4)
             return -1;
         for (ssize_t i = 0; i + 4 <= n; i++)
-            if (get_be32(chunk + i) == RTE_LCM_LOG_SYNC)
+            if (rte_lcm_get_u32(chunk + i) == RTE_LCM_LOG_SYNC)
                 return off + i;
         off += n - 3;
     }
@@ -191,7 +168,7 @@ static rte_status read_event(rte_lcm_log_reader *r, rte_lcm_log_event *ev, int h
         return RTE_ERR_END;
     }
     int64_t at = r->offset;
-    if (n >= 4 && get_be32(h) != RTE_LCM_LOG_SYNC) {
+    if (n >= 4 && rte_lcm_get_u32(h) != RTE_LCM_LOG_SYNC) {
         r->offset = resync(r->fd, at);
         rte_source_msgf(msg, msg_size, "log offset %lld: no sync word, skipped to %lld",
                         (long long)at, (long long)r->offset);
@@ -202,7 +179,7 @@ static rte_status read_event(rte_lcm_log_reader *r, rte_lcm_log_event *ev, int h
         rte_source_msgf(msg, msg_size, "log offset %lld: event header cut short", (long long)at);
         return RTE_ERR_TRUNCATED;
     }
-    uint32_t channel_len = get_be32(h + 20), size = get_be32(h + 24);
+    uint32_t channel_len = rte_lcm_get_u32(h + 20), size = rte_lcm_get_u32(h + 24);
     if (channel_len == 0 || channel_len > RTE_LCM_LOG_MAX_CHANNEL || size > INT32_MAX) {
         r->offset = resync(r->fd, at);
         rte_source_msgf(msg, msg_size, "log offset %lld: impossible lengths (channel %u, data %u)",
@@ -217,8 +194,8 @@ static rte_status read_event(rte_lcm_log_reader *r, rte_lcm_log_event *ev, int h
         return n < 0 ? RTE_ERR_IO : RTE_ERR_TRUNCATED;
     }
     ev->channel[channel_len] = '\0';
-    ev->eventnum = (int64_t)get_be64(h + 4);
-    ev->utime = (int64_t)get_be64(h + 12);
+    ev->eventnum = (int64_t)rte_lcm_get_u64(h + 4);
+    ev->utime = (int64_t)rte_lcm_get_u64(h + 12);
     if (size > r->capacity) {
         /* Skip it (or read its head), but only if it is all there. */
         uint8_t last;

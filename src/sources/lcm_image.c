@@ -11,6 +11,7 @@
 #include <lcm/lcm.h>
 
 #include "lcm_log.h"
+#include "lcm_wire.h"
 #include "recorded.h"
 #include "rtedge_image_t.h"
 
@@ -18,16 +19,6 @@
 #define IMAGE_FIXED_BYTES (8 + 8 + 5 * 4)
 /* Room for metadata and row padding beyond the packed pixels. */
 #define IMAGE_SLACK_BYTES (256 * 1024)
-
-static uint32_t be32(const uint8_t *p)
-{
-    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
-}
-
-static int64_t be64(const uint8_t *p)
-{
-    return (int64_t)((uint64_t)be32(p) << 32 | be32(p + 4));
-}
 
 static rte_pixel_format format_of(int32_t pixelformat)
 {
@@ -56,7 +47,7 @@ static int32_t row_bytes(rte_pixel_format f, int32_t width)
 /* Is this an image_t (by fingerprint)? */
 static int is_image(const uint8_t *data, int32_t size)
 {
-    return size >= 8 && be64(data) == __rtedge_image_t_get_hash();
+    return size >= 8 && (int64_t)rte_lcm_get_u64(data) == __rtedge_image_t_get_hash();
 }
 
 /* An image_t's fields before its pixels. */
@@ -80,15 +71,16 @@ static rte_status decode_header(const uint8_t *data, int32_t size, rte_pixel_for
         rte_source_msgf(msg, msg_size, "image_t of %d bytes: cut short", size);
         return RTE_ERR_TRUNCATED;
     }
-    hd->utime = be64(data + 8);
+    hd->utime = (int64_t)rte_lcm_get_u64(data + 8);
     if (hd->utime < 0 || hd->utime > RTE_RECORDED_MAX_UTIME) {
         rte_source_msgf(msg, msg_size, "image_t utime %lld is outside 0..2^52 microseconds",
                         (long long)hd->utime);
         return RTE_ERR_CORRUPT;
     }
-    int32_t w = (int32_t)be32(data + 16), h = (int32_t)be32(data + 20);
-    int32_t stride = (int32_t)be32(data + 24), pixelformat = (int32_t)be32(data + 28);
-    int32_t bytes = (int32_t)be32(data + 32);
+    int32_t w = (int32_t)rte_lcm_get_u32(data + 16), h = (int32_t)rte_lcm_get_u32(data + 20);
+    int32_t stride = (int32_t)rte_lcm_get_u32(data + 24);
+    int32_t pixelformat = (int32_t)rte_lcm_get_u32(data + 28);
+    int32_t bytes = (int32_t)rte_lcm_get_u32(data + 32);
     rte_pixel_format f = format_of(pixelformat);
     if (f == 0) {
         rte_source_msgf(msg, msg_size, "image_t pixel format %d is not supported", pixelformat);
