@@ -7,7 +7,7 @@
 
 #include "cli.h"
 #include "cli_image.h"
-#include "rtedge/draw.h"
+#include "draw/draw.h"
 #include "rtedge/grasp.h"
 
 /* The grasp options of shapes and grasp (and the binarisation of contours). */

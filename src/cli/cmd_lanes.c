@@ -13,9 +13,9 @@
 #include "cli.h"
 #include "cli_image.h"
 #include "commands.h"
-#include "rtedge/imageio.h"
+#include "io/imageio.h"
 #include "rtedge/lane.h"
-#include "rtedge/y4m.h"
+#include "io/y4m.h"
 
 typedef struct lanes_options {
     const char *overlay;

@@ -14,9 +14,9 @@
 #include "rtedge/arena.h"
 #include "rtedge/grasp.h"
 #include "rtedge/lane.h"
-#include "rtedge/pacer.h"
-#include "rtedge/publish.h"
-#include "rtedge/source.h"
+#include "sources/pacer.h"
+#include "publish/publish.h"
+#include "sources/source.h"
 
 /* Latencies kept per status window (the newest ones when more frames came). */
 #define RTED_RING 8192

@@ -22,10 +22,10 @@
 
 #include "daemon_internal.h"
 #ifdef RTE_HAVE_LIBCAMERA
-#include "rtedge/libcamera_source.h"
+#include "sources/libcamera_source.h"
 #endif
-#include "rtedge/recorded_source.h"
-#include "rtedge/v4l2_source.h"
+#include "sources/recorded_source.h"
+#include "sources/v4l2_source.h"
 
 static bool ends_with(const char *s, const char *suffix)
 {

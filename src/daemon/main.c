@@ -7,7 +7,7 @@
 
 #include "config.h"
 #include "daemon.h"
-#include "rtedge/v4l2_source.h"
+#include "sources/v4l2_source.h"
 
 #define MAX_SETS 64
 

@@ -1,5 +1,5 @@
-/* Overlay drawing on BGR images (see rtedge/draw.h). */
-#include "rtedge/draw.h"
+/* Overlay drawing on BGR images (see draw.h). */
+#include "draw/draw.h"
 
 #include <stddef.h>
 

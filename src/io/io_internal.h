@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "rtedge/imageio.h"
+#include "io/imageio.h"
 
 /* Where a message goes: the file it names and the caller's buffer. */
 typedef struct io_msg {

@@ -4,7 +4,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "../algo/geom_fixed.h"
+#include "algo/geom_fixed.h"
 #include "lane_cue_rows.h"
 #include "lane_internal.h"
 #include "rtedge/cpu.h"

@@ -10,7 +10,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "../algo/simd/rows.h"
+#include "algo/simd/rows.h"
 
 /* White or yellow paint -> 255, every other pixel grey * dim / 256, in
  * 8-bit comparisons (a threshold of 256 can never be reached, so its

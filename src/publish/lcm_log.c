@@ -2,7 +2,7 @@
 #include "lcm_log.h"
 #include "lcm_wire.h"
 
-#include "source_msg.h"
+#include "sources/source_msg.h"
 
 #include <errno.h>
 #include <fcntl.h>

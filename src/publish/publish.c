@@ -1,7 +1,7 @@
-/* LCM publisher: see rtedge/publish.h. Every message goes through
+/* LCM publisher: see publish.h. Every message goes through
  * publish_encoded(): encode into the one preallocated buffer, then either
  * lcm_publish (memq, udpm) or our own log writer (file://). */
-#include "rtedge/publish.h"
+#include "publish/publish.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -12,7 +12,7 @@
 #include <lcm/lcm.h>
 
 #include "lcm_log.h"
-#include "source_msg.h"
+#include "sources/source_msg.h"
 
 struct rte_publisher {
     lcm_t *lcm;              /* memq://, udpm:// */

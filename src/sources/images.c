@@ -13,7 +13,7 @@
 #include <sys/stat.h>
 
 #include "recorded.h"
-#include "rtedge/imageio.h"
+#include "io/imageio.h"
 
 typedef struct images_source {
     rte_recording rec;           /* first: see recorded.h */

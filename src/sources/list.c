@@ -1,8 +1,8 @@
 /* `rtedged --list-cameras`: every camera rtedge can open. */
-#include "rtedge/v4l2_source.h"
+#include "sources/v4l2_source.h"
 
 #ifdef RTE_HAVE_LIBCAMERA
-#include "rtedge/libcamera_source.h"
+#include "sources/libcamera_source.h"
 #endif
 
 int rte_list_cameras(FILE *out)

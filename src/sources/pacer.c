@@ -1,5 +1,5 @@
-/* Pacing: see rtedge/pacer.h. */
-#include "rtedge/pacer.h"
+/* Pacing: see pacer.h. */
+#include "sources/pacer.h"
 
 #include <string.h>
 

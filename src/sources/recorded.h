@@ -6,7 +6,7 @@
 
 #include <stdint.h>
 
-#include "rtedge/recorded_source.h"
+#include "sources/recorded_source.h"
 #include "source_msg.h"
 
 typedef struct rte_recording {

@@ -5,7 +5,7 @@
  * Memory: open() allocates the source and, for MJPEG, the decode buffer;
  * next() and the reconnection allocate nothing (the mmap buffers belong to
  * the kernel and must fit the open-time sizes when the device returns). */
-#include "rtedge/v4l2_source.h"
+#include "sources/v4l2_source.h"
 
 #include <ctype.h>
 #include <errno.h>

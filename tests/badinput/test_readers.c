@@ -17,7 +17,7 @@
 #include <turbojpeg.h>
 #include <zlib.h>
 
-#include "rtedge/imageio.h"
+#include "io/imageio.h"
 
 #define ANY_ERROR (-1)
 

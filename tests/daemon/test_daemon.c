@@ -22,7 +22,7 @@
 #include "daemon.h"
 #include "daemon_fixtures.h"
 #include "heapcount.h"
-#include "rtedge/publish.h"
+#include "publish/publish.h"
 
 static const char *build_dir;
 

@@ -4,7 +4,7 @@
 
 #include "fuzz.h"
 
-#include "rtedge/recorded_source.h"
+#include "sources/recorded_source.h"
 
 typedef struct fuzz_passes {
     uint64_t good[2], bad[2];  /* frames delivered and slots refused, per pass */

@@ -37,13 +37,13 @@
 #include "rtedge/gradient.h"
 #include "rtedge/grasp.h"
 #include "rtedge/hough.h"
-#include "rtedge/imageio.h"
+#include "io/imageio.h"
 #include "rtedge/lane.h"
 #include "rtedge/morphology.h"
 #include "rtedge/polygon_mask.h"
 #include "rtedge/shape.h"
 #include "rtedge/threshold.h"
-#include "rtedge/y4m.h"
+#include "io/y4m.h"
 
 #define GOLDEN_PI 3.14159265358979323846
 /* Rows of every image carry guard elements (an odd count, so rows start

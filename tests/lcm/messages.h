@@ -5,7 +5,7 @@
 
 #include <stdint.h>
 
-#include "rtedge/publish.h"
+#include "publish/publish.h"
 
 #define SAMPLE_SEGMENTS 7
 #define SAMPLE_OBJECTS 3

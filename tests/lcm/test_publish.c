@@ -18,7 +18,7 @@
 #include "heapcount.h"
 #include "lcm_log.h"
 #include "messages.h"
-#include "rtedge/publish.h"
+#include "publish/publish.h"
 
 static const rte_publish_limits limits = {
     .max_text = 64,

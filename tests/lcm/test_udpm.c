@@ -20,8 +20,8 @@
 #include "heapcount.h"
 #include "lcm_log.h"
 #include "messages.h"
-#include "rtedge/publish.h"
-#include "rtedge/recorded_source.h"
+#include "publish/publish.h"
+#include "sources/recorded_source.h"
 
 extern char **environ;
 

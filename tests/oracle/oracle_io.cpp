@@ -18,7 +18,7 @@
 #include <zlib.h>
 
 extern "C" {
-#include "rtedge/imageio.h"
+#include "io/imageio.h"
 }
 
 namespace fs = std::filesystem;

@@ -1,7 +1,7 @@
 /* rtedge_draw: pixels where they belong, clipping, nothing past the width. */
 #include "unit.h"
 
-#include "rtedge/draw.h"
+#include "draw/draw.h"
 
 enum { W = 23, H = 17, PAD = 5 };
 

@@ -13,9 +13,9 @@
 #include "unit.h"
 
 #include "rtedge/color.h"
-#include "rtedge/imageio.h"
+#include "io/imageio.h"
 #include "rtedge/lane.h"
-#include "rtedge/y4m.h"
+#include "io/y4m.h"
 
 static const char *g_roads_dir = ".";
 

@@ -14,11 +14,11 @@
 #include <cmocka.h>
 
 #include "heapcount.h"
-#include "rtedge/imageio.h"
-#include "rtedge/pacer.h"
-#include "rtedge/publish.h"
-#include "rtedge/recorded_source.h"
-#include "rtedge/y4m.h"
+#include "io/imageio.h"
+#include "sources/pacer.h"
+#include "publish/publish.h"
+#include "sources/recorded_source.h"
+#include "io/y4m.h"
 
 static char tmpdir[512];
 

@@ -15,9 +15,9 @@
 #include "rtedge/hough.h"
 #include "rtedge/threshold.h"
 
-#include "../../src/algo/gradient_rows.h"
-#include "../../src/algo/hough_internal.h"
-#include "../../src/algo/simd/rows.h"
+#include "algo/gradient_rows.h"
+#include "algo/hough_internal.h"
+#include "algo/simd/rows.h"
 
 #define PI_SIMD 3.14159265358979323846
 

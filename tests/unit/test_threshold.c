@@ -7,7 +7,7 @@
 
 #include "rtedge/threshold.h"
 
-#include "../../src/algo/binary64.h"
+#include "algo/binary64.h"
 
 static rte_threshold_params params(rte_threshold_type type, double thresh, double maxval, bool otsu)
 {

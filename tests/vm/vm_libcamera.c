@@ -7,7 +7,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "rtedge/libcamera_source.h"
+#include "sources/libcamera_source.h"
 
 #define FRAMES 20
 

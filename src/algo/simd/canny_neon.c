@@ -8,7 +8,7 @@
 #ifdef RTE_SIMD_NEON
 #include <arm_neon.h>
 
-#include "../canny_rows.h"
+#include "algo/canny_rows.h"
 
 /* Sum a[x-1] + 2 a[x] + a[x+1] style taps, widened to 16 bits. */
 static inline int16x8_t smooth3(const uint8_t *p)

@@ -9,7 +9,7 @@
 #ifdef RTE_SIMD_X86
 #pragma GCC target("avx2")
 
-#include "../canny_rows.h"
+#include "algo/canny_rows.h"
 
 RTE_CANNY_ROWS_DEFINE(avx2)
 

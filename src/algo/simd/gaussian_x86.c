@@ -9,7 +9,7 @@
 #ifdef RTE_SIMD_X86
 #pragma GCC target("avx2")
 
-#include "../gaussian_rows.h"
+#include "algo/gaussian_rows.h"
 
 void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
                                    int32_t width, const uint16_t *taps, int32_t ksize, int split)

@@ -8,7 +8,7 @@
 #ifdef RTE_SIMD_X86
 #pragma GCC target("avx2")
 
-#include "../gradient_loops.h"
+#include "algo/gradient_loops.h"
 
 RTE_GRAD_ROWS_DEFINE(avx2)
 

@@ -8,7 +8,7 @@
 #ifdef RTE_SIMD_X86
 #pragma GCC target("avx2")
 
-#include "../hough_rows.h"
+#include "algo/hough_rows.h"
 
 void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
                          int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx)

@@ -9,7 +9,7 @@
 #ifdef RTE_SIMD_X86
 #pragma GCC target("avx2")
 
-#include "../../pipeline/lane_cue_rows.h"
+#include "pipeline/lane_cue_rows.h"
 
 void rte_lane_cue_row_avx2(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
                            const rte_lane_cue *cue, bool rgb)

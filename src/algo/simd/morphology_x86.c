@@ -10,7 +10,7 @@
 #ifdef RTE_SIMD_X86
 #pragma GCC target("avx2")
 
-#include "../morphology_rows.h"
+#include "algo/morphology_rows.h"
 
 void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
                             bool is_max)

@@ -8,7 +8,7 @@
 #ifdef RTE_SIMD_X86
 #pragma GCC target("avx2")
 
-#include "../threshold_rows.h"
+#include "algo/threshold_rows.h"
 
 void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
                             uint8_t maxval)

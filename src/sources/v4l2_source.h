@@ -19,7 +19,7 @@
 #include <stdio.h>
 #include <sys/types.h>
 
-#include "rtedge/source.h"
+#include "sources/source.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -18,7 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "rtedge/source.h"
+#include "sources/source.h"
 
 #ifdef __cplusplus
 extern "C" {

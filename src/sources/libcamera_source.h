@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "rtedge/source.h"
+#include "sources/source.h"
 
 #ifdef __cplusplus
 extern "C" {
