@@ -12,6 +12,7 @@
 #ifndef RTEDGE_CONTOURS_H
 #define RTEDGE_CONTOURS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -58,7 +59,7 @@ typedef struct rte_contours {
     int32_t max_points, max_contours;
 
     int32_t n_points, n_contours;
-    int32_t truncated;        /* 1 when a bound was hit */
+    bool truncated;           /* a bound was hit */
     int32_t dropped_contours; /* contours found but not stored */
     int64_t dropped_points;   /* their points */
 } rte_contours;

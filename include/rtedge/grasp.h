@@ -17,6 +17,7 @@
 #ifndef RTEDGE_GRASP_H
 #define RTEDGE_GRASP_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -93,7 +94,7 @@ typedef struct rte_grasp_timing {
 typedef struct rte_grasp_result {
     const rte_grasp_object *objects; /* sorted by area, largest first */
     int32_t n_objects;
-    int32_t truncated;         /* 1 when objects, contours or points were dropped for room */
+    bool truncated;            /* objects, contours or points were dropped for room */
     int32_t dropped_objects;   /* objects that passed the filters but exceeded max_objects */
     int32_t dropped_contours;  /* contours beyond max_contours / max_points */
     int32_t threshold;         /* the threshold used (-1 in canny-close mode) */

@@ -12,6 +12,7 @@
 #ifndef RTEDGE_HOUGH_H
 #define RTEDGE_HOUGH_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -81,12 +82,12 @@ size_t rte_hough_lines_scratch_size(const rte_hough_config *cfg, int32_t max_lin
  * local maximum (OpenCV's rule: > the lower neighbours, >= the upper ones in
  * both rho and theta). Lines are sorted by votes (most first), then theta
  * bin, then rho bin. At most `max_lines` are written to `lines`; *count gets
- * how many, *truncated is set to 1 when more lines qualified (0 otherwise).
+ * how many, *truncated is set when more lines qualified (cleared otherwise).
  * The edge map may be smaller than the configured maximum. */
 rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edges,
                            int32_t threshold, rte_arena *arena,
                            rte_hough_line *lines, int32_t max_lines,
-                           int32_t *count, int *truncated);
+                           int32_t *count, bool *truncated);
 
 /* ---- segments ---- */
 
@@ -121,12 +122,12 @@ size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg);
  * pixels found and followed again along the refitted line, and the run of
  * edge pixels across it (up to two pixels either side) is consumed, so one
  * straight edge gives one segment. At most `max_segments`
- * are written; *truncated = 1 when the search stopped because the output
+ * are written; *truncated is set when the search stopped because the output
  * was full. */
 rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
                               const rte_hough_segments_params *params, rte_arena *arena,
                               rte_hough_segment *segments, int32_t max_segments,
-                              int32_t *count, int *truncated);
+                              int32_t *count, bool *truncated);
 
 /* ---- circles ---- */
 
@@ -160,7 +161,7 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
 rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
                              const rte_image_s16 *dy, const rte_hough_circles_params *params,
                              rte_arena *arena, rte_hough_circle *circles, int32_t max_circles,
-                             int32_t *count, int *truncated);
+                             int32_t *count, bool *truncated);
 
 #ifdef __cplusplus
 }

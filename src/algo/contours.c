@@ -268,7 +268,7 @@ rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
         (out->max_contours && !out->contours))
         return RTE_ERR_ARGUMENT;
     out->n_points = out->n_contours = 0;
-    out->truncated = 0;
+    out->truncated = false;
     out->dropped_contours = 0;
     out->dropped_points = 0;
 
@@ -337,7 +337,7 @@ rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
                 if (!full && n > t.room)
                     full = 1;
                 if (full) {
-                    out->truncated = 1;
+                    out->truncated = true;
                     out->dropped_contours++;
                     out->dropped_points += n;
                 } else {

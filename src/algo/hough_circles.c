@@ -334,7 +334,7 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, con
 rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
                              const rte_image_s16 *dy, const rte_hough_circles_params *params,
                              rte_arena *arena, rte_hough_circle *circles, int32_t max_circles,
-                             int32_t *count, int *truncated)
+                             int32_t *count, bool *truncated)
 {
     if (!params_ok(params) || !arena || !count || !truncated || max_circles < 0 ||
         (max_circles > 0 && !circles))
@@ -350,7 +350,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
         dy->height != edges->height)
         return RTE_ERR_SIZE;
     *count = 0;
-    *truncated = 0;
+    *truncated = false;
 
     const int32_t w = edges->width, h = edges->height;
     const circle_geom g = geometry(w, h, params);
@@ -424,7 +424,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
         if (!ok)
             continue;
         if (nout == max_circles) {
-            *truncated = 1;
+            *truncated = true;
             break;
         }
         rte_hough_circle out = { cx, cy, est[3 * e + 2], rte_hough_key_votes(top.keys[k]) };

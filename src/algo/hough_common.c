@@ -10,7 +10,7 @@ int32_t rte_hough_rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h)
 }
 
 rte_status rte_hough_begin(const rte_hough_config *cfg, const rte_image_u8 *edges, int32_t *count,
-                           int *truncated)
+                           bool *truncated)
 {
     if (!cfg || cfg->num_angles < 1 || cfg->num_angles > RTE_HOUGH_MAX_ANGLES || cfg->trig_shift < 0 ||
         cfg->trig_shift > 30 || cfg->inv_rho_q16 <= 0 || cfg->max_width < 1 || cfg->max_height < 1 ||
@@ -22,7 +22,7 @@ rte_status rte_hough_begin(const rte_hough_config *cfg, const rte_image_u8 *edge
     if (edges->width > cfg->max_width || edges->height > cfg->max_height)
         return RTE_ERR_TOO_LARGE;
     *count = 0;
-    *truncated = 0;
+    *truncated = false;
     return RTE_OK;
 }
 

@@ -15,7 +15,7 @@ int32_t rte_hough_rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h);
  * rte_hough_config_init leaves it), a valid edge map no larger than the
  * configured maximum; clears *count and *truncated. */
 rte_status rte_hough_begin(const rte_hough_config *cfg, const rte_image_u8 *edges, int32_t *count,
-                           int *truncated);
+                           bool *truncated);
 
 /* Offset added to x * rho_cos + y * rho_sin so that >> trig_shift gives the
  * rounded rho bin with bin 0 at rho = -(numrho - 1) / 2, never negative (a

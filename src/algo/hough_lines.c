@@ -35,7 +35,7 @@ int64_t rte_hough_line_theta_q16(const rte_hough_config *cfg, const rte_hough_li
 rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edges,
                            int32_t threshold, rte_arena *arena,
                            rte_hough_line *lines, int32_t max_lines,
-                           int32_t *count, int *truncated)
+                           int32_t *count, bool *truncated)
 {
     if (!arena || !count || !truncated || threshold < 0 || max_lines < 0 || (max_lines > 0 && !lines))
         return RTE_ERR_ARGUMENT;

@@ -297,7 +297,7 @@ typedef struct seg_ctx {
     walk_ctx wc;
     rte_hough_segment *segments; /* the output */
     int32_t max_segments, nseg;
-    int truncated;
+    bool truncated;
 } seg_ctx;
 
 /* The accumulator cells of the point (x, y), one per angle. */
@@ -556,7 +556,7 @@ static int reached(seg_ctx *sc, int32_t x, int32_t y)
     if (!take_segment(sc, x, y, strongest_angle(sc), &seg))
         return 1;
     if (sc->nseg == sc->max_segments) {
-        sc->truncated = 1;
+        sc->truncated = true;
         return 0;
     }
     sc->segments[sc->nseg++] = seg;
@@ -654,7 +654,7 @@ size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
 rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
                               const rte_hough_segments_params *params, rte_arena *arena,
                               rte_hough_segment *segments, int32_t max_segments,
-                              int32_t *count, int *truncated)
+                              int32_t *count, bool *truncated)
 {
     if (!params || !arena || !count || !truncated || max_segments < 0 || (max_segments > 0 && !segments) ||
         params->threshold < 1 || params->min_length < 0 || params->max_gap < 0 || params->min_length > 65535)
@@ -739,7 +739,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
     seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), row_base, acc, wide, ncells, idx, numangle, bias,
                    (int64_t)params->min_length * params->min_length, gone,
                    { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 }, 0 },
-                   segments, max_segments, 0, 0 };
+                   segments, max_segments, 0, false };
     /* 8-bit cells, then 16-bit ones from where they widened (if they do) */
     const int32_t next = wide ? 0 : search(&sc, pts, 0, npts, 0);
     if (!sc.truncated)

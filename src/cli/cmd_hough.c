@@ -96,6 +96,86 @@ static void draw_full_line(rte_image_u8c3 *img, double rho, double theta, rte_dr
                   (int32_t)lround(x0 + far * sn), (int32_t)lround(y0 - far * cs), c, 1);
 }
 
+/* Scratch, the edge map (unless IN is one), the gradients (circles) and
+ * the output array; false when one cannot be had (said on stderr). */
+static bool alloc_buffers(const char *name, hough_run *o, const rte_hough_config *cfg,
+                          const rte_hough_circles_params *cp, int32_t w, int32_t h, hough_buffers *b)
+{
+    size_t scratch = transform_scratch(o, cfg, cp, w, h);
+    if (!o->edges_given)
+        scratch = max_size(scratch, cli_canny_scratch(&o->canny, w, h));
+    if (!(b->arena_mem = cli_new_arena(name, scratch, &b->arena)))
+        return false;
+    if (!o->edges_given && !(b->edges_mem = cli_new_u8(name, w, h, &b->edges)))
+        return false;
+    if (o->canny.blur_first && !o->edges_given && !(b->blurred_mem = cli_new_u8(name, w, h, &b->blurred)))
+        return false;
+    if (o->kind == HOUGH_CIRCLES && (!(b->dx_mem = cli_new_s16(name, w, h, &b->dx)) ||
+                                     !(b->dy_mem = cli_new_s16(name, w, h, &b->dy))))
+        return false;
+    size_t item = o->kind == HOUGH_LINES ? sizeof(rte_hough_line)
+                  : o->kind == HOUGH_SEGMENTS ? sizeof(rte_hough_segment) : sizeof(rte_hough_circle);
+    b->out_mem = malloc((size_t)o->max_out * item + 1);
+    return b->out_mem != NULL;
+}
+
+static rte_status transform(hough_run *o, const rte_hough_config *cfg,
+                            const rte_hough_circles_params *cp, hough_buffers *b, int32_t *count,
+                            bool *truncated)
+{
+    switch (o->kind) {
+    case HOUGH_LINES:
+        return rte_hough_lines(cfg, &b->edges, o->threshold, &b->arena, b->out_mem, o->max_out, count,
+                               truncated);
+    case HOUGH_SEGMENTS: {
+        rte_hough_segments_params p = {o->threshold, o->min_length, o->max_gap, (uint32_t)o->seed};
+        return rte_hough_segments(cfg, &b->edges, &p, &b->arena, b->out_mem, o->max_out, count, truncated);
+    }
+    default:
+        return rte_hough_circles(&b->edges, &b->dx, &b->dy, cp, &b->arena, b->out_mem, o->max_out, count,
+                                 truncated);
+    }
+}
+
+/* The JSON (without its closing "truncated") and, onto canvas when given,
+ * the overlay. */
+static void print_results(const hough_run *o, const rte_hough_config *cfg, const void *out, int32_t count,
+                          rte_image_u8c3 *canvas)
+{
+    const rte_draw_color red = {0, 0, 255}, green = {0, 255, 0};
+    if (o->kind == HOUGH_LINES) {
+        const rte_hough_line *l = out;
+        printf("{\"lines\":[");
+        for (int32_t i = 0; i < count; i++) {
+            double rho = rte_hough_line_rho(cfg, &l[i]), theta = rte_hough_line_theta(cfg, &l[i]);
+            printf("%s{\"rho\":%.9g,\"theta\":%.9g,\"votes\":%d}", i ? "," : "", rho, theta, (int)l[i].votes);
+            if (canvas)
+                draw_full_line(canvas, rho, theta, red);
+        }
+    } else if (o->kind == HOUGH_SEGMENTS) {
+        const rte_hough_segment *s = out;
+        printf("{\"segments\":[");
+        for (int32_t i = 0; i < count; i++) {
+            printf("%s{\"x1\":%d,\"y1\":%d,\"x2\":%d,\"y2\":%d}", i ? "," : "", (int)s[i].x0, (int)s[i].y0,
+                   (int)s[i].x1, (int)s[i].y1);
+            if (canvas)
+                rte_draw_line(canvas, s[i].x0, s[i].y0, s[i].x1, s[i].y1, red, 2);
+        }
+    } else {
+        const rte_hough_circle *c = out;
+        printf("{\"circles\":[");
+        for (int32_t i = 0; i < count; i++) {
+            printf("%s{\"x\":%.4g,\"y\":%.4g,\"r\":%.4g,\"votes\":%d}", i ? "," : "", c[i].x_q4 / 16.0,
+                   c[i].y_q4 / 16.0, c[i].r_q4 / 16.0, (int)c[i].votes);
+            if (canvas) {
+                int32_t x = (c[i].x_q4 + 8) >> 4, y = (c[i].y_q4 + 8) >> 4;
+                rte_draw_circle(canvas, x, y, (c[i].r_q4 + 8) >> 4, green, 2);
+                rte_draw_dot(canvas, x, y, 2, red);
+            }
+        }
+    }
+}
+
 static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o, cli_option *extra,
                       int n_extra, const char *details)
 {
@@ -133,54 +213,17 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
         return CLI_EXIT_USAGE;
     }
     hough_buffers b = {0};
-    size_t scratch = transform_scratch(o, &cfg, &cp, w, h);
-    if (!o->edges_given)
-        scratch = max_size(scratch, cli_canny_scratch(&o->canny, w, h));
-    b.arena_mem = cli_new_arena(self->name, scratch, &b.arena);
-    b.edges_mem = o->edges_given ? (void *)1 : cli_new_u8(self->name, w, h, &b.edges);
-    b.blurred_mem = o->canny.blur_first && !o->edges_given ? cli_new_u8(self->name, w, h, &b.blurred) : (void *)1;
-    if (o->kind == HOUGH_CIRCLES) {
-        b.dx_mem = cli_new_s16(self->name, w, h, &b.dx);
-        b.dy_mem = cli_new_s16(self->name, w, h, &b.dy);
-    } else {
-        b.dx_mem = b.dy_mem = (void *)1;
-    }
-    size_t item = o->kind == HOUGH_LINES ? sizeof(rte_hough_line)
-                  : o->kind == HOUGH_SEGMENTS ? sizeof(rte_hough_segment) : sizeof(rte_hough_circle);
-    b.out_mem = malloc((size_t)o->max_out * item + 1);
-    int ok = b.arena_mem && b.edges_mem && b.blurred_mem && b.dx_mem && b.dy_mem && b.out_mem;
-    /* the placeholders above only mark "not needed" */
-    if (b.edges_mem == (void *)1)
-        b.edges_mem = NULL;
-    if (b.blurred_mem == (void *)1)
-        b.blurred_mem = NULL;
-    if (b.dx_mem == (void *)1)
-        b.dx_mem = b.dy_mem = NULL;
-    if (!ok) {
+    if (!alloc_buffers(self->name, o, &cfg, &cp, w, h, &b)) {
         free_buffers(&b);
         cli_image_free(&in);
         return CLI_EXIT_FAILURE;
     }
 
-    st = make_edges(o, &in.gray, &b);
     int32_t count = 0;
-    int truncated = 0;
-    if (st == RTE_OK) {
-        switch (o->kind) {
-        case HOUGH_LINES:
-            st = rte_hough_lines(&cfg, &b.edges, o->threshold, &b.arena, b.out_mem, o->max_out, &count,
-                                 &truncated);
-            break;
-        case HOUGH_SEGMENTS: {
-            rte_hough_segments_params p = {o->threshold, o->min_length, o->max_gap, (uint32_t)o->seed};
-            st = rte_hough_segments(&cfg, &b.edges, &p, &b.arena, b.out_mem, o->max_out, &count, &truncated);
-            break;
-        }
-        default:
-            st = rte_hough_circles(&b.edges, &b.dx, &b.dy, &cp, &b.arena, b.out_mem, o->max_out, &count,
-                                   &truncated);
-        }
-    }
+    bool truncated = false;
+    st = make_edges(o, &in.gray, &b);
+    if (st == RTE_OK)
+        st = transform(o, &cfg, &cp, &b, &count, &truncated);
     if (st != RTE_OK) {
         cli_error(self->name, "%s", rte_status_message(st));
         free_buffers(&b);
@@ -190,38 +233,7 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
 
     rte_image_u8c3 canvas;
     void *canvas_mem = o->overlay ? cli_overlay_canvas(self->name, &in, &canvas) : NULL;
-    const rte_draw_color red = {0, 0, 255}, green = {0, 255, 0};
-    if (o->kind == HOUGH_LINES) {
-        const rte_hough_line *l = b.out_mem;
-        printf("{\"lines\":[");
-        for (int32_t i = 0; i < count; i++) {
-            double rho = rte_hough_line_rho(&cfg, &l[i]), theta = rte_hough_line_theta(&cfg, &l[i]);
-            printf("%s{\"rho\":%.9g,\"theta\":%.9g,\"votes\":%d}", i ? "," : "", rho, theta, (int)l[i].votes);
-            if (canvas_mem)
-                draw_full_line(&canvas, rho, theta, red);
-        }
-    } else if (o->kind == HOUGH_SEGMENTS) {
-        const rte_hough_segment *s = b.out_mem;
-        printf("{\"segments\":[");
-        for (int32_t i = 0; i < count; i++) {
-            printf("%s{\"x1\":%d,\"y1\":%d,\"x2\":%d,\"y2\":%d}", i ? "," : "", (int)s[i].x0, (int)s[i].y0,
-                   (int)s[i].x1, (int)s[i].y1);
-            if (canvas_mem)
-                rte_draw_line(&canvas, s[i].x0, s[i].y0, s[i].x1, s[i].y1, red, 2);
-        }
-    } else {
-        const rte_hough_circle *c = b.out_mem;
-        printf("{\"circles\":[");
-        for (int32_t i = 0; i < count; i++) {
-            printf("%s{\"x\":%.4g,\"y\":%.4g,\"r\":%.4g,\"votes\":%d}", i ? "," : "", c[i].x_q4 / 16.0,
-                   c[i].y_q4 / 16.0, c[i].r_q4 / 16.0, (int)c[i].votes);
-            if (canvas_mem) {
-                int32_t x = (c[i].x_q4 + 8) >> 4, y = (c[i].y_q4 + 8) >> 4;
-                rte_draw_circle(&canvas, x, y, (c[i].r_q4 + 8) >> 4, green, 2);
-                rte_draw_dot(&canvas, x, y, 2, red);
-            }
-        }
-    }
+    print_results(o, &cfg, b.out_mem, count, canvas_mem ? &canvas : NULL);
     printf("],\"truncated\":%s}\n", truncated ? "true" : "false");
     rc = CLI_EXIT_OK;
     if (o->overlay)

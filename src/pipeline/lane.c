@@ -730,7 +730,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
 
     const rte_hough_segments_params hp = {p->hough_threshold, p->min_length, p->max_gap, p->hough_seed};
     int32_t count = 0;
-    int truncated = 0;
+    bool truncated = false;
     if ((st = rte_hough_segments(ctx->hough, &edges, &hp, &ctx->arena, ctx->raw,
                                  ctx->cfg.max_segments, &count, &truncated)) != RTE_OK)
         return st;
@@ -789,7 +789,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     }
     out->segments = ctx->segments;
     out->segment_count = count;
-    out->truncated = truncated != 0;
+    out->truncated = truncated;
     out->stage_ns[RTE_LANE_STAGE_FIT] = lane_now_ns() - t0;
     return RTE_OK;
 }

@@ -743,13 +743,13 @@ static void run_shapes(golden *g, const rte_contours *c)
 
 
 static void emit_records(golden *g, const char *what, const char *noun, const int32_t *first,
-                         int32_t count, int32_t fields, int truncated)
+                         int32_t count, int32_t fields, bool truncated)
 {
     digest d = dg_new();
     dg_int(&d, count);
     dg_int(&d, truncated);
     dg_int32s(&d, first, (int64_t)count * fields);
-    emit(g, what, d.h, "%s=%d truncated=%d", noun, count, truncated);
+    emit(g, what, d.h, "%s=%d truncated=%d", noun, count, (int)truncated);
 }
 
 static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
@@ -798,7 +798,7 @@ static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
                  line_cases[i].theta, line_cases[i].min_theta, line_cases[i].max_theta,
                  line_cases[i].threshold);
         int32_t count = 0;
-        int truncated = 0;
+        bool truncated = false;
         if (!emit_status(g, what,
                          rte_hough_lines(cfg, &edges, line_cases[i].threshold, &g->arena, lines,
                                          MAX_LINES, &count, &truncated))) {
@@ -812,7 +812,7 @@ static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
                 dg_int(&d, rte_hough_line_rho_q16(cfg, &lines[j]));
                 dg_int(&d, rte_hough_line_theta_q16(cfg, &lines[j]));
             }
-            emit(g, what, d.h, "lines=%d truncated=%d", count, truncated);
+            emit(g, what, d.h, "lines=%d truncated=%d", count, (int)truncated);
         }
         if (line_cases[i].min_theta != 0 || line_cases[i].max_theta != GOLDEN_PI)
             continue; /* segments take the full half turn */
@@ -844,7 +844,7 @@ static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
         snprintf(what, sizeof what, "hough.circles.dp%d.d%d.v%d.r%d-%d", p->dp_q8, p->min_dist,
                  p->acc_threshold, p->min_radius, p->max_radius);
         int32_t count = 0;
-        int truncated = 0;
+        bool truncated = false;
         if (emit_status(g, what,
                         rte_hough_circles(&edges, &dx, &dy, p, &g->arena, circles, MAX_CIRCLES,
                                           &count, &truncated)))

@@ -60,10 +60,10 @@ struct Runner {
 };
 
 template <typename T, typename F>
-std::vector<T> run_twice(Runner &run, const std::string &what, int cap, int *truncated, F call)
+std::vector<T> run_twice(Runner &run, const std::string &what, int cap, bool *truncated, F call)
 {
     std::vector<T> out[2];
-    int trunc[2] = { 0, 0 };
+    bool trunc[2] = { false, false };
     for (int k = 0; k < 2; k++) {
         out[k].assign((size_t)cap + 1, T{});
         int32_t n = -1;
@@ -87,12 +87,12 @@ std::vector<T> run_twice(Runner &run, const std::string &what, int cap, int *tru
 }
 
 std::vector<rte_hough_line> lines_of(Runner &run, const std::string &what, const rte_hough_config &cfg,
-                                     const cv::Mat &edges, int thr, int cap, int *truncated)
+                                     const cv::Mat &edges, int thr, int cap, bool *truncated)
 {
     std::vector<uint8_t> store;
     rte_image_u8 e = oracle::padded_u8(edges, store, run.rng);
     Arena ar(rte_hough_lines_scratch_size(&cfg, cap));
-    auto r = run_twice<rte_hough_line>(run, what, cap, truncated, [&](rte_hough_line *o, int c, int32_t *n, int *t) {
+    auto r = run_twice<rte_hough_line>(run, what, cap, truncated, [&](rte_hough_line *o, int c, int32_t *n, bool *t) {
         rte_status st = rte_hough_lines(&cfg, &e, thr, &ar.a, o, c, n, t);
         check(ar.a.used == 0, "arena reset after lines: %g %g", (double)ar.a.used, 0);
         return st;
@@ -103,13 +103,13 @@ std::vector<rte_hough_line> lines_of(Runner &run, const std::string &what, const
 
 std::vector<rte_hough_segment> segments_of(Runner &run, const std::string &what, const rte_hough_config &cfg,
                                            const cv::Mat &edges, const rte_hough_segments_params &p, int cap,
-                                           int *truncated)
+                                           bool *truncated)
 {
     std::vector<uint8_t> store;
     rte_image_u8 e = oracle::padded_u8(edges, store, run.rng);
     Arena ar(rte_hough_segments_scratch_size(&cfg));
     auto r = run_twice<rte_hough_segment>(run, what, cap, truncated,
-                                          [&](rte_hough_segment *o, int c, int32_t *n, int *t) {
+                                          [&](rte_hough_segment *o, int c, int32_t *n, bool *t) {
         rte_status st = rte_hough_segments(&cfg, &e, &p, &ar.a, o, c, n, t);
         check(ar.a.used == 0, "arena reset after segments: %g %g", (double)ar.a.used, 0);
         return st;
@@ -133,7 +133,7 @@ CircleInputs circle_inputs(const cv::Mat &gray, int param1)
 }
 
 std::vector<rte_hough_circle> circles_of(Runner &run, const std::string &what, const CircleInputs &in,
-                                         const rte_hough_circles_params &p, int cap, int *truncated)
+                                         const rte_hough_circles_params &p, int cap, bool *truncated)
 {
     std::vector<uint8_t> store;
     rte_image_u8 e = oracle::padded_u8(in.edges, store, run.rng);
@@ -141,7 +141,7 @@ std::vector<rte_hough_circle> circles_of(Runner &run, const std::string &what, c
     rte_image_s16 gx = oracle::view_s16(dx), gy = oracle::view_s16(dy);
     Arena ar(rte_hough_circles_scratch_size(in.edges.cols, in.edges.rows, &p));
     auto r = run_twice<rte_hough_circle>(run, what, cap, truncated,
-                                         [&](rte_hough_circle *o, int c, int32_t *n, int *t) {
+                                         [&](rte_hough_circle *o, int c, int32_t *n, bool *t) {
         rte_status st = rte_hough_circles(&e, &gx, &gy, &p, &ar.a, o, c, n, t);
         check(ar.a.used == 0, "arena reset after circles: %g %g", (double)ar.a.used, 0);
         return st;
@@ -266,7 +266,7 @@ void synthetic_segments(Runner &run)
                 cv::circle(e, c, (int)uni(2, 7), 255, 1);
         }
 
-        int trunc = 0;
+        bool trunc = false;
         auto t0 = std::chrono::steady_clock::now();
         auto segs = segments_of(run, "synthetic segments " + std::to_string(img), cfg, e, p, 256, &trunc);
         auto t1 = std::chrono::steady_clock::now();
@@ -330,7 +330,7 @@ void synthetic_lines(Runner &run)
         }
         for (int k = 0; k < W * H / 200; k++)
             e.at<uint8_t>((int)uni(0, H), (int)uni(0, W)) = 255;
-        int trunc = 0;
+        bool trunc = false;
         auto lines = lines_of(run, "synthetic lines " + std::to_string(img), cfg, e, 80, 20, &trunc);
         std::vector<cv::Vec2f> ocv;
         cv::HoughLines(e, ocv, 1, theta_res, 80);
@@ -403,7 +403,7 @@ void synthetic_circles(Runner &run)
                        cv::LINE_AA);
         gray += noise;
         CircleInputs in = circle_inputs(gray, 100);
-        int trunc = 0;
+        bool trunc = false;
         auto circles = circles_of(run, "synthetic circles " + std::to_string(img), in, p, 64, &trunc);
         detections += (long)circles.size();
         std::vector<bool> used(gt.size(), false);
@@ -471,7 +471,7 @@ void real_photos(Runner &run, const std::vector<oracle::Input> &inputs)
         // standard lines: OpenCV's 30 strongest against rtedge's 120 strongest
         std::vector<cv::Vec3f> ocv;
         cv::HoughLines(edges, ocv, 1, CV_PI / 180, 80);
-        int trunc = 0;
+        bool trunc = false;
         auto mine = lines_of(run, "lines " + in.name, cfg, edges, 80, 120, &trunc);
         int numrho = (int)std::lround((2.0 * (W + H) + 1));
         long m = 0, n = std::min<long>(30, (long)ocv.size());

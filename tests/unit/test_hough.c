@@ -53,10 +53,10 @@ static void test_lines_row_and_column(void **state)
             e.buf[col ? (size_t)i * e.stride + 7 : 5 * (size_t)e.stride + i] = 255;
         rte_hough_line l[8];
         int32_t n = -1;
-        int tr = -1;
+        bool tr = true;
         assert_int_equal(rte_hough_lines(&cfg, &e, 10, &a, l, 8, &n, &tr), RTE_OK);
         assert_true(n >= 1);
-        assert_int_equal(tr, 0);
+        assert_false(tr);
         assert_int_equal(l[0].theta_bin, col ? 0 : 90);
         assert_int_equal(l[0].rho_bin, col ? 7 : 5);
         assert_int_equal(l[0].votes, 36);
@@ -83,7 +83,7 @@ static void test_sizes_and_truncation(void **state)
                 rte_hough_line l[2];
                 rte_hough_segment s[1];
                 int32_t n = -1;
-                int tr = -1;
+                bool tr = true;
                 assert_int_equal(rte_hough_lines(&cfg, &e, 0, &a, l, 2, &n, &tr), RTE_OK);
                 assert_true(n >= 0 && n <= 2);
                 if (!fill)
@@ -94,7 +94,7 @@ static void test_sizes_and_truncation(void **state)
                 assert_int_equal(a.used, 0);
                 assert_int_equal(n, fill ? 1 : 0);
                 if (fill && (w > 1 && h > 2))
-                    assert_int_equal(tr, 1); /* more than one segment in a filled map */
+                    assert_true(tr); /* more than one segment in a filled map */
                 for (int32_t i = 0; i < n; i++)
                     assert_true(s[i].x0 >= 0 && s[i].x0 < w && s[i].x1 >= 0 && s[i].x1 < w && s[i].y0 >= 0 &&
                                 s[i].y0 < h && s[i].y1 >= 0 && s[i].y1 < h);
@@ -119,11 +119,11 @@ static void test_segments_gap_and_length(void **state)
             e.buf[(size_t)i * e.stride + i] = 255;
     rte_hough_segment s[8];
     int32_t n = -1;
-    int tr = -1;
+    bool tr = true;
     rte_hough_segments_params p = { 10, 30, 4, 0 };
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
     assert_int_equal(n, 1);
-    assert_int_equal(tr, 0);
+    assert_false(tr);
     int32_t lo = s[0].x0 < s[0].x1 ? 0 : 1;
     assert_true(abs((lo ? s[0].x1 : s[0].x0) - 5) <= 1 && abs((lo ? s[0].y1 : s[0].y0) - 5) <= 1);
     assert_true(abs((lo ? s[0].x0 : s[0].x1) - 55) <= 1 && abs((lo ? s[0].y0 : s[0].y1) - 55) <= 1);
@@ -147,7 +147,7 @@ static void test_segments_gap_and_length(void **state)
     n = -1;
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
     assert_int_equal(n, 0);
-    assert_int_equal(tr, 0);
+    assert_false(tr);
     assert_int_equal(a.used, 0);
     unit_assert_padding_u8(&e);
     test_free(e.buf);
@@ -173,13 +173,13 @@ static void test_segments_seed(void **state)
     enum { CAP = 64 };
     rte_hough_segment s[4][CAP];
     int32_t n[4];
-    int tr;
+    bool tr;
     const uint32_t seeds[4] = { 0, RTE_HOUGH_SEGMENTS_SEED, 0, 12345 };
     for (int k = 0; k < 4; k++) {
         rte_hough_segments_params p = { 10, 10, 1, seeds[k] };
         memset(s[k], 0, sizeof s[k]);
         assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s[k], CAP, &n[k], &tr), RTE_OK);
-        assert_int_equal(tr, 0);
+        assert_false(tr);
         assert_true(n[k] >= 2); /* the diagonal and the row at least */
     }
     assert_int_equal(n[0], n[1]);
@@ -222,7 +222,7 @@ static void disc_inputs(int32_t w, int32_t h, int32_t cx, int32_t cy, int32_t r,
 /* Runs rte_hough_circles in an arena of its scratch size; checks the
  * status and that the arena is back at its mark. Returns the count. */
 static int32_t circles_of(const rte_image_u8 *e, const rte_image_s16 *gx, const rte_image_s16 *gy,
-                          const rte_hough_circles_params *p, rte_hough_circle *c, int32_t cap, int *tr)
+                          const rte_hough_circles_params *p, rte_hough_circle *c, int32_t cap, bool *tr)
 {
     rte_arena a = arena_of(rte_hough_circles_scratch_size(e->width, e->height, p));
     int32_t n = -1;
@@ -242,14 +242,14 @@ static void test_circle_disc(void **state)
     disc_inputs(w, h, cx, cy, r, &e, &gx, &gy);
     rte_hough_circles_params p = { 256, 10, 8, 5, 30 };
     rte_hough_circle c[4];
-    int tr = -1;
+    bool tr = true;
     assert_int_equal(circles_of(&e, &gx, &gy, &p, c, 4, &tr), 1);
-    assert_int_equal(tr, 0);
+    assert_false(tr);
     assert_true(abs(c[0].x_q4 - cx * 16) <= 16 && abs(c[0].y_q4 - cy * 16) <= 16);
     assert_true(abs(c[0].r_q4 - r * 16) <= 16);
     /* no room: one qualifies, none written, truncated */
     assert_int_equal(circles_of(&e, &gx, &gy, &p, c, 0, &tr), 0);
-    assert_int_equal(tr, 1);
+    assert_true(tr);
     rte_arena a = arena_of(rte_hough_circles_scratch_size(w, h, &p));
     int32_t n = -1;
     /* argument errors */
@@ -284,7 +284,7 @@ static void test_circle_on_border(void **state)
         disc_inputs(w, h, centres[k][0], centres[k][1], r, &e, &gx, &gy);
         rte_hough_circles_params p = { 256, 10, 6, 5, 20 };
         rte_hough_circle c[4];
-        int tr = -1;
+        bool tr = true;
         assert_true(circles_of(&e, &gx, &gy, &p, c, 4, &tr) >= 1);
         /* within 1.5 px: only half of the edge is there to fit */
         assert_true(abs(c[0].x_q4 - centres[k][0] * 16) <= 24 && abs(c[0].y_q4 - centres[k][1] * 16) <= 24);
@@ -308,7 +308,7 @@ static void test_maximum_size_all_255(void **state)
     rte_hough_config cfg = config_of(w, h);
     rte_image_u8 e = unit_image_u8(w, h, 1, 255);
     int32_t n = -1;
-    int tr = -1;
+    bool tr = true;
 
     size_t bytes = rte_hough_lines_scratch_size(&cfg, 16);
     rte_arena a;
@@ -316,7 +316,7 @@ static void test_maximum_size_all_255(void **state)
     rte_hough_line l[16];
     assert_int_equal(rte_hough_lines(&cfg, &e, 100, &a, l, 16, &n, &tr), RTE_OK);
     assert_int_equal(n, 16);
-    assert_int_equal(tr, 1);
+    assert_true(tr);
     assert_int_equal(a.used, 0);
     test_free(a.base);
 
@@ -326,7 +326,7 @@ static void test_maximum_size_all_255(void **state)
     rte_hough_segments_params sp = { 50, 30, 10, 0 };
     assert_int_equal(rte_hough_segments(&cfg, &e, &sp, &a, sg, 4, &n, &tr), RTE_OK);
     assert_int_equal(n, 4);
-    assert_int_equal(tr, 1);
+    assert_true(tr);
     assert_int_equal(a.used, 0);
     for (int32_t i = 0; i < n; i++)
         assert_true(sg[i].x0 >= 0 && sg[i].x0 < w && sg[i].x1 >= 0 && sg[i].x1 < w && sg[i].y0 >= 0 &&
@@ -346,7 +346,7 @@ static void test_maximum_size_all_255(void **state)
     rte_hough_circle c[4];
     assert_int_equal(rte_hough_circles(&e, &gx, &gy, &cp, &a, c, 4, &n, &tr), RTE_OK);
     assert_int_equal(n, 4);
-    assert_int_equal(tr, 1);
+    assert_true(tr);
     assert_int_equal(a.used, 0);
     test_free(a.base);
     unit_assert_padding_u8(&e);
@@ -365,7 +365,7 @@ static void test_argument_errors(void **state)
     rte_hough_line l[4];
     rte_hough_segment s[4];
     int32_t n;
-    int tr;
+    bool tr;
     rte_hough_segments_params p = { 5, 5, 2, 0 };
     assert_int_equal(rte_hough_lines(NULL, &e, 1, &a, l, 4, &n, &tr), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_hough_lines(&cfg, &e, -1, &a, l, 4, &n, &tr), RTE_ERR_ARGUMENT);

@@ -15,7 +15,7 @@
 
 rte_status hough16_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
                             const rte_hough_segments_params *params, rte_arena *arena, rte_hough_segment *segments,
-                            int32_t max_segments, int32_t *count, int *truncated);
+                            int32_t max_segments, int32_t *count, bool *truncated);
 size_t hough16_segments_scratch_size(const rte_hough_config *cfg);
 
 enum { MAX_SEGS = 512 };
@@ -39,14 +39,14 @@ static int32_t same_segments(const rte_image_u8 *e, const rte_hough_segments_par
     rte_arena_init(&a, test_malloc(bytes), bytes);
     static rte_hough_segment s8[MAX_SEGS], s16[MAX_SEGS];
     int32_t n8 = -1, n16 = -1;
-    int t8 = -1, t16 = -1;
+    bool t8 = true, t16 = true; /* both calls must clear them */
     assert_int_equal(rte_hough_segments(&cfg, e, p, &a, s8, max_segments, &n8, &t8), RTE_OK);
     assert_int_equal(hough16_segments(&cfg, e, p, &a, s16, max_segments, &n16, &t16), RTE_OK);
     assert_int_equal(a.used, 0);
     test_free(a.base);
     if (n8 != n16 || t8 != t16 || memcmp(s8, s16, (size_t)n8 * sizeof s8[0]) != 0)
         fail_msg("%dx%d threshold %d: 8-bit cells give %d segments (truncated %d), 16-bit %d (truncated %d)",
-                 (int)e->width, (int)e->height, (int)p->threshold, (int)n8, t8, (int)n16, t16);
+                 (int)e->width, (int)e->height, (int)p->threshold, (int)n8, (int)t8, (int)n16, (int)t16);
     return n8;
 }
 

@@ -59,7 +59,7 @@ Register lines("hough", "lines (Canny 50/150, threshold 100)", [](const Frame &f
     return Runners{[b] {
                        rte_image_u8 e = u8(b->edges);
                        int32_t n;
-                       int t;
+                       bool t;
                        rte_hough_lines(&b->cfg, &e, 100, &b->arena, b->lines.data(), 4096, &n, &t);
                    },
                    [b] { cv::HoughLines(b->edges, b->cv_lines, 1, CV_PI / 180, 100); }};
@@ -71,7 +71,7 @@ Register segments("hough", "segments (threshold 50, length 30, gap 10)", [](cons
                        rte_image_u8 e = u8(b->edges);
                        rte_hough_segments_params p = {50, 30, 10, 0};
                        int32_t n;
-                       int t;
+                       bool t;
                        rte_hough_segments(&b->cfg, &e, &p, &b->arena, b->segments.data(), 4096, &n, &t);
                    },
                    [b] { cv::HoughLinesP(b->edges, b->cv_segments, 1, CV_PI / 180, 50, 30, 10); }};
@@ -93,7 +93,7 @@ Register circles("hough", "circles (Sobel + Canny 50/100 + transform, r 10..40)"
                        rte_sobel_s16(&g, &gy, 0, 1, 3, &b->arena);
                        rte_canny_u8(&g, &e, &cp, &b->arena);
                        int32_t n;
-                       int t;
+                       bool t;
                        rte_hough_circles(&e, &gx, &gy, &circle_params, &b->arena, b->circles.data(), 256, &n, &t);
                    },
                    [b] { cv::HoughCircles(b->gray, b->cv_circles, cv::HOUGH_GRADIENT, 1, 20, 100, 30, 10, 40); }};

@@ -173,7 +173,7 @@ struct LaneSegments {
     rte_arena arena;
     std::vector<rte_hough_segment> segments;
     std::vector<cv::Vec4i> cv_segments;
-    int truncated = 0;
+    bool truncated = false;
     LaneSegments(const Frame &f, const rte_lane_config &c) : cfg(c), in(f, c.params), segments(4096)
     {
         in.run(f.bgr);
