@@ -52,7 +52,7 @@ enum { GUARD = 7, GUARD_BYTE = 0xEE, MAX_SHAPES = 400, MAX_OWNED = 64 };
 #define GUARD_S16 ((int16_t)0x7EEE)
 #define ARENA_BYTES ((size_t)192 << 20)
 
-static void die(const char *fmt, ...)
+__attribute__((format(printf, 1, 2), noreturn)) static void die(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -136,7 +136,8 @@ typedef struct golden {
     int n_owned;
 } golden;
 
-static void emit(golden *g, const char *what, uint64_t hash, const char *fmt, ...)
+__attribute__((format(printf, 4, 5))) static void emit(golden *g, const char *what, uint64_t hash,
+                                                     const char *fmt, ...)
 {
     char note[160], line[512];
     va_list ap;
@@ -466,7 +467,7 @@ static void run_threshold(golden *g, const input *in)
     digest d = dg_new();
     for (int i = 0; i < 256; i++)
         dg_int(&d, hist[i]);
-    emit(g, "histogram", d.h, "");
+    emit(g, "histogram", d.h, "%s", "");
     int32_t otsu = -1, lo = -1, hi = -1;
     if (!emit_status(g, "otsu", rte_threshold_otsu_u8(&in->gray, &otsu)))
         emit(g, "otsu", (uint64_t)otsu, "t=%d", otsu);

@@ -18,6 +18,21 @@ extern "C" {
 
 namespace oracle {
 
+// Caller-owned scratch for the kernels: memory behind an rte_arena.
+// reserve(n) makes it exactly n bytes long (growing the memory when
+// needed), so a kernel that asks for more than its *_scratch_size fails.
+struct Arena {
+    std::vector<uint8_t> memory;
+    rte_arena arena;
+    explicit Arena(size_t bytes = 0) { reserve(bytes); }
+    void reserve(size_t bytes)
+    {
+        if (memory.size() < bytes)
+            memory.resize(bytes);
+        rte_arena_init(&arena, memory.data(), bytes);
+    }
+};
+
 // One input image: a name for messages and its 8-bit pixels.
 struct Input {
     std::string name;

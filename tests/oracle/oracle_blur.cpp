@@ -45,8 +45,7 @@ cv::Mat with_padding(const cv::Mat &expected, int stride)
 struct Runner {
     oracle::Tally &tally;
     std::mt19937 &rng;
-    std::vector<uint8_t> arena_memory;
-    rte_arena arena;
+    oracle::Arena scratch;
 
     Runner(oracle::Tally &t, std::mt19937 &r) : tally(t), rng(r)
     {
@@ -55,8 +54,7 @@ struct Runner {
         rte_gaussian_kernel_init(&worst, 15, 15, 0, 0);
         size_t need = std::max(rte_gaussian_blur_u8_scratch_size(1280, 720, &worst),
                                rte_median_blur_u8_scratch_size(1280, 720, 5));
-        arena_memory.resize(need);
-        rte_arena_init(&arena, arena_memory.data(), need);
+        scratch.reserve(need);
     }
 
     void check(const std::string &what, const cv::Mat &expected, const rte_image_u8 &dst)
@@ -76,7 +74,7 @@ struct Runner {
         rte_image_u8 s = oracle::padded_u8(src, s_mem, rng);
         rte_image_u8 d = in_place ? s : oracle::blank_u8(src.cols, src.rows, d_mem, rng);
         rte_status st = blur(&s, &d);
-        if (st != RTE_OK || arena.used != 0) {
+        if (st != RTE_OK || scratch.arena.used != 0) {
             tally.call_failed(what, st != RTE_OK ? st : -1);
             return;
         }
@@ -98,7 +96,7 @@ struct Runner {
         cv::Mat expected;
         cv::GaussianBlur(src, expected, cv::Size(g.kx, g.ky), g.sx, g.sy);
         compare(what, src, expected, in_place, [&](const rte_image_u8 *s, rte_image_u8 *d) {
-            return rte_gaussian_blur_u8(s, d, &k, &arena);
+            return rte_gaussian_blur_u8(s, d, &k, &scratch.arena);
         });
     }
 
@@ -108,7 +106,7 @@ struct Runner {
         cv::Mat expected;
         cv::medianBlur(src, expected, ksize);
         compare(what, src, expected, in_place, [&](const rte_image_u8 *s, rte_image_u8 *d) {
-            return rte_median_blur_u8(s, d, ksize, &arena);
+            return rte_median_blur_u8(s, d, ksize, &scratch.arena);
         });
     }
 };

@@ -17,12 +17,6 @@ extern "C" {
 
 namespace {
 
-struct Arena {
-    std::vector<uint8_t> memory;
-    rte_arena arena;
-    explicit Arena(size_t bytes) : memory(bytes) { rte_arena_init(&arena, memory.data(), bytes); }
-};
-
 std::string describe(double lo, double hi, int ap, bool l2)
 {
     char b[128];
@@ -113,7 +107,7 @@ int main()
     std::mt19937 rng = oracle::make_rng();
     rte_gaussian_kernel largest;
     rte_gaussian_kernel_init(&largest, 9, 9, 0, 0);
-    Arena scratch(rte_canny_blurred_scratch_size(1280, 720, &largest, 7));
+    oracle::Arena scratch(rte_canny_blurred_scratch_size(1280, 720, &largest, 7));
 
     // (low, high): ordinary, swapped, zero, negative, fractional, equal,
     // above every magnitude, and beyond int32 (OpenCV's x86-64 floor wraps).

@@ -19,16 +19,6 @@ namespace {
 const int modes[] = { cv::RETR_EXTERNAL, cv::RETR_LIST, cv::RETR_CCOMP, cv::RETR_TREE };
 const int methods[] = { cv::CHAIN_APPROX_NONE, cv::CHAIN_APPROX_SIMPLE };
 
-struct Arena {
-    std::vector<uint8_t> mem;
-    rte_arena a;
-    Arena(int w, int h, int maxc)
-    {
-        mem.resize(rte_contours_scratch_size(w, h, maxc));
-        rte_arena_init(&a, mem.data(), mem.size());
-    }
-};
-
 // One contour set flattened: per contour its count, hierarchy and points.
 cv::Mat flatten_cv(const std::vector<std::vector<cv::Point>> &cs, const std::vector<cv::Vec4i> &h)
 {
@@ -71,7 +61,7 @@ void check(oracle::Tally &t, const std::string &name, const cv::Mat &bin, std::m
     const int maxp = bin.cols * bin.rows * 4 + 8;
     std::vector<rte_point> pts((size_t)maxp);
     std::vector<rte_contour> cons((size_t)maxc);
-    Arena ar(bin.cols, bin.rows, maxc);
+    oracle::Arena ar(rte_contours_scratch_size(bin.cols, bin.rows, maxc));
     for (int mode : modes) {
         for (int method : methods) {
             std::string what = name + " mode " + std::to_string(mode) + " method " + std::to_string(method);
@@ -83,7 +73,7 @@ void check(oracle::Tally &t, const std::string &name, const cv::Mat &bin, std::m
             r.contours = cons.data();
             r.max_points = maxp;
             r.max_contours = maxc;
-            int st = rte_contours_find(&src, (rte_contour_mode)mode, (rte_contour_method)method, &r, &ar.a);
+            int st = rte_contours_find(&src, (rte_contour_mode)mode, (rte_contour_method)method, &r, &ar.arena);
             if (st != RTE_OK || r.truncated) {
                 t.call_failed(what, st ? st : -1);
                 continue;

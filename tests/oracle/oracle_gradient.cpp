@@ -14,12 +14,6 @@ extern "C" {
 
 namespace {
 
-struct Arena {
-    std::vector<uint8_t> memory;
-    rte_arena arena;
-    explicit Arena(size_t bytes) : memory(bytes) { rte_arena_init(&arena, memory.data(), bytes); }
-};
-
 enum Op { SOBEL, SCHARR, LAPLACIAN };
 
 void check(oracle::Tally &t, const std::string &name, const cv::Mat &gray, Op op, int dx, int dy,
@@ -74,7 +68,7 @@ int main()
     oracle::Tally t("gradient");
     std::mt19937 rng = oracle::make_rng();
     const int sizes[] = { 1, 3, 5, 7 };
-    Arena scratch(rte_laplacian_scratch_size(8192, 1, 3) + rte_sobel_scratch_size(8192, 1, 7));
+    oracle::Arena scratch(rte_laplacian_scratch_size(8192, 1, 3) + rte_sobel_scratch_size(8192, 1, 7));
 
     for (const oracle::Input &in : oracle::file_inputs()) {
         for (int k : sizes)

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -25,21 +26,18 @@ namespace {
 
 int failures = 0;
 
-void check(bool ok, const char *fmt, double a, double b)
+__attribute__((format(printf, 2, 3))) void check(bool ok, const char *fmt, ...)
 {
     if (!ok) {
+        va_list ap;
+        va_start(ap, fmt);
         std::printf("FAIL: ");
-        std::printf(fmt, a, b);
+        std::vprintf(fmt, ap);
         std::printf("\n");
+        va_end(ap);
         failures++;
     }
 }
-
-struct Arena {
-    std::vector<uint8_t> mem;
-    rte_arena a;
-    explicit Arena(size_t n) : mem(n) { rte_arena_init(&a, mem.data(), n); }
-};
 
 uint32_t fnv(uint32_t h, const void *p, size_t n)
 {
@@ -72,7 +70,7 @@ std::vector<T> run_twice(Runner &run, const std::string &what, int cap, bool *tr
             run.tally.call_failed(what, st);
             return {};
         }
-        check(n >= 0 && n <= cap, ("count in range (" + what + "): %g of %g").c_str(), n, cap);
+        check(n >= 0 && n <= cap, "count in range (%s): %d of %d", what.c_str(), (int)n, cap);
         out[k].resize((size_t)std::max(n, 0));
     }
     cv::Mat a(1, (int)(out[0].size() * sizeof(T)), CV_8U, out[0].data());
@@ -80,8 +78,8 @@ std::vector<T> run_twice(Runner &run, const std::string &what, int cap, bool *tr
     if (a.cols == b.cols && a.cols > 0)
         run.tally.add(what + " (repeat)", a, b);
     else
-        check(a.cols == b.cols && trunc[0] == trunc[1], ("repeatable size (" + what + "): %g vs %g").c_str(),
-              a.cols, b.cols);
+        check(a.cols == b.cols && trunc[0] == trunc[1], "repeatable size (%s): %d vs %d", what.c_str(), a.cols,
+              b.cols);
     *truncated = trunc[0];
     return out[0];
 }
@@ -91,10 +89,10 @@ std::vector<rte_hough_line> lines_of(Runner &run, const std::string &what, const
 {
     std::vector<uint8_t> store;
     rte_image_u8 e = oracle::padded_u8(edges, store, run.rng);
-    Arena ar(rte_hough_lines_scratch_size(&cfg, cap));
+    oracle::Arena ar(rte_hough_lines_scratch_size(&cfg, cap));
     auto r = run_twice<rte_hough_line>(run, what, cap, truncated, [&](rte_hough_line *o, int c, int32_t *n, bool *t) {
-        rte_status st = rte_hough_lines(&cfg, &e, thr, &ar.a, o, c, n, t);
-        check(ar.a.used == 0, "arena reset after lines: %g %g", (double)ar.a.used, 0);
+        rte_status st = rte_hough_lines(&cfg, &e, thr, &ar.arena, o, c, n, t);
+        check(ar.arena.used == 0, "arena reset after lines: %zu bytes still taken", ar.arena.used);
         return st;
     });
     sum_lines = fnv(sum_lines, r.data(), r.size() * sizeof(rte_hough_line));
@@ -107,11 +105,11 @@ std::vector<rte_hough_segment> segments_of(Runner &run, const std::string &what,
 {
     std::vector<uint8_t> store;
     rte_image_u8 e = oracle::padded_u8(edges, store, run.rng);
-    Arena ar(rte_hough_segments_scratch_size(&cfg));
+    oracle::Arena ar(rte_hough_segments_scratch_size(&cfg));
     auto r = run_twice<rte_hough_segment>(run, what, cap, truncated,
                                           [&](rte_hough_segment *o, int c, int32_t *n, bool *t) {
-        rte_status st = rte_hough_segments(&cfg, &e, &p, &ar.a, o, c, n, t);
-        check(ar.a.used == 0, "arena reset after segments: %g %g", (double)ar.a.used, 0);
+        rte_status st = rte_hough_segments(&cfg, &e, &p, &ar.arena, o, c, n, t);
+        check(ar.arena.used == 0, "arena reset after segments: %zu bytes still taken", ar.arena.used);
         return st;
     });
     sum_segs = fnv(sum_segs, r.data(), r.size() * sizeof(rte_hough_segment));
@@ -139,11 +137,11 @@ std::vector<rte_hough_circle> circles_of(Runner &run, const std::string &what, c
     rte_image_u8 e = oracle::padded_u8(in.edges, store, run.rng);
     cv::Mat dx = in.dx.clone(), dy = in.dy.clone();
     rte_image_s16 gx = oracle::view_s16(dx), gy = oracle::view_s16(dy);
-    Arena ar(rte_hough_circles_scratch_size(in.edges.cols, in.edges.rows, &p));
+    oracle::Arena ar(rte_hough_circles_scratch_size(in.edges.cols, in.edges.rows, &p));
     auto r = run_twice<rte_hough_circle>(run, what, cap, truncated,
                                          [&](rte_hough_circle *o, int c, int32_t *n, bool *t) {
-        rte_status st = rte_hough_circles(&e, &gx, &gy, &p, &ar.a, o, c, n, t);
-        check(ar.a.used == 0, "arena reset after circles: %g %g", (double)ar.a.used, 0);
+        rte_status st = rte_hough_circles(&e, &gx, &gy, &p, &ar.arena, o, c, n, t);
+        check(ar.arena.used == 0, "arena reset after circles: %zu bytes still taken", ar.arena.used);
         return st;
     });
     sum_circles = fnv(sum_circles, r.data(), r.size() * sizeof(rte_hough_circle));
@@ -154,7 +152,7 @@ rte_hough_config make_config(int w, int h, double rho, double theta)
 {
     rte_hough_config cfg;
     rte_status st = rte_hough_config_init(&cfg, w, h, rho, theta, 0.0, CV_PI);
-    check(st == RTE_OK, "config init: status %g %g", st, 0);
+    check(st == RTE_OK, "config init: status %d", (int)st);
     return cfg;
 }
 
@@ -371,7 +369,7 @@ void synthetic_lines(Runner &run)
     }
     std::printf("synthetic lines (OpenCV HoughLines: %ld of %ld)\n", ocv_found, truth);
     std::printf("synthetic lines: %ld of %ld found within one rho and one theta bin\n", found, truth);
-    check(found == truth, "synthetic lines found %g of %g", found, truth);
+    check(found == truth, "synthetic lines found %ld of %ld", found, truth);
 }
 
 // ---- C. synthetic circles ----
@@ -427,8 +425,8 @@ void synthetic_circles(Runner &run)
     }
     std::printf("synthetic circles: %ld of %ld found with centre and radius within 1 px; %ld detections, "
                 "%ld correct\n", found, truth, detections, correct);
-    check(found == truth, "synthetic circles found %g of %g", found, truth);
-    check(correct == detections, "synthetic circles: %g of %g detections correct", correct, detections);
+    check(found == truth, "synthetic circles found %ld of %ld", found, truth);
+    check(correct == detections, "synthetic circles: %ld of %ld detections correct", correct, detections);
 }
 
 // ---- D. agreement with OpenCV on the real photos ----

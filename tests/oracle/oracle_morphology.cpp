@@ -30,7 +30,7 @@ static void run_opencv(const cv::Mat &src, cv::Mat &dst, int op, const cv::Mat &
 
 struct Checker {
     oracle::Tally t{"morphology"};
-    std::vector<uint8_t> arena_memory;
+    oracle::Arena scratch;
 
     void check(const std::string &name, const cv::Mat &gray, int op, const rte_morph_element &e,
                const cv::Mat &kernel, cv::Point anchor, int iterations, std::mt19937 &rng)
@@ -46,10 +46,8 @@ struct Checker {
             cv::dilate(gray, expected, kernel, anchor, iterations);
 
         size_t need = rte_morphology_scratch_size(gray.cols, gray.rows, &e, iterations);
-        if (arena_memory.size() < need)
-            arena_memory.resize(need);
-        rte_arena arena;
-        rte_arena_init(&arena, arena_memory.data(), need);
+        scratch.reserve(need);
+        rte_arena &arena = scratch.arena;
 
         std::vector<uint8_t> sbuf, dbuf;
         rte_image_u8 src = oracle::padded_u8(gray, sbuf, rng);

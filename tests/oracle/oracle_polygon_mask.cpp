@@ -107,8 +107,7 @@ std::string describe(const std::vector<Poly> &polys)
 // The rtedge view of a polygon set, with an arena sized for it.
 struct RtePolygons {
     std::vector<rte_polygon> list;
-    std::vector<uint8_t> memory;
-    rte_arena arena;
+    oracle::Arena scratch;
     explicit RtePolygons(const std::vector<Poly> &polys)
     {
         int total = 0;
@@ -116,8 +115,7 @@ struct RtePolygons {
             list.push_back(as_polygon(p));
             total += (int)p.size();
         }
-        memory.resize(rte_polygon_mask_scratch_size(total));
-        rte_arena_init(&arena, memory.data(), memory.size());
+        scratch.reserve(rte_polygon_mask_scratch_size(total));
     }
     int32_t count() const { return (int32_t)list.size(); }
 };
@@ -132,13 +130,13 @@ void check_mask(oracle::Tally &t, const std::string &what, int w, int h, const s
     RtePolygons rp(polys);
     std::vector<uint8_t> storage;
     rte_image_u8 mask = oracle::blank_u8(w, h, storage, rng);
-    rte_status st = rte_polygon_mask_build(&mask, rp.list.data(), rp.count(), &rp.arena);
+    rte_status st = rte_polygon_mask_build(&mask, rp.list.data(), rp.count(), &rp.scratch.arena);
     std::string name = what + " " + std::to_string(w) + "x" + std::to_string(h) + " " + describe(polys);
     if (st != RTE_OK) {
         t.call_failed(name, st);
         return;
     }
-    if (rp.arena.used != 0)
+    if (rp.scratch.arena.used != 0)
         t.call_failed(name + " (arena not reset)", -1);
     t.add(name, expected, oracle::to_mat(mask));
 }
@@ -294,7 +292,7 @@ int main()
         RtePolygons rp(polys);
         std::vector<uint8_t> storage;
         rte_image_u8 img = oracle::padded_u8(in.gray, storage, rng);
-        rte_status st = rte_polygon_fill_u8(&img, rp.list.data(), rp.count(), value, &rp.arena);
+        rte_status st = rte_polygon_fill_u8(&img, rp.list.data(), rp.count(), value, &rp.scratch.arena);
         std::string name = in.name + " fill " + std::to_string(value) + " " + describe(polys);
         if (st != RTE_OK)
             t.call_failed(name, st);

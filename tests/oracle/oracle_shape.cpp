@@ -16,15 +16,6 @@ extern "C" {
 
 namespace {
 
-struct Scratch {
-    std::vector<uint8_t> mem;
-    rte_arena a;
-    explicit Scratch(size_t n) : mem(n)
-    {
-        rte_arena_init(&a, mem.data(), mem.size());
-    }
-};
-
 struct Checker {
     oracle::Tally &t;
     long tol_cases = 0, tol_fail = 0;
@@ -80,8 +71,8 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
 {
     const int n = (int)cv_pts.size();
     const rte_point *pts = reinterpret_cast<const rte_point *>(cv_pts.data());
-    Scratch s(rte_shape_hull_scratch_size(n) + rte_shape_approx_scratch_size(n) +
-              rte_shape_min_area_rect_scratch_size(n) + rte_shape_enclosing_circle_scratch_size(n) + 4096);
+    oracle::Arena s(rte_shape_hull_scratch_size(n) + rte_shape_approx_scratch_size(n) +
+                    rte_shape_min_area_rect_scratch_size(n) + rte_shape_enclosing_circle_scratch_size(n) + 4096);
 
     // area, perimeter, bounding box
     double area = cv::contourArea(cv_pts, true);
@@ -139,7 +130,7 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
     std::vector<int32_t> ridx((size_t)n + 1);
     std::vector<rte_point> rpts((size_t)n + 1);
     int32_t nh = 0;
-    if (rte_shape_convex_hull(pts, n, ridx.data(), rpts.data(), &nh, &s.a) != RTE_OK) {
+    if (rte_shape_convex_hull(pts, n, ridx.data(), rpts.data(), &nh, &s.arena) != RTE_OK) {
         c.t.call_failed(name + " hull", -1);
         return;
     }
@@ -181,7 +172,7 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
         cv::approxPolyDP(cv_pts, ap, eps_q16 / 65536.0, true);
         std::vector<rte_point> out((size_t)n + 1);
         int32_t no = 0;
-        if (rte_shape_approx_poly(pts, n, eps_q16, out.data(), &no, &s.a) != RTE_OK) {
+        if (rte_shape_approx_poly(pts, n, eps_q16, out.data(), &no, &s.arena) != RTE_OK) {
             c.t.call_failed(name + " approx", -1);
             continue;
         }
@@ -192,7 +183,7 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
     {
         cv::RotatedRect box = cv::minAreaRect(cv_pts);
         rte_rotated_rect rb;
-        if (rte_shape_min_area_rect(pts, n, &rb, &s.a) != RTE_OK) {
+        if (rte_shape_min_area_rect(pts, n, &rb, &s.arena) != RTE_OK) {
             c.t.call_failed(name + " min_area_rect", -1);
         } else {
             cv::Point2f corners[4];
@@ -253,7 +244,7 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
         float r;
         cv::minEnclosingCircle(cv_pts, cc, r);
         rte_circle rc;
-        if (rte_shape_enclosing_circle(pts, n, &rc, &s.a) != RTE_OK) {
+        if (rte_shape_enclosing_circle(pts, n, &rc, &s.arena) != RTE_OK) {
             c.t.call_failed(name + " circle", -1);
         } else {
             c.near(name + " circle r", r, rc.r_q8 / 256.0, 0.5);
@@ -343,9 +334,7 @@ cv::Mat synthetic_shape(std::mt19937 &rng, int kind)
 void check_classes(oracle::Tally &t, std::mt19937 &rng, int per_class)
 {
     static const char *names[] = { "other", "triangle", "square", "rectangle", "pentagon", "hexagon", "circle" };
-    std::vector<uint8_t> mem(1 << 22);
-    rte_arena a;
-    rte_arena_init(&a, mem.data(), mem.size());
+    oracle::Arena scratch(1 << 22);
     long wrong = 0, total = 0;
     for (int kind = RTE_SHAPE_TRIANGLE; kind <= RTE_SHAPE_CIRCLE; kind++) {
         for (int i = 0; i < per_class; i++) {
@@ -357,7 +346,7 @@ void check_classes(oracle::Tally &t, std::mt19937 &rng, int per_class)
                 if (cv::contourArea(cs[k]) > cv::contourArea(cs[big]))
                     big = k;
             rte_shape_info info;
-            int st = rte_shape_classify(reinterpret_cast<const rte_point *>(cs[big].data()), (int)cs[big].size(), &info, &a);
+            int st = rte_shape_classify(reinterpret_cast<const rte_point *>(cs[big].data()), (int)cs[big].size(), &info, &scratch.arena);
             total++;
             if (st != RTE_OK || (int)info.shape != kind) {
                 wrong++;
