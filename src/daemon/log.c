@@ -1,5 +1,6 @@
 /* rtedged's stderr lines: see log.h. */
 #include "log.h"
+#include "core/clock.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -13,13 +14,6 @@ void rted_msgf(char *msg, size_t size, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, size, fmt, ap);
     va_end(ap);
-}
-
-int64_t rted_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
 }
 
 __attribute__((format(printf, 1, 0))) static void vlog(const char *fmt, va_list ap)
@@ -52,7 +46,7 @@ void rted_log_flush(rted_log_limit *l, int64_t now_ns)
 
 void rted_log_limited(rted_log_limit *l, const char *fmt, ...)
 {
-    rted_log_flush(l, rted_now_ns());
+    rted_log_flush(l, rte_clock_now_ns());
     if (l->lines >= l->burst) {
         l->suppressed++;
         return;

@@ -22,9 +22,6 @@ typedef struct rted_log_limit {
 /* printf into a caller's message buffer (nothing when size is 0). */
 void rted_msgf(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
-/* CLOCK_MONOTONIC in nanoseconds. */
-int64_t rted_now_ns(void);
-
 /* "rtedged: " and the formatted line. */
 void rted_log(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 

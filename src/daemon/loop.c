@@ -26,6 +26,7 @@
 #endif
 #include "sources/recorded_source.h"
 #include "sources/v4l2_source.h"
+#include "core/clock.h"
 
 static bool ends_with(const char *s, const char *suffix)
 {
@@ -396,7 +397,7 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     d->image_msg.pixelformat = RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY;
     rted_derive(d);
     realtime(c);
-    d->window_start_ns = rted_now_ns();
+    d->window_start_ns = rte_clock_now_ns();
     /* A first status says the daemon is up; it also makes liblcm cache the
      * channel (memq:// strdup()s a channel's name on its first message). */
     rted_daemon_publish_status(d);
@@ -479,7 +480,7 @@ static void publish_lane(rted_daemon *d, const rte_source_frame *f, const rte_la
     m->centre_offset_px = (float)r->offset_q8 / RTE_LANE_ONE;
     m->centre_offset_frac = (float)r->offset_permille / 1000.0f;
     m->heading_rad = (float)r->heading_mrad / 1000.0f;
-    fill_header(d, &m->header, f, rted_now_ns());
+    fill_header(d, &m->header, f, rte_clock_now_ns());
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
     if (rte_publish_lane(d->pub, d->cfg.lane_channel, m, msg, sizeof msg) == RTE_OK)
         d->n.published++;
@@ -524,7 +525,7 @@ static void publish_grasp(rted_daemon *d, const rte_source_frame *f, const rte_g
     }
     m->nobjects = n;
     m->objects_truncated = r->truncated || n < r->n_objects;
-    fill_header(d, &m->header, f, rted_now_ns());
+    fill_header(d, &m->header, f, rte_clock_now_ns());
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
     if (rte_publish_grasp(d->pub, d->cfg.grasp_channel, m, msg, sizeof msg) == RTE_OK)
         d->n.published++;
@@ -594,7 +595,7 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
     }
     if (d->grasp) {
         /* The optional stage: only when the budget still holds it. */
-        if (d->deadline_ns - (rted_now_ns() - t0) < d->grasp_min_ns) {
+        if (d->deadline_ns - (rte_clock_now_ns() - t0) < d->grasp_min_ns) {
             d->n.stages_skipped++;
         } else {
             rte_grasp_result gr;
@@ -605,12 +606,12 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
         }
     }
     if (d->cfg.publish_images) {
-        if (d->deadline_ns - (rted_now_ns() - t0) < d->grasp_min_ns)
+        if (d->deadline_ns - (rte_clock_now_ns() - t0) < d->grasp_min_ns)
             d->n.stages_skipped++;
         else
             publish_image(d, f, &gray);
     }
-    int64_t lat = rted_now_ns() - t0;
+    int64_t lat = rte_clock_now_ns() - t0;
     rted_record_latency(d, lat);
     if (lat > d->deadline_ns)
         d->n.deadline_misses++;
@@ -655,7 +656,7 @@ rted_step rted_daemon_step(rted_daemon *d)
     if (d->cfg.max_frames && d->n.processed >= (uint64_t)d->cfg.max_frames)
         return RTED_STEP_END;
     rted_params_poll(d);
-    if (rted_now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
+    if (rte_clock_now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
         rted_daemon_publish_status(d);
 
     rte_source_frame f;
@@ -694,7 +695,7 @@ rted_step rted_daemon_step(rted_daemon *d)
     bool waited = false;
     for (;;) {
         int64_t wait = 0;
-        rte_pace_action a = rte_pacer_decide(&d->pacer, f.recorded_ns, rted_now_ns(), &wait);
+        rte_pace_action a = rte_pacer_decide(&d->pacer, f.recorded_ns, rte_clock_now_ns(), &wait);
         if (a == RTE_PACE_DROP) {
             d->n.dropped++;
             return RTED_STEP_IDLE;
@@ -706,13 +707,13 @@ rted_step rted_daemon_step(rted_daemon *d)
         sleep_ns(wait > 50000000 ? 50000000 : wait);
         waited = true;
         if (d->cfg.status_period_ms &&
-            rted_now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
+            rte_clock_now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
             rted_daemon_publish_status(d);
     }
     /* Recordings: the frame is "captured" when it is due, not when it was
      * read ahead of its time. */
     if (d->recorded && waited)
-        f.capture_ns = rted_now_ns();
+        f.capture_ns = rte_clock_now_ns();
     return analyse(d, &f);
 }
 

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "daemon_internal.h"
+#include "core/clock.h"
 
 bool rted_lane_params(const rted_daemon *d, const rted_config *c, rte_lane_params *p)
 {
@@ -157,7 +158,7 @@ static void on_params(const lcm_recv_buf_t *rbuf, const char *channel, void *use
 {
     (void)channel;
     rted_daemon *d = user;
-    int64_t now = rted_now_ns();
+    int64_t now = rte_clock_now_ns();
     if (now - d->params_window_ns >= 1000000000) {
         d->params_window_ns = now;
         d->params_in_window = 0;

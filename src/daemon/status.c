@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "daemon_internal.h"
+#include "core/clock.h"
 
 static void sift(int32_t *a, uint32_t root, uint32_t n)
 {
@@ -50,7 +51,7 @@ static void window_latency(rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *
 
 void rted_daemon_publish_status(rted_daemon *d)
 {
-    int64_t t = rted_now_ns();
+    int64_t t = rte_clock_now_ns();
     rte_source_stats ss;
     rte_source_get_stats(&d->source, &ss);
     rtedge_status_t *s = &d->status_msg;

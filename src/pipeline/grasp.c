@@ -4,6 +4,7 @@
 #include "grasp_ctx.h"
 #include "rtedge/canny.h"
 #include "rtedge/threshold.h"
+#include "core/clock.h"
 
 #define DEG90_Q16 (90 * 65536)
 
@@ -49,13 +50,6 @@ const char *rte_grasp_shape_name(rte_shape_class shape)
     static const char *const names[] = {"other", "triangle", "square", "rectangle",
                                         "pentagon", "hexagon", "circle"};
     return (unsigned)shape < sizeof names / sizeof names[0] ? names[shape] : "other";
-}
-
-static int64_t now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
 }
 
 /* A view of the first w x h pixels of a context buffer. */
@@ -172,7 +166,7 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
     if (w > ctx->config.max_width || h > ctx->config.max_height)
         return RTE_ERR_SIZE;
     const rte_grasp_params *p = &ctx->params;
-    const int64_t t0 = now_ns();
+    const int64_t t0 = rte_clock_now_ns();
 
     const rte_image_u8 *src = gray;
     rte_image_u8 blurred = sub(&ctx->blurred, w, h);
@@ -180,7 +174,7 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
         st = rte_gaussian_blur_u8(gray, &blurred, &ctx->blur, &ctx->arena);
         src = &blurred;
     }
-    const int64_t t1 = now_ns();
+    const int64_t t1 = rte_clock_now_ns();
 
     rte_image_u8 bin = sub(&ctx->binary, w, h);
     ctx->binary.width = w; /* what out->binary shows */
@@ -189,12 +183,12 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
     out->binary = &ctx->binary;
     if (st == RTE_OK)
         st = binarize(ctx, src, &bin, out);
-    const int64_t t2 = now_ns();
+    const int64_t t2 = rte_clock_now_ns();
 
     if (st == RTE_OK)
         st = rte_contours_find(&bin, RTE_CONTOURS_EXTERNAL, RTE_CONTOURS_APPROX_SIMPLE, &ctx->contours,
                                &ctx->arena);
-    const int64_t t3 = now_ns();
+    const int64_t t3 = rte_clock_now_ns();
     if (st != RTE_OK) {
         ctx->contours.n_contours = 0;
         return st;
@@ -232,7 +226,7 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
         grasp_of(o);
         n++;
     }
-    const int64_t t4 = now_ns();
+    const int64_t t4 = rte_clock_now_ns();
     out->n_objects = n;
     out->dropped_objects = dropped;
     out->dropped_contours = cs->dropped_contours;

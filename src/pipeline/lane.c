@@ -11,13 +11,7 @@
 #include "rtedge/color.h"
 #include "rtedge/polygon_mask.h"
 #include "rtedge/threshold.h"
-
-static int64_t lane_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
-}
+#include "core/clock.h"
 
 const char *rte_lane_stage_name(rte_lane_stage stage)
 {
@@ -672,7 +666,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
                            int32_t color_stride, bool rgb, int64_t t_ns, int64_t gray_ns,
                            rte_lane_result *out)
 {
-    int64_t t0 = lane_now_ns() - gray_ns, t1;
+    int64_t t0 = rte_clock_now_ns() - gray_ns, t1;
     const int32_t w = gray->width, h = gray->height;
     memset(out, 0, sizeof *out);
     out->t_ns = t_ns;
@@ -689,7 +683,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
                        color_stride, rgb, &cue);
         src = cue;
     }
-    t1 = lane_now_ns();
+    t1 = rte_clock_now_ns();
     out->stage_ns[RTE_LANE_STAGE_GRAY] = t1 - t0;
     t0 = t1;
 
@@ -709,7 +703,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
         rte_image_u8 blurred = lane_view(&ctx->blurred, 0, 0, cw, ch);
         if ((st = rte_gaussian_blur_u8(&src, &blurred, &ctx->blur, &ctx->arena)) != RTE_OK)
             return st;
-        t1 = lane_now_ns();
+        t1 = rte_clock_now_ns();
         out->stage_ns[RTE_LANE_STAGE_BLUR] = t1 - t0;
         t0 = t1;
         lane_thresholds(ctx, &blurred, &mask, &low, &high);
@@ -724,7 +718,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     out->canny_high = high;
     if ((st = rte_polygon_mask_apply(&edges, &mask, &edges)) != RTE_OK)
         return st;
-    t1 = lane_now_ns();
+    t1 = rte_clock_now_ns();
     out->stage_ns[RTE_LANE_STAGE_CANNY] = t1 - t0;
     t0 = t1;
 
@@ -741,7 +735,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
         s->x1 = ctx->raw[i].x1 + cx0;
         s->y1 = ctx->raw[i].y1 + cy0;
     }
-    t1 = lane_now_ns();
+    t1 = rte_clock_now_ns();
     out->stage_ns[RTE_LANE_STAGE_HOUGH] = t1 - t0;
     t0 = t1;
 
@@ -790,7 +784,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     out->segments = ctx->segments;
     out->segment_count = count;
     out->truncated = truncated;
-    out->stage_ns[RTE_LANE_STAGE_FIT] = lane_now_ns() - t0;
+    out->stage_ns[RTE_LANE_STAGE_FIT] = rte_clock_now_ns() - t0;
     return RTE_OK;
 }
 
@@ -824,7 +818,7 @@ rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64
     rte_image_u8 gray;
     if (rte_frame_gray_view(frame, &gray) == RTE_OK)
         return lane_run(ctx, &gray, NULL, 0, false, t_ns, 0, out);
-    const int64_t t0 = lane_now_ns();
+    const int64_t t0 = rte_clock_now_ns();
     const bool colour = frame->format == RTE_PIXEL_BGR24 || frame->format == RTE_PIXEL_RGB24;
     /* Only the ROI's bounding box is read: with 3-byte pixels (where any
      * crop is a plain view of the frame) only that part becomes grey. */
@@ -842,5 +836,5 @@ rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64
         return st;
     gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
     return lane_run(ctx, &gray, colour ? frame->plane[0] : NULL, frame->stride[0],
-                    frame->format == RTE_PIXEL_RGB24, t_ns, lane_now_ns() - t0, out);
+                    frame->format == RTE_PIXEL_RGB24, t_ns, rte_clock_now_ns() - t0, out);
 }

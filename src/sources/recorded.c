@@ -1,5 +1,6 @@
 /* What the recorded sources share: see recorded.h. */
 #include "recorded.h"
+#include "core/clock.h"
 
 #include <string.h>
 #include <time.h>
@@ -24,20 +25,13 @@ void rte_recording_attach(rte_source *source, const rte_source_ops *ops, void *i
     source->format = format;
 }
 
-int64_t rte_recording_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
-}
-
 void rte_recording_deliver(rte_recording *rec, rte_source_frame *out, const rte_frame *frame,
                            int64_t recorded_ns)
 {
     if (rec->first_ns < 0)
         rec->first_ns = recorded_ns;
     out->frame = *frame;
-    out->capture_ns = rte_recording_now_ns();
+    out->capture_ns = rte_clock_now_ns();
     out->recorded_ns = recorded_ns + rec->ns_offset;
     out->sequence = rec->sequence_base + rec->index;
     out->dropped = 0;

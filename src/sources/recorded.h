@@ -39,7 +39,6 @@ int64_t rte_recording_frame_ns(uint64_t index, int32_t fps_num, int32_t fps_den)
 /* fps_num/fps_den defaulted and checked (RTE_ERR_ARGUMENT). */
 rte_status rte_recording_check_fps(int32_t *fps_num, int32_t *fps_den, char *msg,
                                    size_t msg_size);
-int64_t rte_recording_now_ns(void);
 void rte_recording_get_stats(const void *impl, rte_source_stats *stats);
 
 /* The ops of the recordings that can rewind. */

@@ -8,15 +8,9 @@
 #include <time.h>
 
 #include "sources/libcamera_source.h"
+#include "core/clock.h"
 
 #define FRAMES 20
-
-static int64_t now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
-}
 
 int main(void)
 {
@@ -36,7 +30,7 @@ int main(void)
         return 1;
     }
     printf("libcamera source: %s\n", msg);
-    int64_t t0 = now_ns(), prev_ns = 0;
+    int64_t t0 = rte_clock_now_ns(), prev_ns = 0;
     uint64_t prev_seq = 0;
     int n = 0, varied = 0;
     for (; n < FRAMES; n++) {
@@ -46,7 +40,7 @@ int main(void)
             snprintf(why, sizeof(why), "frame %d: %s (%s)", n, rte_status_message(st), msg);
             break;
         }
-        int64_t now = now_ns();
+        int64_t now = rte_clock_now_ns();
         if (f.frame.width != info.width || f.frame.height != info.height ||
             f.frame.format != RTE_PIXEL_RGB24 || f.frame.stride[0] < 3 * f.frame.width) {
             snprintf(why, sizeof(why), "frame %d: format %d %dx%d stride %d", n, f.frame.format,
@@ -75,7 +69,7 @@ int main(void)
         prev_ns = f.capture_ns;
         prev_seq = f.sequence;
     }
-    int64_t ms = (now_ns() - t0) / 1000000;
+    int64_t ms = (rte_clock_now_ns() - t0) / 1000000;
     rte_source_stats stats;
     rte_source_get_stats(&src, &stats);
     rte_source_close(&src);

@@ -13,6 +13,7 @@
 #include <time.h>
 
 #include "sources/v4l2_source.h"
+#include "core/clock.h"
 
 static int failures;
 
@@ -21,13 +22,6 @@ static void result(int ok, const char *name, const char *detail)
     printf("RTE-VM %s %s: %s\n", ok ? "PASS" : "FAIL", name, detail);
     fflush(stdout);
     failures += !ok;
-}
-
-static int64_t now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
 }
 
 static rte_v4l2_config config(const char *device, uint32_t fourcc)
@@ -60,7 +54,7 @@ static int capture(rte_source *src, int n, char *why, size_t why_size)
             snprintf(why, why_size, "frame %d: %s (%s)", i, rte_status_message(st), msg);
             return 0;
         }
-        int64_t now = now_ns();
+        int64_t now = rte_clock_now_ns();
         if (f.frame.format != src->format || f.frame.width != 640 || f.frame.height != 480 ||
             f.frame.stride[0] < 640) {
             snprintf(why, why_size, "frame %d: format %d %dx%d stride %d", i, f.frame.format,
@@ -116,10 +110,10 @@ static void test_capture(const char *name, const char *device, uint32_t fourcc, 
         result(0, name, detail);
         return;
     }
-    int64_t t0 = now_ns();
+    int64_t t0 = rte_clock_now_ns();
     char why[512] = "";
     int ok = capture(&src, frames, why, sizeof(why));
-    int64_t ms = (now_ns() - t0) / 1000000;
+    int64_t ms = (rte_clock_now_ns() - t0) / 1000000;
     rte_source_stats stats;
     rte_source_get_stats(&src, &stats);
     ok = ok && info.fourcc == fourcc && info.timestamps_monotonic &&
