@@ -7,6 +7,7 @@
  *
  * Stricter than OpenCV: libjpeg's warnings (a file cut short, which libjpeg
  * pads with grey, or damaged entropy data) are errors here. */
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,7 +159,7 @@ rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_t
     }
     if (rc != 0) {
         const char *text = tjGetErrorStr2(tj);
-        int truncated = strstr(text, "Premature end") != NULL;
+        bool truncated = strstr(text, "Premature end") != NULL;
         st = io_fail(m, truncated ? RTE_ERR_TRUNCATED : RTE_ERR_CORRUPT, "%s JPEG: %s",
                      truncated ? "truncated" : "corrupt", text);
         /* A fresh handle after an error, so no state of the bad file can
