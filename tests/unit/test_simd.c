@@ -1,12 +1,19 @@
 /* SIMD row kernels against their plain C references, byte for byte, on
  * random rows (as libyuv tests its rows): every width 1..300 and random
- * larger ones, unaligned starts, for every variant this CPU runs. Sources
- * end exactly at the row's last byte (an over-read shows under ASan) and
- * destinations have guard bytes after the row (an over-write shows here).
- * Also: RTE_FORCE_C selects the C path. */
+ * larger ones, unaligned starts, odd strides. Each kernel family runs
+ * under every feature mask of its CPU family (none, SSE2, +SSSE3, +SSE4.1,
+ * +AVX2 on x86; none, NEON on aarch64): the variant that the family's
+ * *_select(mask) picks is compared with the C reference, one CMocka test
+ * per family and mask, and a mask this CPU lacks is reported as skipped.
+ * Every variant must be picked by some mask, and never one that needs a
+ * feature outside its mask. Sources end exactly at the row's last byte
+ * (an over-read shows under ASan) and destinations have guard bytes after
+ * the row (an over-write shows here). Also: RTE_FORCE_C selects the C
+ * path. */
 #include "unit.h"
 
 #include <stdbool.h>
+#include <stdio.h>
 
 #include "rtedge/blur.h"
 #include "rtedge/canny.h"
@@ -23,14 +30,41 @@
 
 enum { GUARD = 64, MAX_OFFSET = 32 };
 
-/* Whether this CPU runs a variant that needs the RTE_CPU_* bits `needs`
- * (the others are skipped, and say so). */
-static bool cpu_runs(const char *name, uint32_t needs)
+#define COUNT_OF(a) (sizeof(a) / sizeof((a)[0]))
+
+/* The feature masks every family runs under, each with the instruction
+ * sets of the ones before it. */
+typedef struct feature_mask {
+    const char *name;
+    uint32_t bits; /* RTE_CPU_* */
+} feature_mask;
+
+static const feature_mask feature_masks[] = {
+    { "none", 0 },
+#ifdef RTE_SIMD_X86
+    { "sse2", RTE_CPU_X86_SSE2 },
+    { "ssse3", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 },
+    { "sse41", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41 },
+    { "avx2", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41 | RTE_CPU_X86_AVX2 },
+#endif
+#ifdef RTE_SIMD_NEON
+    { "neon", RTE_CPU_ARM_NEON },
+#endif
+};
+
+/* The RTE_CPU_* bits as names ("ssse3 avx2"), for messages. */
+static const char *feature_names(uint32_t bits, char *buf, size_t size)
 {
-    if ((rte_cpu_features_hw() & needs) == needs)
-        return true;
-    print_message("skipping %s: not supported by this CPU\n", name);
-    return false;
+    static const feature_mask names[] = {
+        { "sse2", RTE_CPU_X86_SSE2 }, { "ssse3", RTE_CPU_X86_SSSE3 }, { "sse41", RTE_CPU_X86_SSE41 },
+        { "avx2", RTE_CPU_X86_AVX2 }, { "neon", RTE_CPU_ARM_NEON },
+    };
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < COUNT_OF(names) && used < size; i++)
+        if (bits & names[i].bits)
+            used += (size_t)snprintf(buf + used, size - used, "%s%s", used ? " " : "", names[i].name);
+    return used ? buf : "none";
 }
 
 /* The first member of every variant struct below. */
@@ -39,54 +73,54 @@ typedef struct variant_head {
     uint32_t needs; /* RTE_CPU_* bits */
 } variant_head;
 
-/* Calls check(variant, seed) for each of `count` variants (structs of
- * `size` bytes that start with a variant_head) that this CPU runs, with a
- * seed of seed0 plus the variant's index; at least one must run. */
-static void for_each_variant(const void *variants, size_t count, size_t size, uint32_t seed0,
-                             void (*check)(const void *variant, uint32_t *seed))
-{
-    int ran = 0;
-    for (size_t i = 0; i < count; i++) {
-        const void *v = (const char *)variants + i * size;
-        const variant_head *head = v;
-        if (!cpu_runs(head->name, head->needs))
-            continue;
-        uint32_t seed = seed0 + (uint32_t)i;
-        check(v, &seed);
-        ran++;
-    }
-    assert_true(ran >= 1);
-}
-
-/* Defines the test NAME_match_reference: NAME(variant, seed) for every
- * variant in the array VARIANTS that this CPU runs. */
-#define VARIANTS_TEST(NAME, VARIANTS, SEED)                                                       \
-    static void NAME##_match_reference(void **state)                                              \
+/* NAME_pick(features): the index in TABLE (of TYPE) of the variant that
+ * SELECT, the family's own choice for `features`, gives as `p` (SAME
+ * tells whether the table's `v` is it), or -1 if it is not in the table. */
+#define DEFINE_PICK(NAME, TABLE, TYPE, PICKED_TYPE, SELECT, SAME)                                 \
+    static int NAME##_pick(uint32_t features)                                                     \
     {                                                                                             \
-        (void)state;                                                                              \
-        for_each_variant(VARIANTS, sizeof VARIANTS / sizeof VARIANTS[0], sizeof VARIANTS[0], SEED, \
-                         NAME);                                                                   \
+        const PICKED_TYPE p = SELECT;                                                             \
+        for (size_t i = 0; i < COUNT_OF(TABLE); i++) {                                            \
+            const TYPE *v = &TABLE[i];                                                            \
+            if (SAME)                                                                             \
+                return (int)i;                                                                    \
+        }                                                                                         \
+        return -1;                                                                                \
     }
 
+/* BGR and RGB rows to grey; the reference against itself (the "none"
+ * mask) keeps the harness honest on any CPU. */
 typedef struct c3_variant {
     variant_head head;
     rte_row_c3_to_gray_fn fn, ref;
 } c3_variant;
 
-static const c3_variant c3_variants[] = {
+static const c3_variant bgr_variants[] = {
 #ifdef RTE_SIMD_X86
     { { "bgr_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_bgr_to_gray_ssse3, rte_row_bgr_to_gray_c },
-    { { "rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c },
     { { "bgr_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_bgr_to_gray_avx2, rte_row_bgr_to_gray_c },
-    { { "rgb_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c },
 #endif
 #ifdef RTE_SIMD_NEON
     { { "bgr_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_bgr_to_gray_neon, rte_row_bgr_to_gray_c },
-    { { "rgb_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c },
 #endif
-    /* the reference against itself keeps the harness honest on any CPU */
     { { "bgr_to_gray_c", 0 }, rte_row_bgr_to_gray_c, rte_row_bgr_to_gray_c },
 };
+
+static const c3_variant rgb_variants[] = {
+#ifdef RTE_SIMD_X86
+    { { "rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c },
+    { { "rgb_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c },
+#endif
+#ifdef RTE_SIMD_NEON
+    { { "rgb_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c },
+#endif
+    { { "rgb_to_gray_c", 0 }, rte_row_rgb_to_gray_c, rte_row_rgb_to_gray_c },
+};
+
+DEFINE_PICK(bgr, bgr_variants, c3_variant, rte_row_c3_to_gray_fn,
+            rte_row_c3_to_gray_select(features, false), v->fn == p)
+DEFINE_PICK(rgb, rgb_variants, c3_variant, rte_row_c3_to_gray_fn,
+            rte_row_c3_to_gray_select(features, true), v->fn == p)
 
 /* Random bytes; every 7th row uses only 0 and 255 so that the extremes
  * (and the rounding at the top of the range) are hit often. */
@@ -131,8 +165,6 @@ static void c3_to_gray_rows(const void *variant, uint32_t *seed)
     for (int k = 0; k < 40; k++)
         check_c3_row(v, 301 + (int32_t)(unit_rand(seed) % 4000), seed);
 }
-
-VARIANTS_TEST(c3_to_gray_rows, c3_variants, 0x9E3779B9u)
 
 /* Gaussian passes: each variant against the C build of the same loops. */
 typedef struct gaussian_variant {
@@ -227,7 +259,8 @@ static void gaussian_passes(const void *variant, uint32_t *seed)
         }
 }
 
-VARIANTS_TEST(gaussian_passes, gaussian_variants, 0xC0FFEEu)
+DEFINE_PICK(gaussian, gaussian_variants, gaussian_variant, rte_gaussian_rows,
+            rte_gaussian_rows_select(features), v->column == p.column && v->row == p.row)
 
 /* Morphology rows: each variant against the C build of the same loops. */
 typedef struct morph_variant {
@@ -290,7 +323,8 @@ static void morph_rows(const void *variant, uint32_t *seed)
         }
 }
 
-VARIANTS_TEST(morph_rows, morph_variants, 0xBADC0DEu)
+DEFINE_PICK(morph, morph_variants, morph_variant, rte_morph_rows,
+            rte_morph_rows_select(features), v->op2 == p.op2 && v->reduce == p.reduce)
 
 /* Canny rows (aperture 3, L1): each variant against the C reference. */
 typedef struct canny_variant {
@@ -390,7 +424,8 @@ static void canny_rows(const void *variant, uint32_t *seed)
     }
 }
 
-VARIANTS_TEST(canny_rows, canny_variants, 0x5EED1u)
+DEFINE_PICK(canny, canny_variants, canny_variant, rte_canny_rows,
+            rte_canny_rows_select(features), v->sobel == p.sobel && v->nms == p.nms)
 
 /* Threshold rows: each variant against the C reference, every type, also
  * in place. */
@@ -444,7 +479,8 @@ static void threshold_rows(const void *variant, uint32_t *seed)
     }
 }
 
-VARIANTS_TEST(threshold_rows, threshold_variants, 0x7E57u)
+DEFINE_PICK(threshold, threshold_variants, threshold_variant, rte_threshold_row_fn,
+            rte_threshold_row_select(features), v->row == p)
 
 /* Gradient rows (Sobel, Scharr, Laplacian, Canny's apertures 5 and 7):
  * each variant against the C reference, random taps of every length and
@@ -524,7 +560,8 @@ static void grad_rows(const void *variant, uint32_t *seed)
         }
 }
 
-VARIANTS_TEST(grad_rows, grad_variants, 0x6AD1u)
+DEFINE_PICK(grad, grad_variants, grad_variant, rte_grad_rows, rte_grad_rows_select(features),
+            v->column == p.column && v->row == p.row)
 
 /* The lane path's colour cue rows: each variant against the C reference,
  * random thresholds (256 as an "off" mask too), both channel orders. */
@@ -577,7 +614,8 @@ static void lane_cue_rows(const void *variant, uint32_t *seed)
         check_lane_cue(v, 68 + (int32_t)(unit_rand(seed) % 3000), seed);
 }
 
-VARIANTS_TEST(lane_cue_rows, lane_cue_variants, 0xC0105u)
+DEFINE_PICK(lane_cue, lane_cue_variants, lane_cue_variant, rte_lane_cue_row_fn,
+            rte_lane_cue_row_select(features), v->row == p)
 
 /* Every colour through the dispatched whole-image path: 2^24 pixels as a
  * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
@@ -648,7 +686,107 @@ static void hough_bins(const void *variant, uint32_t *seed)
     }
 }
 
-VARIANTS_TEST(hough_bins, hough_bins_variants, 0x4B0Fu)
+DEFINE_PICK(hough_bins, hough_bins_variants, hough_bins_variant, rte_hough_bins_fn,
+            rte_hough_bins_select(features), v->bins == p)
+
+/* A kernel family: its variants (structs that start with a variant_head),
+ * which of them its *_select picks for a mask, and the comparison of one
+ * variant with the C reference. */
+typedef struct kernel_family {
+    const char *name;
+    const void *variants;
+    size_t count, size;
+    int (*pick)(uint32_t features);
+    void (*check)(const void *variant, uint32_t *seed);
+    uint32_t seed;
+} kernel_family;
+
+#define FAMILY(NAME, TABLE, CHECK, SEED)                                                          \
+    { #NAME, TABLE, COUNT_OF(TABLE), sizeof TABLE[0], NAME##_pick, CHECK, SEED }
+
+static const kernel_family families[] = {
+    FAMILY(bgr, bgr_variants, c3_to_gray_rows, 0x9E3779B9u),
+    FAMILY(rgb, rgb_variants, c3_to_gray_rows, 0x7F4A7C15u),
+    FAMILY(gaussian, gaussian_variants, gaussian_passes, 0xC0FFEEu),
+    FAMILY(morph, morph_variants, morph_rows, 0xBADC0DEu),
+    FAMILY(canny, canny_variants, canny_rows, 0x5EED1u),
+    FAMILY(threshold, threshold_variants, threshold_rows, 0x7E57u),
+    FAMILY(lane_cue, lane_cue_variants, lane_cue_rows, 0xC0105u),
+    FAMILY(grad, grad_variants, grad_rows, 0x6AD1u),
+    FAMILY(hough_bins, hough_bins_variants, hough_bins, 0x4B0Fu),
+};
+
+enum { FAMILY_COUNT = COUNT_OF(families), MASK_COUNT = COUNT_OF(feature_masks) };
+
+static const variant_head *family_variant(const kernel_family *f, int i)
+{
+    return (const variant_head *)(const void *)((const char *)f->variants + (size_t)i * f->size);
+}
+
+/* The variant f picks for mask m; it must be one of f's and need nothing
+ * outside the mask (else it would run on a CPU without its features). */
+static int checked_pick(const kernel_family *f, const feature_mask *m)
+{
+    const int i = f->pick(m->bits);
+    if (i < 0)
+        fail_msg("%s: mask %s picks a variant that is not in the test's table", f->name, m->name);
+    const variant_head *v = family_variant(f, i);
+    if ((v->needs & ~m->bits) != 0)
+        fail_msg("%s: mask %s picks %s, which needs features outside the mask", f->name, m->name,
+                 v->name);
+    return i;
+}
+
+/* One family under one mask (the test's state): the picked variant
+ * against the C reference, unless this CPU lacks the features the variant
+ * needs (skipped, and CMocka lists it) or an earlier mask picked it. */
+typedef struct family_mask {
+    const kernel_family *family;
+    const feature_mask *mask;
+} family_mask;
+
+static void family_under_mask(void **state)
+{
+    const family_mask *fm = *state;
+    const kernel_family *f = fm->family;
+    const int i = checked_pick(f, fm->mask);
+    const variant_head *v = family_variant(f, i);
+    const uint32_t hw = rte_cpu_features_hw();
+    if ((v->needs & ~hw) != 0) {
+        char needs[64], has[64];
+        print_message("%s under %s picks %s, which needs %s: this CPU has %s\n", f->name,
+                      fm->mask->name, v->name, feature_names(v->needs, needs, sizeof needs),
+                      feature_names(hw, has, sizeof has));
+        skip();
+    }
+    for (const feature_mask *m = feature_masks; m < fm->mask; m++)
+        if (f->pick(m->bits) == i) {
+            print_message("%s under %s picks %s, compared under %s\n", f->name, fm->mask->name,
+                          v->name, m->name);
+            return;
+        }
+    print_message("%s under %s picks %s: against the C reference\n", f->name, fm->mask->name,
+                  v->name);
+    uint32_t seed = f->seed + (uint32_t)(fm->mask - feature_masks);
+    f->check(v, &seed);
+}
+
+/* Whatever this CPU has: every variant of the tables is what some mask
+ * picks (a variant no mask reaches would be tested here but never run). */
+static void every_variant_is_picked(void **state)
+{
+    (void)state;
+    for (size_t k = 0; k < FAMILY_COUNT; k++) {
+        const kernel_family *f = &families[k];
+        for (size_t i = 0; i < f->count; i++) {
+            size_t m = 0;
+            while (m < MASK_COUNT && checked_pick(f, &feature_masks[m]) != (int)i)
+                m++;
+            if (m == MASK_COUNT)
+                fail_msg("%s: no feature mask picks %s", f->name, family_variant(f, (int)i)->name);
+        }
+    }
+}
 
 static void force_c_selects_the_reference(void **state)
 {
@@ -769,19 +907,24 @@ static void forced_and_dispatched_canny_and_threshold_agree(void **state)
 
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(c3_to_gray_rows_match_reference),
+    const struct CMUnitTest rest[] = {
+        cmocka_unit_test(every_variant_is_picked),
         cmocka_unit_test(every_colour_matches_reference),
-        cmocka_unit_test(gaussian_passes_match_reference),
-        cmocka_unit_test(morph_rows_match_reference),
-        cmocka_unit_test(canny_rows_match_reference),
-        cmocka_unit_test(threshold_rows_match_reference),
-        cmocka_unit_test(lane_cue_rows_match_reference),
-        cmocka_unit_test(grad_rows_match_reference),
-        cmocka_unit_test(hough_bins_match_reference),
         cmocka_unit_test(force_c_selects_the_reference),
         cmocka_unit_test(forced_and_dispatched_images_agree),
         cmocka_unit_test(forced_and_dispatched_canny_and_threshold_agree),
     };
+    /* first one test per family and mask, named family/mask */
+    static family_mask states[FAMILY_COUNT * MASK_COUNT];
+    static char names[FAMILY_COUNT * MASK_COUNT][48];
+    static struct CMUnitTest tests[FAMILY_COUNT * MASK_COUNT + COUNT_OF(rest)];
+    size_t n = 0;
+    for (size_t k = 0; k < FAMILY_COUNT; k++)
+        for (size_t m = 0; m < MASK_COUNT; m++, n++) {
+            states[n] = (family_mask){ &families[k], &feature_masks[m] };
+            snprintf(names[n], sizeof names[n], "%s/%s", families[k].name, feature_masks[m].name);
+            tests[n] = (struct CMUnitTest){ names[n], family_under_mask, NULL, NULL, &states[n] };
+        }
+    memcpy(tests + n, rest, sizeof rest);
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

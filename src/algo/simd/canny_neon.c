@@ -1,6 +1,7 @@
 /* Canny's row kernels (aperture 3, L1) for aarch64 NEON (see rows.h; the
- * C reference is src/algo/canny_rows.h, whose comments give the maths),
- * 8 pixels per 16-bit vector. The sector test's floor(|dx| * 13573 / 2^15)
+ * C reference is src/algo/canny_rows.h, whose comments give the maths).
+ * Intrinsics (<arm_neon.h>; NEON is aarch64's baseline, no flags), 8 pixels
+ * per 16-bit vector. The sector test's floor(|dx| * 13573 / 2^15)
  * is vqdmulh by 13573 (the high half of 2 * |dx| * 13573; no saturation
  * since |dx| <= 1020). */
 #include "rows.h"

@@ -1,14 +1,15 @@
-/* Canny's row kernels (aperture 3, L1) built for AVX2: the same C loops as
- * the reference (src/algo/canny_rows.h), vectorised by the compiler in
- * 16-bit lanes of 256-bit registers (the sector test's multiply becomes
- * vpmulhuw). Same integer operations, same bytes. */
+/* Canny's row kernels (aperture 3, L1) for AVX2: the C reference's loops
+ * (src/algo/canny_rows.h) in 16-bit lanes of 256-bit registers (the sector
+ * test's multiply becomes vpmulhuw).
+ * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+ * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
+ * are integer only, so vectorising them only reorders exact operations and
+ * the bytes stay the C reference's. */
 #include <stdint.h>
 
 #include "rows.h"
 
 #ifdef RTE_SIMD_X86
-#pragma GCC target("avx2")
-
 #include "algo/canny_rows.h"
 
 RTE_CANNY_ROWS_DEFINE(avx2)

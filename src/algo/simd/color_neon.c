@@ -1,5 +1,6 @@
 /* BGR/RGB to grey rows for aarch64 NEON (see rows.h; the C reference is in
- * src/algo/color.c). vld3q deinterleaves 16 pixels; the weighted sum is
+ * src/algo/color.c). Intrinsics (<arm_neon.h>; NEON is aarch64's baseline,
+ * no flags). vld3q deinterleaves 16 pixels; the weighted sum is
  * formed in 32 bits (the weights do not fit in 8) and vrshrn adds 2^14 and
  * shifts by 15 in one step: the same sum as the C reference. */
 #include "rows.h"

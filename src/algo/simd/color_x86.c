@@ -1,5 +1,7 @@
 /* BGR/RGB to grey rows for x86: SSSE3 and AVX2 (see rows.h; the C
- * reference is in src/algo/color.c).
+ * reference is in src/algo/color.c). Intrinsics (<immintrin.h>), each
+ * function built for its own instruction set by a target attribute, so the
+ * SSSE3 rows hold no AVX (the file has no -m flags).
  *
  * Four pixels (12 bytes) at a time: pshufb spreads them into 16-bit lanes
  * as pairs (c0, c1) and (c2, 1), and pmaddwd with (w0, wG) and (w2, 16384)

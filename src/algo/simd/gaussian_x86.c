@@ -1,14 +1,15 @@
-/* The Gaussian blur's row kernels built for AVX2: the same C loops as the
- * reference (src/algo/gaussian_rows.h), vectorised by the compiler in
- * 16-bit lanes of 256-bit registers. Same integer operations, same bytes. */
+/* The Gaussian blur's row kernels for AVX2: the C reference's loops
+ * (src/algo/gaussian_rows.h) in 16-bit lanes of 256-bit registers.
+ * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+ * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
+ * are integer only, so vectorising them only reorders exact operations and
+ * the bytes stay the C reference's. */
 #include <stdint.h>
 #include <string.h>
 
 #include "rows.h"
 
 #ifdef RTE_SIMD_X86
-#pragma GCC target("avx2")
-
 #include "algo/gaussian_rows.h"
 
 void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,

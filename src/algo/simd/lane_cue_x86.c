@@ -1,14 +1,15 @@
-/* The lane path's colour cue row built for AVX2: the same C loop as the
- * reference (src/pipeline/lane_cue_rows.h). Same byte operations, same
- * bytes. */
+/* The lane path's colour cue row for AVX2: the C reference's loop
+ * (src/pipeline/lane_cue_rows.h) as byte compares and blends on 32 pixels.
+ * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+ * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
+ * are integer only, so vectorising them only reorders exact operations and
+ * the bytes stay the C reference's. */
 #include <stdbool.h>
 #include <stdint.h>
 
 #include "rows.h"
 
 #ifdef RTE_SIMD_X86
-#pragma GCC target("avx2")
-
 #include "pipeline/lane_cue_rows.h"
 
 void rte_lane_cue_row_avx2(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,

@@ -4,10 +4,15 @@
  *
  * Each kernel has a plain C reference named *_c, kept in the family's own
  * source file (compiled with -mgeneral-regs-only), and variants in
- * src/algo/simd/ named after the instruction set. A *_select(features)
- * function picks the best variant for a feature word from
- * rte_cpu_features(); the families call it once per image. Every variant
- * handles any width >= 1, any alignment, and writes exactly `width` bytes. */
+ * src/algo/simd/ named after the instruction set (rte_..._ssse3, _avx2,
+ * _neon; x86 ones in NAME_x86.c, NEON ones in NAME_neon.c, each compiling
+ * to nothing on the other CPU family): the build suite relies on these
+ * names to check that every variant holds vector instructions of its kind
+ * (tests/build/check_simd_objects.py). A *_select(features) function picks
+ * the best variant for a feature word from rte_cpu_features(); the
+ * families call it once per image, and the unit test calls it under every
+ * feature mask. Every variant handles any width >= 1, any alignment, and
+ * writes exactly `width` bytes. */
 #ifndef RTEDGE_SIMD_ROWS_H
 #define RTEDGE_SIMD_ROWS_H
 

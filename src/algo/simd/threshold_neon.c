@@ -1,5 +1,6 @@
 /* The fixed-level threshold row for aarch64 NEON (see rows.h; the C
- * reference is src/algo/threshold_rows.h): one unsigned compare gives the
+ * reference is src/algo/threshold_rows.h). Intrinsics (<arm_neon.h>; NEON
+ * is aarch64's baseline, no flags): one unsigned compare gives the
  * mask of pixels above t, then a select, an AND or a min, 16 pixels at a
  * time; the C reference finishes the row. */
 #include "rows.h"

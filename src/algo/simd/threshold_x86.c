@@ -1,13 +1,14 @@
-/* The fixed-level threshold row built for AVX2: the same C loops as the
- * reference (src/algo/threshold_rows.h), vectorised by the compiler as
- * byte compares and blends on 32 pixels. Same bytes. */
+/* The fixed-level threshold row for AVX2: the C reference's loops
+ * (src/algo/threshold_rows.h) as byte compares and blends on 32 pixels.
+ * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+ * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
+ * are integer only, so vectorising them only reorders exact operations and
+ * the bytes stay the C reference's. */
 #include <stdint.h>
 
 #include "rows.h"
 
 #ifdef RTE_SIMD_X86
-#pragma GCC target("avx2")
-
 #include "algo/threshold_rows.h"
 
 void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
