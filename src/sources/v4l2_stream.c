@@ -4,6 +4,7 @@
 #include "sources/v4l2_internal.h"
 
 #include <errno.h>
+#include <stdbool.h>
 #include <string.h>
 #include <sys/mman.h>
 
@@ -168,26 +169,23 @@ static rte_status decode_mjpeg(v4l2_source *s, const uint8_t *jpeg, uint32_t siz
     return RTE_OK;
 }
 
-rte_status rte_v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_ms, char *msg,
-                         size_t msg_size)
+/* Gives the buffer the last next() handed out back to the driver. */
+static rte_status requeue_held(v4l2_source *s, char *msg, size_t msg_size)
 {
-    v4l2_source *s = impl;
-    const int64_t start = s->ops->now_ns(s->ops->ctx);
-    const int64_t deadline = timeout_ms < 0 ? -1 : start + (int64_t)timeout_ms * 1000000;
-    rte_source_msgf(msg, msg_size, "%s", "");
+    if (s->stats.state != RTE_SOURCE_STREAMING || s->held < 0)
+        return RTE_OK;
+    uint32_t index = (uint32_t)s->held;
+    s->held = -1;
+    if (queue_buffer(s, index) < 0)
+        return rte_v4l2_device_lost(s, "VIDIOC_QBUF", errno, msg, msg_size);
+    return RTE_OK;
+}
 
-    if (s->stats.state == RTE_SOURCE_STREAMING && s->held >= 0) {
-        uint32_t index = (uint32_t)s->held;
-        s->held = -1;
-        if (queue_buffer(s, index) < 0)
-            return rte_v4l2_device_lost(s, "VIDIOC_QBUF", errno, msg, msg_size);
-    }
-    if (s->stats.state == RTE_SOURCE_RECONNECTING) {
-        rte_status st = rte_v4l2_reconnect(s, deadline, msg, msg_size);
-        if (st != RTE_OK)
-            return st;
-    }
-
+/* Polls until the device is readable: RTE_OK, RTE_ERR_TIMEOUT once the
+ * deadline (-1: none) passes, RTE_ERR_DEVICE when the device is lost. */
+static rte_status wait_readable(v4l2_source *s, int64_t deadline, int32_t timeout_ms, char *msg,
+                                size_t msg_size)
+{
     for (;;) {
         int64_t now = s->ops->now_ns(s->ops->ctx);
         int wait_ms = -1;
@@ -206,86 +204,147 @@ rte_status rte_v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_ms, 
         }
         if (pfd.revents & (POLLERR | POLLHUP | POLLNVAL))
             return rte_v4l2_device_lost(s, "poll", 0, msg, msg_size);
-
-        /* Take everything that is ready; keep the newest, give the older
-         * ones straight back. */
-        struct v4l2_buffer newest;
-        memset(&newest, 0, sizeof(newest));
-        int have_newest = 0, bad = 0;
-        for (;;) {
-            struct v4l2_buffer b;
-            memset(&b, 0, sizeof(b));
-            b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-            b.memory = V4L2_MEMORY_MMAP;
-            if (rte_v4l2_xioctl(s, VIDIOC_DQBUF, &b) < 0) {
-                if (errno == EAGAIN)
-                    break;
-                return rte_v4l2_device_lost(s, "VIDIOC_DQBUF", errno, msg, msg_size);
-            }
-            if (b.index >= (uint32_t)s->n_buf)
-                return rte_v4l2_device_lost(s, "VIDIOC_DQBUF", EINVAL, msg, msg_size);
-            note_sequence(s, b.sequence);
-            uint32_t give_back = b.index;
-            if (buffer_usable(s, &b)) {
-                if (!have_newest) {
-                    have_newest = 1;
-                    newest = b;
-                    continue;
-                }
-                s->stats.skipped++;
-                give_back = newest.index;
-                newest = b;
-            } else {
-                s->stats.bad_frames++;
-                bad = 1;
-            }
-            if (queue_buffer(s, give_back) < 0)
-                return rte_v4l2_device_lost(s, "VIDIOC_QBUF", errno, msg, msg_size);
-        }
-        if (!have_newest) {
-            if (!bad)
-                continue; /* woken without a buffer: wait again */
-            s->stats.errors++;
-            rte_source_msgf(msg, msg_size, "%s: the driver marked frame %u bad (skipped)",
-                       s->info.path, s->last_seq);
-            return RTE_ERR_CORRUPT;
-        }
-
-        uint8_t *data = s->buf[newest.index].start;
-        rte_frame frame;
-        if (s->info.fourcc == V4L2_PIX_FMT_MJPEG) {
-            rte_status st = decode_mjpeg(s, data, newest.bytesused, &frame, msg, msg_size);
-            if (queue_buffer(s, newest.index) < 0)
-                return rte_v4l2_device_lost(s, "VIDIOC_QBUF", errno, msg, msg_size);
-            if (st != RTE_OK) {
-                s->stats.bad_frames++;
-                s->stats.errors++;
-                return st;
-            }
-        } else {
-            frame_view(s, data, &frame);
-            s->held = (int32_t)newest.index;
-        }
-
-        memset(out, 0, sizeof(*out));
-        out->frame = frame;
-        int64_t dequeued = s->ops->now_ns(s->ops->ctx);
-        out->capture_ns = dequeued;
-        /* A driver may stamp a frame from its schedule rather than from the
-         * clock (vivid stamps the end of the exposure, up to 0.9 frame
-         * periods ahead): no frame is captured after it was dequeued. */
-        if ((newest.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC) {
-            int64_t stamped = (int64_t)newest.timestamp.tv_sec * 1000000000 +
-                              (int64_t)newest.timestamp.tv_usec * 1000;
-            if (stamped < dequeued)
-                out->capture_ns = stamped;
-        }
-        out->recorded_ns = out->capture_ns;
-        out->sequence = newest.sequence;
-        out->dropped = s->have_delivered ? newest.sequence - s->last_delivered - 1 : 0;
-        s->have_delivered = 1;
-        s->last_delivered = newest.sequence;
-        s->stats.frames++;
         return RTE_OK;
     }
+}
+
+/* What one round of dequeueing found. */
+typedef struct dequeue_round {
+    struct v4l2_buffer newest; /* the newest usable buffer, still dequeued */
+    bool have_newest;
+    bool bad;                  /* a buffer was marked bad or too short */
+} dequeue_round;
+
+/* Takes everything that is ready; keeps the newest, gives the older ones
+ * straight back. */
+static rte_status dequeue_newest(v4l2_source *s, dequeue_round *d, char *msg, size_t msg_size)
+{
+    memset(d, 0, sizeof(*d));
+    for (;;) {
+        struct v4l2_buffer b;
+        memset(&b, 0, sizeof(b));
+        b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
+        b.memory = V4L2_MEMORY_MMAP;
+        if (rte_v4l2_xioctl(s, VIDIOC_DQBUF, &b) < 0) {
+            if (errno == EAGAIN)
+                return RTE_OK;
+            return rte_v4l2_device_lost(s, "VIDIOC_DQBUF", errno, msg, msg_size);
+        }
+        if (b.index >= (uint32_t)s->n_buf)
+            return rte_v4l2_device_lost(s, "VIDIOC_DQBUF", EINVAL, msg, msg_size);
+        note_sequence(s, b.sequence);
+        uint32_t give_back = b.index;
+        if (buffer_usable(s, &b)) {
+            if (!d->have_newest) {
+                d->have_newest = true;
+                d->newest = b;
+                continue;
+            }
+            s->stats.skipped++;
+            give_back = d->newest.index;
+            d->newest = b;
+        } else {
+            s->stats.bad_frames++;
+            d->bad = true;
+        }
+        if (queue_buffer(s, give_back) < 0)
+            return rte_v4l2_device_lost(s, "VIDIOC_QBUF", errno, msg, msg_size);
+    }
+}
+
+/* The frame in buffer b: a view of it, held until the next call, or for
+ * MJPEG the image decoded from it (the buffer goes straight back). */
+static rte_status frame_from_buffer(v4l2_source *s, const struct v4l2_buffer *b, rte_frame *frame,
+                                    char *msg, size_t msg_size)
+{
+    uint8_t *data = s->buf[b->index].start;
+    if (s->info.fourcc != V4L2_PIX_FMT_MJPEG) {
+        frame_view(s, data, frame);
+        s->held = (int32_t)b->index;
+        return RTE_OK;
+    }
+    rte_status st = decode_mjpeg(s, data, b->bytesused, frame, msg, msg_size);
+    if (queue_buffer(s, b->index) < 0)
+        return rte_v4l2_device_lost(s, "VIDIOC_QBUF", errno, msg, msg_size);
+    if (st != RTE_OK) {
+        s->stats.bad_frames++;
+        s->stats.errors++;
+    }
+    return st;
+}
+
+/* The driver's timestamp when it is on CLOCK_MONOTONIC and not later than
+ * the dequeueing, else the time of the dequeueing. */
+static int64_t capture_time(const v4l2_source *s, const struct v4l2_buffer *b)
+{
+    int64_t dequeued = s->ops->now_ns(s->ops->ctx);
+    /* A driver may stamp a frame from its schedule rather than from the
+     * clock (vivid stamps the end of the exposure, up to 0.9 frame
+     * periods ahead): no frame is captured after it was dequeued. */
+    if ((b->flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC) {
+        int64_t stamped = (int64_t)b->timestamp.tv_sec * 1000000000 +
+                          (int64_t)b->timestamp.tv_usec * 1000;
+        if (stamped < dequeued)
+            return stamped;
+    }
+    return dequeued;
+}
+
+/* Hands the frame out with its time and sequence, counting the frames
+ * dropped since the last one handed out. */
+static void deliver(v4l2_source *s, const struct v4l2_buffer *b, const rte_frame *frame,
+                    rte_source_frame *out)
+{
+    memset(out, 0, sizeof(*out));
+    out->frame = *frame;
+    out->capture_ns = capture_time(s, b);
+    out->recorded_ns = out->capture_ns;
+    out->sequence = b->sequence;
+    out->dropped = s->have_delivered ? b->sequence - s->last_delivered - 1 : 0;
+    s->have_delivered = 1;
+    s->last_delivered = b->sequence;
+    s->stats.frames++;
+}
+
+rte_status rte_v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_ms, char *msg,
+                         size_t msg_size)
+{
+    v4l2_source *s = impl;
+    const int64_t start = s->ops->now_ns(s->ops->ctx);
+    const int64_t deadline = timeout_ms < 0 ? -1 : start + (int64_t)timeout_ms * 1000000;
+    rte_source_msgf(msg, msg_size, "%s", "");
+
+    rte_status st = requeue_held(s, msg, msg_size);
+    if (st != RTE_OK)
+        return st;
+    if (s->stats.state == RTE_SOURCE_RECONNECTING) {
+        st = rte_v4l2_reconnect(s, deadline, msg, msg_size);
+        if (st != RTE_OK)
+            return st;
+    }
+
+    dequeue_round d;
+    for (;;) {
+        st = wait_readable(s, deadline, timeout_ms, msg, msg_size);
+        if (st == RTE_OK)
+            st = dequeue_newest(s, &d, msg, msg_size);
+        if (st != RTE_OK)
+            return st;
+        if (d.have_newest)
+            break;
+        if (d.bad) {
+            s->stats.errors++;
+            rte_source_msgf(msg, msg_size, "%s: the driver marked frame %u bad (skipped)",
+                            s->info.path, s->last_seq);
+            return RTE_ERR_CORRUPT;
+        }
+        /* woken without a buffer: wait again */
+    }
+
+    rte_frame frame;
+    st = frame_from_buffer(s, &d.newest, &frame, msg, msg_size);
+    if (st != RTE_OK)
+        return st;
+    deliver(s, &d.newest, &frame, out);
+    return RTE_OK;
 }
