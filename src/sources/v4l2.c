@@ -92,7 +92,7 @@ const char *rte_v4l2_fourcc_name(uint32_t fourcc, char buf[5])
 /* Control and card names compare as v4l2-ctl spells them: lower case, each
  * run of anything but letters and digits is one separator, none at the
  * ends. "White Balance, Automatic" == "white_balance_automatic". */
-int rte_v4l2_names_equal(const char *a, const char *b)
+bool rte_v4l2_names_equal(const char *a, const char *b)
 {
     while (*a && !isalnum((unsigned char)*a))
         a++;
@@ -102,21 +102,21 @@ int rte_v4l2_names_equal(const char *a, const char *b)
         if (!*a || !*b)
             return !*a && !*b;
         if (tolower((unsigned char)*a) != tolower((unsigned char)*b))
-            return 0;
+            return false;
         a++;
         b++;
-        int sep_a = 0, sep_b = 0;
+        bool sep_a = false, sep_b = false;
         while (*a && !isalnum((unsigned char)*a)) {
             a++;
-            sep_a = 1;
+            sep_a = true;
         }
         while (*b && !isalnum((unsigned char)*b)) {
             b++;
-            sep_b = 1;
+            sep_b = true;
         }
         /* A separator inside one name must be matched by one in the other. */
         if (sep_a != sep_b && *a && *b)
-            return 0;
+            return false;
     }
 }
 
@@ -235,7 +235,7 @@ rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *confi
     s->held = -1;
     rte_v4l2_copy_string(s->info.path, sizeof(s->info.path), s->device, sizeof(s->device));
 
-    rte_status st = rte_v4l2_setup_device(s, 0, msg, msg_size);
+    rte_status st = rte_v4l2_setup_device(s, false, msg, msg_size);
     if (st == RTE_OK) {
         s->open_fourcc = s->info.fourcc;
         s->out_format = rte_v4l2_delivered_format(s->info.fourcc, decode_to);

@@ -8,17 +8,17 @@
 #include "source_msg.h"
 
 /* Finds a control by name among all the device's controls. */
-static int find_control(v4l2_source *s, const char *name, struct v4l2_queryctrl *qc)
+static bool find_control(v4l2_source *s, const char *name, struct v4l2_queryctrl *qc)
 {
     memset(qc, 0, sizeof(*qc));
     qc->id = V4L2_CTRL_FLAG_NEXT_CTRL;
     while (rte_v4l2_xioctl(s, VIDIOC_QUERYCTRL, qc) == 0) {
         if (qc->type != V4L2_CTRL_TYPE_CTRL_CLASS && !(qc->flags & V4L2_CTRL_FLAG_DISABLED) &&
             rte_v4l2_names_equal(name, (const char *)qc->name))
-            return 1;
+            return true;
         qc->id |= V4L2_CTRL_FLAG_NEXT_CTRL;
     }
-    return 0;
+    return false;
 }
 
 rte_status rte_v4l2_set_control(v4l2_source *s, const char *name, int32_t value, char *msg,

@@ -12,6 +12,7 @@
 #ifndef RTEDGE_V4L2_INTERNAL_H
 #define RTEDGE_V4L2_INTERNAL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -45,9 +46,9 @@ typedef struct v4l2_source {
     int32_t held;            /* buffer handed out by the last next(), -1: none */
 
     /* Sequence bookkeeping, reset when the device is reopened. */
-    int have_seq;
+    bool have_seq;
     uint32_t last_seq;       /* last sequence dequeued */
-    int have_delivered;
+    bool have_delivered;
     uint32_t last_delivered; /* last sequence handed out */
 
     int64_t retry_at_ns;
@@ -67,9 +68,9 @@ extern const rte_source_ops rte_v4l2_source_ops;
 /* Copies the string in src (src_size bytes at most, NUL or not) into dst,
  * truncated to fit and NUL-terminated. */
 void rte_v4l2_copy_string(char *dst, size_t size, const void *src, size_t src_size);
-/* Nonzero when two control or card names are the same as v4l2-ctl spells
+/* True when two control or card names are the same as v4l2-ctl spells
  * them. */
-int rte_v4l2_names_equal(const char *a, const char *b);
+bool rte_v4l2_names_equal(const char *a, const char *b);
 /* ioctl on the source's fd through its ops, retried on EINTR. */
 int rte_v4l2_xioctl(v4l2_source *s, unsigned long request, void *arg);
 /* Closes the fd, if open; fd is -1 after. */
@@ -87,7 +88,7 @@ rte_status rte_v4l2_query_node(v4l2_source *s, struct v4l2_capability *cap);
 rte_status rte_v4l2_open_node(v4l2_source *s, char *msg, size_t msg_size);
 /* Everything from open(2) to STREAMON; reopening: the device must fit the
  * sizes fixed at open. */
-rte_status rte_v4l2_setup_device(v4l2_source *s, int reopening, char *msg, size_t msg_size);
+rte_status rte_v4l2_setup_device(v4l2_source *s, bool reopening, char *msg, size_t msg_size);
 
 /* ---- v4l2_controls.c ---- */
 

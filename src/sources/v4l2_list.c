@@ -20,10 +20,10 @@ static void list_intervals(v4l2_source *s, uint32_t fourcc, uint32_t w, uint32_t
     iv.pixel_format = fourcc;
     iv.width = w;
     iv.height = h;
-    int any = 0;
+    bool any = false;
     for (; rte_v4l2_xioctl(s, VIDIOC_ENUM_FRAMEINTERVALS, &iv) == 0; iv.index++) {
         fprintf(out, "%s", any ? "," : " @");
-        any = 1;
+        any = true;
         if (iv.type == V4L2_FRMIVAL_TYPE_DISCRETE) {
             print_interval(out, &iv.discrete);
         } else {
@@ -77,7 +77,7 @@ int rte_v4l2_list(FILE *out, const rte_v4l2_ops *ops)
             memset(&fd, 0, sizeof(fd));
             fd.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
             for (; rte_v4l2_xioctl(&s, VIDIOC_ENUM_FMT, &fd) == 0; fd.index++) {
-                int usable = rte_v4l2_delivered_format(fd.pixelformat, RTE_PIXEL_GREY) != 0;
+                bool usable = rte_v4l2_delivered_format(fd.pixelformat, RTE_PIXEL_GREY) != 0;
                 fprintf(out, "    %s (%.32s)%s\n", rte_v4l2_fourcc_name(fd.pixelformat, name),
                         (const char *)fd.description, usable ? "" : " [not read by rtedge]");
                 list_sizes(&s, fd.pixelformat, out);

@@ -53,7 +53,7 @@ static uint32_t device_caps(const struct v4l2_capability *cap)
     return (cap->capabilities & V4L2_CAP_DEVICE_CAPS) ? cap->device_caps : cap->capabilities;
 }
 
-static int is_capture_node(const struct v4l2_capability *cap)
+static bool is_capture_node(const struct v4l2_capability *cap)
 {
     uint32_t caps = device_caps(cap);
     return (caps & V4L2_CAP_VIDEO_CAPTURE) && (caps & V4L2_CAP_STREAMING);
@@ -125,7 +125,7 @@ rte_status rte_v4l2_open_node(v4l2_source *s, char *msg, size_t msg_size)
 /* S_FMT with the configured format and size; accepts what the driver
  * adjusts as long as rtedge reads the result. On a reopening the result
  * must fit what open() sized. */
-static rte_status negotiate_format(v4l2_source *s, int reopening, char *msg, size_t msg_size)
+static rte_status negotiate_format(v4l2_source *s, bool reopening, char *msg, size_t msg_size)
 {
     char want_name[5], got_name[5];
     struct v4l2_format f;
@@ -233,7 +233,7 @@ static void set_frame_rate(v4l2_source *s, char *msg, size_t msg_size)
 
 /* Everything from open(2) to STREAMON; on failure the device is closed.
  * The message gets the adjustments the driver made. */
-rte_status rte_v4l2_setup_device(v4l2_source *s, int reopening, char *msg, size_t msg_size)
+rte_status rte_v4l2_setup_device(v4l2_source *s, bool reopening, char *msg, size_t msg_size)
 {
     rte_source_msgf(msg, msg_size, "%s", "");
     rte_status st = rte_v4l2_open_node(s, msg, msg_size);
@@ -250,8 +250,8 @@ rte_status rte_v4l2_setup_device(v4l2_source *s, int reopening, char *msg, size_
         rte_v4l2_stop_device(s);
         return st;
     }
-    s->have_seq = 0;
-    s->have_delivered = 0;
+    s->have_seq = false;
+    s->have_delivered = false;
     s->held = -1;
     return RTE_OK;
 }

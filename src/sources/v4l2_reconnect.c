@@ -38,7 +38,7 @@ rte_status rte_v4l2_reconnect(v4l2_source *s, int64_t deadline_ns, char *msg, si
                    (long long)((s->retry_at_ns - now + 999999) / 1000000));
         return RTE_ERR_TIMEOUT;
     }
-    rte_status st = rte_v4l2_setup_device(s, 1, msg, msg_size);
+    rte_status st = rte_v4l2_setup_device(s, true, msg, msg_size);
     if (st != RTE_OK) {
         s->stats.errors++;
         s->backoff_ms = s->backoff_ms > s->cfg.reconnect_max_ms / 2 ? s->cfg.reconnect_max_ms

@@ -108,14 +108,14 @@ static void note_sequence(v4l2_source *s, uint32_t seq)
     uint32_t gap = seq - s->last_seq - 1;
     if (s->have_seq && gap != 0 && gap < 0x80000000u)
         s->stats.driver_drops += gap;
-    s->have_seq = 1;
+    s->have_seq = true;
     s->last_seq = seq;
 }
 
-static int buffer_usable(const v4l2_source *s, const struct v4l2_buffer *b)
+static bool buffer_usable(const v4l2_source *s, const struct v4l2_buffer *b)
 {
     if (b->flags & V4L2_BUF_FLAG_ERROR)
-        return 0;
+        return false;
     if (s->info.fourcc == V4L2_PIX_FMT_MJPEG)
         return b->bytesused > 0 && b->bytesused <= s->buf[b->index].length;
     return b->bytesused >= rte_v4l2_raw_frame_bytes(&s->info);
@@ -152,7 +152,7 @@ static rte_status decode_mjpeg(v4l2_source *s, const uint8_t *jpeg, uint32_t siz
                    s->max_width, s->max_height);
         return RTE_ERR_FORMAT;
     }
-    int bgr = s->out_format == RTE_PIXEL_BGR24;
+    bool bgr = s->out_format == RTE_PIXEL_BGR24;
     int pitch = w * (bgr ? 3 : 1);
     if (tjDecompress2(s->tj, jpeg, size, s->decoded, w, pitch, h, bgr ? TJPF_BGR : TJPF_GRAY,
                       TJFLAG_FASTDCT) != 0 &&
@@ -301,7 +301,7 @@ static void deliver(v4l2_source *s, const struct v4l2_buffer *b, const rte_frame
     out->recorded_ns = out->capture_ns;
     out->sequence = b->sequence;
     out->dropped = s->have_delivered ? b->sequence - s->last_delivered - 1 : 0;
-    s->have_delivered = 1;
+    s->have_delivered = true;
     s->last_delivered = b->sequence;
     s->stats.frames++;
 }
