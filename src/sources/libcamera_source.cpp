@@ -73,8 +73,21 @@ public:
 private:
     void on_complete(Request *request);
     void on_disconnect();
+    rte_status find_camera(const rte_libcamera_config &cfg, char *msg, size_t msg_size);
+    rte_status configure_stream(const rte_libcamera_config &cfg, bool *adjusted, char *msg,
+                                size_t msg_size);
     rte_status map_buffers(char *msg, size_t msg_size);
+    rte_status create_requests(char *msg, size_t msg_size);
+    rte_status start_capture(char *msg, size_t msg_size);
+    void describe(bool adjusted, rte_libcamera_info *info, char *msg, size_t msg_size);
     bool requeue(Request *request);
+    rte_status fail(const char *why, char *msg, size_t msg_size);
+    rte_status requeue_held(char *msg, size_t msg_size);
+    size_t wait_completed(int32_t timeout_ms, Request **taken, bool *gone);
+    void note_sequence(uint32_t seq);
+    rte_status keep_newest(Request *const *taken, size_t n, Request **newest, bool *bad, char *msg,
+                           size_t msg_size);
+    void deliver(Request *newest, rte_source_frame *out);
 
     std::unique_ptr<CameraManager> manager_;
     std::shared_ptr<Camera> camera_;
@@ -168,8 +181,8 @@ rte_status Source::map_buffers(char *msg, size_t msg_size)
     return RTE_OK;
 }
 
-rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *info, char *msg,
-                        size_t msg_size)
+// Starts the camera manager, finds the camera by id or index and acquires it.
+rte_status Source::find_camera(const rte_libcamera_config &cfg, char *msg, size_t msg_size)
 {
     manager_ = std::make_unique<CameraManager>();
     if (manager_->start() != 0) {
@@ -197,7 +210,15 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
         return RTE_ERR_DEVICE;
     }
     acquired_ = true;
+    return RTE_OK;
+}
 
+// One video stream with the configured format, size and buffer count, as
+// libcamera validates them (*adjusted: it changed them); the result must be
+// a format rtedge reads, within its limits.
+rte_status Source::configure_stream(const rte_libcamera_config &cfg, bool *adjusted, char *msg,
+                                    size_t msg_size)
+{
     config_ = camera_->generateConfiguration({ StreamRole::VideoRecording });
     if (!config_ || config_->size() != 1) {
         rte_source_msgf(msg, msg_size, "%s: no video stream", camera_->id().c_str());
@@ -236,7 +257,13 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
     width = static_cast<int32_t>(sc.size.width);
     height = static_cast<int32_t>(sc.size.height);
     stride_ = static_cast<int32_t>(sc.stride);
+    *adjusted = status == CameraConfiguration::Adjusted;
+    return RTE_OK;
+}
 
+// Allocates and maps the stream's buffers, and a request for each.
+rte_status Source::create_requests(char *msg, size_t msg_size)
+{
     allocator_ = std::make_unique<FrameBufferAllocator>(camera_);
     if (allocator_->allocate(stream_) < 2) {
         rte_source_msgf(msg, msg_size, "%s: buffer allocation failed", camera_->id().c_str());
@@ -254,7 +281,12 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
         }
         requests_.push_back(std::move(request));
     }
+    return RTE_OK;
+}
 
+// Connects the callbacks, starts the camera and queues every request.
+rte_status Source::start_capture(char *msg, size_t msg_size)
+{
     camera_->requestCompleted.connect(this, &Source::on_complete);
     camera_->disconnected.connect(this, &Source::on_disconnect);
     if (camera_->start() != 0) {
@@ -267,10 +299,16 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
             rte_source_msgf(msg, msg_size, "%s: queueing a request failed", camera_->id().c_str());
             return RTE_ERR_DEVICE;
         }
+    return RTE_OK;
+}
 
-    bool adjusted = status == CameraConfiguration::Adjusted;
+// Says what was set up, in msg and in info (may be NULL).
+void Source::describe(bool adjusted, rte_libcamera_info *info, char *msg, size_t msg_size)
+{
+    const StreamConfiguration &sc = config_->at(0);
+    size_t n_buffers = allocator_->buffers(stream_).size();
     rte_source_msgf(msg, msg_size, "libcamera %s: %s, stride %d, %zu buffers%s", camera_->id().c_str(),
-               sc.toString().c_str(), stride_, buffers.size(),
+               sc.toString().c_str(), stride_, n_buffers,
                adjusted ? " (adjusted from the request)" : "");
     if (info) {
         memset(info, 0, sizeof(*info));
@@ -279,9 +317,25 @@ rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *inf
         info->width = width;
         info->height = height;
         info->stride = stride_;
-        info->buffers = static_cast<int32_t>(buffers.size());
+        info->buffers = static_cast<int32_t>(n_buffers);
         info->adjusted = adjusted;
     }
+}
+
+rte_status Source::open(const rte_libcamera_config &cfg, rte_libcamera_info *info, char *msg,
+                        size_t msg_size)
+{
+    bool adjusted = false;
+    rte_status st = find_camera(cfg, msg, msg_size);
+    if (st == RTE_OK)
+        st = configure_stream(cfg, &adjusted, msg, msg_size);
+    if (st == RTE_OK)
+        st = create_requests(msg, msg_size);
+    if (st == RTE_OK)
+        st = start_capture(msg, msg_size);
+    if (st != RTE_OK)
+        return st;
+    describe(adjusted, info, msg, msg_size);
     return RTE_OK;
 }
 
@@ -291,90 +345,88 @@ bool Source::requeue(Request *request)
     return camera_->queueRequest(request) == 0;
 }
 
-rte_status Source::next(rte_source_frame *out, int32_t timeout_ms, char *msg, size_t msg_size)
+// The camera cannot go on: the source ends.
+rte_status Source::fail(const char *why, char *msg, size_t msg_size)
 {
-    if (msg && msg_size)
-        msg[0] = 0;
-    if (stats.state == RTE_SOURCE_FAILED) {
-        rte_source_msgf(msg, msg_size, "the libcamera camera is gone");
-        return RTE_ERR_DEVICE;
-    }
-    if (held_) {
-        Request *r = held_;
-        held_ = nullptr;
-        if (!requeue(r)) {
-            stats.state = RTE_SOURCE_FAILED;
-            stats.errors++;
-            rte_source_msgf(msg, msg_size, "libcamera: queueing a request failed");
-            return RTE_ERR_DEVICE;
-        }
-    }
+    stats.state = RTE_SOURCE_FAILED;
+    stats.errors++;
+    rte_source_msgf(msg, msg_size, "%s", why);
+    return RTE_ERR_DEVICE;
+}
 
-    Request *taken[RTE_LIBCAMERA_MAX_BUFFERS];
-    size_t n = 0;
-    bool gone;
-    {
-        std::unique_lock<std::mutex> guard(lock_);
-        auto ready = [this] { return n_done_ > 0 || disconnected_; };
-        if (timeout_ms < 0)
-            ready_.wait(guard, ready);
-        else
-            ready_.wait_for(guard, std::chrono::milliseconds(timeout_ms), ready);
-        n = n_done_;
-        std::memcpy(taken, done_, n * sizeof(taken[0]));
-        n_done_ = 0;
-        gone = disconnected_;
-    }
-    if (gone) {
-        stats.state = RTE_SOURCE_FAILED;
-        stats.errors++;
-        rte_source_msgf(msg, msg_size, "the libcamera camera was disconnected");
-        return RTE_ERR_DEVICE;
-    }
-    if (n == 0) {
-        rte_source_msgf(msg, msg_size, "libcamera: no frame within %d ms", timeout_ms);
-        return RTE_ERR_TIMEOUT;
-    }
+// Gives the request handed out by the last next() back to the camera.
+rte_status Source::requeue_held(char *msg, size_t msg_size)
+{
+    if (!held_)
+        return RTE_OK;
+    Request *r = held_;
+    held_ = nullptr;
+    if (!requeue(r))
+        return fail("libcamera: queueing a request failed", msg, msg_size);
+    return RTE_OK;
+}
 
+// Waits up to timeout_ms (< 0: without end) for completed requests and
+// takes them all into taken; *gone: the camera was disconnected.
+size_t Source::wait_completed(int32_t timeout_ms, Request **taken, bool *gone)
+{
+    std::unique_lock<std::mutex> guard(lock_);
+    auto ready = [this] { return n_done_ > 0 || disconnected_; };
+    if (timeout_ms < 0)
+        ready_.wait(guard, ready);
+    else
+        ready_.wait_for(guard, std::chrono::milliseconds(timeout_ms), ready);
+    size_t n = n_done_;
+    std::memcpy(taken, done_, n * sizeof(taken[0]));
+    n_done_ = 0;
+    *gone = disconnected_;
+    return n;
+}
+
+// Counts the gap between the last sequence completed and this one.
+void Source::note_sequence(uint32_t seq)
+{
+    uint32_t gap = seq - last_seq_ - 1;
+    if (have_seq_ && gap != 0 && gap < 0x80000000u)
+        stats.driver_drops += gap;
+    have_seq_ = true;
+    last_seq_ = seq;
+}
+
+// Keeps the newest good request of those taken (nullptr: none) and gives
+// the others back; *bad: a frame failed.
+rte_status Source::keep_newest(Request *const *taken, size_t n, Request **newest, bool *bad,
+                               char *msg, size_t msg_size)
+{
     // Completion order is capture order: the last good one is the newest.
-    Request *newest = nullptr;
-    bool bad = false;
+    *newest = nullptr;
+    *bad = false;
     for (size_t i = 0; i < n; i++) {
         Request *r = taken[i];
         FrameBuffer *fb = r->findBuffer(stream_);
         bool good = r->status() == Request::RequestComplete && fb &&
                     fb->metadata().status == FrameMetadata::FrameSuccess;
-        if (fb && r->status() == Request::RequestComplete) {
-            uint32_t seq = fb->metadata().sequence;
-            uint32_t gap = seq - last_seq_ - 1;
-            if (have_seq_ && gap != 0 && gap < 0x80000000u)
-                stats.driver_drops += gap;
-            have_seq_ = true;
-            last_seq_ = seq;
-        }
+        if (fb && r->status() == Request::RequestComplete)
+            note_sequence(fb->metadata().sequence);
         Request *give_back = r;
         if (good) {
-            if (newest)
+            if (*newest)
                 stats.skipped++;
-            give_back = newest;
-            newest = r;
+            give_back = *newest;
+            *newest = r;
         } else {
             stats.bad_frames++;
-            bad = true;
+            *bad = true;
         }
-        if (give_back && !requeue(give_back)) {
-            stats.state = RTE_SOURCE_FAILED;
-            stats.errors++;
-            rte_source_msgf(msg, msg_size, "libcamera: queueing a request failed");
-            return RTE_ERR_DEVICE;
-        }
+        if (give_back && !requeue(give_back))
+            return fail("libcamera: queueing a request failed", msg, msg_size);
     }
-    if (!newest) {
-        stats.errors++;
-        rte_source_msgf(msg, msg_size, "libcamera: frame failed%s", bad ? " (skipped)" : "");
-        return RTE_ERR_CORRUPT;
-    }
+    return RTE_OK;
+}
 
+// Hands out the newest request's buffer as a view, held until the next call.
+void Source::deliver(Request *newest, rte_source_frame *out)
+{
     const FrameMetadata &md = newest->findBuffer(stream_)->metadata();
     size_t b = static_cast<size_t>(newest->cookie());
     std::memset(out, 0, sizeof(*out));
@@ -393,6 +445,41 @@ rte_status Source::next(rte_source_frame *out, int32_t timeout_ms, char *msg, si
     last_delivered_ = md.sequence;
     held_ = newest;
     stats.frames++;
+}
+
+rte_status Source::next(rte_source_frame *out, int32_t timeout_ms, char *msg, size_t msg_size)
+{
+    if (msg && msg_size)
+        msg[0] = 0;
+    if (stats.state == RTE_SOURCE_FAILED) {
+        rte_source_msgf(msg, msg_size, "the libcamera camera is gone");
+        return RTE_ERR_DEVICE;
+    }
+    rte_status st = requeue_held(msg, msg_size);
+    if (st != RTE_OK)
+        return st;
+
+    Request *taken[RTE_LIBCAMERA_MAX_BUFFERS];
+    bool gone = false;
+    size_t n = wait_completed(timeout_ms, taken, &gone);
+    if (gone)
+        return fail("the libcamera camera was disconnected", msg, msg_size);
+    if (n == 0) {
+        rte_source_msgf(msg, msg_size, "libcamera: no frame within %d ms", timeout_ms);
+        return RTE_ERR_TIMEOUT;
+    }
+
+    Request *newest = nullptr;
+    bool bad = false;
+    st = keep_newest(taken, n, &newest, &bad, msg, msg_size);
+    if (st != RTE_OK)
+        return st;
+    if (!newest) {
+        stats.errors++;
+        rte_source_msgf(msg, msg_size, "libcamera: frame failed%s", bad ? " (skipped)" : "");
+        return RTE_ERR_CORRUPT;
+    }
+    deliver(newest, out);
     return RTE_OK;
 }
 
