@@ -5,6 +5,7 @@
 #ifndef RTEDGE_LIBCAMERA_SOURCE_H
 #define RTEDGE_LIBCAMERA_SOURCE_H
 
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -32,7 +33,7 @@ typedef struct rte_libcamera_info {
     rte_pixel_format format;
     int32_t width, height, stride;
     int32_t buffers;
-    int adjusted;              /* libcamera changed the size or format asked for */
+    bool adjusted;             /* libcamera changed the size or format asked for */
 } rte_libcamera_info;
 
 /* Starts the camera manager, acquires and configures the camera, allocates

@@ -184,7 +184,7 @@ static rte_status negotiate_format(v4l2_source *s, bool reopening, char *msg, si
         return RTE_ERR_TOO_LARGE;
     }
     if (got.fourcc != s->cfg.fourcc || got.width != s->cfg.width || got.height != s->cfg.height) {
-        got.adjusted = 1;
+        got.adjusted = true;
         rte_source_msg_append(msg, msg_size, "; driver adjusted %s %dx%d to %s %dx%d", want_name,
                    s->cfg.width, s->cfg.height, got_name, got.width, got.height);
     }
@@ -209,13 +209,13 @@ static void set_frame_rate(v4l2_source *s, char *msg, size_t msg_size)
     if (s->cfg.fps > 0) {
         if (!(parm.parm.capture.capability & V4L2_CAP_TIMEPERFRAME)) {
             rte_source_msg_append(msg, msg_size, "; the driver does not set the frame rate");
-            s->info.adjusted = 1;
+            s->info.adjusted = true;
         } else {
             parm.parm.capture.timeperframe.numerator = 1;
             parm.parm.capture.timeperframe.denominator = (uint32_t)s->cfg.fps;
             if (rte_v4l2_xioctl(s, VIDIOC_S_PARM, &parm) < 0) {
                 rte_source_msg_append(msg, msg_size, "; VIDIOC_S_PARM: %s", strerror(errno));
-                s->info.adjusted = 1;
+                s->info.adjusted = true;
             }
         }
     }
@@ -223,7 +223,7 @@ static void set_frame_rate(v4l2_source *s, char *msg, size_t msg_size)
     s->info.interval_num = t->numerator;
     s->info.interval_den = t->denominator;
     if (s->cfg.fps > 0 && t->numerator && (uint64_t)t->denominator != (uint64_t)s->cfg.fps * t->numerator) {
-        s->info.adjusted = 1;
+        s->info.adjusted = true;
         rte_source_msg_append(msg, msg_size, "; driver adjusted %d fps to %u/%u s per frame", s->cfg.fps,
                    t->numerator, t->denominator);
     }

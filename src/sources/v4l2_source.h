@@ -15,6 +15,7 @@
 #define RTEDGE_V4L2_SOURCE_H
 
 #include <poll.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <sys/types.h>
@@ -84,9 +85,9 @@ typedef struct rte_v4l2_info {
     uint32_t sizeimage;
     uint32_t interval_num, interval_den; /* time per frame in seconds (0/0: unknown) */
     int32_t buffers;              /* buffers the driver granted */
-    int timestamps_monotonic;     /* 0: the driver's timestamps are not CLOCK_MONOTONIC and
+    bool timestamps_monotonic;    /* false: the driver's timestamps are not CLOCK_MONOTONIC and
                                      capture_ns is taken when the buffer is dequeued */
-    int adjusted;                 /* the driver changed the size, format or frame rate */
+    bool adjusted;                /* the driver changed the size, format or frame rate */
 } rte_v4l2_info;
 
 /* Opens the camera and starts streaming. `info` (may be NULL) receives what

@@ -533,7 +533,7 @@ static void test_open_plain(void **state)
     assert_int_equal(rte_v4l2_source_open(&src, &c, &info, msg, sizeof(msg)), RTE_OK);
     assert_string_equal(msg, "/dev/video1 (Fake-Camera  1, usb-0000:00:14.0-1): YUYV 64x48, "
                              "1/30 s per frame, 4 buffers");
-    assert_int_equal(info.adjusted, 0);
+    assert_false(info.adjusted);
     assert_int_equal(info.fourcc, V4L2_PIX_FMT_YUYV);
     assert_int_equal(info.bytesperline, 64 * 2 + 16);
     assert_int_equal(info.buffers, 4);
