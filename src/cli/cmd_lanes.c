@@ -246,21 +246,9 @@ static int lanes_image(const char *name, const lanes_options *o, const char *pat
     return rc;
 }
 
-static int has_image_extension(const char *n)
-{
-    static const char *const exts[] = {".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pnm", NULL};
-    size_t len = strlen(n);
-    for (int i = 0; exts[i]; i++) {
-        size_t e = strlen(exts[i]);
-        if (len > e && strcasecmp(n + len - e, exts[i]) == 0)
-            return 1;
-    }
-    return 0;
-}
-
 static int image_filter(const struct dirent *d)
 {
-    return d->d_name[0] != '.' && has_image_extension(d->d_name);
+    return d->d_name[0] != '.' && rte_image_path_has_image_extension(d->d_name);
 }
 
 /* Runs the tracker over a directory of images. Frames larger than the

@@ -2,6 +2,7 @@
  * before decoding, and writers chosen by file extension. */
 #include <errno.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -282,19 +283,28 @@ rte_status rte_image_read_gray(rte_image_reader *reader, const char *path, const
 /* ------------------------------------------------------------------ */
 /* Writers */
 
-static int has_ext(const char *path, const char *ext)
+static bool has_ext(const char *path, const char *ext)
 {
     size_t n = strlen(path), e = strlen(ext);
     if (n < e)
-        return 0;
+        return false;
     for (size_t i = 0; i < e; i++) {
         char c = path[n - e + i];
         if (c >= 'A' && c <= 'Z')
             c = (char)(c - 'A' + 'a');
         if (c != ext[i])
-            return 0;
+            return false;
     }
-    return 1;
+    return true;
+}
+
+bool rte_image_path_has_image_extension(const char *path)
+{
+    static const char *const exts[] = {".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pnm"};
+    for (size_t i = 0; i < sizeof exts / sizeof exts[0]; i++)
+        if (strlen(path) > strlen(exts[i]) && has_ext(path, exts[i]))
+            return true;
+    return false;
 }
 
 struct write_job {

@@ -31,6 +31,7 @@
 #define RTEDGE_IMAGEIO_H
 
 #include <stddef.h>
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "rtedge/image.h"
@@ -117,6 +118,11 @@ rte_status rte_image_read_gray(rte_image_reader *reader, const char *path, const
  *   grey:  .pgm (P5), .png (8-bit grey), .npy (|u1, shape (h, w))
  *   bgr:   .ppm (P6), .png (8-bit RGB),  .npy (|u1, shape (h, w, 3), BGR order)
  *   s16:   .npy (<i2, shape (h, w)) */
+/* Whether a file name ends in an image extension the readers take (.png,
+ * .jpg, .jpeg, .pgm, .ppm, .pnm; any case): how directories of frames are
+ * listed. The readers themselves go by content, not by name. */
+bool rte_image_path_has_image_extension(const char *path);
+
 rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg, size_t msg_size);
 rte_status rte_image_write_bgr(const char *path, const rte_image_u8c3 *img, char *msg, size_t msg_size);
 rte_status rte_image_write_s16(const char *path, const rte_image_s16 *img, char *msg, size_t msg_size);

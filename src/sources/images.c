@@ -32,18 +32,6 @@ static void images_rewind(void *impl)
     (void)impl; /* the slot index is all the state */
 }
 
-static int has_image_extension(const char *name)
-{
-    static const char *const exts[] = {".pgm", ".ppm", ".png", ".jpg", ".jpeg"};
-    size_t len = strlen(name);
-    for (size_t i = 0; i < sizeof exts / sizeof exts[0]; i++) {
-        size_t n = strlen(exts[i]);
-        if (len > n && strncasecmp(name + len - n, exts[i], n) == 0)
-            return 1;
-    }
-    return 0;
-}
-
 static int compare_names(const void *a, const void *b)
 {
     return strcmp(*(char *const *)a, *(char *const *)b);
@@ -85,7 +73,7 @@ static rte_status list_files(images_source *s, const char *path, char *msg, size
         }
         struct dirent *e;
         while (st == RTE_OK && (e = readdir(d)) != NULL)
-            if (e->d_name[0] != '.' && has_image_extension(e->d_name))
+            if (e->d_name[0] != '.' && rte_image_path_has_image_extension(e->d_name))
                 st = add_name(s, &capacity, path, e->d_name);
         closedir(d);
     } else {
