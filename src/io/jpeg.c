@@ -35,7 +35,7 @@ size_t jpeg_max_file_bytes(int32_t max_width, int32_t max_height)
     return (n == (unsigned long)-1 ? (size_t)max_width * (size_t)max_height * 6 : (size_t)n) + ((size_t)1 << 20);
 }
 
-static int is_sof(int marker)
+static bool is_sof(int marker)
 {
     return (marker >= 0xC0 && marker <= 0xCF) && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
 }

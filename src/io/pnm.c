@@ -7,6 +7,7 @@
  * are stricter than OpenCV in one place (maxval must be followed by one
  * whitespace character, not any byte) and looser in two (a comment may
  * follow a number directly, and the last text value may end the file). */
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -20,7 +21,7 @@ typedef struct pnm_header {
     int magic; /* '2', '3', '5' or '6' */
 } pnm_header;
 
-static int is_space(int c)
+static bool is_space(int c)
 {
     return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
 }

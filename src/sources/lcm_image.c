@@ -5,6 +5,7 @@
  *
  * Memory: open() allocates the source and one message buffer; next()
  * allocates nothing of rtedge's own. */
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -45,7 +46,7 @@ static int32_t row_bytes(rte_pixel_format f, int32_t width)
 }
 
 /* Is this an image_t (by fingerprint)? */
-static int is_image(const uint8_t *data, int32_t size)
+static bool is_image(const uint8_t *data, int32_t size)
 {
     return size >= 8 && (int64_t)rte_lcm_get_u64(data) == __rtedge_image_t_get_hash();
 }

@@ -1,6 +1,7 @@
 /* Pacing: see pacer.h. */
 #include "sources/pacer.h"
 
+#include <stdbool.h>
 #include <string.h>
 
 #include "recorded.h"
@@ -33,13 +34,13 @@ void rte_pacer_restart(rte_pacer *pacer)
 /* RECORDED: does this frame start the pace again (back in time, or after a
  * pause longer than max_pause_ns)? Differences in unsigned arithmetic: the
  * times may lie anywhere in int64. */
-static int starts_again(const rte_pacer *pacer, int64_t recorded_ns)
+static bool starts_again(const rte_pacer *pacer, int64_t recorded_ns)
 {
     const rte_pacer_config *c = &pacer->config;
     if (!pacer->frames)
-        return 0;
+        return false;
     if (recorded_ns < pacer->last_recorded_ns)
-        return 1;
+        return true;
     return c->max_pause_ns > 0 &&
            (uint64_t)recorded_ns - (uint64_t)pacer->last_recorded_ns > (uint64_t)c->max_pause_ns;
 }
