@@ -113,6 +113,67 @@ static rte_status print_features(const rte_point *pts, int32_t n, feature_buffer
 
 static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
 
+/* The contour list and the feature buffers for config's limits on a w x h
+ * image; false when one could not be allocated (the others are freed by
+ * contour_buffers_free either way). */
+static bool contour_buffers_new(const char *command, const rte_grasp_config *config, int32_t w,
+                                int32_t h, rte_contours *cs, feature_buffers *b)
+{
+    cs->max_points = config->max_points;
+    cs->max_contours = config->max_contours;
+    cs->points = malloc((size_t)cs->max_points * sizeof *cs->points);
+    cs->contours = malloc((size_t)cs->max_contours * sizeof *cs->contours);
+    const int32_t maxp = cs->max_points;
+    b->hull_idx = malloc((size_t)maxp * sizeof *b->hull_idx);
+    b->hull = malloc((size_t)maxp * sizeof *b->hull);
+    b->approx = malloc((size_t)maxp * sizeof *b->approx);
+    b->defects = malloc((size_t)maxp * sizeof *b->defects);
+    size_t scratch = rte_contours_scratch_size(w, h, cs->max_contours);
+    scratch = max_size(scratch, rte_shape_classify_scratch_size(maxp));
+    scratch = max_size(scratch, rte_shape_hull_scratch_size(maxp));
+    scratch = max_size(scratch, rte_shape_approx_scratch_size(maxp));
+    b->arena_memory = cli_new_arena(command, scratch, &b->arena);
+    return cs->points && cs->contours && b->hull_idx && b->hull && b->approx && b->defects &&
+           b->arena_memory;
+}
+
+static void contour_buffers_free(rte_contours *cs, feature_buffers *b)
+{
+    free(cs->points);
+    free(cs->contours);
+    free(b->hull_idx);
+    free(b->hull);
+    free(b->approx);
+    free(b->defects);
+    free(b->arena_memory);
+}
+
+/* The JSON document: every contour of at least min_area px with its
+ * features (stops at the first that fails, leaving the document open). */
+static rte_status print_contours(const rte_contours *cs, feature_buffers *b, int min_area,
+                                 int32_t threshold)
+{
+    rte_status st = RTE_OK;
+    printf("{\"contours\":[");
+    int first = 1;
+    for (int32_t i = 0; i < cs->n_contours && st == RTE_OK; i++) {
+        const rte_contour *c = &cs->contours[i];
+        const rte_point *pts = cs->points + c->offset;
+        int64_t a2 = rte_shape_area2(pts, c->count);
+        if ((a2 < 0 ? -a2 : a2) < 2 * (int64_t)min_area)
+            continue;
+        printf("%s{\"index\":%d,\"points\":", first ? "" : ",", (int)i);
+        first = 0;
+        print_points(pts, c->count);
+        printf(",\"hierarchy\":[%d,%d,%d,%d]", (int)c->hierarchy[0], (int)c->hierarchy[1],
+               (int)c->hierarchy[2], (int)c->hierarchy[3]);
+        st = print_features(pts, c->count, b);
+        printf("}");
+    }
+    printf("],\"threshold\":%d,\"truncated\":%s}\n", (int)threshold, cs->truncated ? "true" : "false");
+    return st;
+}
+
 int cmd_contours(const cli_entry *self, int argc, char **argv)
 {
     static const char *const modes[] = {"external", "list", "ccomp", "tree", NULL};
@@ -160,57 +221,19 @@ int cmd_contours(const cli_entry *self, int argc, char **argv)
         st = rte_grasp_process(ctx, &in.gray, &r);
 
     rte_contours cs = {0};
-    cs.max_points = config.max_points;
-    cs.max_contours = config.max_contours;
-    cs.points = malloc((size_t)cs.max_points * sizeof *cs.points);
-    cs.contours = malloc((size_t)cs.max_contours * sizeof *cs.contours);
-    const int32_t maxp = cs.max_points;
     feature_buffers b = {0};
-    b.hull_idx = malloc((size_t)maxp * sizeof *b.hull_idx);
-    b.hull = malloc((size_t)maxp * sizeof *b.hull);
-    b.approx = malloc((size_t)maxp * sizeof *b.approx);
-    b.defects = malloc((size_t)maxp * sizeof *b.defects);
-    size_t scratch = rte_contours_scratch_size(w, h, cs.max_contours);
-    scratch = max_size(scratch, rte_shape_classify_scratch_size(maxp));
-    scratch = max_size(scratch, rte_shape_hull_scratch_size(maxp));
-    scratch = max_size(scratch, rte_shape_approx_scratch_size(maxp));
-    b.arena_memory = cli_new_arena(self->name, scratch, &b.arena);
-    if (st == RTE_OK && (!cs.points || !cs.contours || !b.hull_idx || !b.hull || !b.approx || !b.defects ||
-                         !b.arena_memory))
+    if (!contour_buffers_new(self->name, &config, w, h, &cs, &b) && st == RTE_OK)
         st = RTE_ERR_NO_MEMORY;
     if (st == RTE_OK)
         st = rte_contours_find(r.binary, (rte_contour_mode)mode,
                                method ? RTE_CONTOURS_APPROX_SIMPLE : RTE_CONTOURS_APPROX_NONE, &cs, &b.arena);
-    if (st == RTE_OK) {
-        printf("{\"contours\":[");
-        int first = 1;
-        for (int32_t i = 0; i < cs.n_contours && st == RTE_OK; i++) {
-            const rte_contour *c = &cs.contours[i];
-            const rte_point *pts = cs.points + c->offset;
-            int64_t a2 = rte_shape_area2(pts, c->count);
-            if ((a2 < 0 ? -a2 : a2) < 2 * (int64_t)o.min_area)
-                continue;
-            printf("%s{\"index\":%d,\"points\":", first ? "" : ",", (int)i);
-            first = 0;
-            print_points(pts, c->count);
-            printf(",\"hierarchy\":[%d,%d,%d,%d]", (int)c->hierarchy[0], (int)c->hierarchy[1],
-                   (int)c->hierarchy[2], (int)c->hierarchy[3]);
-            st = print_features(pts, c->count, &b);
-            printf("}");
-        }
-        printf("],\"threshold\":%d,\"truncated\":%s}\n", (int)r.threshold, cs.truncated ? "true" : "false");
-    }
+    if (st == RTE_OK)
+        st = print_contours(&cs, &b, o.min_area, r.threshold);
     if (st != RTE_OK) {
         cli_error(self->name, "%s", rte_status_message(st));
         rc = CLI_EXIT_FAILURE;
     }
-    free(cs.points);
-    free(cs.contours);
-    free(b.hull_idx);
-    free(b.hull);
-    free(b.approx);
-    free(b.defects);
-    free(b.arena_memory);
+    contour_buffers_free(&cs, &b);
     rte_grasp_destroy(ctx);
     cli_image_free(&in);
     return rc;

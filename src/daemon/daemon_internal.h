@@ -1,6 +1,10 @@
 /* What the daemon's files share (internal to src/daemon): the daemon's
  * state, and the functions one file provides to the others.
- *   loop.c         opening, the source, recording, the per-frame step
+ *   open.c         rted_daemon_open(): sizing and opening everything, close
+ *   source_open.c  which source a path names, and opening it
+ *   record.c       source.record: the delivered frames into an LCM log
+ *   messages.c     filling and publishing the lane, grasp and image messages
+ *   loop.c         the per-frame step and the run loop
  *   reconfigure.c  run-time configuration: SIGHUP, the params_t channel
  *   status.c       the latency window and the status message */
 #ifndef RTEDGED_DAEMON_INTERNAL_H
@@ -83,6 +87,26 @@ struct rted_daemon {
     rted_log_limit log_frames, log_params;
     rte_status path_said[2];  /* the lane's and grasp path's last failure said */
 };
+
+/* source_open.c */
+/* Opens the source that d->cfg names (source.kind, or guessed from
+ * source.path); sets d->recorded, d->source_id and the maxima d->width and
+ * d->height. false and *msg otherwise. */
+bool rted_open_source(rted_daemon *d, char *msg, size_t msg_size);
+
+/* record.c */
+/* The recording's publisher and a buffer for the source's largest frame. */
+bool rted_open_recording(rted_daemon *d, char *msg, size_t msg_size);
+/* Copies f, packed, into the recording (a failure counts a publish error). */
+void rted_record_frame(rted_daemon *d, const rte_source_frame *f);
+
+/* messages.c */
+/* Points the messages at d's source id, ROI and arrays. */
+void rted_messages_init(rted_daemon *d);
+void rted_publish_lane(rted_daemon *d, const rte_source_frame *f, const rte_lane_result *r);
+void rted_publish_grasp(rted_daemon *d, const rte_source_frame *f, const rte_grasp_result *r);
+/* g: the frame's grey image (copied into d->gray when not packed). */
+void rted_publish_image(rted_daemon *d, const rte_source_frame *f, const rte_image_u8 *g);
 
 /* reconfigure.c */
 /* The lane parameters: the frame size's defaults with c's keys over them

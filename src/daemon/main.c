@@ -46,125 +46,147 @@ static void usage(FILE *f)
           f);
 }
 
-int main(int argc, char **argv)
-{
-    const char *config_path = NULL;
+/* What the command line asked for: the file, the overrides in order (each
+ * direct flag stands for one or two of them), and what to do. */
+typedef struct options {
+    const char *config_path;
     char *sets[MAX_SETS];
     char direct[16][RTED_TEXT + 32];
-    int n_sets = 0, n_direct = 0;
-    bool check = false, bench = false;
+    int n_sets, n_direct;
+    bool check, bench;
+} options;
+
+/* The options that print and exit: the exit code, or -1 when a is none of them. */
+static int print_option(const char *a)
+{
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(a, "--help-config")) {
+        rted_config_print_help(stdout);
+        return 0;
+    }
+    if (!strcmp(a, "--list-cameras")) {
+        int n = rte_list_cameras(stdout);
+        if (!n)
+            fprintf(stderr, "rtedged: no camera found\n");
+        return n > 0 ? 0 : 1;
+    }
+    return -1;
+}
+
+/* The flags that stand for one key: *key ("section.key", takes a value) or
+ * *fixed (a whole assignment); false when a is not one. */
+static bool key_option(const char *a, const char **key, const char **fixed)
+{
+    static const struct {
+        const char *flag, *key, *fixed;
+    } flags[] = {
+        {"--loop", NULL, "source.loop=true"},  {"--fast", NULL, "source.pace=fast"},
+        {"--source", "source.path", NULL},     {"--fps", "source.fps", NULL},
+        {"--speed", "source.speed", NULL},     {"--max-frames", "source.max_frames", NULL},
+        {"--lcm-url", "publish.url", NULL},    {"--deadline-ms", "deadline.ms", NULL},
+        {"--record", "source.record", NULL},
+    };
+    for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
+        if (!strcmp(a, flags[i].flag)) {
+            *key = flags[i].key;
+            *fixed = flags[i].fixed;
+            return true;
+        }
+    return false;
+}
+
+/* Reads argv into *o: -1 to go on, else the exit code (an option that
+ * prints, or a bad command line). */
+static int parse_options(options *o, int argc, char **argv)
+{
+    memset(o, 0, sizeof *o);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         const char *key = NULL, *fixed = NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "--help-config")) {
-            rted_config_print_help(stdout);
-            return 0;
-        } else if (!strcmp(a, "--list-cameras")) {
-            int n = rte_list_cameras(stdout);
-            if (!n)
-                fprintf(stderr, "rtedged: no camera found\n");
-            return n > 0 ? 0 : 1;
-        } else if (!strcmp(a, "--check-config")) {
-            check = true;
+        int code = print_option(a);
+        if (code >= 0)
+            return code;
+        if (!strcmp(a, "--check-config")) {
+            o->check = true;
             continue;
-        } else if (!strcmp(a, "--bench")) {
-            bench = true;
+        }
+        if (!strcmp(a, "--bench")) {
+            o->bench = true;
             continue;
-        } else if (!strcmp(a, "--loop")) {
-            fixed = "source.loop=true";
-        } else if (!strcmp(a, "--fast")) {
-            fixed = "source.pace=fast";
-        } else if (!strcmp(a, "--config")) {
-            if (!v)
-                goto missing;
-            config_path = v;
-            i++;
+        }
+        if ((!strcmp(a, "--config") || !strcmp(a, "--set")) && !v)
+            goto missing;
+        if (!strcmp(a, "--config")) {
+            o->config_path = argv[++i];
             continue;
-        } else if (!strcmp(a, "--set")) {
-            if (!v)
-                goto missing;
-            if (n_sets == MAX_SETS) {
+        }
+        if (!strcmp(a, "--set")) {
+            if (o->n_sets == MAX_SETS) {
                 fprintf(stderr, "rtedged: more than %d --set options\n", MAX_SETS);
                 return RTED_EXIT_CONFIG;
             }
-            sets[n_sets++] = argv[++i];
+            o->sets[o->n_sets++] = argv[++i];
             continue;
-        } else if (!strcmp(a, "--source")) {
-            key = "source.path";
-        } else if (!strcmp(a, "--fps")) {
-            key = "source.fps";
-        } else if (!strcmp(a, "--speed")) {
-            key = "source.speed";
-        } else if (!strcmp(a, "--max-frames")) {
-            key = "source.max_frames";
-        } else if (!strcmp(a, "--lcm-url")) {
-            key = "publish.url";
-        } else if (!strcmp(a, "--deadline-ms")) {
-            key = "deadline.ms";
-        } else if (!strcmp(a, "--record")) {
-            key = "source.record";
-        } else {
+        }
+        if (!key_option(a, &key, &fixed)) {
             fprintf(stderr, "rtedged: unknown option '%s'\n", a);
             usage(stderr);
             return RTED_EXIT_CONFIG;
         }
-        if (n_direct == 16 || n_sets + 2 > MAX_SETS) {
+        if (o->n_direct == 16 || o->n_sets + 2 > MAX_SETS) {
             fprintf(stderr, "rtedged: too many options\n");
             return RTED_EXIT_CONFIG;
         }
-        if (key) {
-            if (!v)
-                goto missing;
-            snprintf(direct[n_direct], sizeof direct[0], "%s=%s", key, v);
-            i++;
-            sets[n_sets++] = direct[n_direct++];
-            if (!strcmp(a, "--fps"))
-                sets[n_sets++] = "source.pace=fps";
-            if (!strcmp(a, "--speed"))
-                sets[n_sets++] = "source.pace=recorded";
-        } else {
-            sets[n_sets++] = (char *)fixed;
+        if (!key) {
+            o->sets[o->n_sets++] = (char *)fixed;
+            continue;
         }
+        if (!v)
+            goto missing;
+        snprintf(o->direct[o->n_direct], sizeof o->direct[0], "%s=%s", key, v);
+        i++;
+        o->sets[o->n_sets++] = o->direct[o->n_direct++];
+        if (!strcmp(a, "--fps"))
+            o->sets[o->n_sets++] = "source.pace=fps";
+        if (!strcmp(a, "--speed"))
+            o->sets[o->n_sets++] = "source.pace=recorded";
         continue;
     missing:
         fprintf(stderr, "rtedged: %s needs a value\n", a);
         return RTED_EXIT_CONFIG;
     }
+    return -1;
+}
 
-    rted_config cfg;
+/* The defaults, the file, then the overrides, checked together: false
+ * (exit 2) with the reason said. */
+static bool configure(rted_config *cfg, const options *o)
+{
     char msg[RTED_MSG];
-    rted_config_defaults(&cfg);
-    if (config_path && !rted_config_load(&cfg, config_path, msg, sizeof msg)) {
+    rted_config_defaults(cfg);
+    if (o->config_path && !rted_config_load(cfg, o->config_path, msg, sizeof msg)) {
         fprintf(stderr, "rtedged: %s\n", msg);
-        return RTED_EXIT_CONFIG;
+        return false;
     }
-    for (int i = 0; i < n_sets; i++)
-        if (!rted_config_set(&cfg, sets[i], "command line", msg, sizeof msg)) {
+    for (int i = 0; i < o->n_sets; i++)
+        if (!rted_config_set(cfg, o->sets[i], "command line", msg, sizeof msg)) {
             fprintf(stderr, "rtedged: %s\n", msg);
-            return RTED_EXIT_CONFIG;
+            return false;
         }
-    if (!rted_config_validate(&cfg, msg, sizeof msg)) {
-        fprintf(stderr, "rtedged: %s%s%s\n", config_path ? config_path : "",
-                config_path ? ": " : "", msg);
-        return RTED_EXIT_CONFIG;
+    if (!rted_config_validate(cfg, msg, sizeof msg)) {
+        fprintf(stderr, "rtedged: %s%s%s\n", o->config_path ? o->config_path : "",
+                o->config_path ? ": " : "", msg);
+        return false;
     }
-    if (check) {
-        printf("# effective configuration (hash %016llx)\n",
-               (unsigned long long)rted_config_hash(&cfg));
-        rted_config_print(&cfg, stdout);
-        return 0;
-    }
+    return true;
+}
 
-    rted_daemon *d;
-    if (!rted_daemon_open(&d, &cfg, config_path, msg, sizeof msg)) {
-        fprintf(stderr, "rtedged: %s\n", msg);
-        return RTED_EXIT_FAILED;
-    }
-    rted_daemon_set_overrides(d, sets, n_sets);
+static void handle_signals(void)
+{
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sigemptyset(&sa.sa_mask);
@@ -174,8 +196,11 @@ int main(int argc, char **argv)
     sa.sa_handler = on_hup;
     sigaction(SIGHUP, &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
+}
 
-    int code = rted_daemon_run(d, &stop_flag, &reload_flag);
+/* --bench's line on stdout and the counters on stderr, after the run. */
+static void report(rted_daemon *d, bool bench)
+{
     rted_counters n;
     rted_daemon_get_counters(d, &n);
     if (bench) {
@@ -198,6 +223,34 @@ int main(int argc, char **argv)
             (unsigned long long)n.reloads, (unsigned long long)n.refused,
             (unsigned long long)n.rate_limited, (unsigned long long)n.path_errors,
             (unsigned long long)n.rewinds);
+}
+
+int main(int argc, char **argv)
+{
+    options o;
+    int code = parse_options(&o, argc, argv);
+    if (code >= 0)
+        return code;
+    rted_config cfg;
+    if (!configure(&cfg, &o))
+        return RTED_EXIT_CONFIG;
+    if (o.check) {
+        printf("# effective configuration (hash %016llx)\n",
+               (unsigned long long)rted_config_hash(&cfg));
+        rted_config_print(&cfg, stdout);
+        return 0;
+    }
+
+    rted_daemon *d;
+    char msg[RTED_MSG];
+    if (!rted_daemon_open(&d, &cfg, o.config_path, msg, sizeof msg)) {
+        fprintf(stderr, "rtedged: %s\n", msg);
+        return RTED_EXIT_FAILED;
+    }
+    rted_daemon_set_overrides(d, o.sets, o.n_sets);
+    handle_signals();
+    code = rted_daemon_run(d, &stop_flag, &reload_flag);
+    report(d, o.bench);
     rted_daemon_close(d);
     return code;
 }
