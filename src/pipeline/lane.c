@@ -1,16 +1,14 @@
-/* Lane detection, per frame (integer only: built with -mgeneral-regs-only).
- * The stages and the reasons for them are in include/rtedge/lane.h and
- * docs/lanes.md. */
+/* Lane detection, per frame (integer only: built with -mgeneral-regs-only):
+ * the parameters, the ROI and the stages in order, with their timings;
+ * the stages' own work is in lane_cue.c, lane_fit.c, lane_refine.c and
+ * lane_track.c. The stages and the reasons for them are in
+ * include/rtedge/lane.h and docs/lanes.md. */
 #include <string.h>
 #include <time.h>
 
-#include "algo/geom_fixed.h"
-#include "lane_cue_rows.h"
-#include "lane_internal.h"
-#include "rtedge/cpu.h"
+#include "lane_fixed.h"
 #include "rtedge/color.h"
 #include "rtedge/polygon_mask.h"
-#include "rtedge/threshold.h"
 #include "core/clock.h"
 
 const char *rte_lane_stage_name(rte_lane_stage stage)
@@ -108,446 +106,106 @@ static rte_status lane_roi(rte_lane_context *ctx, int32_t w, int32_t h)
     return RTE_OK;
 }
 
-/* The colour cue's row kernel, once per instruction set (see simd/rows.h). */
-void rte_lane_cue_row_c(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
-                        const rte_lane_cue *cue, bool rgb)
+/* Ends a stage: its time since *t0 goes into stage_ns[stage], and the next
+ * stage starts now. */
+static void lane_stage_end(rte_lane_result *out, rte_lane_stage stage, int64_t *t0)
 {
-    lane_cue_row(gray, bgr, dst, width, cue, rgb);
+    const int64_t t1 = rte_clock_now_ns();
+    out->stage_ns[stage] = t1 - *t0;
+    *t0 = t1;
 }
 
-rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features)
-{
-    return RTE_SIMD_PICK(features, rte_lane_cue_row_c, rte_lane_cue_row_avx2, rte_lane_cue_row_c);
-}
-
-/* The colour cue: white or yellow paint -> 255, everything else grey scaled
- * by dim_q8 / 256. `bgr` rows hold B,G,R (R,G,B when rgb is set). */
-static void lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, const uint8_t *bgr,
-                           int32_t bgr_stride, bool rgb, rte_image_u8 *dst)
-{
-    /* 8-bit comparisons (16 or 32 pixels per vector): a threshold of 256
-     * can never be reached, so it disables its test. */
-    const rte_lane_cue cue = {
-        .white_min = (uint8_t)(p->white_min > 255 ? 255 : p->white_min),
-        .white_on = p->white_min <= 255 ? 0xFF : 0,
-        .yellow_min = (uint8_t)(p->yellow_rg_min > 255 ? 255 : p->yellow_rg_min),
-        .yellow_on = p->yellow_rg_min <= 255 ? 0xFF : 0,
-        .yellow_b_margin = (uint8_t)p->yellow_b_margin,
-        .dim_q8 = (uint16_t)p->dim_q8,
-    };
-    const rte_lane_cue_row_fn row = rte_lane_cue_row_select(rte_cpu_features());
-    for (int32_t y = 0; y < dst->height; y++)
-        row(rte_u8_row(gray, y), bgr + (size_t)y * (size_t)bgr_stride, rte_u8_row(dst, y),
-            dst->width, &cue, rgb);
-}
-
-/* Automatic Canny thresholds for this frame from the histogram of the
- * blurred pixels inside the ROI (unchanged when it is empty). */
-static void lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
-                            int32_t *low, int32_t *high)
+/* The grey stage's part here: the crop of `gray` to the ROI's bounding
+ * box, or the colour cue of it when there is colour. */
+static rte_image_u8 lane_stage_gray(rte_lane_context *ctx, const rte_image_u8 *gray, const uint8_t *color,
+                                    int32_t color_stride, bool rgb)
 {
     const rte_lane_params *p = &ctx->params;
-    uint32_t hist[256];
-    if (rte_histogram_masked_u8(img, mask, hist) != RTE_OK)
-        return;
-    int32_t lo, hi;
-    rte_status st = p->canny_mode == RTE_LANE_CANNY_MEDIAN
-                        ? rte_threshold_auto_canny_median(hist, p->auto_sigma_permille, &lo, &hi)
-                        : rte_threshold_auto_canny_otsu(hist, &lo, &hi);
-    if (st == RTE_OK) {
-        *low = lo;
-        *high = hi;
+    const int32_t cx0 = ctx->crop_x0, cy0 = ctx->crop_y0, cx1 = ctx->crop_x1, cy1 = ctx->crop_y1;
+    const int32_t cw = cx1 - cx0, ch = cy1 - cy0;
+    rte_image_u8 src = lane_view(gray, cx0, cy0, cx1, cy1);
+    if (color && p->use_color) {
+        rte_image_u8 cue = lane_view(&ctx->cue, 0, 0, cw, ch);
+        rte_lane_color_cue(p, &src, color + (size_t)cy0 * (size_t)color_stride + (size_t)cx0 * 3,
+                           color_stride, rgb, &cue);
+        src = cue;
     }
+    return src;
 }
 
-static int64_t lane_abs64(int64_t v)
+/* The blur and Canny stages: the edge map of the crop `src` inside the ROI,
+ * in *edges. The blur's time is its own stage's only with automatic
+ * thresholds; the fused front end counts it in the Canny stage. */
+static rte_status lane_stage_edges(rte_lane_context *ctx, const rte_image_u8 *src, int64_t *t0,
+                                   rte_lane_result *out, rte_image_u8 *edges)
 {
-    return v < 0 ? -v : v;
-}
-
-static int32_t seg_length(const rte_lane_segment *s)
-{
-    const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0;
-    return (int32_t)rte_isqrt64((uint64_t)(dx * dx + dy * dy));
-}
-
-/* num * 65536 / den (den > 0), without overflow for any 62-bit inputs. */
-static int64_t lane_div_q16(int64_t num, int64_t den)
-{
-    while (lane_abs64(num) >= ((int64_t)1 << 46) || den >= ((int64_t)1 << 46)) {
-        num /= 2;
-        den /= 2;
+    const rte_lane_params *p = &ctx->params;
+    const int32_t cw = ctx->crop_x1 - ctx->crop_x0, ch = ctx->crop_y1 - ctx->crop_y0;
+    rte_image_u8 mask = lane_view(&ctx->mask, 0, 0, cw, ch);
+    *edges = lane_view(&ctx->edges, 0, 0, cw, ch);
+    int32_t low = p->canny_low, high = p->canny_high;
+    rte_status st;
+    if (p->canny_mode == RTE_LANE_CANNY_FIXED) {
+        /* Fused front end: blur, Sobel and suppression over a band of rows,
+         * no blurred image (its time counts in the Canny stage). */
+        ctx->canny.low = low;
+        ctx->canny.high = high;
+        if ((st = rte_canny_blurred_u8(src, edges, &ctx->blur, &ctx->canny, &ctx->arena)) != RTE_OK)
+            return st;
+    } else {
+        /* The thresholds come from the blurred pixels' histogram, so the
+         * blurred image is needed before any suppression. */
+        rte_image_u8 blurred = lane_view(&ctx->blurred, 0, 0, cw, ch);
+        if ((st = rte_gaussian_blur_u8(src, &blurred, &ctx->blur, &ctx->arena)) != RTE_OK)
+            return st;
+        lane_stage_end(out, RTE_LANE_STAGE_BLUR, t0);
+        rte_lane_thresholds(ctx, &blurred, &mask, &low, &high);
+        /* Integer thresholds on the L1 magnitude of a 3x3 Sobel are what
+         * rte_canny_params_init gives for whole numbers: set them directly. */
+        ctx->canny.low = low;
+        ctx->canny.high = high;
+        if ((st = rte_canny_u8(&blurred, edges, &ctx->canny, &ctx->arena)) != RTE_OK)
+            return st;
     }
-    return den > 0 ? num * 65536 / den : 0;
+    out->canny_low = low;
+    out->canny_high = high;
+    return rte_polygon_mask_apply(edges, &mask, edges);
 }
 
-/* x of a line at row y, in 1/256 pixel. */
-static int64_t line_x_q8(const lane_line *l, int64_t y)
+/* The Hough stage: the segments of the edge map, in frame coordinates. */
+static rte_status lane_stage_hough(rte_lane_context *ctx, const rte_image_u8 *edges, int32_t *count,
+                                   bool *truncated)
 {
-    return l->x_mid_q8 + ((l->slope_q16 * (y - l->y_mid)) >> 8);
-}
-
-/* Sorts idx[0..n) by key[idx] (shell sort: no recursion, no allocation). */
-static void lane_sort(int32_t *idx, const int64_t *key, int32_t n)
-{
-    static const int32_t gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
-    for (size_t g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {
-        const int32_t gap = gaps[g];
-        for (int32_t i = gap; i < n; i++) {
-            const int32_t v = idx[i];
-            int32_t j = i;
-            while (j >= gap && key[idx[j - gap]] > key[v]) {
-                idx[j] = idx[j - gap];
-                j -= gap;
-            }
-            idx[j] = v;
-        }
+    const rte_lane_params *p = &ctx->params;
+    const rte_hough_segments_params hp = {p->hough_threshold, p->min_length, p->max_gap, p->hough_seed};
+    rte_status st = rte_hough_segments(ctx->hough, edges, &hp, &ctx->arena, ctx->raw, ctx->cfg.max_segments,
+                                       count, truncated);
+    if (st != RTE_OK)
+        return st;
+    for (int32_t i = 0; i < *count; i++) {
+        rte_lane_segment *s = &ctx->segments[i];
+        s->x0 = ctx->raw[i].x0 + ctx->crop_x0;
+        s->y0 = ctx->raw[i].y0 + ctx->crop_y0;
+        s->x1 = ctx->raw[i].x1 + ctx->crop_x0;
+        s->y1 = ctx->raw[i].y1 + ctx->crop_y0;
     }
+    return RTE_OK;
 }
 
-/* Weighted median of key over the segments sides[0..n) (weights: lengths). */
-static int64_t weighted_median(int32_t *work, const int32_t *members, int32_t n, const int64_t *key,
-                               const rte_lane_segment *segs)
+/* One side of the fit stage: its segments members[0..n) fitted, the line
+ * refined on the edge pixels, the tracker moved, the lane filled in. */
+static void lane_fit_one_side(rte_lane_context *ctx, const rte_image_u8 *edges, const rte_image_u8 *mask,
+                              int side, int32_t *members, int32_t n, rte_lane *lane)
 {
-    int64_t total = 0;
-    for (int32_t i = 0; i < n; i++) {
-        work[i] = members[i];
-        total += seg_length(&segs[members[i]]);
-    }
-    lane_sort(work, key, n);
-    int64_t acc = 0;
-    for (int32_t i = 0; i < n; i++) {
-        acc += seg_length(&segs[work[i]]);
-        if (2 * acc >= total)
-            return key[work[i]];
-    }
-    return key[work[n - 1]];
-}
-
-/* Theil-Sen style start: slope = weighted median of the segments' own
- * slopes dx/dy, then x at y_mid = weighted median of the segments'
- * intercepts under that slope. */
-static void fit_medians(rte_lane_context *ctx, const int32_t *members, int32_t n, lane_line *line)
-{
-    const rte_lane_segment *segs = ctx->segments;
-    int64_t *key = ctx->keys;
-    int32_t *work = ctx->order + 2 * ctx->cfg.max_segments;
-    for (int32_t i = 0; i < n; i++) {
-        const rte_lane_segment *s = &segs[members[i]];
-        key[members[i]] = (int64_t)(s->x1 - s->x0) * 65536 / (s->y1 - s->y0);
-    }
-    line->slope_q16 = weighted_median(work, members, n, key, segs);
-    for (int32_t i = 0; i < n; i++) {
-        const rte_lane_segment *s = &segs[members[i]];
-        /* midpoint x (Q8) moved along the slope to y_mid */
-        const int64_t xm = (int64_t)(s->x0 + s->x1) * 128, ym2 = (int64_t)(s->y0 + s->y1);
-        key[members[i]] = xm - ((line->slope_q16 * (ym2 - 2 * line->y_mid)) >> 9);
-    }
-    line->x_mid_q8 = weighted_median(work, members, n, key, segs);
-}
-
-/* Largest horizontal distance of a segment's end points from the line, 1/256 px. */
-static int64_t seg_residual_q8(const lane_line *l, const rte_lane_segment *s)
-{
-    const int64_t r0 = lane_abs64((int64_t)s->x0 * 256 - line_x_q8(l, s->y0));
-    const int64_t r1 = lane_abs64((int64_t)s->x1 * 256 - line_x_q8(l, s->y1));
-    return r0 > r1 ? r0 : r1;
-}
-
-/* What the least-squares fit knows besides the segments: the rows the lane
- * spans, and a slope to lean on (the tracked lane's, as predicted for this
- * frame) with the weight of R^3 in the units of the fit's row moment, i.e.
- * as much as a marking along R rows would give: one short dash far up the
- * image then moves the lane sideways but hardly turns it, while paint along
- * the whole lane outweighs the prior. weight 0: no prior. */
-typedef struct lane_fit_hint {
-    int32_t y_top, y_bottom;
-    int64_t slope_q16;
-    int64_t weight;
-} lane_fit_hint;
-
-/* Rows from the ROI's top row down to y, within the lane's span. */
-static int64_t rows_below_top(const lane_fit_hint *h, int64_t y)
-{
-    const int64_t span = h->y_bottom - h->y_top, d = y - h->y_top;
-    return d < 0 || span <= 0 ? 0 : d > span ? span : d;
-}
-
-/* A segment's weight by its row, /256: the inverse variance of a pixel's
- * lateral position on the road, which grows as (distance from the horizon)^2
- * in perspective (the horizon taken an eighth of the lane above the ROI
- * top). The lane near the camera is measured best and matters most: on a
- * bend, far dashes must not turn the lane away from the near ones. */
-static int64_t row_weight_q8(const lane_fit_hint *h, int64_t y)
-{
-    const int64_t span = h->y_bottom - h->y_top, q = span / 8 + 1, d = rows_below_top(h, y);
-    if (span <= 0)
-        return 256;
-    return 256 * (d + q) * (d + q) / ((span + q) * (span + q)) + 1;
-}
-
-/* A segment's own direction counts this many times the spread of its
- * pixels: it is fitted to all of them (the Hough refit), and on a bend the
- * markings' local direction describes the lane near them better than the
- * chord between dashes far apart. */
-#define LANE_DIRECTION_WEIGHT 4
-
-/* Weighted least squares of x on y over the inlier segments, each taken as
- * a uniform line of points (its second moment includes the segment's own
- * extent: d^2/12), weighted by length and row_weight_q8. Returns false
- * when the rows do not spread enough to give a slope and there is no prior. */
-static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *members, int32_t n,
-                              const lane_fit_hint *hint, lane_line *line)
-{
-    int64_t w = 0, sx = 0, sy = 0;
-    for (int32_t i = 0; i < n; i++) {
-        const rte_lane_segment *s = &segs[members[i]];
-        const int64_t len = seg_length(s) * row_weight_q8(hint, (s->y0 + s->y1) / 2);
-        w += len;
-        sx += len * (s->x0 + s->x1); /* Q1 */
-        sy += len * (s->y0 + s->y1);
-    }
-    if (w <= 0)
-        return false;
-    const int64_t mx = sx / w, my = sy / w; /* Q1 means (the rounding cancels: centred below) */
-    int64_t cyy = 0, cxy = 0;
-    for (int32_t i = 0; i < n; i++) {
-        const rte_lane_segment *s = &segs[members[i]];
-        const int64_t len = seg_length(s) * row_weight_q8(hint, (s->y0 + s->y1) / 2);
-        const int64_t X = s->x0 + s->x1 - mx, Y = s->y0 + s->y1 - my;
-        const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0;
-        /* Q2 moments times 3: 3*X*Y + (2dx)(2dy)*3/12 = 3XY + dx*dy */
-        cyy += len * (3 * Y * Y + LANE_DIRECTION_WEIGHT * dy * dy);
-        cxy += len * (3 * X * Y + LANE_DIRECTION_WEIGHT * dx * dy);
-    }
-    if (hint->weight > 0) /* (cxy + weight slope) / (cyy + weight), in Q8 */
-        line->slope_q16 = lane_div_q16(cxy * 256 + ((hint->weight * hint->slope_q16) >> 8),
-                                       (cyy + hint->weight) * 256);
-    else if (cyy < w * 3 * 64 * 4) /* need a spread of rows: at least ~8 px */
-        return false;
-    else
-        line->slope_q16 = lane_div_q16(cxy, cyy);
-    if (lane_abs64(line->slope_q16) > 64 * 65536)
-        return false;
-    /* x at y_mid from the weighted means (Q8) */
-    line->x_mid_q8 = sx * 128 / w + ((line->slope_q16 * ((int64_t)line->y_mid * 256 - sy * 128 / w)) >> 16);
-    return true;
-}
-
-/* The robust fit of one side over members[0..n): medians first; for least
- * squares, segments beyond outlier_px are marked and the rest refitted
- * (twice, so an outlier that pulled the start is caught on the second
- * pass). Returns the supporting length. */
-static int64_t fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, const lane_fit_hint *hint,
-                        lane_line *line, rte_lane_segment_use use)
-{
-    rte_lane_segment *segs = ctx->segments;
-    if (n == 0)
-        return 0;
-    fit_medians(ctx, members, n, line);
-    const int64_t tol = (int64_t)ctx->params.outlier_px * 256;
-    int32_t kept = n;
-    int passes = ctx->params.fit == RTE_LANE_FIT_LEAST_SQUARES ? 2 : 1;
-    for (int pass = 0; pass < passes; pass++) {
-        /* The median start sits on one edge of a marking: the first pass
-         * is twice as tolerant so the marking's other edge stays in and the
-         * least-squares line moves to the marking's centre. */
-        const int64_t pass_tol = pass == 0 && passes > 1 ? 2 * tol : tol;
-        kept = 0;
-        for (int32_t i = 0; i < n; i++) {
-            rte_lane_segment *s = &segs[members[i]];
-            if (seg_residual_q8(line, s) <= pass_tol) {
-                s->use = use;
-                members[kept++] = members[i];
-            } else {
-                s->use = RTE_LANE_SEG_OUTLIER;
-            }
-        }
-        n = kept;
-        if (ctx->params.fit == RTE_LANE_FIT_THEIL_SEN || n == 0)
-            break;
-        lane_line ls = *line;
-        if (fit_least_squares(segs, members, n, hint, &ls))
-            *line = ls;
-    }
-    int64_t support = 0;
-    for (int32_t i = 0; i < kept; i++)
-        support += seg_length(&segs[members[i]]);
-    return support;
-}
-
-/* Half-width of the band of edge pixels around a fitted lane at row y:
- * `tol` on the bottom row, shrinking in perspective towards the horizon to
- * about a quarter of it on the ROI's top row (near the top the two lanes
- * are only tens of pixels apart), at least 5 px so both edges of a narrow
- * far marking stay in, and at most LANE_BAND_MAX. */
-#define LANE_BAND_MAX 64
-static int64_t band_px(const lane_fit_hint *h, int64_t tol, int32_t y)
-{
-    const int64_t span = h->y_bottom - h->y_top, q = 3 * (span / 8 + 1);
-    const int64_t b = span > 0 ? tol * (rows_below_top(h, y) + q) / (span + q) : tol;
-    return b < 5 ? 5 : b > LANE_BAND_MAX ? LANE_BAND_MAX : b;
-}
-
-/* The edge pixels of columns xa..xb of one row that run along a line. */
-typedef struct band_pixels {
-    int64_t n, sum_x;    /* how many, and the sum of their x */
-    int64_t first, last; /* the outermost */
-} band_pixels;
-
-/* Eight bytes, the first in the lowest bits whatever the byte order. */
-static inline uint64_t load_le64(const uint8_t *p)
-{
-    uint64_t v;
-    memcpy(&v, p, sizeof v);
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-    v = __builtin_bswap64(v);
-#endif
-    return v;
-}
-
-static inline void band_add(band_pixels *px, int64_t x)
-{
-    px->n++;
-    px->sum_x += x;
-    px->first = x < px->first ? x : px->first;
-    px->last = x > px->last ? x : px->last;
-}
-
-/* The edge pixels in columns xa..xb (inside the map) of row y of `edges`
- * that run along a line of slope_q16 (x per row): each needs an edge pixel
- * in the row above or below at one of the two columns the slope reaches
- * there, so edges crossing the line (shadows, patch borders, car bumpers)
- * do not count. Eight pixels at a time away from the map's borders. */
-static band_pixels band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16)
-{
-    band_pixels px = {0, 0, INT64_MAX, INT64_MIN};
-    const uint8_t *row = rte_u8_row(edges, y);
-    const uint8_t *up = y > 0 ? row - edges->stride : NULL;
-    const uint8_t *down = y < edges->height - 1 ? row + edges->stride : NULL;
-    /* below: x + slope lies in [x + step, x + step + 1]; above: x - slope
-     * in [x - back, x - back + 1] */
-    const int64_t step = slope_q16 >> 16, back = step + ((slope_q16 & 0xFFFF) != 0);
-    const int64_t words_end = xa + ((xb - xa) / 8 + 1) * 8; /* the word loop reads up to here + 1 */
-    if (up && down && xa - back >= 0 && xa + step >= 0 && words_end + 1 - back <= edges->width &&
-        words_end + 1 + step <= edges->width && words_end <= edges->width) {
-        const uint64_t low7 = 0x7F7F7F7F7F7F7F7Fu;
-        for (int64_t x = xa; x <= xb; x += 8) {
-            uint64_t h = load_le64(row + x);
-            if (xb - x < 7)
-                h &= ((uint64_t)1 << (8 * (xb - x + 1))) - 1; /* bytes past xb */
-            if (!h)
-                continue;
-            const uint64_t m = h & (load_le64(up + x - back) | load_le64(up + x - back + 1) |
-                                    load_le64(down + x + step) | load_le64(down + x + step + 1));
-            /* the top bit of each nonzero byte of m */
-            for (uint64_t nz = (((m & low7) + low7) | m) & ~low7; nz; nz &= nz - 1)
-                band_add(&px, x + (__builtin_ctzll(nz) >> 3));
-        }
-        return px;
-    }
-    for (int64_t x = xa; x <= xb; x++) {
-        if (!row[x])
-            continue;
-        bool along = false;
-        for (int64_t k = 0; k <= 1 && !along; k++) {
-            const int64_t xu = x - back + k, xd = x + step + k;
-            along = (up && xu >= 0 && xu < edges->width && up[xu]) ||
-                    (down && xd >= 0 && xd < edges->width && down[xd]);
-        }
-        if (along)
-            band_add(&px, x);
-    }
-    return px;
-}
-
-/* The segment fit refined on the edge pixels themselves: the edge pixels
- * within band_px of the line that run along it (band_row; `edges` and the
- * ROI mask `roi` are the crop at (cx0, cy0)) enter a weighted
- * least-squares fit of their horizontal residuals to the line (row weights
- * as for segments, the tracked slope as a prior). Up to three passes, each
- * in the band around the line of the one before, until the line's ends
- * move less than a quarter of a pixel (with two, 2 of the 136 photo runs
- * of tests/unit/test_lane.c over eight point orders of the Hough search
- * fail; with three or four, none). Short dashes and paint that the Hough
- * search left without a segment (or split differently) then count by
- * their pixels, so the lane does not depend on which segments the search
- * happened to find, and a marking's two edges put the line on its centre. */
-static void refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
-                            const lane_fit_hint *hint, int64_t tol, lane_line *line)
-{
-    const int32_t y0 = hint->y_top > cy0 ? hint->y_top : cy0;
-    const int32_t y1 = hint->y_bottom < cy0 + edges->height - 1 ? hint->y_bottom : cy0 + edges->height - 1;
-    const int64_t half_span = (hint->y_bottom - hint->y_top) / 2 + 1;
-    for (int pass = 0; pass < 3; pass++) {
-        /* Sums over the pixels of rw, rw Y, rw r, rw Y^2 and rw Y r, with
-         * rw the row weight (<= 257, /256), Y = y - y_mid (|Y| <= 4096 px)
-         * and r the residual to the line (|r| <= 65 px, in 1/256 px): at
-         * most 8192 rows of 129 pixels keep every sum, and the products
-         * with the mean below, under 2^63. */
-        int64_t sw = 0, sy = 0, sr = 0, syy = 0, syr = 0;
-        for (int32_t y = y0; y <= y1; y++) {
-            const int64_t band = band_px(hint, tol, y);
-            const int64_t lx = line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0, xb = xa + 2 * band;
-            /* Only rows where the whole band is inside the ROI: where the
-             * ROI's border cuts a marking, its edge on the inside alone
-             * would pull the line off the marking's centre. */
-            if (xa < 0 || xb > edges->width - 1)
-                continue;
-            const uint8_t *inside = rte_u8_row(roi, y - cy0);
-            if (!inside[xa] || !inside[xb])
-                continue;
-            const band_pixels px = band_row(edges, y - cy0, xa, xb, line->slope_q16);
-            /* Both edges of the marking, one either side of the line: a row
-             * where one of them is missing (worn paint, a shadow's border on
-             * it, the end of a dash) would pull the line to the other. */
-            if (px.n == 0 || (px.first + cx0) * 256 >= lx || (px.last + cx0) * 256 <= lx)
-                continue;
-            const int64_t rw = row_weight_q8(hint, y), Y = y - line->y_mid;
-            const int64_t r = (px.sum_x + px.n * cx0) * 256 - px.n * lx; /* sum of the residuals */
-            sw += rw * px.n;
-            sy += rw * px.n * Y;
-            sr += rw * r;
-            syy += rw * px.n * Y * Y;
-            syr += rw * Y * r;
-        }
-        if (sw < 256 * 8)
-            return; /* hardly any paint near the line: keep it */
-        const int64_t my_q8 = sy * 256 / sw; /* mean Y */
-        const int64_t cyy = syy - ((my_q8 * sy) >> 8), cyr = syr - ((my_q8 * sr) >> 8);
-        /* The tracked slope as a prior with the weight of a marking along a
-         * fifth of the lane (both its edges: R^3 rw / 6 in these units). */
-        const int64_t prior = hint->weight / 6;
-        int64_t dslope_q16 = 0;
-        if (prior > 0)
-            dslope_q16 = lane_div_q16(cyr + (prior * (hint->slope_q16 - line->slope_q16) >> 8), (cyy + prior) * 256);
-        else if (cyy >= sw * 64) /* rows spread over ~8 px at least */
-            dslope_q16 = lane_div_q16(cyr, cyy * 256);
-        const int64_t slope = line->slope_q16 + dslope_q16;
-        if (lane_abs64(slope) > 64 * 65536)
-            return;
-        const int64_t dx_mid = sr / sw - ((dslope_q16 * my_q8) >> 16);
-        line->x_mid_q8 += dx_mid;
-        line->slope_q16 = slope;
-        /* settled: both ends moved less than a quarter of a pixel */
-        if (lane_abs64(dx_mid) + ((lane_abs64(dslope_q16) * half_span) >> 8) < 64)
-            return;
-    }
-}
-
-/* Tracked lane x at row y (1/256 px), from its bottom and top points. */
-static int64_t track_x_q8(const lane_track *t, int32_t y_bottom, int32_t y_top, int32_t y)
-{
-    const int32_t span = y_bottom - y_top;
-    if (span <= 0)
-        return t->x_bottom_q8;
-    return t->x_bottom_q8 +
-           (int64_t)(t->x_top_q8 - t->x_bottom_q8) * (y_bottom - y) / span;
-}
-
-static int32_t clamp32(int64_t v, int64_t lo, int64_t hi)
-{
-    return (int32_t)(v < lo ? lo : v > hi ? hi : v);
+    const rte_lane_params *p = &ctx->params;
+    lane_line line = {0, 0, (lane->y_bottom + lane->y_top) / 2};
+    const lane_fit_hint hint = rte_lane_track_hint(&ctx->track[side], lane->y_top, lane->y_bottom);
+    const int64_t support = rte_lane_fit_side(ctx, members, n, &hint, &line,
+                                              side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
+    if (support > 0 && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
+        rte_lane_refine_on_edges(edges, mask, ctx->crop_x0, ctx->crop_y0, &hint, (int64_t)p->outlier_px, &line);
+    const bool seen = support > 0 && support >= p->min_support_px;
+    rte_lane_track_update(ctx, side, seen, &line, support, lane);
 }
 
 /* atan(t) in milliradians for t in 1/65536 (error below 2 mrad). */
@@ -566,179 +224,30 @@ static int32_t lane_atan_mrad(int64_t t)
     return (int32_t)(neg ? -mrad : mrad);
 }
 
-static void lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
-                              int64_t support, rte_lane *out)
+/* The centre between the two lanes, when both are found and in order:
+ * the offset of the image's centre column from it and its heading over the
+ * rows y_bottom..y_top. */
+static void lane_centre(rte_lane_result *out, int32_t w, int32_t y_bottom, int32_t y_top)
 {
-    const rte_lane_params *p = &ctx->params;
-    lane_track *t = &ctx->track[side];
-    const int64_t mb = seen ? line_x_q8(line, out->y_bottom) : 0;
-    const int64_t mt = seen ? line_x_q8(line, out->y_top) : 0;
-    const int64_t lim = 1 << 28; /* keeps far-off extrapolations in range */
-    if (seen && !t->valid) {
-        t->valid = true;
-        t->x_bottom_q8 = clamp32(mb, -lim, lim);
-        t->x_top_q8 = clamp32(mt, -lim, lim);
-        t->v_bottom_q8 = t->v_top_q8 = 0;
-        t->lost = 0;
-    } else if (t->valid) {
-        const int64_t pb = (int64_t)t->x_bottom_q8 + t->v_bottom_q8;
-        const int64_t pt = (int64_t)t->x_top_q8 + t->v_top_q8;
-        if (seen) {
-            /* A measurement resting on little paint (one short dash) moves
-             * the state less: full weight from half the lane's length of
-             * support, a quarter at least. */
-            const int64_t dxl = (mt - mb) / 256, dyl = out->y_bottom - out->y_top;
-            const int64_t len = (int64_t)rte_isqrt64((uint64_t)(dxl * dxl + dyl * dyl)) + 1;
-            const int64_t share = clamp32(support * 256 / len, 32, 256); /* /256 */
-            const int64_t alpha = (int64_t)p->alpha_q8 * share >> 8;
-            const int64_t step = (int64_t)p->max_step_px * 256;
-            const int64_t rb = clamp32(mb - pb, -step, step), rt = clamp32(mt - pt, -step, step);
-            t->x_bottom_q8 = clamp32(pb + ((rb * alpha) >> 8), -lim, lim);
-            t->x_top_q8 = clamp32(pt + ((rt * alpha) >> 8), -lim, lim);
-            t->v_bottom_q8 = clamp32(t->v_bottom_q8 + ((rb * p->beta_q8) >> 8), -step, step);
-            t->v_top_q8 = clamp32(t->v_top_q8 + ((rt * p->beta_q8) >> 8), -step, step);
-            t->lost = 0;
-        } else if (++t->lost > p->hold_frames) {
-            t->valid = false;
-        } else {
-            /* Held as predicted; the velocity fades (by 1/8 a frame) so a
-             * lane held for long settles instead of drifting away. */
-            t->x_bottom_q8 = clamp32(pb, -lim, lim);
-            t->x_top_q8 = clamp32(pt, -lim, lim);
-            t->v_bottom_q8 -= t->v_bottom_q8 / 8;
-            t->v_top_q8 -= t->v_top_q8 / 8;
-        }
-    }
-    out->found = t->valid;
-    out->predicted = t->valid && t->lost > 0;
-    out->lost_frames = t->valid ? t->lost : 0;
-    out->support_px = (int32_t)(support > INT32_MAX ? INT32_MAX : support);
-    if (t->valid) {
-        out->x_bottom_q8 = t->x_bottom_q8;
-        out->x_top_q8 = t->x_top_q8;
-        const int64_t dx = ((int64_t)t->x_top_q8 - t->x_bottom_q8) / 256;
-        const int64_t dy = out->y_bottom - out->y_top;
-        const int64_t len = rte_isqrt64((uint64_t)(dx * dx + dy * dy));
-        out->confidence_permille = len > 0 ? clamp32(support * 1000 / len, 0, 1000) : 0;
+    const rte_lane *l = &out->lane[RTE_LANE_LEFT], *r = &out->lane[RTE_LANE_RIGHT];
+    if (l->found && r->found && r->x_bottom_q8 > l->x_bottom_q8) {
+        out->centre_valid = true;
+        const int64_t cb = ((int64_t)l->x_bottom_q8 + r->x_bottom_q8) / 2;
+        const int64_t ct = ((int64_t)l->x_top_q8 + r->x_top_q8) / 2;
+        out->offset_q8 = (int32_t)(cb - (int64_t)(w - 1) * 128);
+        out->offset_permille = (int32_t)((int64_t)out->offset_q8 * 1000 / (r->x_bottom_q8 - l->x_bottom_q8));
+        const int64_t dy = y_bottom - y_top;
+        out->heading_tan_q16 = dy > 0 ? lane_clamp32((ct - cb) * 256 / dy, -INT32_MAX, INT32_MAX) : 0;
+        out->heading_mrad = lane_atan_mrad(out->heading_tan_q16);
     }
 }
 
-/* Sorts the Hough segments into sides by slope, position and the gate;
- * fills side lists and marks rejected ones. */
-static void lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int32_t y_bottom,
-                          int32_t y_top, int32_t *members[2], int32_t n[2])
+/* The fit stage: the segments (ctx->segments[0..count)) sorted into sides,
+ * both lanes fitted and tracked, then their centre. */
+static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *edges, int32_t w, int32_t h,
+                           int32_t count, rte_lane_result *out)
 {
     const rte_lane_params *p = &ctx->params;
-    for (int32_t i = 0; i < count; i++) {
-        rte_lane_segment *s = &ctx->segments[i];
-        if (s->y1 < s->y0) { /* (x0, y0) the upper end */
-            int32_t tx = s->x0, ty = s->y0;
-            s->x0 = s->x1, s->y0 = s->y1, s->x1 = tx, s->y1 = ty;
-        }
-        const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0; /* dy >= 0 */
-        const int64_t adx = lane_abs64(dx);
-        /* dy/dx < 0 in image coordinates (y down): the left lane */
-        const int side = dx < 0 ? RTE_LANE_LEFT : RTE_LANE_RIGHT;
-        const int64_t lo = side == RTE_LANE_LEFT ? p->left_min_slope_q8 : p->right_min_slope_q8;
-        const int64_t hi = side == RTE_LANE_LEFT ? p->left_max_slope_q8 : p->right_max_slope_q8;
-        const bool slope_ok = dx != 0 && dy * 256 >= lo * adx && dy * 256 <= hi * adx;
-        /* ... and on its own half of the image */
-        const int64_t mid2 = s->x0 + s->x1;
-        const bool half_ok = side == RTE_LANE_LEFT ? mid2 < width : mid2 >= width;
-        s->use = RTE_LANE_SEG_REJECTED_SLOPE;
-        if (!slope_ok || !half_ok)
-            continue;
-        const lane_track *t = &ctx->track[side];
-        if (t->valid) {
-            const int64_t ym = (s->y0 + s->y1) / 2;
-            const int64_t d = lane_abs64(mid2 * 128 - track_x_q8(t, y_bottom, y_top, (int32_t)ym));
-            if (d > (int64_t)p->gate_px * 256) {
-                s->use = RTE_LANE_SEG_REJECTED_GATE;
-                continue;
-            }
-        }
-        members[side][n[side]++] = i;
-    }
-}
-
-/* gray_ns: time already spent making `gray` (counted in the grey stage). */
-static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, const uint8_t *color,
-                           int32_t color_stride, bool rgb, int64_t t_ns, int64_t gray_ns,
-                           rte_lane_result *out)
-{
-    int64_t t0 = rte_clock_now_ns() - gray_ns, t1;
-    const int32_t w = gray->width, h = gray->height;
-    memset(out, 0, sizeof *out);
-    out->t_ns = t_ns;
-    rte_status st = lane_roi(ctx, w, h);
-    if (st != RTE_OK)
-        return st;
-    const rte_lane_params *p = &ctx->params;
-    const int32_t cx0 = ctx->crop_x0, cy0 = ctx->crop_y0, cx1 = ctx->crop_x1, cy1 = ctx->crop_y1;
-    const int32_t cw = cx1 - cx0, ch = cy1 - cy0;
-    rte_image_u8 src = lane_view(gray, cx0, cy0, cx1, cy1);
-    if (color && p->use_color) {
-        rte_image_u8 cue = lane_view(&ctx->cue, 0, 0, cw, ch);
-        lane_color_cue(p, &src, color + (size_t)cy0 * (size_t)color_stride + (size_t)cx0 * 3,
-                       color_stride, rgb, &cue);
-        src = cue;
-    }
-    t1 = rte_clock_now_ns();
-    out->stage_ns[RTE_LANE_STAGE_GRAY] = t1 - t0;
-    t0 = t1;
-
-    rte_image_u8 mask = lane_view(&ctx->mask, 0, 0, cw, ch);
-    rte_image_u8 edges = lane_view(&ctx->edges, 0, 0, cw, ch);
-    int32_t low = p->canny_low, high = p->canny_high;
-    if (p->canny_mode == RTE_LANE_CANNY_FIXED) {
-        /* Fused front end: blur, Sobel and suppression over a band of rows,
-         * no blurred image (its time counts in the Canny stage). */
-        ctx->canny.low = low;
-        ctx->canny.high = high;
-        if ((st = rte_canny_blurred_u8(&src, &edges, &ctx->blur, &ctx->canny, &ctx->arena)) != RTE_OK)
-            return st;
-    } else {
-        /* The thresholds come from the blurred pixels' histogram, so the
-         * blurred image is needed before any suppression. */
-        rte_image_u8 blurred = lane_view(&ctx->blurred, 0, 0, cw, ch);
-        if ((st = rte_gaussian_blur_u8(&src, &blurred, &ctx->blur, &ctx->arena)) != RTE_OK)
-            return st;
-        t1 = rte_clock_now_ns();
-        out->stage_ns[RTE_LANE_STAGE_BLUR] = t1 - t0;
-        t0 = t1;
-        lane_thresholds(ctx, &blurred, &mask, &low, &high);
-        /* Integer thresholds on the L1 magnitude of a 3x3 Sobel are what
-         * rte_canny_params_init gives for whole numbers: set them directly. */
-        ctx->canny.low = low;
-        ctx->canny.high = high;
-        if ((st = rte_canny_u8(&blurred, &edges, &ctx->canny, &ctx->arena)) != RTE_OK)
-            return st;
-    }
-    out->canny_low = low;
-    out->canny_high = high;
-    if ((st = rte_polygon_mask_apply(&edges, &mask, &edges)) != RTE_OK)
-        return st;
-    t1 = rte_clock_now_ns();
-    out->stage_ns[RTE_LANE_STAGE_CANNY] = t1 - t0;
-    t0 = t1;
-
-    const rte_hough_segments_params hp = {p->hough_threshold, p->min_length, p->max_gap, p->hough_seed};
-    int32_t count = 0;
-    bool truncated = false;
-    if ((st = rte_hough_segments(ctx->hough, &edges, &hp, &ctx->arena, ctx->raw,
-                                 ctx->cfg.max_segments, &count, &truncated)) != RTE_OK)
-        return st;
-    for (int32_t i = 0; i < count; i++) {
-        rte_lane_segment *s = &ctx->segments[i];
-        s->x0 = ctx->raw[i].x0 + cx0;
-        s->y0 = ctx->raw[i].y0 + cy0;
-        s->x1 = ctx->raw[i].x1 + cx0;
-        s->y1 = ctx->raw[i].y1 + cy0;
-    }
-    t1 = rte_clock_now_ns();
-    out->stage_ns[RTE_LANE_STAGE_HOUGH] = t1 - t0;
-    t0 = t1;
-
     /* The ROI's top row, clipped, is where the lanes end. */
     int32_t y_top = INT32_MAX;
     for (int32_t i = 0; i < p->roi_count; i++)
@@ -749,38 +258,44 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
      * is the medians' work list. */
     int32_t *members[2] = {ctx->order, ctx->order + ctx->cfg.max_segments};
     int32_t n[2] = {0, 0};
-    lane_classify(ctx, count, w, y_bottom, y_top, members, n);
+    rte_lane_classify(ctx, count, w, y_bottom, y_top, members, n);
+    const rte_image_u8 mask = lane_view(&ctx->mask, 0, 0, edges->width, edges->height);
     for (int side = 0; side < 2; side++) {
         rte_lane *lane = &out->lane[side];
         lane->y_bottom = y_bottom;
         lane->y_top = y_top;
-        lane_line line = {0, 0, (y_bottom + y_top) / 2};
-        const lane_track *t = &ctx->track[side];
-        lane_fit_hint hint = {y_top, y_bottom, 0, 0};
-        if (t->valid && y_bottom > y_top) {
-            const int64_t dx = ((int64_t)t->x_top_q8 + t->v_top_q8) - ((int64_t)t->x_bottom_q8 + t->v_bottom_q8);
-            const int64_t rows = (y_bottom - y_top) / 5 + 1; /* a fifth of the lane */
-            hint.slope_q16 = clamp32(dx * 256 / (y_top - y_bottom), -64 * 65536, 64 * 65536);
-            hint.weight = rows * rows * rows * 128; /* 128: the mean row weight */
-        }
-        const int64_t support = fit_side(ctx, members[side], n[side], &hint, &line,
-                                         side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
-        if (support > 0 && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
-            refine_on_edges(&edges, &mask, cx0, cy0, &hint, (int64_t)p->outlier_px, &line);
-        const bool seen = support > 0 && support >= p->min_support_px;
-        lane_track_update(ctx, side, seen, &line, support, lane);
+        lane_fit_one_side(ctx, edges, &mask, side, members[side], n[side], lane);
     }
-    const rte_lane *l = &out->lane[RTE_LANE_LEFT], *r = &out->lane[RTE_LANE_RIGHT];
-    if (l->found && r->found && r->x_bottom_q8 > l->x_bottom_q8) {
-        out->centre_valid = true;
-        const int64_t cb = ((int64_t)l->x_bottom_q8 + r->x_bottom_q8) / 2;
-        const int64_t ct = ((int64_t)l->x_top_q8 + r->x_top_q8) / 2;
-        out->offset_q8 = (int32_t)(cb - (int64_t)(w - 1) * 128);
-        out->offset_permille = (int32_t)((int64_t)out->offset_q8 * 1000 / (r->x_bottom_q8 - l->x_bottom_q8));
-        const int64_t dy = y_bottom - y_top;
-        out->heading_tan_q16 = dy > 0 ? clamp32((ct - cb) * 256 / dy, -INT32_MAX, INT32_MAX) : 0;
-        out->heading_mrad = lane_atan_mrad(out->heading_tan_q16);
-    }
+    lane_centre(out, w, y_bottom, y_top);
+}
+
+/* gray_ns: time already spent making `gray` (counted in the grey stage). */
+static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, const uint8_t *color,
+                           int32_t color_stride, bool rgb, int64_t t_ns, int64_t gray_ns,
+                           rte_lane_result *out)
+{
+    int64_t t0 = rte_clock_now_ns() - gray_ns;
+    const int32_t w = gray->width, h = gray->height;
+    memset(out, 0, sizeof *out);
+    out->t_ns = t_ns;
+    rte_status st = lane_roi(ctx, w, h);
+    if (st != RTE_OK)
+        return st;
+    const rte_image_u8 src = lane_stage_gray(ctx, gray, color, color_stride, rgb);
+    lane_stage_end(out, RTE_LANE_STAGE_GRAY, &t0);
+
+    rte_image_u8 edges;
+    if ((st = lane_stage_edges(ctx, &src, &t0, out, &edges)) != RTE_OK)
+        return st;
+    lane_stage_end(out, RTE_LANE_STAGE_CANNY, &t0);
+
+    int32_t count = 0;
+    bool truncated = false;
+    if ((st = lane_stage_hough(ctx, &edges, &count, &truncated)) != RTE_OK)
+        return st;
+    lane_stage_end(out, RTE_LANE_STAGE_HOUGH, &t0);
+
+    lane_stage_fit(ctx, &edges, w, h, count, out);
     out->segments = ctx->segments;
     out->segment_count = count;
     out->truncated = truncated;

@@ -1,5 +1,5 @@
 /* Lane context creation: sizes, the Gaussian taps and the Hough tables
- * (floating point is allowed here, not in lane.c). */
+ * (floating point is allowed here, not in the per-frame lane files). */
 #include <stdlib.h>
 #include <string.h>
 

@@ -1,5 +1,5 @@
 /* The lane path's colour cue, one row at a time (private to librtedge):
- * included by lane.c, which builds it for the baseline target as the C
+ * included by lane_cue.c, which builds it for the baseline target as the C
  * reference, and by src/algo/simd/lane_cue_x86.c, which builds the same
  * loop for AVX2 (where the compiler deinterleaves the 3-byte pixels with
  * byte shuffles, about five times faster than baseline SSE2 can). On

@@ -1,5 +1,9 @@
-/* The lane context, shared by lane_config.c (creation, floating point) and
- * lane.c (per frame, integer only). */
+/* The lane context and what the lane files share: lane_config.c
+ * (creation, floating point) and the per-frame files (integer only):
+ * lane.c (parameters, the ROI, the stages in order, the centre),
+ * lane_cue.c (colour cue, automatic Canny thresholds), lane_fit.c (the
+ * robust fit of the segments), lane_refine.c (the refit on the edge
+ * pixels) and lane_track.c (sides, gate, the trackers). */
 #ifndef RTEDGE_LANE_INTERNAL_H
 #define RTEDGE_LANE_INTERNAL_H
 
@@ -24,6 +28,18 @@ typedef struct lane_line {
     int64_t slope_q16;
     int32_t y_mid;
 } lane_line;
+
+/* What the least-squares fit knows besides the segments: the rows the lane
+ * spans, and a slope to lean on (the tracked lane's, as predicted for this
+ * frame) with the weight of R^3 in the units of the fit's row moment, i.e.
+ * as much as a marking along R rows would give: one short dash far up the
+ * image then moves the lane sideways but hardly turns it, while paint along
+ * the whole lane outweighs the prior. weight 0: no prior. */
+typedef struct lane_fit_hint {
+    int32_t y_top, y_bottom;
+    int64_t slope_q16;
+    int64_t weight;
+} lane_fit_hint;
 
 struct rte_lane_context {
     rte_lane_config cfg;
@@ -50,5 +66,39 @@ struct rte_lane_context {
     lane_track track[2];
     void *memory;
 };
+
+/* lane_cue.c: the colour cue of the crop `gray` (white or yellow paint ->
+ * 255, everything else grey scaled by dim_q8 / 256; `bgr` rows hold B,G,R,
+ * R,G,B when rgb is set), and the automatic Canny thresholds of a blurred
+ * crop inside the ROI mask (*low, *high unchanged when it is empty). */
+void rte_lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, const uint8_t *bgr,
+                        int32_t bgr_stride, bool rgb, rte_image_u8 *dst);
+void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
+                         int32_t *low, int32_t *high);
+
+/* lane_track.c: sorts the Hough segments (ctx->segments[0..count)) into
+ * sides by slope, position and the gate around the tracked lanes, filling
+ * members[side][0..n[side]) and marking the rejected ones. */
+void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int32_t y_bottom,
+                       int32_t y_top, int32_t *members[2], int32_t n[2]);
+/* The fit's hint for a side: its rows, and the tracked lane's slope as
+ * predicted for this frame as the prior (none when not tracked). */
+lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_bottom);
+/* Moves the side's tracker by this frame's line (seen) or holds it, and
+ * fills the lane of the result from it (out->y_bottom and y_top set). */
+void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
+                           int64_t support, rte_lane *out);
+
+/* lane_fit.c: the robust fit of one side over the segments members[0..n)
+ * (reordered; the inliers are marked `use`). Returns the supporting
+ * length. */
+int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, const lane_fit_hint *hint,
+                          lane_line *line, rte_lane_segment_use use);
+
+/* lane_refine.c: the segment fit refined on the edge pixels along it
+ * (`edges` and the ROI mask `roi` are the crop at (cx0, cy0); `tol` the
+ * band's half-width on the bottom row). */
+void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
+                              const lane_fit_hint *hint, int64_t tol, lane_line *line);
 
 #endif

@@ -142,7 +142,7 @@ typedef struct rte_grad_rows {
 RTE_GRAD_ROWS_DECLARE(c)
 rte_grad_rows rte_grad_rows_select(uint32_t features);
 
-/* The lane path's colour cue (src/pipeline/lane.c, lane_cue_rows.h):
+/* The lane path's colour cue (src/pipeline/lane_cue.c, lane_cue_rows.h):
  * white or yellow paint in a B,G,R row (R,G,B when rgb) -> 255, other
  * pixels gray * dim_q8 / 256. Thresholds of 256 are given as *_on = 0. */
 typedef struct rte_lane_cue {

@@ -1,0 +1,168 @@
+/* The robust fit of the lane segments of one side, per frame (integer
+ * only): weighted medians (Theil-Sen style), then weighted least squares
+ * with the outliers dropped (see include/rtedge/lane.h and docs/lanes.md). */
+#include "algo/geom_fixed.h"
+#include "lane_fixed.h"
+
+static int32_t seg_length(const rte_lane_segment *s)
+{
+    const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0;
+    return (int32_t)rte_isqrt64((uint64_t)(dx * dx + dy * dy));
+}
+
+/* Sorts idx[0..n) by key[idx] (shell sort: no recursion, no allocation). */
+static void lane_sort(int32_t *idx, const int64_t *key, int32_t n)
+{
+    static const int32_t gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
+    for (size_t g = 0; g < sizeof gaps / sizeof gaps[0]; g++) {
+        const int32_t gap = gaps[g];
+        for (int32_t i = gap; i < n; i++) {
+            const int32_t v = idx[i];
+            int32_t j = i;
+            while (j >= gap && key[idx[j - gap]] > key[v]) {
+                idx[j] = idx[j - gap];
+                j -= gap;
+            }
+            idx[j] = v;
+        }
+    }
+}
+
+/* Weighted median of key over the segments sides[0..n) (weights: lengths). */
+static int64_t weighted_median(int32_t *work, const int32_t *members, int32_t n, const int64_t *key,
+                               const rte_lane_segment *segs)
+{
+    int64_t total = 0;
+    for (int32_t i = 0; i < n; i++) {
+        work[i] = members[i];
+        total += seg_length(&segs[members[i]]);
+    }
+    lane_sort(work, key, n);
+    int64_t acc = 0;
+    for (int32_t i = 0; i < n; i++) {
+        acc += seg_length(&segs[work[i]]);
+        if (2 * acc >= total)
+            return key[work[i]];
+    }
+    return key[work[n - 1]];
+}
+
+/* Theil-Sen style start: slope = weighted median of the segments' own
+ * slopes dx/dy, then x at y_mid = weighted median of the segments'
+ * intercepts under that slope. */
+static void fit_medians(rte_lane_context *ctx, const int32_t *members, int32_t n, lane_line *line)
+{
+    const rte_lane_segment *segs = ctx->segments;
+    int64_t *key = ctx->keys;
+    int32_t *work = ctx->order + 2 * ctx->cfg.max_segments;
+    for (int32_t i = 0; i < n; i++) {
+        const rte_lane_segment *s = &segs[members[i]];
+        key[members[i]] = (int64_t)(s->x1 - s->x0) * 65536 / (s->y1 - s->y0);
+    }
+    line->slope_q16 = weighted_median(work, members, n, key, segs);
+    for (int32_t i = 0; i < n; i++) {
+        const rte_lane_segment *s = &segs[members[i]];
+        /* midpoint x (Q8) moved along the slope to y_mid */
+        const int64_t xm = (int64_t)(s->x0 + s->x1) * 128, ym2 = (int64_t)(s->y0 + s->y1);
+        key[members[i]] = xm - ((line->slope_q16 * (ym2 - 2 * line->y_mid)) >> 9);
+    }
+    line->x_mid_q8 = weighted_median(work, members, n, key, segs);
+}
+
+/* Largest horizontal distance of a segment's end points from the line, 1/256 px. */
+static int64_t seg_residual_q8(const lane_line *l, const rte_lane_segment *s)
+{
+    const int64_t r0 = lane_abs64((int64_t)s->x0 * 256 - lane_line_x_q8(l, s->y0));
+    const int64_t r1 = lane_abs64((int64_t)s->x1 * 256 - lane_line_x_q8(l, s->y1));
+    return r0 > r1 ? r0 : r1;
+}
+
+/* A segment's own direction counts this many times the spread of its
+ * pixels: it is fitted to all of them (the Hough refit), and on a bend the
+ * markings' local direction describes the lane near them better than the
+ * chord between dashes far apart. */
+#define LANE_DIRECTION_WEIGHT 4
+
+/* Weighted least squares of x on y over the inlier segments, each taken as
+ * a uniform line of points (its second moment includes the segment's own
+ * extent: d^2/12), weighted by length and lane_row_weight_q8. Returns false
+ * when the rows do not spread enough to give a slope and there is no prior. */
+static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *members, int32_t n,
+                              const lane_fit_hint *hint, lane_line *line)
+{
+    int64_t w = 0, sx = 0, sy = 0;
+    for (int32_t i = 0; i < n; i++) {
+        const rte_lane_segment *s = &segs[members[i]];
+        const int64_t len = seg_length(s) * lane_row_weight_q8(hint, (s->y0 + s->y1) / 2);
+        w += len;
+        sx += len * (s->x0 + s->x1); /* Q1 */
+        sy += len * (s->y0 + s->y1);
+    }
+    if (w <= 0)
+        return false;
+    const int64_t mx = sx / w, my = sy / w; /* Q1 means (the rounding cancels: centred below) */
+    int64_t cyy = 0, cxy = 0;
+    for (int32_t i = 0; i < n; i++) {
+        const rte_lane_segment *s = &segs[members[i]];
+        const int64_t len = seg_length(s) * lane_row_weight_q8(hint, (s->y0 + s->y1) / 2);
+        const int64_t X = s->x0 + s->x1 - mx, Y = s->y0 + s->y1 - my;
+        const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0;
+        /* Q2 moments times 3: 3*X*Y + (2dx)(2dy)*3/12 = 3XY + dx*dy */
+        cyy += len * (3 * Y * Y + LANE_DIRECTION_WEIGHT * dy * dy);
+        cxy += len * (3 * X * Y + LANE_DIRECTION_WEIGHT * dx * dy);
+    }
+    if (hint->weight > 0) /* (cxy + weight slope) / (cyy + weight), in Q8 */
+        line->slope_q16 = lane_div_q16(cxy * 256 + ((hint->weight * hint->slope_q16) >> 8),
+                                       (cyy + hint->weight) * 256);
+    else if (cyy < w * 3 * 64 * 4) /* need a spread of rows: at least ~8 px */
+        return false;
+    else
+        line->slope_q16 = lane_div_q16(cxy, cyy);
+    if (lane_abs64(line->slope_q16) > 64 * 65536)
+        return false;
+    /* x at y_mid from the weighted means (Q8) */
+    line->x_mid_q8 = sx * 128 / w + ((line->slope_q16 * ((int64_t)line->y_mid * 256 - sy * 128 / w)) >> 16);
+    return true;
+}
+
+/* The robust fit of one side over members[0..n): medians first; for least
+ * squares, segments beyond outlier_px are marked and the rest refitted
+ * (twice, so an outlier that pulled the start is caught on the second
+ * pass). Returns the supporting length. */
+int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, const lane_fit_hint *hint,
+                          lane_line *line, rte_lane_segment_use use)
+{
+    rte_lane_segment *segs = ctx->segments;
+    if (n == 0)
+        return 0;
+    fit_medians(ctx, members, n, line);
+    const int64_t tol = (int64_t)ctx->params.outlier_px * 256;
+    int32_t kept = n;
+    int passes = ctx->params.fit == RTE_LANE_FIT_LEAST_SQUARES ? 2 : 1;
+    for (int pass = 0; pass < passes; pass++) {
+        /* The median start sits on one edge of a marking: the first pass
+         * is twice as tolerant so the marking's other edge stays in and the
+         * least-squares line moves to the marking's centre. */
+        const int64_t pass_tol = pass == 0 && passes > 1 ? 2 * tol : tol;
+        kept = 0;
+        for (int32_t i = 0; i < n; i++) {
+            rte_lane_segment *s = &segs[members[i]];
+            if (seg_residual_q8(line, s) <= pass_tol) {
+                s->use = use;
+                members[kept++] = members[i];
+            } else {
+                s->use = RTE_LANE_SEG_OUTLIER;
+            }
+        }
+        n = kept;
+        if (ctx->params.fit == RTE_LANE_FIT_THEIL_SEN || n == 0)
+            break;
+        lane_line ls = *line;
+        if (fit_least_squares(segs, members, n, hint, &ls))
+            *line = ls;
+    }
+    int64_t support = 0;
+    for (int32_t i = 0; i < kept; i++)
+        support += seg_length(&segs[members[i]]);
+    return support;
+}

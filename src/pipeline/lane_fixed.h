@@ -1,0 +1,58 @@
+/* Fixed-point helpers the per-frame lane files share (integer only):
+ * clamps, a safe Q16 division, points of fitted lines and the row weights
+ * of the segment fit (lane_fit.c) and the refit on the edge pixels
+ * (lane_refine.c). */
+#ifndef RTEDGE_PIPELINE_LANE_FIXED_H
+#define RTEDGE_PIPELINE_LANE_FIXED_H
+
+#include <stdint.h>
+
+#include "lane_internal.h"
+
+static inline int64_t lane_abs64(int64_t v)
+{
+    return v < 0 ? -v : v;
+}
+
+static inline int32_t lane_clamp32(int64_t v, int64_t lo, int64_t hi)
+{
+    return (int32_t)(v < lo ? lo : v > hi ? hi : v);
+}
+
+/* num * 65536 / den (den > 0), without overflow for any 62-bit inputs. */
+static inline int64_t lane_div_q16(int64_t num, int64_t den)
+{
+    while (lane_abs64(num) >= ((int64_t)1 << 46) || den >= ((int64_t)1 << 46)) {
+        num /= 2;
+        den /= 2;
+    }
+    return den > 0 ? num * 65536 / den : 0;
+}
+
+/* x of a line at row y, in 1/256 pixel. */
+static inline int64_t lane_line_x_q8(const lane_line *l, int64_t y)
+{
+    return l->x_mid_q8 + ((l->slope_q16 * (y - l->y_mid)) >> 8);
+}
+
+/* Rows from the ROI's top row down to y, within the lane's span. */
+static inline int64_t lane_rows_below_top(const lane_fit_hint *h, int64_t y)
+{
+    const int64_t span = h->y_bottom - h->y_top, d = y - h->y_top;
+    return d < 0 || span <= 0 ? 0 : d > span ? span : d;
+}
+
+/* A segment's weight by its row, /256: the inverse variance of a pixel's
+ * lateral position on the road, which grows as (distance from the horizon)^2
+ * in perspective (the horizon taken an eighth of the lane above the ROI
+ * top). The lane near the camera is measured best and matters most: on a
+ * bend, far dashes must not turn the lane away from the near ones. */
+static inline int64_t lane_row_weight_q8(const lane_fit_hint *h, int64_t y)
+{
+    const int64_t span = h->y_bottom - h->y_top, q = span / 8 + 1, d = lane_rows_below_top(h, y);
+    if (span <= 0)
+        return 256;
+    return 256 * (d + q) * (d + q) / ((span + q) * (span + q)) + 1;
+}
+
+#endif

@@ -1,0 +1,164 @@
+/* The lane fit refined on the edge pixels themselves, per frame (integer
+ * only; see include/rtedge/lane.h and docs/lanes.md). */
+#include <string.h>
+
+#include "lane_fixed.h"
+
+/* Half-width of the band of edge pixels around a fitted lane at row y:
+ * `tol` on the bottom row, shrinking in perspective towards the horizon to
+ * about a quarter of it on the ROI's top row (near the top the two lanes
+ * are only tens of pixels apart), at least 5 px so both edges of a narrow
+ * far marking stay in, and at most LANE_BAND_MAX. */
+#define LANE_BAND_MAX 64
+static int64_t band_px(const lane_fit_hint *h, int64_t tol, int32_t y)
+{
+    const int64_t span = h->y_bottom - h->y_top, q = 3 * (span / 8 + 1);
+    const int64_t b = span > 0 ? tol * (lane_rows_below_top(h, y) + q) / (span + q) : tol;
+    return b < 5 ? 5 : b > LANE_BAND_MAX ? LANE_BAND_MAX : b;
+}
+
+/* The edge pixels of columns xa..xb of one row that run along a line. */
+typedef struct band_pixels {
+    int64_t n, sum_x;    /* how many, and the sum of their x */
+    int64_t first, last; /* the outermost */
+} band_pixels;
+
+/* Eight bytes, the first in the lowest bits whatever the byte order. */
+static inline uint64_t load_le64(const uint8_t *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    v = __builtin_bswap64(v);
+#endif
+    return v;
+}
+
+static inline void band_add(band_pixels *px, int64_t x)
+{
+    px->n++;
+    px->sum_x += x;
+    px->first = x < px->first ? x : px->first;
+    px->last = x > px->last ? x : px->last;
+}
+
+/* The edge pixels in columns xa..xb (inside the map) of row y of `edges`
+ * that run along a line of slope_q16 (x per row): each needs an edge pixel
+ * in the row above or below at one of the two columns the slope reaches
+ * there, so edges crossing the line (shadows, patch borders, car bumpers)
+ * do not count. Eight pixels at a time away from the map's borders. */
+static band_pixels band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16)
+{
+    band_pixels px = {0, 0, INT64_MAX, INT64_MIN};
+    const uint8_t *row = rte_u8_row(edges, y);
+    const uint8_t *up = y > 0 ? row - edges->stride : NULL;
+    const uint8_t *down = y < edges->height - 1 ? row + edges->stride : NULL;
+    /* below: x + slope lies in [x + step, x + step + 1]; above: x - slope
+     * in [x - back, x - back + 1] */
+    const int64_t step = slope_q16 >> 16, back = step + ((slope_q16 & 0xFFFF) != 0);
+    const int64_t words_end = xa + ((xb - xa) / 8 + 1) * 8; /* the word loop reads up to here + 1 */
+    if (up && down && xa - back >= 0 && xa + step >= 0 && words_end + 1 - back <= edges->width &&
+        words_end + 1 + step <= edges->width && words_end <= edges->width) {
+        const uint64_t low7 = 0x7F7F7F7F7F7F7F7Fu;
+        for (int64_t x = xa; x <= xb; x += 8) {
+            uint64_t h = load_le64(row + x);
+            if (xb - x < 7)
+                h &= ((uint64_t)1 << (8 * (xb - x + 1))) - 1; /* bytes past xb */
+            if (!h)
+                continue;
+            const uint64_t m = h & (load_le64(up + x - back) | load_le64(up + x - back + 1) |
+                                    load_le64(down + x + step) | load_le64(down + x + step + 1));
+            /* the top bit of each nonzero byte of m */
+            for (uint64_t nz = (((m & low7) + low7) | m) & ~low7; nz; nz &= nz - 1)
+                band_add(&px, x + (__builtin_ctzll(nz) >> 3));
+        }
+        return px;
+    }
+    for (int64_t x = xa; x <= xb; x++) {
+        if (!row[x])
+            continue;
+        bool along = false;
+        for (int64_t k = 0; k <= 1 && !along; k++) {
+            const int64_t xu = x - back + k, xd = x + step + k;
+            along = (up && xu >= 0 && xu < edges->width && up[xu]) ||
+                    (down && xd >= 0 && xd < edges->width && down[xd]);
+        }
+        if (along)
+            band_add(&px, x);
+    }
+    return px;
+}
+
+/* The segment fit refined on the edge pixels themselves: the edge pixels
+ * within band_px of the line that run along it (band_row; `edges` and the
+ * ROI mask `roi` are the crop at (cx0, cy0)) enter a weighted
+ * least-squares fit of their horizontal residuals to the line (row weights
+ * as for segments, the tracked slope as a prior). Up to three passes, each
+ * in the band around the line of the one before, until the line's ends
+ * move less than a quarter of a pixel (with two, 2 of the 136 photo runs
+ * of tests/unit/test_lane.c over eight point orders of the Hough search
+ * fail; with three or four, none). Short dashes and paint that the Hough
+ * search left without a segment (or split differently) then count by
+ * their pixels, so the lane does not depend on which segments the search
+ * happened to find, and a marking's two edges put the line on its centre. */
+void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
+                              const lane_fit_hint *hint, int64_t tol, lane_line *line)
+{
+    const int32_t y0 = hint->y_top > cy0 ? hint->y_top : cy0;
+    const int32_t y1 = hint->y_bottom < cy0 + edges->height - 1 ? hint->y_bottom : cy0 + edges->height - 1;
+    const int64_t half_span = (hint->y_bottom - hint->y_top) / 2 + 1;
+    for (int pass = 0; pass < 3; pass++) {
+        /* Sums over the pixels of rw, rw Y, rw r, rw Y^2 and rw Y r, with
+         * rw the row weight (<= 257, /256), Y = y - y_mid (|Y| <= 4096 px)
+         * and r the residual to the line (|r| <= 65 px, in 1/256 px): at
+         * most 8192 rows of 129 pixels keep every sum, and the products
+         * with the mean below, under 2^63. */
+        int64_t sw = 0, sy = 0, sr = 0, syy = 0, syr = 0;
+        for (int32_t y = y0; y <= y1; y++) {
+            const int64_t band = band_px(hint, tol, y);
+            const int64_t lx = lane_line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0, xb = xa + 2 * band;
+            /* Only rows where the whole band is inside the ROI: where the
+             * ROI's border cuts a marking, its edge on the inside alone
+             * would pull the line off the marking's centre. */
+            if (xa < 0 || xb > edges->width - 1)
+                continue;
+            const uint8_t *inside = rte_u8_row(roi, y - cy0);
+            if (!inside[xa] || !inside[xb])
+                continue;
+            const band_pixels px = band_row(edges, y - cy0, xa, xb, line->slope_q16);
+            /* Both edges of the marking, one either side of the line: a row
+             * where one of them is missing (worn paint, a shadow's border on
+             * it, the end of a dash) would pull the line to the other. */
+            if (px.n == 0 || (px.first + cx0) * 256 >= lx || (px.last + cx0) * 256 <= lx)
+                continue;
+            const int64_t rw = lane_row_weight_q8(hint, y), Y = y - line->y_mid;
+            const int64_t r = (px.sum_x + px.n * cx0) * 256 - px.n * lx; /* sum of the residuals */
+            sw += rw * px.n;
+            sy += rw * px.n * Y;
+            sr += rw * r;
+            syy += rw * px.n * Y * Y;
+            syr += rw * Y * r;
+        }
+        if (sw < 256 * 8)
+            return; /* hardly any paint near the line: keep it */
+        const int64_t my_q8 = sy * 256 / sw; /* mean Y */
+        const int64_t cyy = syy - ((my_q8 * sy) >> 8), cyr = syr - ((my_q8 * sr) >> 8);
+        /* The tracked slope as a prior with the weight of a marking along a
+         * fifth of the lane (both its edges: R^3 rw / 6 in these units). */
+        const int64_t prior = hint->weight / 6;
+        int64_t dslope_q16 = 0;
+        if (prior > 0)
+            dslope_q16 = lane_div_q16(cyr + (prior * (hint->slope_q16 - line->slope_q16) >> 8), (cyy + prior) * 256);
+        else if (cyy >= sw * 64) /* rows spread over ~8 px at least */
+            dslope_q16 = lane_div_q16(cyr, cyy * 256);
+        const int64_t slope = line->slope_q16 + dslope_q16;
+        if (lane_abs64(slope) > 64 * 65536)
+            return;
+        const int64_t dx_mid = sr / sw - ((dslope_q16 * my_q8) >> 16);
+        line->x_mid_q8 += dx_mid;
+        line->slope_q16 = slope;
+        /* settled: both ends moved less than a quarter of a pixel */
+        if (lane_abs64(dx_mid) + ((lane_abs64(dslope_q16) * half_span) >> 8) < 64)
+            return;
+    }
+}

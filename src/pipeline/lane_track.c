@@ -1,0 +1,122 @@
+/* Which side each Hough segment supports, the gate around the tracked
+ * lanes and the trackers themselves, per frame (integer only; see
+ * include/rtedge/lane.h and docs/lanes.md). */
+#include "algo/geom_fixed.h"
+#include "lane_fixed.h"
+
+/* Tracked lane x at row y (1/256 px), from its bottom and top points. */
+static int64_t track_x_q8(const lane_track *t, int32_t y_bottom, int32_t y_top, int32_t y)
+{
+    const int32_t span = y_bottom - y_top;
+    if (span <= 0)
+        return t->x_bottom_q8;
+    return t->x_bottom_q8 +
+           (int64_t)(t->x_top_q8 - t->x_bottom_q8) * (y_bottom - y) / span;
+}
+
+/* Sorts the Hough segments into sides by slope, position and the gate;
+ * fills side lists and marks rejected ones. */
+void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int32_t y_bottom,
+                       int32_t y_top, int32_t *members[2], int32_t n[2])
+{
+    const rte_lane_params *p = &ctx->params;
+    for (int32_t i = 0; i < count; i++) {
+        rte_lane_segment *s = &ctx->segments[i];
+        if (s->y1 < s->y0) { /* (x0, y0) the upper end */
+            int32_t tx = s->x0, ty = s->y0;
+            s->x0 = s->x1, s->y0 = s->y1, s->x1 = tx, s->y1 = ty;
+        }
+        const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0; /* dy >= 0 */
+        const int64_t adx = lane_abs64(dx);
+        /* dy/dx < 0 in image coordinates (y down): the left lane */
+        const int side = dx < 0 ? RTE_LANE_LEFT : RTE_LANE_RIGHT;
+        const int64_t lo = side == RTE_LANE_LEFT ? p->left_min_slope_q8 : p->right_min_slope_q8;
+        const int64_t hi = side == RTE_LANE_LEFT ? p->left_max_slope_q8 : p->right_max_slope_q8;
+        const bool slope_ok = dx != 0 && dy * 256 >= lo * adx && dy * 256 <= hi * adx;
+        /* ... and on its own half of the image */
+        const int64_t mid2 = s->x0 + s->x1;
+        const bool half_ok = side == RTE_LANE_LEFT ? mid2 < width : mid2 >= width;
+        s->use = RTE_LANE_SEG_REJECTED_SLOPE;
+        if (!slope_ok || !half_ok)
+            continue;
+        const lane_track *t = &ctx->track[side];
+        if (t->valid) {
+            const int64_t ym = (s->y0 + s->y1) / 2;
+            const int64_t d = lane_abs64(mid2 * 128 - track_x_q8(t, y_bottom, y_top, (int32_t)ym));
+            if (d > (int64_t)p->gate_px * 256) {
+                s->use = RTE_LANE_SEG_REJECTED_GATE;
+                continue;
+            }
+        }
+        members[side][n[side]++] = i;
+    }
+}
+
+lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_bottom)
+{
+    lane_fit_hint hint = {y_top, y_bottom, 0, 0};
+    if (t->valid && y_bottom > y_top) {
+        const int64_t dx = ((int64_t)t->x_top_q8 + t->v_top_q8) - ((int64_t)t->x_bottom_q8 + t->v_bottom_q8);
+        const int64_t rows = (y_bottom - y_top) / 5 + 1; /* a fifth of the lane */
+        hint.slope_q16 = lane_clamp32(dx * 256 / (y_top - y_bottom), -64 * 65536, 64 * 65536);
+        hint.weight = rows * rows * rows * 128; /* 128: the mean row weight */
+    }
+    return hint;
+}
+
+void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
+                           int64_t support, rte_lane *out)
+{
+    const rte_lane_params *p = &ctx->params;
+    lane_track *t = &ctx->track[side];
+    const int64_t mb = seen ? lane_line_x_q8(line, out->y_bottom) : 0;
+    const int64_t mt = seen ? lane_line_x_q8(line, out->y_top) : 0;
+    const int64_t lim = 1 << 28; /* keeps far-off extrapolations in range */
+    if (seen && !t->valid) {
+        t->valid = true;
+        t->x_bottom_q8 = lane_clamp32(mb, -lim, lim);
+        t->x_top_q8 = lane_clamp32(mt, -lim, lim);
+        t->v_bottom_q8 = t->v_top_q8 = 0;
+        t->lost = 0;
+    } else if (t->valid) {
+        const int64_t pb = (int64_t)t->x_bottom_q8 + t->v_bottom_q8;
+        const int64_t pt = (int64_t)t->x_top_q8 + t->v_top_q8;
+        if (seen) {
+            /* A measurement resting on little paint (one short dash) moves
+             * the state less: full weight from half the lane's length of
+             * support, a quarter at least. */
+            const int64_t dxl = (mt - mb) / 256, dyl = out->y_bottom - out->y_top;
+            const int64_t len = (int64_t)rte_isqrt64((uint64_t)(dxl * dxl + dyl * dyl)) + 1;
+            const int64_t share = lane_clamp32(support * 256 / len, 32, 256); /* /256 */
+            const int64_t alpha = (int64_t)p->alpha_q8 * share >> 8;
+            const int64_t step = (int64_t)p->max_step_px * 256;
+            const int64_t rb = lane_clamp32(mb - pb, -step, step), rt = lane_clamp32(mt - pt, -step, step);
+            t->x_bottom_q8 = lane_clamp32(pb + ((rb * alpha) >> 8), -lim, lim);
+            t->x_top_q8 = lane_clamp32(pt + ((rt * alpha) >> 8), -lim, lim);
+            t->v_bottom_q8 = lane_clamp32(t->v_bottom_q8 + ((rb * p->beta_q8) >> 8), -step, step);
+            t->v_top_q8 = lane_clamp32(t->v_top_q8 + ((rt * p->beta_q8) >> 8), -step, step);
+            t->lost = 0;
+        } else if (++t->lost > p->hold_frames) {
+            t->valid = false;
+        } else {
+            /* Held as predicted; the velocity fades (by 1/8 a frame) so a
+             * lane held for long settles instead of drifting away. */
+            t->x_bottom_q8 = lane_clamp32(pb, -lim, lim);
+            t->x_top_q8 = lane_clamp32(pt, -lim, lim);
+            t->v_bottom_q8 -= t->v_bottom_q8 / 8;
+            t->v_top_q8 -= t->v_top_q8 / 8;
+        }
+    }
+    out->found = t->valid;
+    out->predicted = t->valid && t->lost > 0;
+    out->lost_frames = t->valid ? t->lost : 0;
+    out->support_px = (int32_t)(support > INT32_MAX ? INT32_MAX : support);
+    if (t->valid) {
+        out->x_bottom_q8 = t->x_bottom_q8;
+        out->x_top_q8 = t->x_top_q8;
+        const int64_t dx = ((int64_t)t->x_top_q8 - t->x_bottom_q8) / 256;
+        const int64_t dy = out->y_bottom - out->y_top;
+        const int64_t len = rte_isqrt64((uint64_t)(dx * dx + dy * dy));
+        out->confidence_permille = len > 0 ? lane_clamp32(support * 1000 / len, 0, 1000) : 0;
+    }
+}
