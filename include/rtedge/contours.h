@@ -47,7 +47,7 @@ typedef struct rte_contour {
     /* OpenCV's layout: next sibling, previous sibling, first child, parent;
      * -1 when absent. Indices into rte_contours.contours. */
     int32_t hierarchy[4];
-    int32_t is_hole; /* 1 for a hole border (its oriented area is positive) */
+    bool is_hole; /* a hole border (its oriented area is positive) */
 } rte_contour;
 
 /* The caller fills the four storage fields; rte_contours_find() fills the

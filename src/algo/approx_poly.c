@@ -37,13 +37,13 @@ static uint64_t abs64(int64_t v)
 }
 
 /* d2 <= eps * eps (d2 an exact integer). */
-static int within_eps2(const eps_cmp *e, uint64_t d2)
+static bool within_eps2(const eps_cmp *e, uint64_t d2)
 {
     return ((rte_u128)d2 << 32) <= e->e2;
 }
 
 /* double(c * c) <= double(scale * eps^2 * len2), scale = 1 or 1/2. */
-static int within_eps_seg(const eps_cmp *e, uint64_t c, uint64_t len2, int half)
+static bool within_eps_seg(const eps_cmp *e, uint64_t c, uint64_t len2, int half)
 {
     rte_u128 lhs = round53((rte_u128)c * c) << (32 + half);
     rte_u128 rhs = round53(e->e2 * len2);
@@ -56,6 +56,112 @@ size_t rte_shape_approx_scratch_size(int32_t max_points)
     if (max_points < 0)
         return 0;
     return rte_arena_piece_size(((size_t)max_points + 2) * 2 * sizeof(int32_t));
+}
+
+/* Step 1: three rounds of "farthest point from the current start" give
+ * the first split, pushed as two slices; a curve within epsilon of its
+ * start collapses to that point. Returns the stack's new top. */
+static int32_t push_first_split(const rte_point *pts, int32_t count, const eps_cmp *e,
+                                int32_t *stack, rte_point *out, int32_t *new_count)
+{
+    int32_t top = 0, pos = 0, far = 0;
+    bool le_eps = false;
+    rte_point start = pts[0];
+    for (int iter = 0; iter < 3; iter++) {
+        uint64_t max_d2 = 0;
+        pos = (pos + far) % count;
+        start = pts[pos];
+        int32_t p = pos + 1 >= count ? 0 : pos + 1;
+        for (int32_t j = 1; j < count; j++) {
+            int64_t dx = (int64_t)pts[p].x - start.x, dy = (int64_t)pts[p].y - start.y;
+            uint64_t d2 = (uint64_t)(dx * dx + dy * dy);
+            if (d2 > max_d2) {
+                max_d2 = d2;
+                far = j;
+            }
+            p = p + 1 >= count ? 0 : p + 1;
+        }
+        le_eps = within_eps2(e, max_d2);
+    }
+    if (!le_eps) {
+        int32_t s0 = pos % count, s1 = (far + s0) % count;
+        /* right slice [s1, s0] below, slice [s0, s1] on top */
+        stack[top++] = s1;
+        stack[top++] = s0;
+        stack[top++] = s0;
+        stack[top++] = s1;
+    } else {
+        out[(*new_count)++] = start;
+    }
+    return top;
+}
+
+/* Step 2: split until every slice is within epsilon, emitting each
+ * slice's start point. */
+static void split_slices(const rte_point *pts, int32_t count, const eps_cmp *e, int32_t *stack,
+                         int32_t top, rte_point *out, int32_t *new_count)
+{
+    while (top > 0) {
+        int32_t s_end = stack[--top], s_start = stack[--top];
+        const rte_point end = pts[s_end];
+        int32_t p = s_start + 1 >= count ? 0 : s_start + 1;
+        const rte_point start = pts[s_start];
+        if (p != s_end) {
+            const int64_t dx = (int64_t)end.x - start.x, dy = (int64_t)end.y - start.y;
+            uint64_t max_c = 0;
+            int32_t split = s_start;
+            while (p != s_end) {
+                uint64_t c = abs64(((int64_t)pts[p].y - start.y) * dx - ((int64_t)pts[p].x - start.x) * dy);
+                if (c > max_c) {
+                    max_c = c;
+                    split = p;
+                }
+                p = p + 1 >= count ? 0 : p + 1;
+            }
+            if (!within_eps_seg(e, max_c, (uint64_t)(dx * dx + dy * dy), 0)) {
+                stack[top++] = split;
+                stack[top++] = s_end;
+                stack[top++] = s_start;
+                stack[top++] = split;
+                continue;
+            }
+        }
+        out[(*new_count)++] = start;
+    }
+}
+
+/* Step 3: drop middle points of nearly straight, non-axis-aligned runs
+ * (in place, in OpenCV's order of reads and writes). Returns the count
+ * kept. */
+static int32_t drop_straight_points(const eps_cmp *e, rte_point *out, int32_t cnt)
+{
+    int32_t new_count = cnt;
+    int32_t rpos = cnt - 1, wpos;
+    rte_point s = out[rpos], pt, en;
+    rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
+    wpos = rpos;
+    pt = out[rpos];
+    rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
+    for (int32_t i = 0; i < cnt && new_count > 2; i++) {
+        en = out[rpos];
+        rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
+        const int64_t dx = (int64_t)en.x - s.x, dy = (int64_t)en.y - s.y;
+        const uint64_t c = abs64(((int64_t)pt.x - s.x) * dy - ((int64_t)pt.y - s.y) * dx);
+        const int64_t inner = ((int64_t)pt.x - s.x) * (en.x - pt.x) + ((int64_t)pt.y - s.y) * (en.y - pt.y);
+        if (dx != 0 && dy != 0 && inner >= 0 && within_eps_seg(e, c, (uint64_t)(dx * dx + dy * dy), 1)) {
+            new_count--;
+            out[wpos] = s = en;
+            wpos = wpos + 1 >= cnt ? 0 : wpos + 1;
+            pt = out[rpos];
+            rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
+            i++;
+            continue;
+        }
+        out[wpos] = s = pt;
+        wpos = wpos + 1 >= cnt ? 0 : wpos + 1;
+        pt = en;
+    }
+    return new_count;
 }
 
 rte_status rte_shape_approx_poly(const rte_point *pts, int32_t n, uint32_t epsilon_q16,
@@ -78,99 +184,10 @@ rte_status rte_shape_approx_poly(const rte_point *pts, int32_t n, uint32_t epsil
     eps_cmp e;
     e.e2 = round53((rte_u128)epsilon_q16 * epsilon_q16);
 
-    const int32_t count = n;
-    int32_t top = 0, new_count = 0, pos = 0, far = 0;
-    int le_eps = 0;
-    rte_point start = pts[0];
-
-    /* 1. Three rounds of "farthest point from the current start" give the
-     * first split. */
-    for (int iter = 0; iter < 3; iter++) {
-        uint64_t max_d2 = 0;
-        pos = (pos + far) % count;
-        start = pts[pos];
-        int32_t p = pos + 1 >= count ? 0 : pos + 1;
-        for (int32_t j = 1; j < count; j++) {
-            int64_t dx = (int64_t)pts[p].x - start.x, dy = (int64_t)pts[p].y - start.y;
-            uint64_t d2 = (uint64_t)(dx * dx + dy * dy);
-            if (d2 > max_d2) {
-                max_d2 = d2;
-                far = j;
-            }
-            p = p + 1 >= count ? 0 : p + 1;
-        }
-        le_eps = within_eps2(&e, max_d2);
-    }
-    if (!le_eps) {
-        int32_t s0 = pos % count, s1 = (far + s0) % count;
-        /* right slice [s1, s0] below, slice [s0, s1] on top */
-        stack[top++] = s1;
-        stack[top++] = s0;
-        stack[top++] = s0;
-        stack[top++] = s1;
-    } else {
-        out[new_count++] = start;
-    }
-
-    /* 2. Split until every slice is within epsilon. */
-    while (top > 0) {
-        int32_t s_end = stack[--top], s_start = stack[--top];
-        const rte_point end = pts[s_end];
-        int32_t p = s_start + 1 >= count ? 0 : s_start + 1;
-        start = pts[s_start];
-        if (p != s_end) {
-            const int64_t dx = (int64_t)end.x - start.x, dy = (int64_t)end.y - start.y;
-            uint64_t max_c = 0;
-            int32_t split = s_start;
-            while (p != s_end) {
-                uint64_t c = abs64(((int64_t)pts[p].y - start.y) * dx - ((int64_t)pts[p].x - start.x) * dy);
-                if (c > max_c) {
-                    max_c = c;
-                    split = p;
-                }
-                p = p + 1 >= count ? 0 : p + 1;
-            }
-            le_eps = within_eps_seg(&e, max_c, (uint64_t)(dx * dx + dy * dy), 0);
-            if (!le_eps) {
-                stack[top++] = split;
-                stack[top++] = s_end;
-                stack[top++] = s_start;
-                stack[top++] = split;
-                continue;
-            }
-        }
-        out[new_count++] = start;
-    }
-
-    /* 3. Drop middle points of nearly straight, non-axis-aligned runs (in
-     * place, in OpenCV's order of reads and writes). */
-    const int32_t cnt = new_count;
-    int32_t rpos = cnt - 1, wpos;
-    rte_point s = out[rpos], pt, en;
-    rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
-    wpos = rpos;
-    pt = out[rpos];
-    rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
-    for (int32_t i = 0; i < cnt && new_count > 2; i++) {
-        en = out[rpos];
-        rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
-        const int64_t dx = (int64_t)en.x - s.x, dy = (int64_t)en.y - s.y;
-        const uint64_t c = abs64(((int64_t)pt.x - s.x) * dy - ((int64_t)pt.y - s.y) * dx);
-        const int64_t inner = ((int64_t)pt.x - s.x) * (en.x - pt.x) + ((int64_t)pt.y - s.y) * (en.y - pt.y);
-        if (dx != 0 && dy != 0 && inner >= 0 && within_eps_seg(&e, c, (uint64_t)(dx * dx + dy * dy), 1)) {
-            new_count--;
-            out[wpos] = s = en;
-            wpos = wpos + 1 >= cnt ? 0 : wpos + 1;
-            pt = out[rpos];
-            rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
-            i++;
-            continue;
-        }
-        out[wpos] = s = pt;
-        wpos = wpos + 1 >= cnt ? 0 : wpos + 1;
-        pt = en;
-    }
-    *n_out = new_count;
+    int32_t new_count = 0;
+    const int32_t top = push_first_split(pts, n, &e, stack, out, &new_count);
+    split_slices(pts, n, &e, stack, top, out, &new_count);
+    *n_out = drop_straight_points(&e, out, new_count);
     rte_arena_reset(scratch, mark);
     return RTE_OK;
 }

@@ -186,6 +186,66 @@ static void input_rows(canny_input *in, int32_t i, int32_t ap, const uint8_t **r
     }
 }
 
+/* Hysteresis: grow the edges through "maybe" pixels; the frame of 1s
+ * stops the flood at the image border. */
+static void grow_edges(uint8_t *map, ptrdiff_t ms, int32_t *stack, int32_t top)
+{
+    const ptrdiff_t nb[8] = { -ms - 1, -ms, -ms + 1, -1, 1, ms - 1, ms, ms + 1 };
+    while (top > 0) {
+        const int32_t p = stack[--top];
+        for (int k = 0; k < 8; k++) {
+            uint8_t *q = map + p + nb[k];
+            if (*q == 0) {
+                *q = 2;
+                stack[top++] = (int32_t)(p + nb[k]);
+            }
+        }
+    }
+}
+
+static void write_edges(const uint8_t *map, ptrdiff_t ms, rte_image_u8 *dst)
+{
+    for (int32_t y = 0; y < dst->height; y++) {
+        const uint8_t *restrict mrow = map + (ptrdiff_t)(y + 1) * ms + 1;
+        uint8_t *restrict d = rte_u8_row(dst, y);
+        for (int32_t x = 0; x < dst->width; x++)
+            d[x] = (uint8_t)(mrow[x] == 2 ? 255 : 0);
+    }
+}
+
+/* canny_run's scratch: the edge map with its frame, the seed stack, three
+ * magnitude rows and, from an 8-bit image, the derivative rows. */
+typedef struct canny_buffers {
+    uint8_t *map;
+    int32_t *stack;
+    int32_t *ring[3];
+    int16_t *vs, *vd, *dxb[2], *dyb[2];
+} canny_buffers;
+
+static bool alloc_buffers(canny_buffers *b, rte_arena *scratch, int32_t w, int32_t h,
+                          bool from_image)
+{
+    *b = (canny_buffers){ 0 };
+    b->map = rte_arena_alloc(scratch, map_bytes(w, h));
+    b->stack = rte_arena_alloc(scratch, stack_bytes(w, h));
+    bool ok = b->map && b->stack;
+    for (int k = 0; k < 3; k++) {
+        b->ring[k] = rte_arena_alloc(scratch, mag_row_bytes(w));
+        ok = ok && b->ring[k];
+    }
+    if (!from_image)
+        return ok;
+    b->vs = rte_arena_alloc(scratch, column_row_bytes(w));
+    b->vd = rte_arena_alloc(scratch, column_row_bytes(w));
+    ok = ok && b->vs && b->vd;
+    for (int k = 0; k < 2; k++) {
+        b->dxb[k] = rte_arena_alloc(scratch, deriv_row_bytes(w));
+        b->dyb[k] = rte_arena_alloc(scratch, deriv_row_bytes(w));
+        ok = ok && b->dxb[k] && b->dyb[k];
+    }
+    return ok;
+}
+
 static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_params *params,
                             rte_arena *scratch)
 {
@@ -193,25 +253,14 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
     const int32_t w = dst->width, h = dst->height;
     const ptrdiff_t ms = (ptrdiff_t)w + 2;
     const size_t mark = rte_arena_mark(scratch);
-    uint8_t *map = rte_arena_alloc(scratch, map_bytes(w, h));
-    int32_t *stack = rte_arena_alloc(scratch, stack_bytes(w, h));
-    int32_t *ring[3];
-    for (int k = 0; k < 3; k++)
-        ring[k] = rte_arena_alloc(scratch, mag_row_bytes(w));
-    int16_t *vs = NULL, *vd = NULL, *dxb[2] = { NULL, NULL }, *dyb[2] = { NULL, NULL };
-    if (src) {
-        vs = rte_arena_alloc(scratch, column_row_bytes(w));
-        vd = rte_arena_alloc(scratch, column_row_bytes(w));
-        for (int k = 0; k < 2; k++) {
-            dxb[k] = rte_arena_alloc(scratch, deriv_row_bytes(w));
-            dyb[k] = rte_arena_alloc(scratch, deriv_row_bytes(w));
-        }
-    }
-    if (!map || !stack || !ring[0] || !ring[1] || !ring[2] ||
-        (src && (!vs || !vd || !dxb[0] || !dxb[1] || !dyb[0] || !dyb[1]))) {
+    canny_buffers b;
+    if (!alloc_buffers(&b, scratch, w, h, src != NULL)) {
         rte_arena_reset(scratch, mark);
         return RTE_ERR_NO_MEMORY;
     }
+    uint8_t *map = b.map;
+    int32_t *stack = b.stack, **ring = b.ring;
+    int16_t *vs = b.vs, *vd = b.vd, **dxb = b.dxb, **dyb = b.dyb;
 
     const int32_t ap = params->aperture;
     /* Apertures 3 and 5 stay inside int16 (|dx| <= 255 * 6 * 16); OpenCV
@@ -287,26 +336,8 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
         top = push_seeds(mrow, w, (int32_t)((y + 1) * ms + 1), stack, top);
     }
 
-    /* Hysteresis: grow the edges through "maybe" pixels; the frame of 1s
-     * stops the flood at the image border. */
-    const ptrdiff_t nb[8] = { -ms - 1, -ms, -ms + 1, -1, 1, ms - 1, ms, ms + 1 };
-    while (top > 0) {
-        const int32_t p = stack[--top];
-        for (int k = 0; k < 8; k++) {
-            uint8_t *q = map + p + nb[k];
-            if (*q == 0) {
-                *q = 2;
-                stack[top++] = (int32_t)(p + nb[k]);
-            }
-        }
-    }
-
-    for (int32_t y = 0; y < h; y++) {
-        const uint8_t *restrict mrow = map + (ptrdiff_t)(y + 1) * ms + 1;
-        uint8_t *restrict d = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < w; x++)
-            d[x] = (uint8_t)(mrow[x] == 2 ? 255 : 0);
-    }
+    grow_edges(map, ms, stack, top);
+    write_edges(map, ms, dst);
     rte_arena_reset(scratch, mark);
     return RTE_OK;
 }

@@ -15,7 +15,7 @@
 typedef struct node {
     int32_t ox, oy;             /* start pixel in label-map coordinates */
     int32_t rx, ry, rw, rh;     /* bounding box in label-map coordinates */
-    int32_t is_hole;
+    bool is_hole;
     int32_t parent;             /* discovery index; -1 = the image frame */
     int32_t label_next;         /* next stored contour with the same label */
     int32_t first_child, next_sibling;
@@ -30,7 +30,7 @@ static const int8_t chain_dy[8] = { 0, -1, -1, -1, 0, 1, 1, 1 };
 
 typedef struct tracer {
     int32_t delta[16]; /* chain code -> offset in the label map, twice over */
-    int simple;
+    bool simple;
     rte_point *points; /* where the next point goes; NULL when counting only */
     int32_t room;      /* points that still fit */
 } tracer;
@@ -42,7 +42,7 @@ typedef struct box {
 /* Follows one border from `i0` (label map) and labels it. Writes up to
  * t->room points (image coordinates, i.e. minus the padding) and returns how
  * many points the border has. */
-static int32_t follow(const tracer *t, int8_t *i0, int32_t x, int32_t y, int is_hole,
+static int32_t follow(const tracer *t, int8_t *i0, int32_t x, int32_t y, bool is_hole,
                       int32_t label, box *bb)
 {
     const int32_t *d = t->delta;
@@ -109,7 +109,7 @@ static int32_t follow(const tracer *t, int8_t *i0, int32_t x, int32_t y, int is_
  * a label.) A pixel can lie on several borders; when it ends a run (negative
  * label) only the pass that leaves it with no border pixel between the
  * arrival and the east direction counts. */
-static int passes_through(const int32_t *d, const int8_t *i0, const int8_t *stop, int is_hole)
+static int passes_through(const int32_t *d, const int8_t *i0, const int8_t *stop, bool is_hole)
 {
     int s = is_hole ? 0 : 4, s_end = s;
     const int8_t *i1, *i3 = i0, *i4 = i0;
@@ -204,7 +204,7 @@ static void fill_label_map(const rte_image_u8 *src, int8_t *map, int32_t ms)
  * with lnbd's label whose box holds lnbd, checked by tracing when several
  * do; then a border of the same kind hands over its own parent. */
 static int32_t find_parent(node *nodes, const int32_t *heads, const int32_t *d, const int8_t *map,
-                           int32_t ms, const int8_t *row, int32_t lx, int32_t y, int is_hole)
+                           int32_t ms, const int8_t *row, int32_t lx, int32_t y, bool is_hole)
 {
     int32_t par = UNSET;
     for (int32_t cur = heads[row[lx] & 0x7f]; cur != NO_NODE; cur = nodes[cur].label_next) {
@@ -256,6 +256,103 @@ static void emit(node *nodes, int32_t top, rte_contours *out)
     }
 }
 
+/* The scan's state: the tracer, the stored contours with their label
+ * chains and the top-level list, and whether a bound has been hit (from
+ * then on borders are only counted). */
+typedef struct finder {
+    tracer t;
+    node *nodes;
+    int32_t heads[128];
+    int32_t top, n_nodes, label;
+    bool hierarchic, full;
+    rte_contours *out;
+} finder;
+
+/* Traces the border starting at row + x0 (label map row y) with parent
+ * par, and stores it or counts it as dropped. */
+static void trace_border(finder *f, int8_t *row, int32_t x0, int32_t y, bool is_hole, int32_t par)
+{
+    rte_contours *out = f->out;
+    int32_t lval = 2;
+    if (f->hierarchic) {
+        lval = f->label;
+        f->label = (f->label + 1) & 127;
+        f->label += f->label == 0 ? 3 : 0;
+    }
+    if (!f->full && f->n_nodes == out->max_contours)
+        f->full = true;
+    f->t.points = f->full ? NULL : out->points + out->n_points;
+    f->t.room = f->full ? 0 : out->max_points - out->n_points;
+    box bb;
+    int32_t n = follow(&f->t, row + x0, x0, y, is_hole, lval, &bb);
+    if (!f->full && n > f->t.room)
+        f->full = true;
+    if (f->full) {
+        out->truncated = true;
+        out->dropped_contours++;
+        out->dropped_points += n;
+        return;
+    }
+    node *c = &f->nodes[f->n_nodes];
+    c->ox = x0;
+    c->oy = y;
+    c->rx = bb.x0;
+    c->ry = bb.y0;
+    c->rw = bb.x1 - bb.x0 + 1;
+    c->rh = bb.y1 - bb.y0 + 1;
+    c->is_hole = is_hole;
+    c->parent = par;
+    c->label_next = f->heads[lval];
+    f->heads[lval] = f->n_nodes;
+    c->first_child = NO_NODE;
+    int32_t *first = par == NO_NODE ? &f->top : &f->nodes[par].first_child;
+    c->next_sibling = *first;
+    *first = f->n_nodes;
+    c->offset = out->n_points;
+    c->count = n;
+    out->n_points += n;
+    f->n_nodes++;
+}
+
+/* The raster scan over the label map: starts a border where the rules
+ * say so and keeps lnbd, the last border pixel seen on the row. */
+static void scan_borders(finder *f, int8_t *map, int32_t ms, int32_t mh, rte_contour_mode mode)
+{
+    for (int32_t y = 1; y < mh - 1; y++) {
+        int8_t *row = map + (size_t)y * ms;
+        int32_t lnbd = 0;
+        int prev = 0;
+        for (int32_t x = 1; x < ms - 1; x++) {
+            x = skip_run(row, x, ms - 1, prev);
+            if (x >= ms - 1)
+                break;
+            int p = row[x];
+            bool is_hole = false;
+            if (!(prev == 0 && p == 1)) {
+                if (p != 0 || prev < 1)
+                    goto resume;
+                if (prev & -2)
+                    lnbd = x - 1;
+                is_hole = true;
+            }
+            if (mode == RTE_CONTOURS_EXTERNAL && (is_hole || row[lnbd] > 0))
+                goto resume;
+
+            int32_t par = NO_NODE;
+            if (!f->full && f->hierarchic && !(mode == RTE_CONTOURS_CCOMP && !is_hole) && lnbd > 0)
+                par = find_parent(f->nodes, f->heads, f->t.delta, map, ms, row, lnbd, y, is_hole);
+            lnbd = x - is_hole;
+            trace_border(f, row, x - is_hole, y, is_hole, par);
+            prev = row[x]; /* the start pixel now carries its label */
+            continue;
+        resume:
+            prev = p;
+            if (prev & -2)
+                lnbd = x;
+        }
+    }
+}
+
 rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
                              rte_contour_method method, rte_contours *out, rte_arena *scratch)
 {
@@ -282,96 +379,19 @@ rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
     }
     fill_label_map(src, map, ms);
 
-    tracer t;
+    finder f = { .nodes = nodes, .top = NO_NODE, .label = 2, .out = out,
+                 .hierarchic = mode >= RTE_CONTOURS_CCOMP };
     for (int k = 0; k < 16; k++) {
         int c = k & 7;
-        t.delta[k] = chain_dy[c] * ms + chain_dx[c];
+        f.t.delta[k] = chain_dy[c] * ms + chain_dx[c];
     }
-    t.simple = method == RTE_CONTOURS_APPROX_SIMPLE;
-
-    int32_t heads[128];
+    f.t.simple = method == RTE_CONTOURS_APPROX_SIMPLE;
     for (int k = 0; k < 128; k++)
-        heads[k] = NO_NODE;
-    const int hierarchic = mode >= RTE_CONTOURS_CCOMP;
-    int32_t label = 2, top = NO_NODE, n_nodes = 0;
-    int full = 0; /* a bound was hit: from now on only count */
+        f.heads[k] = NO_NODE;
 
-    for (int32_t y = 1; y < mh - 1; y++) {
-        int8_t *row = map + (size_t)y * ms;
-        int32_t lnbd = 0;
-        int prev = 0;
-        for (int32_t x = 1; x < ms - 1; x++) {
-            x = skip_run(row, x, ms - 1, prev);
-            if (x >= ms - 1)
-                break;
-            int p = row[x];
-            int is_hole = 0;
-            if (!(prev == 0 && p == 1)) {
-                if (p != 0 || prev < 1)
-                    goto resume;
-                if (prev & -2)
-                    lnbd = x - 1;
-                is_hole = 1;
-            }
-            if (mode == RTE_CONTOURS_EXTERNAL && (is_hole || row[lnbd] > 0))
-                goto resume;
-
-            {
-                int32_t par = NO_NODE;
-                if (!full && hierarchic && !(mode == RTE_CONTOURS_CCOMP && !is_hole) && lnbd > 0)
-                    par = find_parent(nodes, heads, t.delta, map, ms, row, lnbd, y, is_hole);
-                lnbd = x - is_hole;
-
-                int32_t lval = 2;
-                if (hierarchic) {
-                    lval = label;
-                    label = (label + 1) & 127;
-                    label += label == 0 ? 3 : 0;
-                }
-                if (!full && n_nodes == out->max_contours)
-                    full = 1;
-                t.points = full ? NULL : out->points + out->n_points;
-                t.room = full ? 0 : out->max_points - out->n_points;
-                box bb;
-                int32_t n = follow(&t, row + x - is_hole, x - is_hole, y, is_hole, lval, &bb);
-                if (!full && n > t.room)
-                    full = 1;
-                if (full) {
-                    out->truncated = true;
-                    out->dropped_contours++;
-                    out->dropped_points += n;
-                } else {
-                    node *c = &nodes[n_nodes];
-                    c->ox = x - is_hole;
-                    c->oy = y;
-                    c->rx = bb.x0;
-                    c->ry = bb.y0;
-                    c->rw = bb.x1 - bb.x0 + 1;
-                    c->rh = bb.y1 - bb.y0 + 1;
-                    c->is_hole = is_hole;
-                    c->parent = par;
-                    c->label_next = heads[lval];
-                    heads[lval] = n_nodes;
-                    c->first_child = NO_NODE;
-                    int32_t *first = par == NO_NODE ? &top : &nodes[par].first_child;
-                    c->next_sibling = *first;
-                    *first = n_nodes;
-                    c->offset = out->n_points;
-                    c->count = n;
-                    out->n_points += n;
-                    n_nodes++;
-                }
-            }
-            prev = row[x]; /* the start pixel now carries its label */
-            continue;
-        resume:
-            prev = p;
-            if (prev & -2)
-                lnbd = x;
-        }
-    }
-    out->n_contours = n_nodes;
-    emit(nodes, top, out);
+    scan_borders(&f, map, ms, mh, mode);
+    out->n_contours = f.n_nodes;
+    emit(nodes, f.top, out);
     rte_arena_reset(scratch, mark);
     return RTE_OK;
 }

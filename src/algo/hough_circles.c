@@ -16,6 +16,7 @@
  * visits the square within max_radius of the centre. */
 #include "rtedge/hough.h"
 
+#include "core/int_math.h"
 #include "hough_internal.h"
 
 typedef struct circle_geom {
@@ -110,12 +111,6 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
            rte_arena_piece_size(RADIUS_COARSE * sizeof(int32_t));
 }
 
-/* round(num / den) for den > 0, halves away from zero. */
-static inline int64_t div_round(int64_t num, int64_t den)
-{
-    return num >= 0 ? (num + den / 2) / den : -((-num + den / 2) / den);
-}
-
 /* Step 1: votes; also lists the voting pixels (raster order) and row starts. */
 static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx, const rte_image_s16 *dy,
                           const circle_geom *g, int32_t dp_q8, int32_t *acc, uint32_t *pts, int32_t *row_start)
@@ -134,10 +129,10 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx, co
             /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
             uint64_t mag_q10 = rte_isqrt64(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
             int64_t den = (int64_t)mag_q10 * dp_q8;
-            int32_t sx = (int32_t)div_round((int64_t)vx * (1 << 28), den);
-            int32_t sy = (int32_t)div_round((int64_t)vy * (1 << 28), den);
-            int32_t x0 = (int32_t)div_round((int64_t)x << 18, dp_q8);
-            int32_t y0 = (int32_t)div_round((int64_t)y << 18, dp_q8);
+            int32_t sx = (int32_t)rte_div_round64((int64_t)vx * (1 << 28), den);
+            int32_t sy = (int32_t)rte_div_round64((int64_t)vy * (1 << 28), den);
+            int32_t x0 = (int32_t)rte_div_round64((int64_t)x << 18, dp_q8);
+            int32_t y0 = (int32_t)rte_div_round64((int64_t)y << 18, dp_q8);
             for (int k = 0; k < 2; k++) {
                 int32_t x1 = x0 + g->min_r * sx, y1 = y0 + g->min_r * sy;
                 for (int32_t r = g->min_r; r <= g->max_r; r++, x1 += sx, y1 += sy) {
@@ -307,7 +302,7 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, con
     const int64_t det = a00 * a11 - a01 * a01;
     if (det <= 0)
         return;
-    const int64_t ox = div_round(a11 * b0 - a01 * b1, det), oy = div_round(a00 * b1 - a01 * b0, det);
+    const int64_t ox = rte_div_round64(a11 * b0 - a01 * b1, det), oy = rte_div_round64(a00 * b1 - a01 * b0, det);
     const int64_t lim = (dp_q8 + 4) / 8; /* 2 dp in 1/16 pixel */
     if (ox > lim || ox < -lim || oy > lim || oy < -lim)
         return;
@@ -328,7 +323,51 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, con
         }
     }
     if (m > 0)
-        *r_q4 = (int32_t)div_round(sum, m);
+        *r_q4 = (int32_t)rte_div_round64(sum, m);
+}
+
+/* Step 2: centres, in raster order of the accumulator: local maxima
+ * above the threshold (ties broken towards the right and below). */
+static int32_t find_centres(const int32_t *acc, const circle_geom *g, int32_t thr, int32_t *centres)
+{
+    const int32_t astep = g->acols + 2;
+    int32_t ncent = 0;
+    for (int32_t y = 1; y < g->arows + 1; y++) {
+        const int32_t *a = acc + (size_t)y * astep;
+        for (int32_t x = 1; x < g->acols + 1; x++) {
+            int32_t v = a[x];
+            if (v > thr && v > a[x - 1] && v >= a[x + 1] && v > a[x - astep] && v >= a[x + astep])
+                centres[ncent++] = y * astep + x;
+        }
+    }
+    return ncent;
+}
+
+/* Step 4: greedy removal, best first, of centres closer than min_dist to
+ * one already kept. Returns how many were kept. */
+static int32_t keep_separated(const rte_hough_topk *top, const int32_t *est, int32_t min_dist,
+                              rte_hough_circle *circles, int32_t max_circles, bool *truncated)
+{
+    const int64_t min_d2 = (int64_t)min_dist * min_dist * 256;
+    int32_t nout = 0;
+    for (int32_t k = 0; k < top->size; k++) {
+        int32_t e = (int32_t)rte_hough_key_index(top->keys[k]);
+        int32_t cx = est[3 * e], cy = est[3 * e + 1];
+        bool ok = true;
+        for (int32_t j = 0; j < nout && ok; j++) {
+            int64_t ddx = cx - circles[j].x_q4, ddy = cy - circles[j].y_q4;
+            ok = ddx * ddx + ddy * ddy >= min_d2;
+        }
+        if (!ok)
+            continue;
+        if (nout == max_circles) {
+            *truncated = true;
+            break;
+        }
+        rte_hough_circle out = { cx, cy, est[3 * e + 2], rte_hough_key_votes(top->keys[k]) };
+        circles[nout++] = out;
+    }
+    return nout;
 }
 
 rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
@@ -377,17 +416,8 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     }
     radius_table_init(&rt, &g);
 
-    /* Step 2: centres, in raster order of the accumulator. */
     const int32_t astep = g.acols + 2, thr = params->acc_threshold;
-    int32_t ncent = 0;
-    for (int32_t y = 1; y < g.arows + 1; y++) {
-        const int32_t *a = acc + (size_t)y * astep;
-        for (int32_t x = 1; x < g.acols + 1; x++) {
-            int32_t v = a[x];
-            if (v > thr && v > a[x - 1] && v >= a[x + 1] && v > a[x - astep] && v >= a[x + astep])
-                centres[ncent++] = y * astep + x;
-        }
-    }
+    const int32_t ncent = find_centres(acc, &g, thr, centres);
 
     /* Step 3: radius and support of every centre. */
     rte_hough_topk top = { keys, (int32_t)cand_cap, 0, 0 };
@@ -410,26 +440,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     }
     rte_hough_topk_sort(&top);
 
-    /* Step 4: greedy removal of centres closer than min_dist. */
-    const int64_t min_d2 = (int64_t)params->min_dist * params->min_dist * 256;
-    int32_t nout = 0;
-    for (int32_t k = 0; k < top.size; k++) {
-        int32_t e = (int32_t)rte_hough_key_index(top.keys[k]);
-        int32_t cx = est[3 * e], cy = est[3 * e + 1];
-        int ok = 1;
-        for (int32_t j = 0; j < nout && ok; j++) {
-            int64_t ddx = cx - circles[j].x_q4, ddy = cy - circles[j].y_q4;
-            ok = ddx * ddx + ddy * ddy >= min_d2;
-        }
-        if (!ok)
-            continue;
-        if (nout == max_circles) {
-            *truncated = true;
-            break;
-        }
-        rte_hough_circle out = { cx, cy, est[3 * e + 2], rte_hough_key_votes(top.keys[k]) };
-        circles[nout++] = out;
-    }
+    const int32_t nout = keep_separated(&top, est, params->min_dist, circles, max_circles, truncated);
     *count = nout;
     rte_arena_reset(arena, mark);
     return RTE_OK;

@@ -1,6 +1,8 @@
 /* Overlay drawing on BGR images (see draw.h). */
 #include "draw/draw.h"
 
+#include "core/int_math.h"
+
 #include <stddef.h>
 
 #define MAX_THICKNESS 64
@@ -117,16 +119,6 @@ static int outcode(int64_t x, int64_t y, int64_t xmin, int64_t ymin, int64_t xma
     return (x < xmin ? LEFT : x > xmax ? RIGHT : 0) | (y < ymin ? TOP : y > ymax ? BOTTOM : 0);
 }
 
-/* Division rounded to nearest, any signs (den != 0). */
-static int64_t div_round(int64_t num, int64_t den)
-{
-    if (den < 0) {
-        num = -num;
-        den = -den;
-    }
-    return num >= 0 ? (num + den / 2) / den : -((-num + den / 2) / den);
-}
-
 /* Cohen-Sutherland clipping to the image grown by the brush; 0 when the
  * segment misses it. Keeps Bresenham's loop short for far-away endpoints. */
 static int clip(int64_t *x0, int64_t *y0, int64_t *x1, int64_t *y1, int64_t xmin, int64_t ymin,
@@ -143,10 +135,10 @@ static int clip(int64_t *x0, int64_t *y0, int64_t *x1, int64_t *y1, int64_t xmin
         int64_t x, y;
         if (c & (TOP | BOTTOM)) {
             y = (c & TOP) ? ymin : ymax;
-            x = *x0 + div_round(dx * (y - *y0), dy);
+            x = *x0 + rte_div_round64(dx * (y - *y0), dy);
         } else {
             x = (c & LEFT) ? xmin : xmax;
-            y = *y0 + div_round(dy * (x - *x0), dx);
+            y = *y0 + rte_div_round64(dy * (x - *x0), dx);
         }
         if (c == c0) {
             *x0 = x;
