@@ -25,251 +25,7 @@
 #include "hough_rows.h"
 #include "simd/rows.h"
 
-/* Mask states of a pixel. */
-enum { PX_NONE = 0, PX_EDGE = 1, PX_VOTED = 2, PX_USED = 3 };
-/* PX_USED: consumed by a reported segment. A later walk crosses such pixels
- * without counting a gap (OpenCV counts them as missing, which cuts lines
- * where they cross), but they neither extend nor fit the new segment. */
-static inline int live(uint8_t m) { return m == PX_EDGE || m == PX_VOTED; }
-
-/* How far across the line a continuing run of edge pixels is consumed
- * (one pixel either side always). */
-#define CONSUME_REACH 2
-
-/* Fitted or quantised line: a point on it (Q16) and a unit direction (Q16). */
-typedef struct line_q16 {
-    int64_t px, py;
-    int32_t ux, uy;
-} line_q16;
-
-typedef struct walk_ctx {
-    uint8_t *mask;
-    int32_t w, h, max_gap;
-    uint32_t *hits; /* packed (2y << 16) | 2x: run centres in half pixels */
-    int32_t nhits;
-    int32_t end2[4]; /* the hits at the extreme steps (half pixels) */
-    int strict;      /* only the pixel on the line hits (walks of refitted lines) */
-} walk_ctx;
-
-static inline uint8_t mask_at(const walk_ctx *c, int32_t x, int32_t y)
-{
-    return ((uint32_t)x < (uint32_t)c->w && (uint32_t)y < (uint32_t)c->h) ? c->mask[(size_t)y * c->w + x] : 0;
-}
-
-/* Steps of one pixel along the major axis of the line; the minor coordinate
- * advances by a Q16 fraction. */
-typedef struct stepper {
-    int32_t major_x;         /* 1: x is the major axis */
-    int32_t dmaj;            /* +-1 */
-    int64_t dmin_q16;        /* minor advance per major step */
-    int32_t maj0;            /* start, major coordinate */
-    int64_t min0_q16;        /* start, minor coordinate (Q16) */
-} stepper;
-
-static stepper make_stepper(const line_q16 *l, int32_t start_x, int32_t start_y)
-{
-    stepper s;
-    int32_t ax = l->ux < 0 ? -l->ux : l->ux, ay = l->uy < 0 ? -l->uy : l->uy;
-    s.major_x = ax >= ay;
-    int32_t umaj = s.major_x ? l->ux : l->uy, umin = s.major_x ? l->uy : l->ux;
-    int32_t amaj = umaj < 0 ? -umaj : umaj;
-    s.dmaj = umaj < 0 ? -1 : 1;
-    s.dmin_q16 = ((int64_t)umin * 65536) / amaj;
-    /* Start at the point of the line whose major coordinate is the start
-     * pixel's: minor = p_min + (start_maj - p_maj) * umin / umaj. */
-    int64_t pmaj = s.major_x ? l->px : l->py, pmin = s.major_x ? l->py : l->px;
-    s.maj0 = s.major_x ? start_x : start_y;
-    s.min0_q16 = pmin + (((int64_t)s.maj0 * 65536 - pmaj) * umin) / umaj;
-    return s;
-}
-
-/* floor(v / 65536) for |v| < 2^47, also for negative values: shifted as a
- * non-negative number (no branch, no implementation-defined shift) */
-static inline int32_t floor_q16(int64_t v)
-{
-    return (int32_t)((int64_t)((uint64_t)(v + ((int64_t)1 << 47)) >> 16) - ((int64_t)1 << 31));
-}
-
-/* The pixel of step k: the minor coordinate in Q16 plus a half, floored. */
-static inline void stepper_at(const stepper *s, int32_t k, int32_t *x, int32_t *y)
-{
-    int32_t maj = s->maj0 + k * s->dmaj;
-    int32_t mn = floor_q16(s->min0_q16 + (int64_t)k * s->dmin_q16 + 32768);
-    *x = s->major_x ? maj : mn;
-    *y = s->major_x ? mn : maj;
-}
-
-/* The mask at `o` pixels across the line from (x, y); `p` is the pixel's
- * byte when the whole reach across the line is inside the map (no bounds
- * checks then), else NULL. major_x is a constant in each copy of follow. */
-static inline uint8_t across(const walk_ctx *c, const uint8_t *p, const int major_x, int32_t x, int32_t y,
-                             int32_t o)
-{
-    if (p)
-        return p[major_x ? (ptrdiff_t)o * c->w : o];
-    return major_x ? mask_at(c, x, y + o) : mask_at(c, x + o, y);
-}
-
-/* The edge pixels hit at the step on (x, y) (its major coordinate inside
- * the map): the pixel on the line, else (unless c->strict) a neighbour
- * across the line, extended to the whole run of edge pixels across the line
- * (up to CONSUME_REACH). Returns 1 and the run's centre in half pixels
- * (doubled coordinates, so fits of thick edges follow their middle), 2 when
- * only consumed pixels are there (a bridge), 0 otherwise. */
-static inline __attribute__((always_inline)) int probe(const walk_ctx *c, const int major_x, int32_t x,
-                                                        int32_t y, int32_t *hx2, int32_t *hy2)
-{
-    const int32_t mn = major_x ? y : x, mn_size = major_x ? c->h : c->w;
-    const uint8_t *p = mn >= CONSUME_REACH && mn < mn_size - CONSUME_REACH ? c->mask + (size_t)y * c->w + x
-                                                                          : NULL;
-    uint8_t m0 = across(c, p, major_x, x, y, 0), mlo = across(c, p, major_x, x, y, -1);
-    uint8_t mhi = across(c, p, major_x, x, y, 1);
-    int32_t lo;
-    if (live(m0))
-        lo = 0;
-    else if (c->strict && (live(mlo) || live(mhi)))
-        return 0; /* beside a refitted line: another edge, not this one */
-    else if (live(mlo))
-        lo = -1;
-    else if (live(mhi))
-        lo = 1;
-    else
-        return (m0 | mlo | mhi) ? 2 : 0;
-    int32_t hi = lo;
-    while (lo > -CONSUME_REACH && live(across(c, p, major_x, x, y, lo - 1)))
-        lo--;
-    while (hi < CONSUME_REACH && live(across(c, p, major_x, x, y, hi + 1)))
-        hi++;
-    *hx2 = 2 * x + (major_x ? 0 : lo + hi);
-    *hy2 = 2 * y + (major_x ? lo + hi : 0);
-    return 1;
-}
-
-/* Follows the line both ways from step 0 until more than max_gap steps in a
- * row miss or the line leaves the map (one pixel of slack across the line,
- * so edges along the border count); returns the extreme steps with hits
- * (kmin > kmax when there is none), their hits in c->end2 and records the
- * hits between them. Beyond a gap of more than one step, the end only moves
- * on once two steps in a row hit, so a stray pixel past the end of a line
- * does not lengthen it. One copy per major axis (major_x constant). */
-static inline __attribute__((always_inline)) void follow_axis(walk_ctx *c, const stepper *s, const int major_x,
-                                                               int32_t *kmin, int32_t *kmax)
-{
-    const uint32_t maj_size = (uint32_t)(major_x ? c->w : c->h), mn_span = (uint32_t)(major_x ? c->h : c->w) + 1;
-    c->nhits = 0;
-    *kmin = INT32_MAX;
-    *kmax = INT32_MIN;
-    for (int32_t dir = 1; dir >= -1; dir -= 2) {
-        int32_t gap = 0, run = 0, seed_run = 1, kept = c->nhits, gap_before = 0;
-        /* stepper_at(s, k), one addition per step */
-        const int32_t k0 = dir == 1 ? 0 : -1, dmaj = dir * s->dmaj;
-        const int64_t dmin = dir * s->dmin_q16;
-        int32_t maj = s->maj0 + k0 * s->dmaj;
-        int64_t mq = s->min0_q16 + (int64_t)k0 * s->dmin_q16 + 32768;
-        for (int32_t k = k0;; k += dir, maj += dmaj, mq += dmin) {
-            int32_t hx2, hy2, mn = floor_q16(mq);
-            if ((uint32_t)maj >= maj_size || (uint32_t)(mn + 1) > mn_span)
-                break;
-            const int32_t x = major_x ? maj : mn, y = major_x ? mn : maj;
-            int hit = probe(c, major_x, x, y, &hx2, &hy2);
-            if (hit == 1) {
-                if (run++ == 0)
-                    gap_before = gap;
-                gap = 0;
-                c->hits[c->nhits++] = ((uint32_t)hy2 << 16) | (uint32_t)hx2;
-                if (seed_run || run >= 2 || gap_before <= 1) {
-                    kept = c->nhits;
-                    if (k > *kmax) {
-                        *kmax = k;
-                        c->end2[2] = hx2, c->end2[3] = hy2;
-                    }
-                    if (k < *kmin) {
-                        *kmin = k;
-                        c->end2[0] = hx2, c->end2[1] = hy2;
-                    }
-                }
-                continue;
-            }
-            run = 0;
-            seed_run &= hit == 2; /* the seed's run goes on across earlier segments */
-            if (hit == 2)
-                gap = 0;
-            else if (++gap > c->max_gap)
-                break;
-        }
-        c->nhits = kept;
-    }
-}
-
-static void follow(walk_ctx *c, const stepper *s, int32_t *kmin, int32_t *kmax)
-{
-    /* a local copy: the stores of hits could alias the context's fields */
-    walk_ctx l = *c;
-    int32_t lo, hi;
-    if (s->major_x)
-        follow_axis(&l, s, 1, &lo, &hi);
-    else
-        follow_axis(&l, s, 0, &lo, &hi);
-    *c = l;
-    *kmin = lo;
-    *kmax = hi;
-}
-
-/* floor(v / 65536 + 1/2) for any sign */
-static inline int32_t round_q16(int64_t v) { return floor_q16(v + 32768); }
-
-/* The hit (half pixels) projected onto the line, rounded to a pixel. */
-static void project(const line_q16 *l, int32_t hx2, int32_t hy2, int32_t *x, int32_t *y)
-{
-    int64_t dx = ((int64_t)hx2 << 15) - l->px, dy = ((int64_t)hy2 << 15) - l->py;
-    int64_t t = (dx * l->ux + dy * l->uy) / 65536; /* Q16 pixels along the line */
-    *x = round_q16(l->px + t * l->ux / 65536);
-    *y = round_q16(l->py + t * l->uy / 65536);
-}
-
-/* Principal axis of the hits (integer): the direction (r + a, b) with
- * a = Cxx - Cyy, b = 2 Cxy, r = |(a, b)| halves the angle of (a, b). */
-static int fit_line(const walk_ctx *c, line_q16 *l)
-{
-    int32_t n = c->nhits;
-    if (n < 3)
-        return 0;
-    int64_t sx = 0, sy = 0;
-    for (int32_t i = 0; i < n; i++) {
-        sx += c->hits[i] & 0xFFFF;
-        sy += c->hits[i] >> 16;
-    }
-    /* Centroid in Q4 (the hits are in half pixels); coordinates relative to
-     * it stay below 2^20, squares below 2^40, sums of up to 2^17 of them
-     * below 2^57. */
-    int64_t mx = (sx * 8 + n / 2) / n, my = (sy * 8 + n / 2) / n;
-    int64_t cxx = 0, cyy = 0, cxy = 0;
-    for (int32_t i = 0; i < n; i++) {
-        int64_t dx = (int64_t)(c->hits[i] & 0xFFFF) * 8 - mx, dy = (int64_t)(c->hits[i] >> 16) * 8 - my;
-        cxx += dx * dx;
-        cyy += dy * dy;
-        cxy += dx * dy;
-    }
-    int64_t a = cxx - cyy, b = 2 * cxy;
-    while (a > (1 << 30) || a < -(1 << 30) || b > (1 << 30) || b < -(1 << 30)) {
-        a /= 2;
-        b /= 2;
-    }
-    int64_t r = rte_isqrt64((uint64_t)(a * a + b * b));
-    int64_t vx = r + a, vy = b;
-    if (vx == 0 && vy == 0)
-        return 0; /* no elongation: keep the quantised direction */
-    uint64_t len = rte_isqrt64((uint64_t)(vx * vx + vy * vy));
-    if (len == 0)
-        return 0;
-    l->ux = (int32_t)(vx * 65536 / (int64_t)len);
-    l->uy = (int32_t)(vy * 65536 / (int64_t)len);
-    if (l->ux == 0 && l->uy == 0)
-        return 0;
-    l->px = mx * 4096;
-    l->py = my * 4096;
-    return 1;
-}
+#include "hough_walk.h"
 
 void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
                       int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx)
@@ -480,24 +236,24 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
      * pixels on it, so its ends stop where the edge leaves the line (a
      * curve, a crossing edge, texture), not a pixel further. */
     line_q16 l = { (int64_t)x << 16, (int64_t)y << 16, -cfg->unit_sin[best_n], cfg->unit_cos[best_n] };
-    stepper s = make_stepper(&l, x, y);
+    stepper s = rte_hough_walk_stepper(&l, x, y);
     int32_t kmin, kmax;
-    wc->strict = 0;
-    follow(wc, &s, &kmin, &kmax);
+    wc->strict = false;
+    rte_hough_walk_follow(wc, &s, &kmin, &kmax);
     line_q16 f = l;
-    if (fit_line(wc, &f)) {
+    if (rte_hough_walk_fit(wc, &f)) {
         l = f;
-        s = make_stepper(&l, x, y);
-        wc->strict = 1;
-        follow(wc, &s, &kmin, &kmax);
+        s = rte_hough_walk_stepper(&l, x, y);
+        wc->strict = true;
+        rte_hough_walk_follow(wc, &s, &kmin, &kmax);
     }
     if (wc->nhits == 0)
         return 0;
 
     /* Ends: the outermost hits projected onto the line. */
     int32_t x0, y0, x1, y1;
-    project(&l, wc->end2[0], wc->end2[1], &x0, &y0);
-    project(&l, wc->end2[2], wc->end2[3], &x1, &y1);
+    rte_hough_walk_project(&l, wc->end2[0], wc->end2[1], &x0, &y0);
+    rte_hough_walk_project(&l, wc->end2[2], wc->end2[3], &x1, &y1);
     int64_t ddx = x1 - x0, ddy = y1 - y0;
     if (ddx * ddx + ddy * ddy < sc->min_len2) {
         /* Too short: as OpenCV, the pixels on the walked line are dropped
