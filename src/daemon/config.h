@@ -1,5 +1,5 @@
 /* rtedged's configuration: an INI file plus command-line overrides, read
- * through one table of keys (config.c) that gives each key its type, range,
+ * through one table of keys (config_keys.c) that gives each key its type, range,
  * default, help text and whether it may change while running (SIGHUP,
  * params_t) or fixes a size at start. The same table prints
  * `rtedged --help-config` (which is also the documented rtedged.conf). */
@@ -73,7 +73,7 @@ typedef struct rted_config {
     bool rt_mlockall;
 } rted_config;
 
-/* One key of the table (config.c), for typed access (params_t). */
+/* One key of the table (config_keys.c), for typed access (params_t). */
 typedef struct rted_key rted_key;
 typedef enum rted_key_type {
     RTED_KEY_INT = 0, RTED_KEY_REAL, RTED_KEY_BOOL, RTED_KEY_TEXT, RTED_KEY_CHOICE,

@@ -19,6 +19,13 @@ field() { $PY -c 'import json,sys; d=json.loads(sys.argv[1]); exec("print(" + sy
 grep -q '^\[realtime\]' "$TMP/eff" || fail "--check-config prints no [realtime]"
 echo "ok: rtedged.conf and --check-config"
 
+# Inline comments: '#' after a blank ends the line; ';' separates list items.
+printf '[grasp] # objects\nthreshold = 3\t# inline\n[lane]\nroi = 0,1;0.4,0.6;0.6,0.6;1,1 # fractions\n' >"$TMP/inline.conf"
+"$RTEDGED" --config "$TMP/inline.conf" --check-config >"$TMP/eff" || fail "inline comments refused"
+grep -qx 'threshold = 3' "$TMP/eff" && grep -qx 'roi = 0,1;0.4,0.6;0.6,0.6;1,1' "$TMP/eff" ||
+    fail "inline comments: $(grep -e '^threshold' -e '^roi' "$TMP/eff")"
+echo "ok: inline comments"
+
 # Bad configurations: exit 2 and the file:line in the message.
 bad() { # NAME LINE EXPECTED-TEXT CONTENT
     printf '%b' "$4" >"$TMP/$1.conf"
@@ -62,6 +69,11 @@ done
 printf '[grasp]\nthreshold = 3\0\n' >"$TMP/nul.conf"
 "$RTEDGED" --config "$TMP/nul.conf" --check-config 2>"$TMP/err" >/dev/null
 [ $? -eq 2 ] && grep -q "nul.conf:2: a NUL byte in the line" "$TMP/err" || fail "NUL: $(cat "$TMP/err")"
+# A line over the limit is refused, never cut.
+{ printf '[source]\npath = '; head -c 1100 /dev/zero | tr '\0' a; printf '\n'; } >"$TMP/long.conf"
+"$RTEDGED" --config "$TMP/long.conf" --check-config 2>"$TMP/err" >/dev/null
+[ $? -eq 2 ] && grep -q "long.conf:2: line longer than 1022 characters" "$TMP/err" ||
+    fail "long line: $(cat "$TMP/err")"
 echo "ok: command-line errors"
 
 # Values that do not fit the source's frames (480x270): refused at start, exit 1.
