@@ -407,6 +407,55 @@ size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
            rte_arena_piece_size((2 * side + 4) * sizeof(uint32_t));
 }
 
+/* The edge pixels into the mask (1 for an edge, 0 otherwise) and their
+ * packed coordinates, in raster order, into pts; returns their number. */
+static int32_t collect_points(const rte_image_u8 *edges, uint8_t *mask, uint32_t *pts)
+{
+    const int32_t w = edges->width, h = edges->height;
+    int32_t npts = 0;
+    for (int32_t y = 0; y < h; y++) {
+        const uint8_t *row = rte_u8_row(edges, y);
+        uint8_t *mrow = mask + (size_t)y * w;
+        int32_t x = 0;
+        for (;;) {
+            /* edge maps are sparse: skip 8 empty pixels at a time */
+            uint64_t word;
+            for (; x + 8 <= w; x += 8) {
+                memcpy(&word, row + x, sizeof word);
+                if (word)
+                    break;
+                memcpy(mrow + x, &word, sizeof word); /* 8 zeros */
+            }
+            const int32_t end = x + 8 <= w ? x + 8 : w;
+            if (x >= end)
+                break;
+            for (; x < end; x++) {
+                uint8_t e = row[x] != 0;
+                mrow[x] = e;
+                pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
+                npts += e;
+            }
+        }
+    }
+    return npts;
+}
+
+/* Fisher-Yates with xorshift32 and a multiply-shift range reduction: the
+ * same order everywhere for a seed. */
+static void shuffle_points(uint32_t *pts, int32_t npts, uint32_t seed)
+{
+    uint32_t rng = seed;
+    for (int32_t i = npts - 1; i > 0; i--) {
+        rng ^= rng << 13;
+        rng ^= rng >> 17;
+        rng ^= rng << 5;
+        int32_t j = (int32_t)(((uint64_t)rng * (uint32_t)(i + 1)) >> 32);
+        uint32_t t = pts[i];
+        pts[i] = pts[j];
+        pts[j] = t;
+    }
+}
+
 rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
                               const rte_hough_segments_params *params, rte_arena *arena,
                               rte_hough_segment *segments, int32_t max_segments,
@@ -442,31 +491,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         return RTE_ERR_NO_MEMORY;
     }
 
-    int32_t npts = 0;
-    for (int32_t y = 0; y < h; y++) {
-        const uint8_t *row = rte_u8_row(edges, y);
-        uint8_t *mrow = mask + (size_t)y * w;
-        int32_t x = 0;
-        for (;;) {
-            /* edge maps are sparse: skip 8 empty pixels at a time */
-            uint64_t word;
-            for (; x + 8 <= w; x += 8) {
-                memcpy(&word, row + x, sizeof word);
-                if (word)
-                    break;
-                memcpy(mrow + x, &word, sizeof word); /* 8 zeros */
-            }
-            const int32_t end = x + 8 <= w ? x + 8 : w;
-            if (x >= end)
-                break;
-            for (; x < end; x++) {
-                uint8_t e = row[x] != 0;
-                mrow[x] = e;
-                pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
-                npts += e;
-            }
-        }
-    }
+    const int32_t npts = collect_points(edges, mask, pts);
     /* 16 bits: count + 32769 - threshold stays in [1, 65535] (counts up to
      * bound <= 32767, 1 <= threshold <= bound); 8 bits: count + 129 -
      * threshold in [1, 255] until a wrap widens the cells */
@@ -479,18 +504,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         memset(acc, (int)(CELL8_TOP + 1 - (uint32_t)params->threshold), ncells);
     }
 
-    /* Fisher-Yates with xorshift32 and a multiply-shift range reduction:
-     * the same order everywhere for a seed. */
-    uint32_t rng = params->seed ? params->seed : RTE_HOUGH_SEGMENTS_SEED;
-    for (int32_t i = npts - 1; i > 0; i--) {
-        rng ^= rng << 13;
-        rng ^= rng >> 17;
-        rng ^= rng << 5;
-        int32_t j = (int32_t)(((uint64_t)rng * (uint32_t)(i + 1)) >> 32);
-        uint32_t t = pts[i];
-        pts[i] = pts[j];
-        pts[j] = t;
-    }
+    shuffle_points(pts, npts, params->seed ? params->seed : RTE_HOUGH_SEGMENTS_SEED);
 
     seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), row_base, acc, wide, ncells, idx, numangle, bias,
                    (int64_t)params->min_length * params->min_length, gone,

@@ -100,10 +100,13 @@ static void median5_row(const uint8_t *const *rows, uint8_t *restrict dst, int32
         for (int32_t i = 0; i < MEDIAN5_BLOCK + 4; i++) {
             uint8_t w0 = s0[i], w1 = s1[i], w2 = s2[i], w3 = s3[i], w4 = s4[i];
             /* optimal 9-exchange sorting network for 5 */
+            /* (the networks keep one line per layer) */
+            /* clang-format off */
             RTE_MED_CE(w0, w1); RTE_MED_CE(w3, w4); RTE_MED_CE(w2, w4);
             RTE_MED_CE(w2, w3); RTE_MED_CE(w0, w3); RTE_MED_CE(w0, w2);
             RTE_MED_CE(w1, w4); RTE_MED_CE(w1, w3); RTE_MED_CE(w1, w2);
             col[0][i] = w0; col[1][i] = w1; col[2][i] = w2; col[3][i] = w3; col[4][i] = w4;
+            /* clang-format on */
         }
 
         /* pair[k][i]: rank k of the merge of columns x0 + i and x0 + i + 1 */
@@ -113,6 +116,7 @@ static void median5_row(const uint8_t *const *rows, uint8_t *restrict dst, int32
             uint8_t w0 = col[0][i], w1 = col[1][i], w2 = col[2][i], w3 = col[3][i], w4 = col[4][i];
             uint8_t w5 = col[0][i + 1], w6 = col[1][i + 1], w7 = col[2][i + 1];
             uint8_t w8 = col[3][i + 1], w9 = col[4][i + 1];
+            /* clang-format off */
             RTE_MED_CE(w0, w5); RTE_MED_CE(w4, w9); RTE_MED_CE(w4, w5); RTE_MED_CE(w2, w7);
             RTE_MED_CE(w2, w4); RTE_MED_CE(w7, w5); RTE_MED_CE(w1, w6); RTE_MED_CE(w3, w8);
             RTE_MED_CE(w3, w6); RTE_MED_CE(w1, w2); RTE_MED_CE(w3, w4); RTE_MED_CE(w6, w7);
@@ -120,6 +124,7 @@ static void median5_row(const uint8_t *const *rows, uint8_t *restrict dst, int32
             /* the network leaves the ranks in this wire order */
             pair[0][i] = w0; pair[1][i] = w1; pair[2][i] = w2; pair[3][i] = w3; pair[4][i] = w4;
             pair[5][i] = w6; pair[6][i] = w7; pair[7][i] = w8; pair[8][i] = w5; pair[9][i] = w9;
+            /* clang-format on */
         }
 
         uint8_t out[MEDIAN5_BLOCK];
@@ -134,6 +139,7 @@ static void median5_row(const uint8_t *const *rows, uint8_t *restrict dst, int32
             uint8_t w19 = pair[9][i + 2];
             uint8_t w20 = col[0][i + 4], w21 = col[1][i + 4], w22 = col[2][i + 4];
             uint8_t w23 = col[3][i + 4], w24 = col[4][i + 4];
+            /* clang-format off */
             RTE_MED_CE(w0, w20); RTE_MED_CE(w8, w20); RTE_MED_CE(w4, w24); RTE_MED_CE(w4, w8);
             RTE_MED_CE(w24, w20); RTE_MED_CE(w2, w22); RTE_MED_CE(w6, w22); RTE_MED_CE(w2, w4);
             RTE_MED_CE(w6, w8); RTE_MED_CE(w22, w24); RTE_MED_CE(w1, w21); RTE_MED_CE(w9, w21);
@@ -148,6 +154,7 @@ static void median5_row(const uint8_t *const *rows, uint8_t *restrict dst, int32
             w15 = RTE_MED_MAX(w5, w15); w21 = RTE_MED_MIN(w21, w15); w21 = RTE_MED_MIN(w21, w11);
             w13 = RTE_MED_MAX(w3, w13); w23 = RTE_MED_MIN(w23, w13); w7 = RTE_MED_MIN(w7, w17);
             w23 = RTE_MED_MAX(w7, w23); w23 = RTE_MED_MIN(w23, w21); w24 = RTE_MED_MAX(w23, w24);
+            /* clang-format on */
             out[i] = w24;
         }
         int32_t n = width - x0 < MEDIAN5_BLOCK ? width - x0 : MEDIAN5_BLOCK;

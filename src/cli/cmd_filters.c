@@ -1,9 +1,6 @@
 /* Subcommands that run one librtedge kernel on an image file: read IN (grey,
  * or colour converted to grey as OpenCV does), run the kernel, write OUT.
- *
- * Each subcommand is a filter_spec: its options, a check of them that runs
- * before the input is read (so usage errors come first), its scratch size
- * and the kernel call. filter_main() does the rest the same way for all. */
+ * Each is a filter_spec run by cli_filter_main (cli_filter.h). */
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +8,7 @@
 
 #include "cli.h"
 #include "cli_canny.h"
+#include "cli_filter.h"
 #include "cli_image.h"
 #include "commands.h"
 #include "rtedge/blur.h"
@@ -20,85 +18,7 @@
 #include "rtedge/polygon_mask.h"
 #include "rtedge/threshold.h"
 
-typedef struct filter_spec {
-    const char *details;   /* after the common input/output text */
-    cli_option *options;
-    void *ctx;             /* the subcommand's option values and tables */
-    /* Checks the options and builds tables (configuration time); returns an
-     * exit code (CLI_EXIT_USAGE after a message). NULL: nothing to check. */
-    int (*prepare)(const char *name, void *ctx);
-    size_t (*scratch)(void *ctx, int32_t width, int32_t height);
-    /* The kernel: `gray` in, `out` (u8) or, for int16 results, `d` out. */
-    rte_status (*apply)(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                        rte_arena *arena);
-    bool int16;            /* the result is int16 (written to .npy, or |d| to an image) */
-    void (*report)(void *ctx); /* prints what the run found, after OUT is written; may be NULL */
-} filter_spec;
-
-#define FILTER_DETAILS                                                                        \
-    "IN: PGM/PPM (P2, P3, P5, P6), PNG or JPEG; colour is converted to grey as\n"             \
-    "cv2.cvtColor(cv2.imread(IN), cv2.COLOR_BGR2GRAY) does. OUT: .pgm, .png or .npy.\n"
-#define INT16_DETAILS                                                                         \
-    "OUT .npy holds the int16 result; .pgm/.png its saturated absolute value\n"                \
-    "(cv2.convertScaleAbs).\n"
-
-static bool has_extension(const char *path, const char *ext)
-{
-    size_t n = strlen(path), e = strlen(ext);
-    if (n < e)
-        return false;
-    for (size_t i = 0; i < e; i++)
-        if ((path[n - e + i] | 0x20) != (ext[i] | 0x20))
-            return false;
-    return true;
-}
-
 static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
-
-static int filter_main(const cli_entry *self, int argc, char **argv, const filter_spec *spec)
-{
-    char details[1024];
-    snprintf(details, sizeof details, "%s%s%s", FILTER_DETAILS, spec->int16 ? INT16_DETAILS : "",
-             spec->details);
-    cli_command cmd = {self->name, "IN OUT", self->summary, details, spec->options, 2};
-    const char *paths[2];
-    int rc = cli_parse(&cmd, argc, argv, paths);
-    if (rc != CLI_EXIT_OK)
-        return rc < 0 ? CLI_EXIT_OK : rc;
-    if (spec->prepare && (rc = spec->prepare(self->name, spec->ctx)) != CLI_EXIT_OK)
-        return rc;
-
-    cli_image in;
-    if ((rc = cli_load(self->name, paths[0], &in)) != CLI_EXIT_OK)
-        return rc;
-    int32_t w = in.gray.width, h = in.gray.height;
-    rte_image_u8 out;
-    rte_image_s16 d = {0};
-    rte_arena arena;
-    void *out_memory = cli_new_u8(self->name, w, h, &out);
-    void *d_memory = spec->int16 ? cli_new_s16(self->name, w, h, &d) : NULL;
-    void *arena_memory = cli_new_arena(self->name, spec->scratch ? spec->scratch(spec->ctx, w, h) : 0, &arena);
-    rte_status st = RTE_ERR_NO_MEMORY;
-    if (out_memory && arena_memory && (d_memory || !spec->int16))
-        st = spec->apply(spec->ctx, &in.gray, &out, &d, &arena);
-
-    bool npy = spec->int16 && has_extension(paths[1], ".npy");
-    if (st == RTE_OK && spec->int16 && !npy)
-        st = rte_abs_s16_u8(&d, &out);
-    if (st != RTE_OK) {
-        cli_error(self->name, "%s", rte_status_message(st));
-        rc = CLI_EXIT_FAILURE;
-    } else {
-        rc = npy ? cli_save_s16(self->name, paths[1], &d) : cli_save_gray(self->name, paths[1], &out);
-        if (rc == CLI_EXIT_OK && spec->report)
-            spec->report(spec->ctx);
-    }
-    cli_image_free(&in);
-    free(out_memory);
-    free(d_memory);
-    free(arena_memory);
-    return rc;
-}
 
 /* --- gray --- */
 
@@ -114,7 +34,7 @@ int cmd_gray(const cli_entry *self, int argc, char **argv)
 {
     cli_option options[] = {{0}};
     filter_spec spec = {.details = "", .options = options, .apply = gray_apply};
-    return filter_main(self, argc, argv, &spec);
+    return cli_filter_main(self, argc, argv, &spec);
 }
 
 /* --- blur, median --- */
@@ -153,7 +73,7 @@ int cmd_blur(const cli_entry *self, int argc, char **argv)
         {0}};
     filter_spec spec = {"= cv2.GaussianBlur(img, (ksize, ksize-y), sigma, sigmaY=sigma-y)", options, &b,
                         blur_prepare, blur_scratch, blur_apply, false, NULL};
-    return filter_main(self, argc, argv, &spec);
+    return cli_filter_main(self, argc, argv, &spec);
 }
 
 static int median_prepare(const char *name, void *ctx)
@@ -182,7 +102,7 @@ int cmd_median(const cli_entry *self, int argc, char **argv)
     cli_option options[] = {{"ksize", CLI_INT, &ksize, 1, 5, NULL, "aperture: 1, 3 or 5", NULL}, {0}};
     filter_spec spec = {"= cv2.medianBlur(img, ksize)", options, &ksize,
                         median_prepare, median_scratch, median_apply, false, NULL};
-    return filter_main(self, argc, argv, &spec);
+    return cli_filter_main(self, argc, argv, &spec);
 }
 
 /* --- sobel, scharr, laplacian, log: int16 results --- */
@@ -249,7 +169,7 @@ static int derivative_main(const cli_entry *self, int argc, char **argv, derivat
                            cli_option *options, const char *details)
 {
     filter_spec spec = {details, options, o, derivative_prepare, derivative_scratch, derivative_apply, true, NULL};
-    return filter_main(self, argc, argv, &spec);
+    return cli_filter_main(self, argc, argv, &spec);
 }
 
 int cmd_sobel(const cli_entry *self, int argc, char **argv)
@@ -386,7 +306,7 @@ int cmd_canny(const cli_entry *self, int argc, char **argv)
                         "truncated to integers; --auto otsu: high = Otsu's threshold, low = high / 2.\n"
                         "Prints the thresholds used as JSON: {\"low\":L,\"high\":H}.",
                         options, &o, cli_canny_prepare, cli_canny_scratch, cli_canny_apply, false, canny_report};
-    return filter_main(self, argc, argv, &spec);
+    return cli_filter_main(self, argc, argv, &spec);
 }
 
 /* --- threshold --- */
@@ -435,7 +355,7 @@ int cmd_threshold(const cli_entry *self, int argc, char **argv)
     filter_spec spec = {"= cv2.threshold(img, value, maxval, type [+ cv2.THRESH_OTSU]);\n"
                         "prints the threshold used as JSON: {\"threshold\":T}.",
                         options, &o, threshold_prepare, NULL, threshold_apply, false, threshold_report};
-    return filter_main(self, argc, argv, &spec);
+    return cli_filter_main(self, argc, argv, &spec);
 }
 
 /* --- erode, dilate, open, close: the subcommand's name is the operation --- */
@@ -489,7 +409,7 @@ int cmd_morphology(const cli_entry *self, int argc, char **argv)
     filter_spec spec = {"= cv2.erode / cv2.dilate / cv2.morphologyEx(MORPH_OPEN / MORPH_CLOSE) with\n"
                         "cv2.getStructuringElement(shape, (ksize, ksize-y)) and iterations.",
                         options, &o, morphology_prepare, morphology_scratch, morphology_apply, false, NULL};
-    return filter_main(self, argc, argv, &spec);
+    return cli_filter_main(self, argc, argv, &spec);
 }
 
 /* --- mask --- */
@@ -563,5 +483,5 @@ int cmd_mask(const cli_entry *self, int argc, char **argv)
                         "Example (the lane tutorial's trapezoid on 960x540):\n"
                         "  rtedge mask road.jpg roi.png --polygon \"0,540;460,310;500,310;960,540\"",
                         options, &o, mask_prepare, mask_scratch, mask_apply, false, NULL};
-    return filter_main(self, argc, argv, &spec);
+    return cli_filter_main(self, argc, argv, &spec);
 }
