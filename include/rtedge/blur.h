@@ -49,8 +49,8 @@ typedef struct rte_gaussian_kernel {
  * bit-exact path for every other parameter (checked for sigmas up to 1000),
  * so all of them are inside the bit-exactness guarantee; see
  * src/algo/gaussian_kernel.c for how the taps are reproduced. */
-rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x,
-                                    int32_t ksize_y, double sigma_x, double sigma_y);
+rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x, int32_t ksize_y,
+                                    double sigma_x, double sigma_y);
 
 /* Arena bytes rte_gaussian_blur_u8() needs for images up to max_width wide
  * with this kernel, in place or not (one padded line of column sums, plus

@@ -38,8 +38,8 @@ extern "C" {
 #endif
 
 typedef struct rte_canny_params {
-    int32_t aperture;  /* Sobel size: 3, 5 or 7 (see above) */
-    bool l2_gradient;  /* magnitude dx*dx+dy*dy instead of |dx|+|dy| */
+    int32_t aperture; /* Sobel size: 3, 5 or 7 (see above) */
+    bool l2_gradient; /* magnitude dx*dx+dy*dy instead of |dx|+|dy| */
     /* Integer comparison values, set by rte_canny_params_init: a pixel is a
      * candidate when its magnitude > low and a seed when > high. */
     int32_t low, high;

@@ -73,8 +73,7 @@ size_t rte_contours_scratch_size(int32_t max_width, int32_t max_height, int32_t 
  * Returns RTE_OK also when truncated; RTE_ERR_NO_MEMORY when the arena is
  * too small (out->n_contours is 0 then). */
 rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
-                             rte_contour_method method, rte_contours *out,
-                             rte_arena *scratch);
+                             rte_contour_method method, rte_contours *out, rte_arena *scratch);
 
 #ifdef __cplusplus
 }

@@ -46,13 +46,13 @@ typedef enum rte_grasp_polarity {
 /* Safe to change at run time (rte_grasp_set_params). */
 typedef struct rte_grasp_params {
     rte_grasp_binarize binarize;
-    int32_t threshold;            /* RTE_GRASP_FIXED: 0..255 */
+    int32_t threshold; /* RTE_GRASP_FIXED: 0..255 */
     rte_grasp_polarity polarity;
     int32_t canny_low, canny_high; /* RTE_GRASP_CANNY_CLOSE: L1 magnitude thresholds, 0..2040 */
-    int32_t min_area;             /* pixels; smaller objects are dropped (>= 0) */
-    int32_t max_area;             /* pixels; larger ones are dropped; 0 = no limit */
-    int32_t skip_border;          /* 1: drop objects touching the image border */
-    int32_t max_objects;          /* 1..config.max_objects: objects reported */
+    int32_t min_area;              /* pixels; smaller objects are dropped (>= 0) */
+    int32_t max_area;              /* pixels; larger ones are dropped; 0 = no limit */
+    int32_t skip_border;           /* 1: drop objects touching the image border */
+    int32_t max_objects;           /* 1..config.max_objects: objects reported */
 } rte_grasp_params;
 
 typedef struct rte_grasp_config {
@@ -79,9 +79,9 @@ typedef struct rte_grasp_object {
     int32_t x_q8, y_q8;
     int32_t angle_q16;
     int32_t width_q8;
-    int32_t contour;          /* index into rte_grasp_result.contours */
+    int32_t contour; /* index into rte_grasp_result.contours */
     int32_t touches_border;
-    rte_shape_info info;      /* area, box, class, solidity, ... */
+    rte_shape_info info; /* area, box, class, solidity, ... */
 } rte_grasp_object;
 
 /* Nanoseconds spent per stage of the last frame (CLOCK_MONOTONIC). */
@@ -94,11 +94,11 @@ typedef struct rte_grasp_timing {
 typedef struct rte_grasp_result {
     const rte_grasp_object *objects; /* sorted by area, largest first */
     int32_t n_objects;
-    bool truncated;            /* objects, contours or points were dropped for room */
-    int32_t dropped_objects;   /* objects that passed the filters but exceeded max_objects */
-    int32_t dropped_contours;  /* contours beyond max_contours / max_points */
-    int32_t threshold;         /* the threshold used (-1 in canny-close mode) */
-    rte_grasp_polarity polarity; /* DARK or BRIGHT as applied (AUTO resolved; BRIGHT for
+    bool truncated;               /* objects, contours or points were dropped for room */
+    int32_t dropped_objects;      /* objects that passed the filters but exceeded max_objects */
+    int32_t dropped_contours;     /* contours beyond max_contours / max_points */
+    int32_t threshold;            /* the threshold used (-1 in canny-close mode) */
+    rte_grasp_polarity polarity;  /* DARK or BRIGHT as applied (AUTO resolved; BRIGHT for
                                   * canny-close, where the closed edges are the objects) */
     const rte_contours *contours; /* the external contours of the frame */
     const rte_image_u8 *binary;   /* the binary image the contours came from */
@@ -116,7 +116,8 @@ size_t rte_grasp_memory_size(const rte_grasp_config *config);
  * context; rte_grasp_destroy() is not needed (and does nothing) for it.
  * RTE_ERR_ARGUMENT for a field out of range, RTE_ERR_NO_MEMORY when
  * `bytes` is too small. */
-rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t bytes, rte_grasp_ctx **ctx);
+rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t bytes,
+                          rte_grasp_ctx **ctx);
 
 /* The same in one block from malloc (the only allocation of the grasp
  * path, at start-up); rte_grasp_destroy() frees it. */

@@ -85,9 +85,8 @@ size_t rte_hough_lines_scratch_size(const rte_hough_config *cfg, int32_t max_lin
  * how many, *truncated is set when more lines qualified (cleared otherwise).
  * The edge map may be smaller than the configured maximum. */
 rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edges,
-                           int32_t threshold, rte_arena *arena,
-                           rte_hough_line *lines, int32_t max_lines,
-                           int32_t *count, bool *truncated);
+                           int32_t threshold, rte_arena *arena, rte_hough_line *lines,
+                           int32_t max_lines, int32_t *count, bool *truncated);
 
 /* ---- segments ---- */
 
@@ -96,10 +95,10 @@ typedef struct rte_hough_segment {
 } rte_hough_segment;
 
 typedef struct rte_hough_segments_params {
-    int32_t threshold;   /* accumulator votes a line needs (cv::HoughLinesP threshold) */
-    int32_t min_length;  /* shortest segment kept, Euclidean length in pixels */
-    int32_t max_gap;     /* longest run of missing pixels bridged along a segment */
-    uint32_t seed;       /* point-order seed; 0: RTE_HOUGH_SEGMENTS_SEED */
+    int32_t threshold;  /* accumulator votes a line needs (cv::HoughLinesP threshold) */
+    int32_t min_length; /* shortest segment kept, Euclidean length in pixels */
+    int32_t max_gap;    /* longest run of missing pixels bridged along a segment */
+    uint32_t seed;      /* point-order seed; 0: RTE_HOUGH_SEGMENTS_SEED */
 } rte_hough_segments_params;
 
 /* The default seed of the point-order shuffle (xorshift32). The order, and
@@ -126,8 +125,8 @@ size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg);
  * was full. */
 rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
                               const rte_hough_segments_params *params, rte_arena *arena,
-                              rte_hough_segment *segments, int32_t max_segments,
-                              int32_t *count, bool *truncated);
+                              rte_hough_segment *segments, int32_t max_segments, int32_t *count,
+                              bool *truncated);
 
 /* ---- circles ---- */
 
@@ -138,11 +137,11 @@ typedef struct rte_hough_circle {
 } rte_hough_circle;
 
 typedef struct rte_hough_circles_params {
-    int32_t dp_q8;       /* inverse accumulator resolution dp, times 256 (>= 256) */
-    int32_t min_dist;    /* smallest distance between centres, pixels (>= 1) */
+    int32_t dp_q8;         /* inverse accumulator resolution dp, times 256 (>= 256) */
+    int32_t min_dist;      /* smallest distance between centres, pixels (>= 1) */
     int32_t acc_threshold; /* param2: votes a centre needs (>= 1) */
-    int32_t min_radius;  /* pixels; < 0 is taken as 0 */
-    int32_t max_radius;  /* pixels; <= 0: max(width, height); <= min_radius: min_radius + 2 */
+    int32_t min_radius;    /* pixels; < 0 is taken as 0 */
+    int32_t max_radius;    /* pixels; <= 0: max(width, height); <= min_radius: min_radius + 2 */
 } rte_hough_circles_params;
 
 size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,

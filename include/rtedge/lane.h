@@ -63,42 +63,42 @@ typedef struct rte_lane_params {
     rte_vertex roi[RTE_LANE_MAX_ROI_VERTICES];
     int32_t roi_count;
     /* Edges */
-    rte_lane_canny_mode canny_mode;    /* default: RTE_LANE_CANNY_MEDIAN */
-    int32_t canny_low, canny_high;     /* fixed thresholds on |dx|+|dy| (3x3 Sobel) */
-    int32_t auto_sigma_permille;       /* median rule's sigma */
+    rte_lane_canny_mode canny_mode; /* default: RTE_LANE_CANNY_MEDIAN */
+    int32_t canny_low, canny_high;  /* fixed thresholds on |dx|+|dy| (3x3 Sobel) */
+    int32_t auto_sigma_permille;    /* median rule's sigma */
     /* Colour cue, used when the frame has colour: marking-coloured pixels
      * become 255 and all others are scaled by dim_q8/256 before the blur,
      * so white and yellow paint keeps a strong edge while shadows and road
      * patches lose contrast. */
     bool use_color;
-    int32_t white_min;                 /* white: B, G and R all >= white_min */
-    int32_t yellow_rg_min;             /* yellow: R and G >= yellow_rg_min ... */
-    int32_t yellow_b_margin;           /* ... and B <= min(R, G) - yellow_b_margin */
-    int32_t dim_q8;                    /* 256 = leave non-marking pixels as they are */
+    int32_t white_min;       /* white: B, G and R all >= white_min */
+    int32_t yellow_rg_min;   /* yellow: R and G >= yellow_rg_min ... */
+    int32_t yellow_b_margin; /* ... and B <= min(R, G) - yellow_b_margin */
+    int32_t dim_q8;          /* 256 = leave non-marking pixels as they are */
     /* Segments (cv::HoughLinesP parameters) */
     int32_t hough_threshold, min_length, max_gap;
-    uint32_t hough_seed;               /* the search's point order; 0: RTE_HOUGH_SEGMENTS_SEED */
+    uint32_t hough_seed; /* the search's point order; 0: RTE_HOUGH_SEGMENTS_SEED */
     /* Slope filter per side: min_slope_q8 <= |dy/dx| * 256 <= max_slope_q8 */
     int32_t left_min_slope_q8, left_max_slope_q8;
     int32_t right_min_slope_q8, right_max_slope_q8;
     /* Fit */
     rte_lane_fit fit;
-    int32_t outlier_px;                /* least squares: residual beyond which a segment is dropped */
-    int32_t min_support_px;            /* a lane needs this much segment length to count as seen */
+    int32_t outlier_px;     /* least squares: residual beyond which a segment is dropped */
+    int32_t min_support_px; /* a lane needs this much segment length to count as seen */
     /* Tracking */
-    int32_t gate_px;                   /* segments farther than this from a tracked lane are ignored */
-    int32_t hold_frames;               /* a lost lane is predicted this many frames, then dropped */
-    int32_t alpha_q8;                  /* share of a measurement taken into the state (256 = all) */
-    int32_t beta_q8;                   /* share of the innovation taken into the velocity */
-    int32_t max_step_px;               /* innovations are clamped to +- this per frame (damping) */
+    int32_t gate_px;     /* segments farther than this from a tracked lane are ignored */
+    int32_t hold_frames; /* a lost lane is predicted this many frames, then dropped */
+    int32_t alpha_q8;    /* share of a measurement taken into the state (256 = all) */
+    int32_t beta_q8;     /* share of the innovation taken into the velocity */
+    int32_t max_step_px; /* innovations are clamped to +- this per frame (damping) */
 } rte_lane_params;
 
 /* Fixed at creation. */
 typedef struct rte_lane_config {
-    int32_t max_width, max_height;  /* largest frame to be processed */
-    int32_t max_segments;           /* Hough segments kept per frame (extra ones: truncated) */
-    int32_t blur_ksize;             /* Gaussian kernel size (odd, sigma from the size) */
-    rte_lane_params params;         /* initial runtime parameters */
+    int32_t max_width, max_height; /* largest frame to be processed */
+    int32_t max_segments;          /* Hough segments kept per frame (extra ones: truncated) */
+    int32_t blur_ksize;            /* Gaussian kernel size (odd, sigma from the size) */
+    rte_lane_params params;        /* initial runtime parameters */
 } rte_lane_config;
 
 /* Defaults for frames of about width x height (lengths scale with the
@@ -134,13 +134,13 @@ typedef enum rte_lane_segment_use {
 } rte_lane_segment_use;
 
 typedef struct rte_lane_segment {
-    int32_t x0, y0, x1, y1;          /* frame pixels */
+    int32_t x0, y0, x1, y1; /* frame pixels */
     rte_lane_segment_use use;
 } rte_lane_segment;
 
 typedef struct rte_lane {
-    bool found;       /* a lane is reported (measured now or predicted) */
-    bool predicted;   /* not seen in this frame: held from the tracker's prediction */
+    bool found;          /* a lane is reported (measured now or predicted) */
+    bool predicted;      /* not seen in this frame: held from the tracker's prediction */
     int32_t lost_frames; /* frames since it was last seen */
     /* The lane from (x_bottom, y_bottom) on the bottom row to (x_top, y_top)
      * on the ROI's top row; x in 1/256 pixel. */
@@ -152,18 +152,18 @@ typedef struct rte_lane {
 
 typedef enum rte_lane_stage {
     RTE_LANE_STAGE_GRAY = 0, /* grey conversion and colour cue */
-    RTE_LANE_STAGE_BLUR,     /* 0 with fixed thresholds: blur and Canny run fused (rte_canny_blurred_u8) */
-    RTE_LANE_STAGE_CANNY,    /* thresholds, edges, ROI mask */
+    RTE_LANE_STAGE_BLUR, /* 0 with fixed thresholds: blur and Canny run fused (rte_canny_blurred_u8) */
+    RTE_LANE_STAGE_CANNY, /* thresholds, edges, ROI mask */
     RTE_LANE_STAGE_HOUGH,
-    RTE_LANE_STAGE_FIT,      /* slope filter, gate, fits, tracking */
+    RTE_LANE_STAGE_FIT, /* slope filter, gate, fits, tracking */
     RTE_LANE_STAGES,
 } rte_lane_stage;
 
 const char *rte_lane_stage_name(rte_lane_stage stage);
 
 typedef struct rte_lane_result {
-    rte_lane lane[2];        /* RTE_LANE_LEFT, RTE_LANE_RIGHT */
-    bool centre_valid;       /* both lanes found */
+    rte_lane lane[2];  /* RTE_LANE_LEFT, RTE_LANE_RIGHT */
+    bool centre_valid; /* both lanes found */
     /* Lane centre on the bottom row minus the image centre (positive: the
      * lane centre is to the right, i.e. the camera sits left of it). */
     int32_t offset_q8;

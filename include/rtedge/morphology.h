@@ -56,11 +56,11 @@ typedef struct rte_morph_run {
 /* A structuring element as runs of set cells, plus the mask it came from.
  * Fill it with rte_morphology_element_init() or _from_mask(). */
 typedef struct rte_morph_element {
-    int32_t width, height;       /* 1..RTE_MORPH_MAX_KSIZE */
-    int32_t anchor_x, anchor_y;  /* 0 <= anchor < size */
-    int32_t full;                /* every cell set: the separable rectangle path */
-    int32_t run_count;           /* >= 1 */
-    int32_t max_run;             /* longest run */
+    int32_t width, height;      /* 1..RTE_MORPH_MAX_KSIZE */
+    int32_t anchor_x, anchor_y; /* 0 <= anchor < size */
+    int32_t full;               /* every cell set: the separable rectangle path */
+    int32_t run_count;          /* >= 1 */
+    int32_t max_run;            /* longest run */
     rte_morph_run runs[RTE_MORPH_MAX_KSIZE * ((RTE_MORPH_MAX_KSIZE + 1) / 2)];
     uint8_t mask[RTE_MORPH_MAX_KSIZE * RTE_MORPH_MAX_KSIZE]; /* row-major, width per row, 0/1 */
 } rte_morph_element;
@@ -77,8 +77,8 @@ rte_status rte_morphology_element_init(rte_morph_element *element, rte_morph_sha
  * RTE_ERR_ARGUMENT for a mask with no set cell (OpenCV has no meaningful
  * result for it). */
 rte_status rte_morphology_element_from_mask(rte_morph_element *element, const uint8_t *mask,
-                                            int32_t width, int32_t height,
-                                            int32_t anchor_x, int32_t anchor_y);
+                                            int32_t width, int32_t height, int32_t anchor_x,
+                                            int32_t anchor_y);
 
 /* Arena bytes that any rte_morphology_* call needs for images up to
  * max_width x max_height with this element and iteration count. */

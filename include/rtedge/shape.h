@@ -49,9 +49,9 @@ rte_rect rte_shape_bounding_rect(const rte_point *pts, int32_t n);
  * normalised moments nu and the seven Hu invariants to Q32 (absolute error
  * below 1e-7 for shapes of 20 px and more). */
 typedef struct rte_moments {
-    int64_t s00;           /* m00 = s00 / 2 */
-    int64_t s10, s01;      /* m10 = s10 / 6 */
-    int64_t s20, s11, s02; /* m20 = s20 / 12, m11 = s11 / 24 */
+    int64_t s00;                /* m00 = s00 / 2 */
+    int64_t s10, s01;           /* m10 = s10 / 6 */
+    int64_t s20, s11, s02;      /* m20 = s20 / 12, m11 = s11 / 24 */
     int64_t s30, s21, s12, s03; /* m30 = s30 / 20, m21 = s21 / 60 */
     int64_t cx_q16, cy_q16;     /* centroid m10/m00, m01/m00 */
     int64_t mu20_q8, mu11_q8, mu02_q8, mu30_q8, mu21_q8, mu12_q8, mu03_q8;
@@ -71,8 +71,8 @@ size_t rte_shape_hull_scratch_size(int32_t max_points);
  * same order (clockwise on screen), as indices into pts (`indices`, may be
  * NULL) and/or as points (`hull`, may be NULL); both need room for n
  * entries. *n_hull gets the vertex count (0 when n == 0). */
-rte_status rte_shape_convex_hull(const rte_point *pts, int32_t n, int32_t *indices,
-                                 rte_point *hull, int32_t *n_hull, rte_arena *scratch);
+rte_status rte_shape_convex_hull(const rte_point *pts, int32_t n, int32_t *indices, rte_point *hull,
+                                 int32_t *n_hull, rte_arena *scratch);
 
 /* cv::convexityDefects: one entry per hull edge that has contour points
  * strictly off it: the edge's start and end indices, the farthest point's
@@ -155,14 +155,14 @@ typedef struct rte_shape_info {
     int64_t area2;           /* |twice the area| */
     int64_t perimeter_q16;
     rte_rect bounds;
-    int32_t aspect_q16;      /* long / short side of the rotated rectangle (>= 1) */
-    int32_t extent_q16;      /* area / bounding-box area */
-    int32_t solidity_q16;    /* area / hull area */
-    int32_t circularity_q16; /* 4 pi area / perimeter^2 (1.0 for a disc) */
+    int32_t aspect_q16;           /* long / short side of the rotated rectangle (>= 1) */
+    int32_t extent_q16;           /* area / bounding-box area */
+    int32_t solidity_q16;         /* area / hull area */
+    int32_t circularity_q16;      /* 4 pi area / perimeter^2 (1.0 for a disc) */
     int32_t hull_circularity_q16; /* the same with the hull's perimeter */
     rte_rotated_rect box;
     rte_circle circle;
-    int64_t cx_q16, cy_q16;  /* centroid */
+    int64_t cx_q16, cy_q16; /* centroid */
 } rte_shape_info;
 
 /* Classification: the OpenCV tutorial's vertex rule, made robust to edge
@@ -188,8 +188,8 @@ typedef struct rte_shape_info {
  * Measured on synthetic shapes with noisy edges (6% of edge pixels
  * flipped): 1 of 12000 shapes of 20-150 px misclassified, and 11 of
  * 12000 (0.09%) of 20-26 px, nearly all pentagon/hexagon confusions. */
-#define RTE_SHAPE_SQUARE_ASPECT_Q16 75366   /* 1.15 */
-#define RTE_SHAPE_CIRCLE_MIN_Q16 59245      /* 0.904 */
+#define RTE_SHAPE_SQUARE_ASPECT_Q16 75366 /* 1.15 */
+#define RTE_SHAPE_CIRCLE_MIN_Q16 59245    /* 0.904 */
 
 size_t rte_shape_classify_scratch_size(int32_t max_points);
 rte_status rte_shape_classify(const rte_point *pts, int32_t n, rte_shape_info *info,

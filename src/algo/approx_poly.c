@@ -31,16 +31,10 @@ typedef struct eps_cmp {
     rte_u128 e2; /* double(eps * eps) * 2^32, an integer */
 } eps_cmp;
 
-static uint64_t abs64(int64_t v)
-{
-    return (uint64_t)(v < 0 ? -v : v);
-}
+static uint64_t abs64(int64_t v) { return (uint64_t)(v < 0 ? -v : v); }
 
 /* d2 <= eps * eps (d2 an exact integer). */
-static bool within_eps2(const eps_cmp *e, uint64_t d2)
-{
-    return ((rte_u128)d2 << 32) <= e->e2;
-}
+static bool within_eps2(const eps_cmp *e, uint64_t d2) { return ((rte_u128)d2 << 32) <= e->e2; }
 
 /* double(c * c) <= double(scale * eps^2 * len2), scale = 1 or 1/2. */
 static bool within_eps_seg(const eps_cmp *e, uint64_t c, uint64_t len2, int half)
@@ -111,7 +105,8 @@ static void split_slices(const rte_point *pts, int32_t count, const eps_cmp *e, 
             uint64_t max_c = 0;
             int32_t split = s_start;
             while (p != s_end) {
-                uint64_t c = abs64(((int64_t)pts[p].y - start.y) * dx - ((int64_t)pts[p].x - start.x) * dy);
+                uint64_t c =
+                    abs64(((int64_t)pts[p].y - start.y) * dx - ((int64_t)pts[p].x - start.x) * dy);
                 if (c > max_c) {
                     max_c = c;
                     split = p;
@@ -147,8 +142,10 @@ static int32_t drop_straight_points(const eps_cmp *e, rte_point *out, int32_t cn
         rpos = rpos + 1 >= cnt ? 0 : rpos + 1;
         const int64_t dx = (int64_t)en.x - s.x, dy = (int64_t)en.y - s.y;
         const uint64_t c = abs64(((int64_t)pt.x - s.x) * dy - ((int64_t)pt.y - s.y) * dx);
-        const int64_t inner = ((int64_t)pt.x - s.x) * (en.x - pt.x) + ((int64_t)pt.y - s.y) * (en.y - pt.y);
-        if (dx != 0 && dy != 0 && inner >= 0 && within_eps_seg(e, c, (uint64_t)(dx * dx + dy * dy), 1)) {
+        const int64_t inner =
+            ((int64_t)pt.x - s.x) * (en.x - pt.x) + ((int64_t)pt.y - s.y) * (en.y - pt.y);
+        if (dx != 0 && dy != 0 && inner >= 0 &&
+            within_eps_seg(e, c, (uint64_t)(dx * dx + dy * dy), 1)) {
             new_count--;
             out[wpos] = s = en;
             wpos = wpos + 1 >= cnt ? 0 : wpos + 1;

@@ -107,9 +107,15 @@ static inline rte_f64 rte_f64_add(rte_f64 a, rte_f64 b)
     sb <<= 10;
     /* Make |a| >= |b|. */
     if (eb > ea || (eb == ea && sb > sa)) {
-        uint64_t t = sa; sa = sb; sb = t;
-        int32_t te = ea; ea = eb; eb = te;
-        t = sign_a; sign_a = sign_b; sign_b = t;
+        uint64_t t = sa;
+        sa = sb;
+        sb = t;
+        int32_t te = ea;
+        ea = eb;
+        eb = te;
+        t = sign_a;
+        sign_a = sign_b;
+        sign_b = t;
     }
     sb = f64_shift_right_jam(sb, ea - eb);
     if (sign_a == sign_b) {

@@ -67,9 +67,9 @@ RTE_CANNY_ROWS_DEFINE(c)
 
 rte_canny_rows rte_canny_rows_select(uint32_t features)
 {
-    return RTE_SIMD_PICK(features, ((rte_canny_rows){ rte_canny_sobel_row_c, rte_canny_nms_row_c }),
-                         ((rte_canny_rows){ rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2 }),
-                         ((rte_canny_rows){ rte_canny_sobel_row_neon, rte_canny_nms_row_neon }));
+    return RTE_SIMD_PICK(features, ((rte_canny_rows){rte_canny_sobel_row_c, rte_canny_nms_row_c}),
+                         ((rte_canny_rows){rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2}),
+                         ((rte_canny_rows){rte_canny_sobel_row_neon, rte_canny_nms_row_neon}));
 }
 
 /* A threshold for the 16-bit kernels: magnitudes are 0..2040 there, so
@@ -100,8 +100,8 @@ static void magnitude_row(const int16_t *restrict dx, const int16_t *restrict dy
  * along the row or column (>=), strictly on diagonals, as OpenCV. */
 static void suppress_row(const int32_t *restrict up, const int32_t *restrict cur,
                          const int32_t *restrict down, const int16_t *restrict dx,
-                         const int16_t *restrict dy, uint8_t *restrict map, int32_t w,
-                         int32_t low, int32_t high)
+                         const int16_t *restrict dy, uint8_t *restrict map, int32_t w, int32_t low,
+                         int32_t high)
 {
     for (int32_t x = 0; x < w; x++) {
         const int32_t m = cur[x];
@@ -125,9 +125,9 @@ static void suppress_row(const int32_t *restrict up, const int32_t *restrict cur
         /* Horizontal is tested first: with a wrapped tg67 both tests can hold. */
         const int32_t horizontal = ay < tg22;
         const int32_t vertical = !horizontal & (ay > tg67);
-        const int32_t keep = ((horizontal & keep_h) | (vertical & keep_v) |
-                              (!horizontal & !vertical & keep_d)) &
-                             (m > low);
+        const int32_t keep =
+            ((horizontal & keep_h) | (vertical & keep_v) | (!horizontal & !vertical & keep_d)) &
+            (m > low);
         map[x] = (uint8_t)(keep ? ((m > high) << 1) : 1);
     }
 }
@@ -190,7 +190,7 @@ static void input_rows(canny_input *in, int32_t i, int32_t ap, const uint8_t **r
  * stops the flood at the image border. */
 static void grow_edges(uint8_t *map, ptrdiff_t ms, int32_t *stack, int32_t top)
 {
-    const ptrdiff_t nb[8] = { -ms - 1, -ms, -ms + 1, -1, 1, ms - 1, ms, ms + 1 };
+    const ptrdiff_t nb[8] = {-ms - 1, -ms, -ms + 1, -1, 1, ms - 1, ms, ms + 1};
     while (top > 0) {
         const int32_t p = stack[--top];
         for (int k = 0; k < 8; k++) {
@@ -225,7 +225,7 @@ typedef struct canny_buffers {
 static bool alloc_buffers(canny_buffers *b, rte_arena *scratch, int32_t w, int32_t h,
                           bool from_image)
 {
-    *b = (canny_buffers){ 0 };
+    *b = (canny_buffers){0};
     b->map = rte_arena_alloc(scratch, map_bytes(w, h));
     b->stack = rte_arena_alloc(scratch, stack_bytes(w, h));
     bool ok = b->map && b->stack;
@@ -280,7 +280,7 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
     const rte_canny_rows kernels = rte_canny_rows_select(in->features);
     const rte_grad_rows grad = rte_grad_rows_select(in->features);
     const int16_t low16 = threshold16(params->low), high16 = threshold16(params->high);
-    int16_t *ring16[3] = { (int16_t *)ring[0], (int16_t *)ring[1], (int16_t *)ring[2] };
+    int16_t *ring16[3] = {(int16_t *)ring[0], (int16_t *)ring[1], (int16_t *)ring[2]};
 
     memset(map, 1, (size_t)ms);
     memset(map + (ptrdiff_t)(h + 1) * ms, 1, (size_t)ms);
@@ -355,7 +355,7 @@ rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_ca
     rte_status st = rte_image_u8_check_pair(src, dst);
     if (st != RTE_OK)
         return st;
-    canny_input in = { .src = src, .features = rte_cpu_features() };
+    canny_input in = {.src = src, .features = rte_cpu_features()};
     return canny_run(&in, dst, params, scratch);
 }
 
@@ -369,8 +369,8 @@ rte_status rte_canny_blurred_u8(const rte_image_u8 *src, rte_image_u8 *dst,
     if (st != RTE_OK)
         return st;
     const int32_t ap = params->aperture;
-    canny_input in = { .src = src, .features = rte_cpu_features(),
-                       .ring_stride = blur_ring_stride(src->width) };
+    canny_input in = {
+        .src = src, .features = rte_cpu_features(), .ring_stride = blur_ring_stride(src->width)};
     const size_t mark = rte_arena_mark(scratch);
     rte_gaussian_line line;
     const bool ok = rte_gaussian_line_init(&line, kernel, src->width, in.features, scratch);
@@ -398,6 +398,6 @@ rte_status rte_canny_from_gradient_u8(const rte_image_s16 *dx, const rte_image_s
     if (dx->width != dst->width || dx->height != dst->height || dy->width != dst->width ||
         dy->height != dst->height)
         return RTE_ERR_SIZE;
-    canny_input in = { .gx = dx, .gy = dy, .features = rte_cpu_features() };
+    canny_input in = {.gx = dx, .gy = dy, .features = rte_cpu_features()};
     return canny_run(&in, dst, params, scratch);
 }

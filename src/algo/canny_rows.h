@@ -38,10 +38,10 @@ static inline void canny_sobel_row(const uint8_t *restrict a, const uint8_t *res
     }
     canny_sobel_px(a, b, c, 0, 0, 1, ox, oy, om);
     for (int32_t x = 1; x < width - 1; x++) {
-        const int16_t gx = (int16_t)((a[x + 1] + 2 * b[x + 1] + c[x + 1]) -
-                                     (a[x - 1] + 2 * b[x - 1] + c[x - 1]));
-        const int16_t gy = (int16_t)((c[x - 1] + 2 * c[x] + c[x + 1]) -
-                                     (a[x - 1] + 2 * a[x] + a[x + 1]));
+        const int16_t gx =
+            (int16_t)((a[x + 1] + 2 * b[x + 1] + c[x + 1]) - (a[x - 1] + 2 * b[x - 1] + c[x - 1]));
+        const int16_t gy =
+            (int16_t)((c[x - 1] + 2 * c[x] + c[x + 1]) - (a[x - 1] + 2 * a[x] + a[x + 1]));
         ox[x] = gx;
         oy[x] = gy;
         om[x] = (int16_t)((gx < 0 ? -gx : gx) + (gy < 0 ? -gy : gy));
@@ -94,17 +94,17 @@ static inline void canny_nms_row(const int16_t *restrict u, const int16_t *restr
 
 /* Defines rte_canny_sobel_row_<isa> and rte_canny_nms_row_<isa> (declared
  * in simd/rows.h) as the loops above, built for the including file's target. */
-#define RTE_CANNY_ROWS_DEFINE(isa)                                                               \
-    void rte_canny_sobel_row_##isa(const uint8_t *up, const uint8_t *mid, const uint8_t *down,   \
-                                   int16_t *dx, int16_t *dy, int16_t *mag, int32_t width)        \
-    {                                                                                            \
-        canny_sobel_row(up, mid, down, dx, dy, mag, width);                                      \
-    }                                                                                            \
-    void rte_canny_nms_row_##isa(const int16_t *up, const int16_t *cur, const int16_t *down,     \
-                                 const int16_t *dx, const int16_t *dy, uint8_t *map,             \
-                                 int32_t width, int16_t low, int16_t high)                       \
-    {                                                                                            \
-        canny_nms_row(up, cur, down, dx, dy, map, width, low, high);                             \
+#define RTE_CANNY_ROWS_DEFINE(isa)                                                             \
+    void rte_canny_sobel_row_##isa(const uint8_t *up, const uint8_t *mid, const uint8_t *down, \
+                                   int16_t *dx, int16_t *dy, int16_t *mag, int32_t width)      \
+    {                                                                                          \
+        canny_sobel_row(up, mid, down, dx, dy, mag, width);                                    \
+    }                                                                                          \
+    void rte_canny_nms_row_##isa(const int16_t *up, const int16_t *cur, const int16_t *down,   \
+                                 const int16_t *dx, const int16_t *dy, uint8_t *map,           \
+                                 int32_t width, int16_t low, int16_t high)                     \
+    {                                                                                          \
+        canny_nms_row(up, cur, down, dx, dy, map, width, low, high);                           \
     }
 
 #endif

@@ -6,20 +6,16 @@
 #include "rtedge/cpu.h"
 #include "simd/rows.h"
 
-
 /* Bytes of one row of plane 0 for a format, 0 when the format is unknown. */
 static int32_t plane0_row_bytes(rte_pixel_format format, int32_t width)
 {
     switch (format) {
     case RTE_PIXEL_GREY:
-    case RTE_PIXEL_NV12:
-        return width;
+    case RTE_PIXEL_NV12: return width;
     case RTE_PIXEL_YUYV:
-    case RTE_PIXEL_UYVY:
-        return 2 * width;
+    case RTE_PIXEL_UYVY: return 2 * width;
     case RTE_PIXEL_BGR24:
-    case RTE_PIXEL_RGB24:
-        return 3 * width;
+    case RTE_PIXEL_RGB24: return 3 * width;
     }
     return 0;
 }
@@ -73,7 +69,7 @@ rte_status rte_frame_packed(rte_frame *frame, rte_pixel_format format, int32_t w
         return RTE_ERR_ARGUMENT;
     if (size < need)
         return RTE_ERR_SIZE;
-    rte_frame f = { format, width, height, { (uint8_t *)buf, NULL }, { 0, 0 } };
+    rte_frame f = {format, width, height, {(uint8_t *)buf, NULL}, {0, 0}};
     f.stride[0] = plane0_row_bytes(format, width);
     if (format == RTE_PIXEL_NV12) {
         f.plane[1] = f.plane[0] + (size_t)f.stride[0] * (size_t)height;
@@ -87,9 +83,9 @@ static const struct {
     const char *name;
     rte_pixel_format format;
 } format_names[] = {
-    { "grey", RTE_PIXEL_GREY }, { "bgr24", RTE_PIXEL_BGR24 }, { "rgb24", RTE_PIXEL_RGB24 },
-    { "yuyv", RTE_PIXEL_YUYV }, { "uyvy", RTE_PIXEL_UYVY },   { "nv12", RTE_PIXEL_NV12 },
-    { "gray", RTE_PIXEL_GREY }, { "yuy2", RTE_PIXEL_YUYV },
+    {"grey", RTE_PIXEL_GREY}, {"bgr24", RTE_PIXEL_BGR24}, {"rgb24", RTE_PIXEL_RGB24},
+    {"yuyv", RTE_PIXEL_YUYV}, {"uyvy", RTE_PIXEL_UYVY},   {"nv12", RTE_PIXEL_NV12},
+    {"gray", RTE_PIXEL_GREY}, {"yuy2", RTE_PIXEL_YUYV},
 };
 #define FORMAT_NAME_COUNT (sizeof format_names / sizeof format_names[0])
 
@@ -121,8 +117,8 @@ rte_pixel_format rte_pixel_format_parse(const char *name)
  * third byte. Inlined with constants so each order gets its own loop. This
  * is the reference for the SIMD rows in simd/color_*.c and what runs when
  * the CPU has none of them or RTE_FORCE_C is set. */
-static inline void c3_row_to_gray(const uint8_t *restrict src, uint8_t *restrict dst,
-                                  int32_t width, uint32_t c0, uint32_t c2)
+static inline void c3_row_to_gray(const uint8_t *restrict src, uint8_t *restrict dst, int32_t width,
+                                  uint32_t c0, uint32_t c2)
 {
     for (int32_t x = 0; x < width; x++) {
         uint32_t v = src[3 * x] * c0 + src[3 * x + 1] * (uint32_t)RTE_GRAY_G + src[3 * x + 2] * c2;
@@ -257,7 +253,7 @@ rte_status rte_frame_gray_view(const rte_frame *src, rte_image_u8 *view)
         return RTE_ERR_ARGUMENT;
     if (src->format != RTE_PIXEL_GREY && src->format != RTE_PIXEL_NV12)
         return RTE_ERR_UNSUPPORTED;
-    rte_image_u8 v = { src->width, src->height, src->stride[0], src->plane[0] };
+    rte_image_u8 v = {src->width, src->height, src->stride[0], src->plane[0]};
     *view = v;
     return RTE_OK;
 }
@@ -275,21 +271,11 @@ rte_status rte_frame_to_gray(const rte_frame *src, rte_image_u8 *dst)
     int32_t stride = src->stride[0];
     switch (src->format) {
     case RTE_PIXEL_GREY:
-    case RTE_PIXEL_NV12:
-        copy_rows(p, stride, dst);
-        break;
-    case RTE_PIXEL_BGR24:
-        bgr_rows_to_gray(p, stride, dst);
-        break;
-    case RTE_PIXEL_RGB24:
-        rgb_rows_to_gray(p, stride, dst);
-        break;
-    case RTE_PIXEL_YUYV:
-        packed422_rows_to_gray(p, stride, 0, dst);
-        break;
-    case RTE_PIXEL_UYVY:
-        packed422_rows_to_gray(p, stride, 1, dst);
-        break;
+    case RTE_PIXEL_NV12: copy_rows(p, stride, dst); break;
+    case RTE_PIXEL_BGR24: bgr_rows_to_gray(p, stride, dst); break;
+    case RTE_PIXEL_RGB24: rgb_rows_to_gray(p, stride, dst); break;
+    case RTE_PIXEL_YUYV: packed422_rows_to_gray(p, stride, 0, dst); break;
+    case RTE_PIXEL_UYVY: packed422_rows_to_gray(p, stride, 1, dst); break;
     }
     return RTE_OK;
 }

@@ -13,20 +13,20 @@
 
 /* Working record of one stored contour, in discovery order. */
 typedef struct node {
-    int32_t ox, oy;             /* start pixel in label-map coordinates */
-    int32_t rx, ry, rw, rh;     /* bounding box in label-map coordinates */
+    int32_t ox, oy;         /* start pixel in label-map coordinates */
+    int32_t rx, ry, rw, rh; /* bounding box in label-map coordinates */
     bool is_hole;
-    int32_t parent;             /* discovery index; -1 = the image frame */
-    int32_t label_next;         /* next stored contour with the same label */
+    int32_t parent;     /* discovery index; -1 = the image frame */
+    int32_t label_next; /* next stored contour with the same label */
     int32_t first_child, next_sibling;
     int32_t offset, count;
-    int32_t out;                /* index in the output order */
+    int32_t out; /* index in the output order */
 } node;
 
 enum { NO_NODE = -1, UNSET = -2 };
 
-static const int8_t chain_dx[8] = { 1, 1, 0, -1, -1, -1, 0, 1 };
-static const int8_t chain_dy[8] = { 0, -1, -1, -1, 0, 1, 1, 1 };
+static const int8_t chain_dx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+static const int8_t chain_dy[8] = {0, -1, -1, -1, 0, 1, 1, 1};
 
 typedef struct tracer {
     int32_t delta[16]; /* chain code -> offset in the label map, twice over */
@@ -62,7 +62,7 @@ static int32_t follow(const tracer *t, int8_t *i0, int32_t x, int32_t y, bool is
     if (s == s_end) { /* isolated pixel */
         *i0 = right_mark;
         if (t->room > 0)
-            t->points[0] = (rte_point){ x - 1, y - 1 };
+            t->points[0] = (rte_point){x - 1, y - 1};
         return 1;
     }
 
@@ -86,7 +86,7 @@ static int32_t follow(const tracer *t, int8_t *i0, int32_t x, int32_t y, bool is
 
         if (s != prev_s || !t->simple) {
             if (n < t->room)
-                t->points[n] = (rte_point){ x - 1, y - 1 };
+                t->points[n] = (rte_point){x - 1, y - 1};
             n++;
             bb->x0 = x < bb->x0 ? x : bb->x0;
             bb->x1 = x > bb->x1 ? x : bb->x1;
@@ -168,10 +168,7 @@ static int32_t skip_run(const int8_t *row, int32_t x, int32_t end, int prev)
     return x;
 }
 
-static size_t label_map_bytes(int32_t w, int32_t h)
-{
-    return (size_t)(w + 2) * (size_t)(h + 2);
-}
+static size_t label_map_bytes(int32_t w, int32_t h) { return (size_t)(w + 2) * (size_t)(h + 2); }
 
 size_t rte_contours_scratch_size(int32_t max_width, int32_t max_height, int32_t max_contours)
 {
@@ -210,9 +207,8 @@ static int32_t find_parent(node *nodes, const int32_t *heads, const int32_t *d, 
     for (int32_t cur = heads[row[lx] & 0x7f]; cur != NO_NODE; cur = nodes[cur].label_next) {
         const node *c = &nodes[cur];
         if ((uint32_t)(lx - c->rx) < (uint32_t)c->rw && (uint32_t)(y - c->ry) < (uint32_t)c->rh) {
-            if (par != UNSET &&
-                passes_through(d, map + (size_t)nodes[par].oy * ms + nodes[par].ox, row + lx,
-                               nodes[par].is_hole))
+            if (par != UNSET && passes_through(d, map + (size_t)nodes[par].oy * ms + nodes[par].ox,
+                                               row + lx, nodes[par].is_hole))
                 break;
             par = cur;
         }
@@ -379,8 +375,11 @@ rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
     }
     fill_label_map(src, map, ms);
 
-    finder f = { .nodes = nodes, .top = NO_NODE, .label = 2, .out = out,
-                 .hierarchic = mode >= RTE_CONTOURS_CCOMP };
+    finder f = {.nodes = nodes,
+                .top = NO_NODE,
+                .label = 2,
+                .out = out,
+                .hierarchic = mode >= RTE_CONTOURS_CCOMP};
     for (int k = 0; k < 16; k++) {
         int c = k & 7;
         f.t.delta[k] = chain_dy[c] * ms + chain_dx[c];

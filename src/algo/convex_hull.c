@@ -10,8 +10,8 @@
 
 static int coord_ok(rte_point p)
 {
-    return p.x >= -RTE_SHAPE_MAX_COORD && p.x <= RTE_SHAPE_MAX_COORD && p.y >= -RTE_SHAPE_MAX_COORD &&
-           p.y <= RTE_SHAPE_MAX_COORD;
+    return p.x >= -RTE_SHAPE_MAX_COORD && p.x <= RTE_SHAPE_MAX_COORD &&
+           p.y >= -RTE_SHAPE_MAX_COORD && p.y <= RTE_SHAPE_MAX_COORD;
 }
 
 size_t rte_shape_hull_scratch_size(int32_t max_points)
@@ -19,7 +19,8 @@ size_t rte_shape_hull_scratch_size(int32_t max_points)
     if (max_points < 0)
         return 0;
     size_t n = (size_t)max_points + 2;
-    return 2 * rte_arena_piece_size(n * sizeof(uint64_t)) + 3 * rte_arena_piece_size(n * sizeof(int32_t));
+    return 2 * rte_arena_piece_size(n * sizeof(uint64_t)) +
+           3 * rte_arena_piece_size(n * sizeof(int32_t));
 }
 
 /* Sorts point indices by (x, y, index): LSD radix sort of 24-bit keys over
@@ -50,15 +51,9 @@ static void sort_points(const rte_point *pts, int32_t n, uint64_t *a, uint64_t *
         ord[i] = (int32_t)(uint32_t)a[i];
 }
 
-static int sign64(int64_t v)
-{
-    return (v > 0) - (v < 0);
-}
+static int sign64(int64_t v) { return (v > 0) - (v < 0); }
 
-static int same_point(rte_point a, rte_point b)
-{
-    return a.x == b.x && a.y == b.y;
-}
+static int same_point(rte_point a, rte_point b) { return a.x == b.x && a.y == b.y; }
 
 /* One chain of Sklansky's scan between sorted positions start and end;
  * writes sorted positions to stack and returns their count. nsign rejects
@@ -200,8 +195,8 @@ static int32_t hull_indices(const rte_point *pts, int32_t n, const int32_t *ord,
 #undef P
 }
 
-rte_status rte_shape_convex_hull(const rte_point *pts, int32_t n, int32_t *indices,
-                                 rte_point *hull, int32_t *n_hull, rte_arena *scratch)
+rte_status rte_shape_convex_hull(const rte_point *pts, int32_t n, int32_t *indices, rte_point *hull,
+                                 int32_t *n_hull, rte_arena *scratch)
 {
     if (!n_hull || n < 0 || (n > 0 && (!pts || !scratch)) || (!indices && !hull))
         return RTE_ERR_ARGUMENT;
@@ -308,7 +303,7 @@ rte_status rte_shape_convexity_defects(const rte_point *pts, int32_t n, const in
             }
         }
         if (far >= 0)
-            defects[nd++] = (rte_defect){ hcur, hnext, far, depth_q8(best, len2) };
+            defects[nd++] = (rte_defect){hcur, hnext, far, depth_q8(best, len2)};
         hcur = hnext;
     }
     *n_defects = nd;

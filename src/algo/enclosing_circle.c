@@ -11,15 +11,12 @@ typedef struct circ {
     int64_t d;
 } circ;
 
-static circ circ1(rte_point a)
-{
-    return (circ){ a.x, a.y, 0, 1 };
-}
+static circ circ1(rte_point a) { return (circ){a.x, a.y, 0, 1}; }
 
 static circ circ2(rte_point a, rte_point b)
 {
     int64_t dx = (int64_t)a.x - b.x, dy = (int64_t)a.y - b.y;
-    return (circ){ (rte_i128)a.x + b.x, (rte_i128)a.y + b.y, (rte_i128)(dx * dx + dy * dy), 2 };
+    return (circ){(rte_i128)a.x + b.x, (rte_i128)a.y + b.y, (rte_i128)(dx * dx + dy * dy), 2};
 }
 
 static int64_t dist2(rte_point a, rte_point b)
@@ -45,7 +42,7 @@ static circ circ3(rte_point a, rte_point b, rte_point c)
         ux = -ux;
         uy = -uy;
     }
-    return (circ){ (rte_i128)a.x * d + ux, (rte_i128)a.y * d + uy, ux * ux + uy * uy, d };
+    return (circ){(rte_i128)a.x * d + ux, (rte_i128)a.y * d + uy, ux * ux + uy * uy, d};
 }
 
 static int inside(const circ *c, rte_point p)
@@ -64,7 +61,7 @@ rte_status rte_shape_enclosing_circle(const rte_point *pts, int32_t n, rte_circl
 {
     if (!out || n < 1 || !pts || !scratch)
         return RTE_ERR_ARGUMENT;
-    *out = (rte_circle){ 0, 0, 0 };
+    *out = (rte_circle){0, 0, 0};
     const size_t mark = rte_arena_mark(scratch);
     rte_point *h = NULL;
     int32_t m = 0;

@@ -34,8 +34,8 @@ static size_t line_elems(int32_t width, size_t elem_size)
 
 bool rte_gaussian_kernel_is_valid(const rte_gaussian_kernel *k)
 {
-    const int32_t sizes[2] = { k->ksize_x, k->ksize_y };
-    const uint16_t *taps[2] = { k->taps_x, k->taps_y };
+    const int32_t sizes[2] = {k->ksize_x, k->ksize_y};
+    const uint16_t *taps[2] = {k->taps_x, k->taps_y};
     for (int a = 0; a < 2; a++) {
         int32_t n = sizes[a];
         if (n < 1 || n > RTE_GAUSSIAN_MAX_KSIZE || (n & 1) == 0)
@@ -91,11 +91,10 @@ void rte_gaussian_row_pass_c(const uint16_t *hi, const uint16_t *lo, uint8_t *ds
 
 rte_gaussian_rows rte_gaussian_rows_select(uint32_t features)
 {
-    return RTE_SIMD_PICK(features,
-                         ((rte_gaussian_rows){ rte_gaussian_column_pass_c, rte_gaussian_row_pass_c }),
-                         ((rte_gaussian_rows){ rte_gaussian_column_pass_avx2,
-                                               rte_gaussian_row_pass_avx2 }),
-                         ((rte_gaussian_rows){ rte_gaussian_column_pass_c, rte_gaussian_row_pass_c }));
+    return RTE_SIMD_PICK(
+        features, ((rte_gaussian_rows){rte_gaussian_column_pass_c, rte_gaussian_row_pass_c}),
+        ((rte_gaussian_rows){rte_gaussian_column_pass_avx2, rte_gaussian_row_pass_avx2}),
+        ((rte_gaussian_rows){rte_gaussian_column_pass_c, rte_gaussian_row_pass_c}));
 }
 
 /* Power-of-two factor shared by all n taps, as a shift, at most `limit`. */
@@ -128,14 +127,16 @@ bool rte_gaussian_line_init(rte_gaussian_line *line, const rte_gaussian_kernel *
     const int32_t shift_x = common_shift(kernel->taps_x, kx, 8 - shift_y);
     line->split = shift_x + shift_y < 8;
     for (int32_t i = 0; i < kx; i++)
-        line->taps_x[i] = line->split ? kernel->taps_x[i] : (uint16_t)(kernel->taps_x[i] >> shift_x);
+        line->taps_x[i] =
+            line->split ? kernel->taps_x[i] : (uint16_t)(kernel->taps_x[i] >> shift_x);
     for (int32_t j = 0; j < ky; j++)
-        line->taps_y[j] = line->split ? kernel->taps_y[j] : (uint16_t)(kernel->taps_y[j] >> shift_y);
+        line->taps_y[j] =
+            line->split ? kernel->taps_y[j] : (uint16_t)(kernel->taps_y[j] >> shift_y);
     return true;
 }
 
-void rte_gaussian_line_run(const rte_gaussian_line *line, const uint8_t *const *rows,
-                           uint8_t *out, int32_t width)
+void rte_gaussian_line_run(const rte_gaussian_line *line, const uint8_t *const *rows, uint8_t *out,
+                           int32_t width)
 {
     const int32_t rx = line->ksize_x / 2;
     line->pass.column(rows, line->hi + rx, line->lo + rx, width, line->taps_y, line->ksize_y,
@@ -146,8 +147,8 @@ void rte_gaussian_line_run(const rte_gaussian_line *line, const uint8_t *const *
     line->pass.row(line->hi, line->lo, out, width, line->taps_x, line->ksize_x, line->split);
 }
 
-void rte_gaussian_line_of_image(const rte_gaussian_line *line, const rte_image_u8 *src,
-                                int32_t y, uint8_t *out)
+void rte_gaussian_line_of_image(const rte_gaussian_line *line, const rte_image_u8 *src, int32_t y,
+                                uint8_t *out)
 {
     const uint8_t *rows[RTE_GAUSSIAN_MAX_KSIZE];
     const int32_t ry = line->ksize_y / 2;

@@ -22,10 +22,10 @@
 
 /* The fixed tables OpenCV uses for sigma <= 0 and sizes up to 9, already in
  * Q8 (they are exact multiples of 1/256, so error diffusion leaves them). */
-static const uint16_t fixed_3[3] = { 64, 128, 64 };
-static const uint16_t fixed_5[5] = { 16, 64, 96, 64, 16 };
-static const uint16_t fixed_7[7] = { 8, 28, 56, 72, 56, 28, 8 };
-static const uint16_t fixed_9[9] = { 4, 13, 30, 51, 60, 51, 30, 13, 4 };
+static const uint16_t fixed_3[3] = {64, 128, 64};
+static const uint16_t fixed_5[5] = {16, 64, 96, 64, 16};
+static const uint16_t fixed_7[7] = {8, 28, 56, 72, 56, 28, 8};
+static const uint16_t fixed_9[9] = {4, 13, 30, 51, 60, 51, 30, 13, 4};
 
 static void fixed_taps(uint16_t *taps, int32_t n, const uint16_t *table)
 {
@@ -94,13 +94,10 @@ static rte_status resolve_size(int32_t *ksize, double sigma)
     return *ksize == 0 ? RTE_ERR_UNSUPPORTED : RTE_OK;
 }
 
-static int valid_size(int32_t k)
-{
-    return k >= 1 && k <= RTE_GAUSSIAN_MAX_KSIZE && (k & 1) == 1;
-}
+static int valid_size(int32_t k) { return k >= 1 && k <= RTE_GAUSSIAN_MAX_KSIZE && (k & 1) == 1; }
 
-rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x,
-                                    int32_t ksize_y, double sigma_x, double sigma_y)
+rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x, int32_t ksize_y,
+                                    double sigma_x, double sigma_y)
 {
     if (!kernel || !isfinite(sigma_x) || !isfinite(sigma_y))
         return RTE_ERR_ARGUMENT;
@@ -118,7 +115,7 @@ rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x
     if (!valid_size(ksize_x) || !valid_size(ksize_y))
         return RTE_ERR_UNSUPPORTED;
 
-    rte_gaussian_kernel k = { ksize_x, ksize_y, { 0 }, { 0 } };
+    rte_gaussian_kernel k = {ksize_x, ksize_y, {0}, {0}};
     axis_taps(k.taps_x, ksize_x, sigma_x > 0.0 ? sigma_x : 0.0);
     axis_taps(k.taps_y, ksize_y, sigma_y > 0.0 ? sigma_y : 0.0);
     *kernel = k;

@@ -35,11 +35,11 @@ bool rte_gaussian_line_init(rte_gaussian_line *line, const rte_gaussian_kernel *
 
 /* out = blurred row from the ksize_y source rows around it (rows[j] is
  * source row y - ksize_y/2 + j, already reflected), `width` pixels. */
-void rte_gaussian_line_run(const rte_gaussian_line *line, const uint8_t *const *rows,
-                           uint8_t *out, int32_t width);
+void rte_gaussian_line_run(const rte_gaussian_line *line, const uint8_t *const *rows, uint8_t *out,
+                           int32_t width);
 
 /* out = row y of the blur of src (BORDER_REFLECT_101). */
-void rte_gaussian_line_of_image(const rte_gaussian_line *line, const rte_image_u8 *src,
-                                int32_t y, uint8_t *out);
+void rte_gaussian_line_of_image(const rte_gaussian_line *line, const rte_image_u8 *src, int32_t y,
+                                uint8_t *out);
 
 #endif

@@ -88,16 +88,17 @@ static inline void row_taps_narrow(const uint16_t *restrict v, uint8_t *restrict
         }                                                \
     } while (0)
 
-static inline void gaussian_column_pass(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo, int32_t width,
-                        const uint16_t *taps, int32_t ksize, int split)
+static inline void gaussian_column_pass(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
+                                        int32_t width, const uint16_t *taps, int32_t ksize,
+                                        int split)
 {
 #define COLUMN_SPLIT(r) column_taps(rows, hi, lo, width, taps, r, 1)
 #define COLUMN_NARROW(r) column_taps(rows, hi, lo, width, taps, r, 0)
     DISPATCH(split, ksize / 2, COLUMN_SPLIT, COLUMN_NARROW);
 }
 
-static inline void gaussian_row_pass(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
-                     const uint16_t *taps, int32_t ksize, int split)
+static inline void gaussian_row_pass(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
+                                     int32_t width, const uint16_t *taps, int32_t ksize, int split)
 {
 #define ROW_SPLIT(r) row_taps(hi, lo, dst, width, taps, r)
 #define ROW_NARROW(r) row_taps_narrow(hi, dst, width, taps, r)

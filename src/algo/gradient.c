@@ -67,9 +67,9 @@ RTE_GRAD_ROWS_DEFINE(c)
 
 rte_grad_rows rte_grad_rows_select(uint32_t features)
 {
-    return RTE_SIMD_PICK(features, ((rte_grad_rows){ rte_grad_column_c, rte_grad_row_c }),
-                         ((rte_grad_rows){ rte_grad_column_avx2, rte_grad_row_avx2 }),
-                         ((rte_grad_rows){ rte_grad_column_c, rte_grad_row_c }));
+    return RTE_SIMD_PICK(features, ((rte_grad_rows){rte_grad_column_c, rte_grad_row_c}),
+                         ((rte_grad_rows){rte_grad_column_avx2, rte_grad_row_avx2}),
+                         ((rte_grad_rows){rte_grad_column_c, rte_grad_row_c}));
 }
 
 int32_t rte_grad_taps_l1(const int16_t *taps, int32_t n)
@@ -151,7 +151,7 @@ size_t rte_sobel_scratch_size(int32_t max_width, int32_t max_height, int32_t ksi
 rte_status rte_scharr_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_t dx, int32_t dy,
                           rte_arena *scratch)
 {
-    static const int16_t smooth[3] = { 3, 10, 3 }, deriv[3] = { -1, 0, 1 };
+    static const int16_t smooth[3] = {3, 10, 3}, deriv[3] = {-1, 0, 1};
     if (!((dx == 1 && dy == 0) || (dx == 0 && dy == 1)))
         return RTE_ERR_ARGUMENT;
     return separable(src, dst, dx ? deriv : smooth, 3, dy ? deriv : smooth, 3, scratch);
@@ -184,7 +184,7 @@ rte_status rte_laplacian_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_
     mid += RTE_GRAD_MAX_TAPS / 2;
     /* The 3x3 kernel from two columns sums: the rows above plus below, and
      * the centre row. Both stay far inside int16 (|result| <= 8 * 255). */
-    static const int16_t pick_outer[3] = { 1, 0, 1 }, pick_mid[1] = { 1 };
+    static const int16_t pick_outer[3] = {1, 0, 1}, pick_mid[1] = {1};
     const int32_t w = src->width;
     for (int32_t y = 0; y < src->height; y++) {
         rte_grad_column_pass(&k, src, y, pick_outer, 3, RTE_BORDER_REFLECT_101, outer, 1);

@@ -82,7 +82,7 @@ static inline int16_t finish(int32_t v, rte_row_mode mode)
 }
 
 static inline void grad_row_loop(const int16_t *restrict s, const int16_t *kx, int32_t nx,
-                            int16_t *restrict o, int32_t width, rte_row_mode mode)
+                                 int16_t *restrict o, int32_t width, rte_row_mode mode)
 {
     const int16_t c0 = kx[0];
     switch (nx) {
@@ -106,8 +106,7 @@ static inline void grad_row_loop(const int16_t *restrict s, const int16_t *kx, i
     case 5: {
         const int16_t c1 = kx[1], c2 = kx[2], c3 = kx[3], c4 = kx[4];
         for (int32_t x = 0; x < width; x++)
-            o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] +
-                              c4 * s[x + 4],
+            o[x] = finish(c0 * s[x] + c1 * s[x + 1] + c2 * s[x + 2] + c3 * s[x + 3] + c4 * s[x + 4],
                           mode);
         break;
     }
@@ -123,8 +122,8 @@ static inline void grad_row_loop(const int16_t *restrict s, const int16_t *kx, i
 }
 
 /* out[x] = sum_k kx[k] * v[x + k - nx/2], finished as `mode` says. */
-static inline void grad_row_pass_loop(const int16_t *v, const int16_t *kx, int32_t nx,
-                                      int16_t *out, int32_t width, int mode)
+static inline void grad_row_pass_loop(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,
+                                      int32_t width, int mode)
 {
     /* One instance per mode, each with a constant `finish`. */
     switch (mode) {
@@ -136,16 +135,16 @@ static inline void grad_row_pass_loop(const int16_t *v, const int16_t *kx, int32
 
 /* Defines rte_grad_column_<isa> and rte_grad_row_<isa> (declared in
  * simd/rows.h) as the loops above, built for the including file's target. */
-#define RTE_GRAD_ROWS_DEFINE(isa)                                                                \
-    void rte_grad_column_##isa(const uint8_t *const *rows, int32_t width, const int16_t *ky,     \
-                               int32_t ny, int16_t *out)                                         \
-    {                                                                                            \
-        grad_column_loop(rows, width, ky, ny, out);                                              \
-    }                                                                                            \
-    void rte_grad_row_##isa(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,       \
-                            int32_t width, int mode)                                             \
-    {                                                                                            \
-        grad_row_pass_loop(v, kx, nx, out, width, mode);                                         \
+#define RTE_GRAD_ROWS_DEFINE(isa)                                                            \
+    void rte_grad_column_##isa(const uint8_t *const *rows, int32_t width, const int16_t *ky, \
+                               int32_t ny, int16_t *out)                                     \
+    {                                                                                        \
+        grad_column_loop(rows, width, ky, ny, out);                                          \
+    }                                                                                        \
+    void rte_grad_row_##isa(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,   \
+                            int32_t width, int mode)                                         \
+    {                                                                                        \
+        grad_row_pass_loop(v, kx, nx, out, width, mode);                                     \
     }
 
 #endif

@@ -27,12 +27,14 @@ int32_t rte_border_fold(int32_t p, int32_t len, rte_border border);
  * ready for a row pass. sum |ky| * 255 must fit int16. The loops are k's
  * (rte_grad_rows_select, once per image). */
 void rte_grad_column_pass(const rte_grad_rows *k, const rte_image_u8 *src, int32_t y,
-                          const int16_t *ky, int32_t ny, rte_border border, int16_t *v, int32_t pad);
+                          const int16_t *ky, int32_t ny, rte_border border, int16_t *v,
+                          int32_t pad);
 
 /* The same from the ny source rows themselves (row[k] is source row
  * y + k - ny/2, already folded), each `w` pixels wide. */
 void rte_grad_column_rows(const rte_grad_rows *k, const uint8_t *const *row, int32_t w,
-                          const int16_t *ky, int32_t ny, rte_border border, int16_t *v, int32_t pad);
+                          const int16_t *ky, int32_t ny, rte_border border, int16_t *v,
+                          int32_t pad);
 
 /* How a row pass (k->row: out[x] = sum_k kx[k] * v[x + k - nx/2] for
  * 0 <= x < width, v with nx/2 valid columns on each side) turns its int32

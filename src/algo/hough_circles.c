@@ -85,7 +85,10 @@ static inline int32_t radius_bin(const radius_table *t, int64_t d2)
     return k;
 }
 
-static size_t cells_of(const circle_geom *g) { return (size_t)(g->arows + 2) * (size_t)(g->acols + 2); }
+static size_t cells_of(const circle_geom *g)
+{
+    return (size_t)(g->arows + 2) * (size_t)(g->acols + 2);
+}
 
 static size_t candidates_of(const circle_geom *g)
 {
@@ -104,7 +107,8 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
     return rte_arena_piece_size(cells_of(&g) * sizeof(int32_t)) +
            rte_arena_piece_size(pixels * sizeof(uint32_t)) +
            rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t)) +
-           rte_arena_piece_size(cand * sizeof(int32_t)) + rte_arena_piece_size(cand * sizeof(uint64_t)) +
+           rte_arena_piece_size(cand * sizeof(int32_t)) +
+           rte_arena_piece_size(cand * sizeof(uint64_t)) +
            rte_arena_piece_size(cand * 3 * sizeof(int32_t)) +
            rte_arena_piece_size((size_t)g.nbins * sizeof(int32_t)) +
            rte_arena_piece_size(((size_t)g.nbins + 1) * sizeof(int64_t)) +
@@ -112,8 +116,9 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
 }
 
 /* Step 1: votes; also lists the voting pixels (raster order) and row starts. */
-static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx, const rte_image_s16 *dy,
-                          const circle_geom *g, int32_t dp_q8, int32_t *acc, uint32_t *pts, int32_t *row_start)
+static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
+                          const rte_image_s16 *dy, const circle_geom *g, int32_t dp_q8,
+                          int32_t *acc, uint32_t *pts, int32_t *row_start)
 {
     const int32_t w = edges->width, h = edges->height, astep = g->acols + 2;
     int32_t n = 0;
@@ -176,12 +181,14 @@ static inline void ring_window(const uint32_t *pts, const int32_t *row_start, in
     x_lo = x_lo < 0 ? 0 : x_lo;
     x_hi = x_hi > RTE_MAX_SIDE ? RTE_MAX_SIDE : x_hi;
     *first = lower_bound(pts, row_start[y], row_start[y + 1], row | (uint32_t)x_lo);
-    *end = x_hi < x_lo ? *first : lower_bound(pts, *first, row_start[y + 1], row | (uint32_t)(x_hi + 1));
+    *end = x_hi < x_lo ? *first
+                       : lower_bound(pts, *first, row_start[y + 1], row | (uint32_t)(x_hi + 1));
 }
 
 /* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. */
-static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, int32_t h, const circle_geom *g,
-                               const radius_table *rt, int32_t cx, int32_t cy, int32_t *bins, int32_t *radius_q4)
+static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, int32_t h,
+                               const circle_geom *g, const radius_table *rt, int32_t cx, int32_t cy,
+                               int32_t *bins, int32_t *radius_q4)
 {
     const int64_t rmin2 = rt->rmin2, rmax2 = rt->sq[g->nbins - 1]; /* (min_r 16)^2, (max_r 16)^2 */
     int32_t y_lo = (cy >> 4) - g->max_r - 1, y_hi = (cy >> 4) + g->max_r + 1;
@@ -215,7 +222,8 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
         for (; j > up - g->window && j >= 0; j--)
             cnt += bins[j];
         int32_t r = g->min_r * 16 + (up + j + 1) / 2;
-        if ((int64_t)cnt * best_r >= (int64_t)best_count * r || (best_r == 0 && cnt >= best_count)) {
+        if ((int64_t)cnt * best_r >= (int64_t)best_count * r ||
+            (best_r == 0 && cnt >= best_count)) {
             best_r = r;
             best_count = cnt;
         }
@@ -236,8 +244,8 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
  * radii over 1000 px (where the sums would need more than 64 bits) too. */
 /* The point p (packed y << 16 | x) relative to the centre (1/16 pixel) in
  * (*px, *py) and its distance; 1 when that is within `band` of r. */
-static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t band, int64_t *px, int64_t *py,
-                          int64_t *d)
+static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t band, int64_t *px,
+                          int64_t *py, int64_t *d)
 {
     *px = (int64_t)(p & 0xFFFF) * 16 - cx;
     *py = (int64_t)(p >> 16) * 16 - cy;
@@ -251,8 +259,9 @@ static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t
     return 1;
 }
 
-static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, const rte_image_s16 *dx,
-                   const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx, int32_t *cy, int32_t *r_q4)
+static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h,
+                   const rte_image_s16 *dx, const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx,
+                   int32_t *cy, int32_t *r_q4)
 {
     const int32_t r = *r_q4, band = 24; /* 1.5 px */
     if (r + band >= (1 << 14))
@@ -302,7 +311,8 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h, con
     const int64_t det = a00 * a11 - a01 * a01;
     if (det <= 0)
         return;
-    const int64_t ox = rte_div_round64(a11 * b0 - a01 * b1, det), oy = rte_div_round64(a00 * b1 - a01 * b0, det);
+    const int64_t ox = rte_div_round64(a11 * b0 - a01 * b1, det),
+                  oy = rte_div_round64(a00 * b1 - a01 * b0, det);
     const int64_t lim = (dp_q8 + 4) / 8; /* 2 dp in 1/16 pixel */
     if (ox > lim || ox < -lim || oy > lim || oy < -lim)
         return;
@@ -364,7 +374,7 @@ static int32_t keep_separated(const rte_hough_topk *top, const int32_t *est, int
             *truncated = true;
             break;
         }
-        rte_hough_circle out = { cx, cy, est[3 * e + 2], rte_hough_key_votes(top->keys[k]) };
+        rte_hough_circle out = {cx, cy, est[3 * e + 2], rte_hough_key_votes(top->keys[k])};
         circles[nout++] = out;
     }
     return nout;
@@ -402,8 +412,8 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     uint64_t *keys = rte_arena_alloc(arena, cand_cap * sizeof(uint64_t));
     int32_t *est = rte_arena_alloc(arena, cand_cap * 3 * sizeof(int32_t));
     int32_t *bins = rte_arena_alloc(arena, (size_t)g.nbins * sizeof(int32_t));
-    radius_table rt = { rte_arena_alloc(arena, ((size_t)g.nbins + 1) * sizeof(int64_t)),
-                        rte_arena_alloc(arena, RADIUS_COARSE * sizeof(int32_t)), 0, 0 };
+    radius_table rt = {rte_arena_alloc(arena, ((size_t)g.nbins + 1) * sizeof(int64_t)),
+                       rte_arena_alloc(arena, RADIUS_COARSE * sizeof(int32_t)), 0, 0};
     if (!acc || !pts || !row_start || !centres || !keys || !est || !bins || !rt.sq || !rt.coarse) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
@@ -420,7 +430,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     const int32_t ncent = find_centres(acc, &g, thr, centres);
 
     /* Step 3: radius and support of every centre. */
-    rte_hough_topk top = { keys, (int32_t)cand_cap, 0, 0 };
+    rte_hough_topk top = {keys, (int32_t)cand_cap, 0, 0};
     int32_t nest = 0;
     for (int32_t i = 0; i < ncent; i++) {
         int32_t ay = centres[i] / astep - 1, ax = centres[i] % astep - 1;
@@ -440,7 +450,8 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     }
     rte_hough_topk_sort(&top);
 
-    const int32_t nout = keep_separated(&top, est, params->min_dist, circles, max_circles, truncated);
+    const int32_t nout =
+        keep_separated(&top, est, params->min_dist, circles, max_circles, truncated);
     *count = nout;
     rte_arena_reset(arena, mark);
     return RTE_OK;

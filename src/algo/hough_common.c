@@ -12,9 +12,10 @@ int32_t rte_hough_rho_bins(const rte_hough_config *cfg, int32_t w, int32_t h)
 rte_status rte_hough_begin(const rte_hough_config *cfg, const rte_image_u8 *edges, int32_t *count,
                            bool *truncated)
 {
-    if (!cfg || cfg->num_angles < 1 || cfg->num_angles > RTE_HOUGH_MAX_ANGLES || cfg->trig_shift < 0 ||
-        cfg->trig_shift > 30 || cfg->inv_rho_q16 <= 0 || cfg->max_width < 1 || cfg->max_height < 1 ||
-        cfg->max_width > RTE_MAX_SIDE || cfg->max_height > RTE_MAX_SIDE)
+    if (!cfg || cfg->num_angles < 1 || cfg->num_angles > RTE_HOUGH_MAX_ANGLES ||
+        cfg->trig_shift < 0 || cfg->trig_shift > 30 || cfg->inv_rho_q16 <= 0 ||
+        cfg->max_width < 1 || cfg->max_height < 1 || cfg->max_width > RTE_MAX_SIDE ||
+        cfg->max_height > RTE_MAX_SIDE)
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_image_u8_check(edges);
     if (st != RTE_OK)

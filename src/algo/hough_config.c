@@ -11,8 +11,8 @@ static int32_t round_to_i32(double v) { return (int32_t)lround(v); }
 rte_status rte_hough_config_init(rte_hough_config *cfg, int32_t max_width, int32_t max_height,
                                  double rho, double theta, double min_theta, double max_theta)
 {
-    if (!cfg || !(rho > 0.0) || !(theta > 0.0) || !(max_theta >= min_theta) ||
-        !isfinite(rho) || !isfinite(theta) || !isfinite(min_theta) || !isfinite(max_theta) ||
+    if (!cfg || !(rho > 0.0) || !(theta > 0.0) || !(max_theta >= min_theta) || !isfinite(rho) ||
+        !isfinite(theta) || !isfinite(min_theta) || !isfinite(max_theta) ||
         fabs(min_theta) > 64.0 || fabs(max_theta) > 64.0 || rho < 1.0 / 64 || rho > 65536.0)
         return RTE_ERR_ARGUMENT;
     if (max_width < 1 || max_height < 1 || max_width > RTE_MAX_SIDE || max_height > RTE_MAX_SIDE)

@@ -9,7 +9,8 @@
 
 static size_t accum_cells(const rte_hough_config *cfg)
 {
-    return (size_t)(cfg->num_angles + 2) * (size_t)(rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height) + 2);
+    return (size_t)(cfg->num_angles + 2) *
+           (size_t)(rte_hough_rho_bins(cfg, cfg->max_width, cfg->max_height) + 2);
 }
 
 size_t rte_hough_lines_scratch_size(const rte_hough_config *cfg, int32_t max_lines)
@@ -33,11 +34,11 @@ int64_t rte_hough_line_theta_q16(const rte_hough_config *cfg, const rte_hough_li
 }
 
 rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edges,
-                           int32_t threshold, rte_arena *arena,
-                           rte_hough_line *lines, int32_t max_lines,
-                           int32_t *count, bool *truncated)
+                           int32_t threshold, rte_arena *arena, rte_hough_line *lines,
+                           int32_t max_lines, int32_t *count, bool *truncated)
 {
-    if (!arena || !count || !truncated || threshold < 0 || max_lines < 0 || (max_lines > 0 && !lines))
+    if (!arena || !count || !truncated || threshold < 0 || max_lines < 0 ||
+        (max_lines > 0 && !lines))
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_hough_begin(cfg, edges, count, truncated);
     if (st != RTE_OK)
@@ -78,12 +79,13 @@ rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edge
             arow[(xs[i] * c + ys[i] * s + bias) >> shift]++;
     }
 
-    rte_hough_topk top = { keys, max_lines, 0, 0 };
+    rte_hough_topk top = {keys, max_lines, 0, 0};
     for (int32_t n = 0; n < numangle; n++) {
         const int32_t *a = acc + (size_t)(n + 1) * astep + 1;
         for (int32_t r = 0; r < numrho; r++) {
             int32_t v = a[r];
-            if (v > threshold && v > a[r - 1] && v >= a[r + 1] && v > a[r - astep] && v >= a[r + astep])
+            if (v > threshold && v > a[r - 1] && v >= a[r + 1] && v > a[r - astep] &&
+                v >= a[r + astep])
                 rte_hough_topk_push(&top, rte_hough_key(v, (uint32_t)(n * numrho + r)));
         }
     }

@@ -27,8 +27,8 @@
 
 #include "hough_walk.h"
 
-void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
-                      int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx)
+void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x,
+                      int32_t y, int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx)
 {
     hough_bins_row(rho_cos, rho_sin, n, x, y, bias, shift, row_base, idx);
 }
@@ -43,7 +43,7 @@ typedef struct seg_ctx {
     const rte_hough_config *cfg;
     rte_hough_bins_fn bins;
     const int32_t *row_base; /* where each angle's rho bins start in acc (compact_rows) */
-    void *acc;    /* cells of 8 bits, or 16 once wide: see vote_cells */
+    void *acc;               /* cells of 8 bits, or 16 once wide: see vote_cells */
     int wide;
     size_t ncells;
     int32_t *idx; /* the cells of one point, one per angle */
@@ -59,8 +59,8 @@ typedef struct seg_ctx {
 /* The accumulator cells of the point (x, y), one per angle. */
 static inline void cells(const seg_ctx *sc, int32_t x, int32_t y, int32_t *idx)
 {
-    sc->bins(sc->cfg->rho_cos, sc->cfg->rho_sin, sc->numangle, x, y, sc->bias, sc->cfg->trig_shift, sc->row_base,
-             idx);
+    sc->bins(sc->cfg->rho_cos, sc->cfg->rho_sin, sc->numangle, x, y, sc->bias, sc->cfg->trig_shift,
+             sc->row_base, idx);
 }
 
 /* Cells hold a count biased so that bit 7 (8-bit cells) or bit 15 (16-bit
@@ -94,9 +94,12 @@ typedef struct cells_view {
     uint16_t *restrict c16;
 } cells_view;
 
-static inline cells_view cells_of(const seg_ctx *sc) { return (cells_view){ sc->acc, sc->acc }; }
+static inline cells_view cells_of(const seg_ctx *sc) { return (cells_view){sc->acc, sc->acc}; }
 
-static inline uint32_t cell_get(cells_view v, const int wide, int32_t i) { return wide ? v.c16[i] : v.c8[i]; }
+static inline uint32_t cell_get(cells_view v, const int wide, int32_t i)
+{
+    return wide ? v.c16[i] : v.c8[i];
+}
 
 static inline void cell_set(cells_view v, const int wide, int32_t i, uint32_t x)
 {
@@ -158,8 +161,8 @@ static void widen(seg_ctx *sc)
  * threshold. An 8-bit cell the vote wrapped (0) counts as 256, above the
  * rest (the counts follow the values' order otherwise), and is reported in
  * *wrapped. */
-static inline __attribute__((always_inline)) int32_t strongest_cell(const seg_ctx *sc, const int wide,
-                                                                     uint32_t *wrapped)
+static inline __attribute__((always_inline)) int32_t
+strongest_cell(const seg_ctx *sc, const int wide, uint32_t *wrapped)
 {
     const int32_t *idx = sc->idx, n = sc->numangle;
     int32_t best_a = 0;
@@ -194,8 +197,8 @@ static int32_t strongest_angle(seg_ctx *sc)
 /* Removes the votes of a list of packed points, point by point: they are
  * neighbours along a line, so consecutive points hit the same or adjacent
  * cells at every angle. */
-static inline __attribute__((always_inline)) void unvote_cells(const seg_ctx *sc, const uint32_t *pts, int32_t n,
-                                                                const int wide)
+static inline __attribute__((always_inline)) void
+unvote_cells(const seg_ctx *sc, const uint32_t *pts, int32_t n, const int wide)
 {
     int32_t *restrict idx = sc->idx;
     const int32_t numangle = sc->numangle;
@@ -235,7 +238,8 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
      * angle is quantised); the walk of the refitted line takes only the
      * pixels on it, so its ends stop where the edge leaves the line (a
      * curve, a crossing edge, texture), not a pixel further. */
-    line_q16 l = { (int64_t)x << 16, (int64_t)y << 16, -cfg->unit_sin[best_n], cfg->unit_cos[best_n] };
+    line_q16 l = {(int64_t)x << 16, (int64_t)y << 16, -cfg->unit_sin[best_n],
+                  cfg->unit_cos[best_n]};
     stepper s = rte_hough_walk_stepper(&l, x, y);
     int32_t kmin, kmax;
     wc->strict = false;
@@ -262,7 +266,8 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
         for (int32_t k = kmin; k <= kmax; k++) {
             int32_t px, py;
             stepper_at(&s, k, &px, &py);
-            if ((uint32_t)px < (uint32_t)w && (uint32_t)py < (uint32_t)h && live(wc->mask[(size_t)py * w + px]))
+            if ((uint32_t)px < (uint32_t)w && (uint32_t)py < (uint32_t)h &&
+                live(wc->mask[(size_t)py * w + px]))
                 wc->mask[(size_t)py * w + px] = PX_NONE;
         }
         return 0;
@@ -277,7 +282,8 @@ static int take_segment(seg_ctx *sc, int32_t x, int32_t y, int32_t best_n, rte_h
         int32_t px, py;
         stepper_at(&s, k, &px, &py);
         for (int32_t dir = -1; dir <= 1; dir += 2) {
-            for (int32_t o = dir == 1 ? 0 : -1; o >= -CONSUME_REACH && o <= CONSUME_REACH; o += dir) {
+            for (int32_t o = dir == 1 ? 0 : -1; o >= -CONSUME_REACH && o <= CONSUME_REACH;
+                 o += dir) {
                 int32_t qx = px + o * ox, qy = py + o * oy;
                 if ((uint32_t)qx >= (uint32_t)w || (uint32_t)qy >= (uint32_t)h)
                     break;
@@ -326,8 +332,8 @@ static int reached(seg_ctx *sc, int32_t x, int32_t y)
  * constant in each copy). Returns where it stopped: npts at the end or
  * when the output is full (sc->truncated), the point after the one whose
  * vote widened 8-bit cells (the caller goes on with 16-bit ones). */
-static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const uint32_t *pts, int32_t i,
-                                                             int32_t npts, const int wide)
+static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const uint32_t *pts,
+                                                            int32_t i, int32_t npts, const int wide)
 {
     uint8_t *mask = sc->wc.mask;
     const size_t w = (size_t)sc->wc.w;
@@ -335,7 +341,8 @@ static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const u
         /* the points come in a random order: fetch the mask byte of one
          * further on while this one votes */
         if (i + MASK_AHEAD < npts)
-            __builtin_prefetch(mask + (pts[i + MASK_AHEAD] >> 16) * w + (pts[i + MASK_AHEAD] & 0xFFFF));
+            __builtin_prefetch(mask + (pts[i + MASK_AHEAD] >> 16) * w +
+                               (pts[i + MASK_AHEAD] & 0xFFFF));
         const int32_t x = (int32_t)(pts[i] & 0xFFFF), y = (int32_t)(pts[i] >> 16);
         uint8_t *m = mask + (size_t)y * w + (size_t)x;
         if (*m != PX_EDGE)
@@ -363,7 +370,8 @@ static inline __attribute__((always_inline)) int32_t search(seg_ctx *sc, const u
 static int64_t cell_bound(const rte_hough_config *cfg)
 {
     const int64_t side = cfg->max_width > cfg->max_height ? cfg->max_width : cfg->max_height;
-    const int64_t per_line = (((int64_t)cfg->rho_q16 * 92682) >> 32) + 2; /* 92682 / 65536 > sqrt 2 */
+    const int64_t per_line =
+        (((int64_t)cfg->rho_q16 * 92682) >> 32) + 2; /* 92682 / 65536 > sqrt 2 */
     const int64_t pixels = (int64_t)cfg->max_width * cfg->max_height;
     return side * per_line < pixels ? side * per_line : pixels;
 }
@@ -377,12 +385,15 @@ static int64_t cell_bound(const rte_hough_config *cfg)
  * 1280x720, which stays in a 1 MB L2 cache (the vote is bound by its cache
  * misses). Returns the cells; fills row_base (the index of bin 0 of each
  * angle, a bin below its row's start) when given. */
-static size_t compact_rows(const rte_hough_config *cfg, int32_t w, int32_t h, int32_t bias, int32_t *row_base)
+static size_t compact_rows(const rte_hough_config *cfg, int32_t w, int32_t h, int32_t bias,
+                           int32_t *row_base)
 {
     size_t cells = 0;
     for (int32_t a = 0; a < cfg->num_angles; a++) {
-        const int64_t xs = (int64_t)(w - 1) * cfg->rho_cos[a], ys = (int64_t)(h - 1) * cfg->rho_sin[a];
-        const int64_t vmin = (xs < 0 ? xs : 0) + (ys < 0 ? ys : 0), vmax = (xs > 0 ? xs : 0) + (ys > 0 ? ys : 0);
+        const int64_t xs = (int64_t)(w - 1) * cfg->rho_cos[a],
+                      ys = (int64_t)(h - 1) * cfg->rho_sin[a];
+        const int64_t vmin = (xs < 0 ? xs : 0) + (ys < 0 ? ys : 0),
+                      vmax = (xs > 0 ? xs : 0) + (ys > 0 ? ys : 0);
         if (row_base)
             row_base[a] = (int32_t)cells - (int32_t)((vmin + bias) >> cfg->trig_shift);
         cells += (size_t)((vmax - vmin) >> cfg->trig_shift) + 2;
@@ -458,11 +469,12 @@ static void shuffle_points(uint32_t *pts, int32_t npts, uint32_t seed)
 
 rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
                               const rte_hough_segments_params *params, rte_arena *arena,
-                              rte_hough_segment *segments, int32_t max_segments,
-                              int32_t *count, bool *truncated)
+                              rte_hough_segment *segments, int32_t max_segments, int32_t *count,
+                              bool *truncated)
 {
-    if (!params || !arena || !count || !truncated || max_segments < 0 || (max_segments > 0 && !segments) ||
-        params->threshold < 1 || params->min_length < 0 || params->max_gap < 0 || params->min_length > 65535)
+    if (!params || !arena || !count || !truncated || max_segments < 0 ||
+        (max_segments > 0 && !segments) || params->threshold < 1 || params->min_length < 0 ||
+        params->max_gap < 0 || params->min_length > 65535)
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_hough_begin(cfg, edges, count, truncated);
     if (st != RTE_OK)
@@ -474,7 +486,8 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         return RTE_OK; /* no cell can reach it: no segments */
     const int32_t w = edges->width, h = edges->height;
 
-    const int32_t numangle = cfg->num_angles, bias = rte_hough_rho_bias(cfg, rte_hough_rho_bins(cfg, w, h));
+    const int32_t numangle = cfg->num_angles,
+                  bias = rte_hough_rho_bias(cfg, rte_hough_rho_bins(cfg, w, h));
     const size_t pixels = (size_t)w * (size_t)h;
     const size_t side = (size_t)(w > h ? w : h);
     const size_t mark = rte_arena_mark(arena);
@@ -506,10 +519,14 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
 
     shuffle_points(pts, npts, params->seed ? params->seed : RTE_HOUGH_SEGMENTS_SEED);
 
-    seg_ctx sc = { cfg, rte_hough_bins_select(rte_cpu_features()), row_base, acc, wide, ncells, idx, numangle, bias,
-                   (int64_t)params->min_length * params->min_length, gone,
-                   { mask, w, h, params->max_gap, hits, 0, { 0, 0, 0, 0 }, 0 },
-                   segments, max_segments, 0, false };
+    seg_ctx sc = {cfg,      rte_hough_bins_select(rte_cpu_features()),
+                  row_base, acc,
+                  wide,     ncells,
+                  idx,      numangle,
+                  bias,     (int64_t)params->min_length * params->min_length,
+                  gone,     {mask, w, h, params->max_gap, hits, 0, {0, 0, 0, 0}, 0},
+                  segments, max_segments,
+                  0,        false};
     /* 8-bit cells, then 16-bit ones from where they widened (if they do) */
     const int32_t next = wide ? 0 : search(&sc, pts, 0, npts, 0);
     if (!sc.truncated)

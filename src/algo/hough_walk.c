@@ -8,9 +8,10 @@
 
 static inline uint8_t mask_at(const walk_ctx *c, int32_t x, int32_t y)
 {
-    return ((uint32_t)x < (uint32_t)c->w && (uint32_t)y < (uint32_t)c->h) ? c->mask[(size_t)y * c->w + x] : 0;
+    return ((uint32_t)x < (uint32_t)c->w && (uint32_t)y < (uint32_t)c->h)
+               ? c->mask[(size_t)y * c->w + x]
+               : 0;
 }
-
 
 stepper rte_hough_walk_stepper(const line_q16 *l, int32_t start_x, int32_t start_y)
 {
@@ -29,13 +30,11 @@ stepper rte_hough_walk_stepper(const line_q16 *l, int32_t start_x, int32_t start
     return s;
 }
 
-
-
 /* The mask at `o` pixels across the line from (x, y); `p` is the pixel's
  * byte when the whole reach across the line is inside the map (no bounds
  * checks then), else NULL. major_x is a constant in each copy of follow. */
-static inline uint8_t across(const walk_ctx *c, const uint8_t *p, const int major_x, int32_t x, int32_t y,
-                             int32_t o)
+static inline uint8_t across(const walk_ctx *c, const uint8_t *p, const int major_x, int32_t x,
+                             int32_t y, int32_t o)
 {
     if (p)
         return p[major_x ? (ptrdiff_t)o * c->w : o];
@@ -48,12 +47,12 @@ static inline uint8_t across(const walk_ctx *c, const uint8_t *p, const int majo
  * (up to CONSUME_REACH). Returns 1 and the run's centre in half pixels
  * (doubled coordinates, so fits of thick edges follow their middle), 2 when
  * only consumed pixels are there (a bridge), 0 otherwise. */
-static inline __attribute__((always_inline)) int probe(const walk_ctx *c, const int major_x, int32_t x,
-                                                        int32_t y, int32_t *hx2, int32_t *hy2)
+static inline __attribute__((always_inline)) int
+probe(const walk_ctx *c, const int major_x, int32_t x, int32_t y, int32_t *hx2, int32_t *hy2)
 {
     const int32_t mn = major_x ? y : x, mn_size = major_x ? c->h : c->w;
-    const uint8_t *p = mn >= CONSUME_REACH && mn < mn_size - CONSUME_REACH ? c->mask + (size_t)y * c->w + x
-                                                                          : NULL;
+    const uint8_t *p =
+        mn >= CONSUME_REACH && mn < mn_size - CONSUME_REACH ? c->mask + (size_t)y * c->w + x : NULL;
     uint8_t m0 = across(c, p, major_x, x, y, 0), mlo = across(c, p, major_x, x, y, -1);
     uint8_t mhi = across(c, p, major_x, x, y, 1);
     int32_t lo;
@@ -84,10 +83,11 @@ static inline __attribute__((always_inline)) int probe(const walk_ctx *c, const 
  * hits between them. Beyond a gap of more than one step, the end only moves
  * on once two steps in a row hit, so a stray pixel past the end of a line
  * does not lengthen it. One copy per major axis (major_x constant). */
-static inline __attribute__((always_inline)) void follow_axis(walk_ctx *c, const stepper *s, const int major_x,
-                                                               int32_t *kmin, int32_t *kmax)
+static inline __attribute__((always_inline)) void
+follow_axis(walk_ctx *c, const stepper *s, const int major_x, int32_t *kmin, int32_t *kmax)
 {
-    const uint32_t maj_size = (uint32_t)(major_x ? c->w : c->h), mn_span = (uint32_t)(major_x ? c->h : c->w) + 1;
+    const uint32_t maj_size = (uint32_t)(major_x ? c->w : c->h),
+                   mn_span = (uint32_t)(major_x ? c->h : c->w) + 1;
     c->nhits = 0;
     *kmin = INT32_MAX;
     *kmax = INT32_MIN;
@@ -177,7 +177,8 @@ bool rte_hough_walk_fit(const walk_ctx *c, line_q16 *l)
     int64_t mx = (sx * 8 + n / 2) / n, my = (sy * 8 + n / 2) / n;
     int64_t cxx = 0, cyy = 0, cxy = 0;
     for (int32_t i = 0; i < n; i++) {
-        int64_t dx = (int64_t)(c->hits[i] & 0xFFFF) * 8 - mx, dy = (int64_t)(c->hits[i] >> 16) * 8 - my;
+        int64_t dx = (int64_t)(c->hits[i] & 0xFFFF) * 8 - mx,
+                dy = (int64_t)(c->hits[i] >> 16) * 8 - my;
         cxx += dx * dx;
         cyy += dy * dy;
         cxy += dx * dy;
@@ -202,4 +203,3 @@ bool rte_hough_walk_fit(const walk_ctx *c, line_q16 *l)
     l->py = my * 4096;
     return true;
 }
-

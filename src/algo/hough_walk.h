@@ -36,11 +36,11 @@ typedef struct walk_ctx {
 /* Steps of one pixel along the major axis of the line; the minor coordinate
  * advances by a Q16 fraction. */
 typedef struct stepper {
-    int32_t major_x;         /* 1: x is the major axis */
-    int32_t dmaj;            /* +-1 */
-    int64_t dmin_q16;        /* minor advance per major step */
-    int32_t maj0;            /* start, major coordinate */
-    int64_t min0_q16;        /* start, minor coordinate (Q16) */
+    int32_t major_x;  /* 1: x is the major axis */
+    int32_t dmaj;     /* +-1 */
+    int64_t dmin_q16; /* minor advance per major step */
+    int32_t maj0;     /* start, major coordinate */
+    int64_t min0_q16; /* start, minor coordinate (Q16) */
 } stepper;
 
 /* floor(v / 65536) for |v| < 2^47, also for negative values: shifted as a

@@ -23,11 +23,11 @@
 #define RTE_MED_MIN(a, b) ((a) < (b) ? (a) : (b))
 #define RTE_MED_MAX(a, b) ((a) < (b) ? (b) : (a))
 /* compare-exchange: afterwards a <= b */
-#define RTE_MED_CE(a, b)                 \
-    do {                                 \
-        const uint8_t t_ = (a);          \
-        (a) = RTE_MED_MIN(t_, (b));      \
-        (b) = RTE_MED_MAX(t_, (b));      \
+#define RTE_MED_CE(a, b)            \
+    do {                            \
+        const uint8_t t_ = (a);     \
+        (a) = RTE_MED_MIN(t_, (b)); \
+        (b) = RTE_MED_MAX(t_, (b)); \
     } while (0)
 
 /* Pixels per block of the 5x5 kernel: its sorted columns and merged pairs
@@ -45,10 +45,7 @@ static size_t padded_stride(int32_t width, int32_t ksize)
 
 /* Rows of scratch: ksize ring rows of padded source, plus for 3x3 the three
  * rows of sorted columns. */
-static size_t scratch_rows(int32_t ksize)
-{
-    return ksize == 3 ? 3 + 3 : 5;
-}
+static size_t scratch_rows(int32_t ksize) { return ksize == 3 ? 3 + 3 : 5; }
 
 size_t rte_median_blur_u8_scratch_size(int32_t max_width, int32_t max_height, int32_t ksize)
 {
@@ -188,7 +185,8 @@ rte_status rte_median_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst, int32_
     /* The slack past each padded row only feeds outputs that are never
      * stored; it is cleared so no uninitialised byte is ever read. */
     for (int32_t j = 0; j < ksize; j++)
-        memset(ring + (size_t)j * pstride + width + 2 * r, 0, pstride - (size_t)width - 2 * (size_t)r);
+        memset(ring + (size_t)j * pstride + width + 2 * r, 0,
+               pstride - (size_t)width - 2 * (size_t)r);
 
     /* Source rows are padded into ring slot (y % ksize) just before the first
      * output row that needs them; an output row reads rows within r of it

@@ -55,10 +55,7 @@ static int64_t crs(rte_point e, rte_point a, rte_point b)
 }
 
 /* 256 * v / l rounded, for the corner offsets. */
-static int32_t q8_div(rte_i128 v, rte_i128 l)
-{
-    return (int32_t)rte_div_round128(v * 256, l);
-}
+static int32_t q8_div(rte_i128 v, rte_i128 l) { return (int32_t)rte_div_round128(v * 256, l); }
 
 /* 256 * w / sqrt(l), rounded to nearest. */
 static int32_t q8_len(int64_t w, int64_t l)
@@ -70,19 +67,21 @@ static int32_t q8_len(int64_t w, int64_t l)
 static void fill_rect(rte_rotated_rect *r, rte_point p, rte_point e, int64_t dmin, int64_t dmax,
                       int64_t h, int64_t l)
 {
-    const rte_point nrm = { -e.y, e.x };
+    const rte_point nrm = {-e.y, e.x};
     const int64_t w = dmax - dmin;
     const int along_e = w >= h;
     /* u: the long side's direction, turned into x > 0 (or straight down) */
     rte_point u = along_e ? e : nrm;
     int flip = u.x < 0 || (u.x == 0 && u.y < 0);
     if (flip)
-        u = (rte_point){ -u.x, -u.y };
+        u = (rte_point){-u.x, -u.y};
     r->angle_q16 = atan2_deg_q16(u.x, u.y);
     r->length_q8 = q8_len(along_e ? w : h, l);
     r->width_q8 = q8_len(along_e ? h : w, l);
-    r->cx_q8 = p.x * 256 + q8_div((rte_i128)e.x * (dmin + dmax) + (rte_i128)nrm.x * h, 2 * (rte_i128)l);
-    r->cy_q8 = p.y * 256 + q8_div((rte_i128)e.y * (dmin + dmax) + (rte_i128)nrm.y * h, 2 * (rte_i128)l);
+    r->cx_q8 =
+        p.x * 256 + q8_div((rte_i128)e.x * (dmin + dmax) + (rte_i128)nrm.x * h, 2 * (rte_i128)l);
+    r->cy_q8 =
+        p.y * 256 + q8_div((rte_i128)e.y * (dmin + dmax) + (rte_i128)nrm.y * h, 2 * (rte_i128)l);
     for (int amax = 0; amax < 2; amax++) {
         for (int bh = 0; bh < 2; bh++) {
             int64_t a = amax ? dmax : dmin, b = bh ? h : 0;
@@ -107,7 +106,7 @@ rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_
 {
     if (!r || n < 1 || !pts || !scratch)
         return RTE_ERR_ARGUMENT;
-    *r = (rte_rotated_rect){ 0 };
+    *r = (rte_rotated_rect){0};
     const size_t mark = rte_arena_mark(scratch);
     rte_point *hull = NULL;
     int32_t m = 0;
@@ -122,7 +121,7 @@ rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_
         r->cx_q8 = hull[0].x * 256;
         r->cy_q8 = hull[0].y * 256;
     } else if (m == 2) {
-        rte_point e = { hull[1].x - hull[0].x, hull[1].y - hull[0].y };
+        rte_point e = {hull[1].x - hull[0].x, hull[1].y - hull[0].y};
         int64_t l = (int64_t)e.x * e.x + (int64_t)e.y * e.y;
         fill_rect(r, hull[0], e, 0, l, 0, l);
     } else {
@@ -135,7 +134,7 @@ rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_
         int64_t best_dmin = 0, best_dmax = 0, best_h = 0;
         for (int32_t i = 0; i < m; i++) {
             const rte_point p = hull[i], q = hull[(i + 1) % m];
-            const rte_point e = { q.x - p.x, q.y - p.y };
+            const rte_point e = {q.x - p.x, q.y - p.y};
             const int64_t l = (int64_t)e.x * e.x + (int64_t)e.y * e.y;
             if (ir < i + 1)
                 ir = i + 1;

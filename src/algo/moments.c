@@ -42,7 +42,7 @@ int64_t rte_shape_perimeter_q16(const rte_point *pts, int32_t n, int closed)
 
 rte_rect rte_shape_bounding_rect(const rte_point *pts, int32_t n)
 {
-    rte_rect r = { 0, 0, 0, 0 };
+    rte_rect r = {0, 0, 0, 0};
     if (!pts || n < 1)
         return r;
     int32_t x0 = pts[0].x, x1 = x0, y0 = pts[0].y, y1 = y0;
@@ -60,10 +60,7 @@ rte_rect rte_shape_bounding_rect(const rte_point *pts, int32_t n)
 }
 
 /* (2^34 * num) / (den * A^3 * ...) style divisions are done in 128 bits. */
-static int64_t q_div(rte_i128 num, rte_i128 den)
-{
-    return (int64_t)rte_div_round128(num, den);
-}
+static int64_t q_div(rte_i128 num, rte_i128 den) { return (int64_t)rte_div_round128(num, den); }
 
 /* (a * b) >> 32 with rounding, for Q32 products. */
 static int64_t q32_mul(int64_t a, int64_t b)
@@ -109,7 +106,7 @@ rte_status rte_shape_moments(const rte_point *pts, int32_t n, rte_moments *m)
 {
     if (!m || n < 0 || (n > 0 && !pts))
         return RTE_ERR_ARGUMENT;
-    *m = (rte_moments){ 0 };
+    *m = (rte_moments){0};
     for (int32_t i = 0; i < n; i++)
         if (pts[i].x > RTE_SHAPE_MAX_COORD || pts[i].x < -RTE_SHAPE_MAX_COORD ||
             pts[i].y > RTE_SHAPE_MAX_COORD || pts[i].y < -RTE_SHAPE_MAX_COORD)
@@ -120,12 +117,14 @@ rte_status rte_shape_moments(const rte_point *pts, int32_t n, rte_moments *m)
     /* Green's theorem sums. With |coordinates| <= 2047 every term and every
      * final sum fits in 64 bits; partial sums may not, so they wrap in
      * unsigned arithmetic and come out exact. */
-    uint64_t u00 = 0, u10 = 0, u01 = 0, u20 = 0, u11 = 0, u02 = 0, u30 = 0, u21 = 0, u12 = 0, u03 = 0;
+    uint64_t u00 = 0, u10 = 0, u01 = 0, u20 = 0, u11 = 0, u02 = 0, u30 = 0, u21 = 0, u12 = 0,
+             u03 = 0;
     int64_t xp = pts[n - 1].x, yp = pts[n - 1].y;
     for (int32_t i = 0; i < n; i++) {
         const int64_t x = pts[i].x, y = pts[i].y;
         const int64_t dxy = xp * y - x * yp;
-        const int64_t xs = xp + x, ys = yp + y, x2 = x * x, y2 = y * y, xp2 = xp * xp, yp2 = yp * yp;
+        const int64_t xs = xp + x, ys = yp + y, x2 = x * x, y2 = y * y, xp2 = xp * xp,
+                      yp2 = yp * yp;
         u00 += (uint64_t)dxy;
         u10 += (uint64_t)(dxy * xs);
         u01 += (uint64_t)(dxy * ys);

@@ -58,8 +58,8 @@ typedef struct morph_plan {
     uint32_t group_rows[RTE_MORPH_MAX_KSIZE]; /* their rows (bit dy) */
     int32_t group_row[RTE_MORPH_MAX_KSIZE];   /* the first of them, whose runs the group takes */
     bool group_direct[RTE_MORPH_MAX_KSIZE];   /* its only run is the anchor's column */
-    size_t padded;          /* bytes per padded row, rounded up */
-    size_t slot;            /* bytes per ring slot */
+    size_t padded;                            /* bytes per padded row, rounded up */
+    size_t slot;                              /* bytes per ring slot */
 } morph_plan;
 
 /* Whether element rows a and b have the same runs (in the same order). */
@@ -151,7 +151,8 @@ static bool grouping_pays(const morph_plan *p, const rte_morph_element *e)
             if (e->runs[i].dy == p->group_row[g])
                 group_taps += e->runs[i].len;
     }
-    const int32_t level_cost = pass_cost(1) + (p->levels - 1) * pass_cost(2) + reduce_cost(level_taps);
+    const int32_t level_cost =
+        pass_cost(1) + (p->levels - 1) * pass_cost(2) + reduce_cost(level_taps);
     return group_cost + reduce_cost(group_taps) < level_cost;
 }
 
@@ -254,9 +255,9 @@ void rte_morph_reduce_rows_c(uint8_t *d, const uint8_t *const *r, int32_t count,
 
 rte_morph_rows rte_morph_rows_select(uint32_t features)
 {
-    return RTE_SIMD_PICK(features, ((rte_morph_rows){ rte_morph_row_op2_c, rte_morph_reduce_rows_c }),
-                         ((rte_morph_rows){ rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2 }),
-                         ((rte_morph_rows){ rte_morph_row_op2_c, rte_morph_reduce_rows_c }));
+    return RTE_SIMD_PICK(features, ((rte_morph_rows){rte_morph_row_op2_c, rte_morph_reduce_rows_c}),
+                         ((rte_morph_rows){rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2}),
+                         ((rte_morph_rows){rte_morph_row_op2_c, rte_morph_reduce_rows_c}));
 }
 
 /* Copies a source row into `pad` with p->ax neutral pixels before it and
@@ -289,7 +290,7 @@ typedef struct source_rows {
 static source_rows source_rows_init(const rte_image_u8 *src, const rte_image_u8 *dst, uint8_t *ring,
                                     const morph_plan *p)
 {
-    return (source_rows){ src, src->buf == dst->buf ? ring : NULL, p->slot, p->kh, 0 };
+    return (source_rows){src, src->buf == dst->buf ? ring : NULL, p->slot, p->kh, 0};
 }
 
 /* Copies the rows up to `last` (at most the image's last) into the ring
@@ -325,7 +326,7 @@ static void separable_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rt
     memset(pad, neutral, (size_t)n); /* the margins stay neutral; the middle is rewritten per row */
     if (p->blocks)
         memset(neutral_row, neutral, (size_t)w);
-    /* Source row v of the column window: rows outside the image are neutral. */
+        /* Source row v of the column window: rows outside the image are neutral. */
 #define SRC_ROW(v) ((v) < 0 || (v) >= h ? neutral_row : source_row(&rows_in, (v)))
     for (int32_t y = 0; y < h; y++) {
         const int32_t v0 = y - p->ay; /* the column window is v0 .. v0 + kh - 1 */
@@ -342,8 +343,8 @@ static void separable_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rt
             if (o == 0) {
                 memcpy(suffix + (size_t)(kh - 1) * p->slot, SRC_ROW(v0 + kh - 1), (size_t)w);
                 for (int32_t j = kh - 2; j >= 1; j--)
-                    kr->op2(suffix + (size_t)j * p->slot, SRC_ROW(v0 + j), suffix + (size_t)(j + 1) * p->slot,
-                            w, is_max);
+                    kr->op2(suffix + (size_t)j * p->slot, SRC_ROW(v0 + j),
+                            suffix + (size_t)(j + 1) * p->slot, w, is_max);
                 kr->op2(column, SRC_ROW(v0), suffix + p->slot, w, is_max);
             } else {
                 const uint8_t *entering = SRC_ROW(v0 + kh - 1);
@@ -397,7 +398,8 @@ static void taps_flush(const rte_morph_rows *kr, tap_list *t, uint8_t *d, int32_
 }
 
 /* Room for `more` rows in the list, flushing it into d if needed. */
-static void taps_room(const rte_morph_rows *kr, tap_list *t, int32_t more, uint8_t *d, int32_t w, bool is_max)
+static void taps_room(const rte_morph_rows *kr, tap_list *t, int32_t more, uint8_t *d, int32_t w,
+                      bool is_max)
 {
     if (t->count + more > (int32_t)(sizeof t->rows / sizeof t->rows[0]))
         taps_flush(kr, t, d, w, is_max);
@@ -420,8 +422,8 @@ static void taps_finish(const rte_morph_rows *kr, tap_list *t, uint8_t *d, int32
  * dst == src, a ring of row copies keeps the rows still needed (as
  * separable_pass). */
 static void grouped_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_image_u8 *dst,
-                         const morph_plan *p, const rte_morph_element *e, uint8_t *ring, uint8_t *work,
-                         bool is_max)
+                         const morph_plan *p, const rte_morph_element *e, uint8_t *ring,
+                         uint8_t *work, bool is_max)
 {
     const int32_t w = src->width, h = src->height;
     source_rows rows_in = source_rows_init(src, dst, ring, p);
@@ -477,7 +479,8 @@ static void general_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
             uint8_t *slot = ring + (size_t)(loaded % p->kh) * p->slot;
             load_padded(slot, rte_u8_row(src, loaded), w, p, neutral);
             for (int32_t k = 1; k < p->levels; k++)
-                next_level(kr, slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n, k, is_max);
+                next_level(kr, slot + (size_t)k * p->padded, slot + (size_t)(k - 1) * p->padded, n,
+                           k, is_max);
         }
         /* Every run gives one or two rows of the levels. */
         uint8_t *d = rte_u8_row(dst, y);
@@ -501,8 +504,7 @@ static void general_pass(const rte_morph_rows *kr, const rte_image_u8 *src, rte_
 }
 
 rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_morph_op op,
-                             const rte_morph_element *element, int32_t iterations,
-                             rte_arena *arena)
+                             const rte_morph_element *element, int32_t iterations, rte_arena *arena)
 {
     rte_status st = rte_image_u8_check_pair(src, dst);
     if (st != RTE_OK)

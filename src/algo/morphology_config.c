@@ -6,8 +6,8 @@
 #include "rtedge/morphology.h"
 
 rte_status rte_morphology_element_from_mask(rte_morph_element *element, const uint8_t *mask,
-                                            int32_t width, int32_t height,
-                                            int32_t anchor_x, int32_t anchor_y)
+                                            int32_t width, int32_t height, int32_t anchor_x,
+                                            int32_t anchor_y)
 {
     if (!element || !mask || width < 1 || height < 1 || width > RTE_MORPH_MAX_KSIZE ||
         height > RTE_MORPH_MAX_KSIZE)
@@ -37,7 +37,7 @@ rte_status rte_morphology_element_from_mask(rte_morph_element *element, const ui
                 e.mask[dy * width + dx + len] = 1;
                 len++;
             }
-            e.runs[e.run_count++] = (rte_morph_run){ (int16_t)dy, (int16_t)dx, (int16_t)len };
+            e.runs[e.run_count++] = (rte_morph_run){(int16_t)dy, (int16_t)dx, (int16_t)len};
             if (len > e.max_run)
                 e.max_run = len;
             set += len;

@@ -31,28 +31,28 @@ static inline void row_op2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32
  * constant in each copy: the row pointers are copied to locals first (a
  * byte store to d may alias the array), so each pass keeps them in
  * registers and the compiler vectorises it. */
-static inline __attribute__((always_inline)) void row_opk(uint8_t *d, const uint8_t *const *r, const int k,
-                                                          int32_t n, bool is_max)
+static inline __attribute__((always_inline)) void row_opk(uint8_t *d, const uint8_t *const *r,
+                                                          const int k, int32_t n, bool is_max)
 {
     const uint8_t *p0 = r[0], *p1 = r[1], *p2 = r[k > 2 ? 2 : 0], *p3 = r[k > 3 ? 3 : 0];
     const uint8_t *p4 = r[k > 4 ? 4 : 0], *p5 = r[k > 5 ? 5 : 0], *p6 = r[k > 6 ? 6 : 0];
     const uint8_t *p7 = r[k > 7 ? 7 : 0];
-#define ROW_OPK_BODY(OP)                                                                                       \
-    for (int32_t x = 0; x < n; x++) {                                                                          \
-        uint8_t u = OP(p0[x], p1[x]);                                                                          \
-        if (k > 2)                                                                                             \
-            u = OP(u, p2[x]);                                                                                  \
-        if (k > 3)                                                                                             \
-            u = OP(u, p3[x]);                                                                                  \
-        if (k > 4)                                                                                             \
-            u = OP(u, p4[x]);                                                                                  \
-        if (k > 5)                                                                                             \
-            u = OP(u, p5[x]);                                                                                  \
-        if (k > 6)                                                                                             \
-            u = OP(u, p6[x]);                                                                                  \
-        if (k > 7)                                                                                             \
-            u = OP(u, p7[x]);                                                                                  \
-        d[x] = u;                                                                                              \
+#define ROW_OPK_BODY(OP)              \
+    for (int32_t x = 0; x < n; x++) { \
+        uint8_t u = OP(p0[x], p1[x]); \
+        if (k > 2)                    \
+            u = OP(u, p2[x]);         \
+        if (k > 3)                    \
+            u = OP(u, p3[x]);         \
+        if (k > 4)                    \
+            u = OP(u, p4[x]);         \
+        if (k > 5)                    \
+            u = OP(u, p5[x]);         \
+        if (k > 6)                    \
+            u = OP(u, p6[x]);         \
+        if (k > 7)                    \
+            u = OP(u, p7[x]);         \
+        d[x] = u;                     \
     }
     if (is_max)
         ROW_OPK_BODY(MAX8)
@@ -62,7 +62,8 @@ static inline __attribute__((always_inline)) void row_opk(uint8_t *d, const uint
 }
 
 /* d = op of up to ROW_PASS_MAX rows in one pass (2 <= count). */
-static inline void row_opn(uint8_t *d, const uint8_t *const *r, int32_t count, int32_t n, bool is_max)
+static inline void row_opn(uint8_t *d, const uint8_t *const *r, int32_t count, int32_t n,
+                           bool is_max)
 {
     switch (count) {
     case 2: row_opk(d, r, 2, n, is_max); break;
@@ -78,8 +79,8 @@ static inline void row_opn(uint8_t *d, const uint8_t *const *r, int32_t count, i
 /* d = op of the `count` rows r[0..count-1], or of d and them when
  * `accumulate` is set: up to ROW_PASS_MAX rows per pass, d being one of
  * them after the first. */
-static inline void reduce_rows(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate, int32_t n,
-                        bool is_max)
+static inline void reduce_rows(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate,
+                               int32_t n, bool is_max)
 {
     int32_t i = 0;
     if (!accumulate) {

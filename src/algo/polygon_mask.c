@@ -236,8 +236,7 @@ static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *
     }
 }
 
-static rte_status check_polygons(const rte_polygon *polygons, int32_t polygon_count,
-                                 int32_t *total)
+static rte_status check_polygons(const rte_polygon *polygons, int32_t polygon_count, int32_t *total)
 {
     if (polygon_count < 0 || (polygon_count > 0 && !polygons))
         return RTE_ERR_ARGUMENT;
@@ -264,8 +263,7 @@ static rte_status check_polygons(const rte_polygon *polygons, int32_t polygon_co
  * before touching the image, so a failing call leaves it as it was. With
  * `clear` the image is zeroed first. */
 static rte_status fill_polygons(rte_image_u8 *img, const rte_polygon *polygons,
-                                int32_t polygon_count, uint8_t value, int clear,
-                                rte_arena *arena)
+                                int32_t polygon_count, uint8_t value, int clear, rte_arena *arena)
 {
     rte_status st = rte_image_u8_check(img);
     if (st != RTE_OK)
@@ -318,7 +316,7 @@ rte_status rte_polygon_mask_build(rte_image_u8 *mask, const rte_polygon *polygon
 static void mask_row(const uint8_t *s, const uint8_t *m, uint8_t *d, int32_t width)
 {
     for (int32_t x = 0; x < width; x++)
-        d[x] = (uint8_t)(s[x] & (uint8_t)-(m[x] != 0));
+        d[x] = (uint8_t)(s[x] & (uint8_t) - (m[x] != 0));
 }
 
 rte_status rte_polygon_mask_apply(const rte_image_u8 *src, const rte_image_u8 *mask,

@@ -8,7 +8,7 @@
 #define TWO_PI_Q16 411775
 
 /* Q16 thresholds of the rule in shape.h */
-#define Q16(num, den) ((int32_t)(((int64_t)(num) * 65536 + (den) / 2) / (den)))
+#define Q16(num, den) ((int32_t)(((int64_t)(num)*65536 + (den) / 2) / (den)))
 
 size_t rte_shape_classify_scratch_size(int32_t max_points)
 {
@@ -77,7 +77,9 @@ static rte_shape_class classify(const rte_shape_info *s)
         return a <= RTE_SHAPE_SQUARE_ASPECT_Q16 ? RTE_SHAPE_SQUARE : RTE_SHAPE_RECTANGLE;
     }
     /* roundness: mostly hull circularity, a little enclosing-circle fill */
-    const int32_t r = (int32_t)(((int64_t)c * 86 + (int64_t)circle_fill(s->area2, s->circle.r_q8) * 14 + 50) / 100);
+    const int32_t r =
+        (int32_t)(((int64_t)c * 86 + (int64_t)circle_fill(s->area2, s->circle.r_q8) * 14 + 50) /
+                  100);
     if (v > 6 && r >= RTE_SHAPE_CIRCLE_MIN_Q16)
         return RTE_SHAPE_CIRCLE;
     if (v > 8)
@@ -93,7 +95,7 @@ rte_status rte_shape_classify(const rte_point *pts, int32_t n, rte_shape_info *i
 {
     if (!info || !pts || n < 1 || !scratch)
         return RTE_ERR_ARGUMENT;
-    *info = (rte_shape_info){ 0 };
+    *info = (rte_shape_info){0};
     const size_t mark = rte_arena_mark(scratch);
     rte_point *hull = rte_arena_alloc(scratch, ((size_t)n + 1) * sizeof *hull);
     rte_point *poly = rte_arena_alloc(scratch, ((size_t)n + 1) * sizeof *poly);
@@ -110,10 +112,12 @@ rte_status rte_shape_classify(const rte_point *pts, int32_t n, rte_shape_info *i
     /* epsilon = 0.02 x perimeter, in Q16 like the perimeter */
     const int64_t eps = (per * 2 + 50) / 100;
     if (st == RTE_OK)
-        st = rte_shape_approx_poly(pts, n, (uint32_t)(eps < (1 << 26) ? eps : (1 << 26) - 1), poly, &nv, scratch);
+        st = rte_shape_approx_poly(pts, n, (uint32_t)(eps < (1 << 26) ? eps : (1 << 26) - 1), poly,
+                                   &nv, scratch);
     if (st == RTE_OK)
-        st = rte_shape_approx_poly(pts, n, (uint32_t)(2 * eps < (1 << 26) ? 2 * eps : (1 << 26) - 1), poly,
-                                   &info->vertices_coarse, scratch);
+        st =
+            rte_shape_approx_poly(pts, n, (uint32_t)(2 * eps < (1 << 26) ? 2 * eps : (1 << 26) - 1),
+                                  poly, &info->vertices_coarse, scratch);
     if (st == RTE_OK)
         st = rte_shape_min_area_rect(pts, n, &info->box, scratch);
     if (st == RTE_OK)
@@ -131,7 +135,8 @@ rte_status rte_shape_classify(const rte_point *pts, int32_t n, rte_shape_info *i
     info->area2 = area2;
     info->perimeter_q16 = per;
     info->bounds = rte_shape_bounding_rect(pts, n);
-    info->aspect_q16 = info->box.width_q8 > 0 ? ratio_q16(info->box.length_q8, info->box.width_q8) : INT32_MAX;
+    info->aspect_q16 =
+        info->box.width_q8 > 0 ? ratio_q16(info->box.length_q8, info->box.width_q8) : INT32_MAX;
     info->extent_q16 = ratio_q16(area2, 2 * (int64_t)info->bounds.width * info->bounds.height);
     info->solidity_q16 = ratio_q16(area2, hull_area2);
     info->circularity_q16 = circularity(area2, per);

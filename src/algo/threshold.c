@@ -18,7 +18,8 @@
  * partial histograms, eight pixels at a time (one 8-byte load each; byte
  * order cannot matter here); mask chunks of all zeros are skipped, chunks
  * without a zero byte counted as unmasked. */
-static void histogram_row(const uint8_t *row, const uint8_t *mask, int32_t n, uint32_t part[HIST_PARTS][256])
+static void histogram_row(const uint8_t *row, const uint8_t *mask, int32_t n,
+                          uint32_t part[HIST_PARTS][256])
 {
     const uint64_t ones = 0x0101010101010101u, highs = 0x8080808080808080u;
     int32_t x = 0;
@@ -238,7 +239,9 @@ rte_status rte_threshold_u8(const rte_image_u8 *src, rte_image_u8 *dst,
     if (used_thresh)
         *used_thresh = t;
     const rte_threshold_type type = params->type;
-    const uint8_t maxval = (uint8_t)(params->maxval < 0 ? 0 : params->maxval > 255 ? 255 : params->maxval);
+    const uint8_t maxval = (uint8_t)(params->maxval < 0     ? 0
+                                     : params->maxval > 255 ? 255
+                                                            : params->maxval);
 
     if (t < 0 || t >= 255) {
         /* Every pixel is on one side of t: OpenCV fills or copies. */

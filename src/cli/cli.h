@@ -28,20 +28,20 @@ typedef enum cli_option_type {
 typedef struct cli_option {
     const char *name; /* without the leading "--" */
     cli_option_type type;
-    void *value;      /* int *, double *, bool *, const char ** by type */
-    double min, max;  /* CLI_INT and CLI_DOUBLE */
+    void *value;     /* int *, double *, bool *, const char ** by type */
+    double min, max; /* CLI_INT and CLI_DOUBLE */
     const char *const *choices;
     const char *help;
-    bool *given;      /* optional: set when the option appears */
+    bool *given; /* optional: set when the option appears */
 } cli_option;
 
 typedef struct cli_command {
     const char *name;
-    const char *usage;    /* the words after the command name, e.g. "IN OUT" */
-    const char *summary;  /* one line */
-    const char *details;  /* optional paragraph after the options */
-    cli_option *options;  /* terminated by an entry with name == NULL */
-    int positionals;      /* how many positional arguments are required */
+    const char *usage;   /* the words after the command name, e.g. "IN OUT" */
+    const char *summary; /* one line */
+    const char *details; /* optional paragraph after the options */
+    cli_option *options; /* terminated by an entry with name == NULL */
+    int positionals;     /* how many positional arguments are required */
 } cli_command;
 
 /* Parses argv (argv[0] is the command name). Fills options, puts the

@@ -27,7 +27,9 @@ static void print_default(FILE *out, const cli_option *o)
 {
     switch (o->type) {
     case CLI_INT: fprintf(out, " (default %d, %g..%g)", *(int *)o->value, o->min, o->max); break;
-    case CLI_DOUBLE: fprintf(out, " (default %g, %g..%g)", *(double *)o->value, o->min, o->max); break;
+    case CLI_DOUBLE:
+        fprintf(out, " (default %g, %g..%g)", *(double *)o->value, o->min, o->max);
+        break;
     case CLI_CHOICE: fprintf(out, " (default %s)", o->choices[*(int *)o->value]); break;
     case CLI_STRING:
         if (*(const char **)o->value)
@@ -82,8 +84,8 @@ static int set_value(const cli_command *cmd, const cli_option *o, const char *te
     case CLI_INT: {
         long v = strtol(text, &end, 10);
         if (errno || end == text || *end || v < o->min || v > o->max) {
-            cli_error(cmd->name, "--%s takes a whole number from %g to %g, not '%s'", o->name, o->min,
-                      o->max, text);
+            cli_error(cmd->name, "--%s takes a whole number from %g to %g, not '%s'", o->name,
+                      o->min, o->max, text);
             return CLI_EXIT_USAGE;
         }
         *(int *)o->value = (int)v;
@@ -92,8 +94,8 @@ static int set_value(const cli_command *cmd, const cli_option *o, const char *te
     case CLI_DOUBLE: {
         double v = strtod(text, &end);
         if (errno || end == text || *end || !isfinite(v) || v < o->min || v > o->max) {
-            cli_error(cmd->name, "--%s takes a number from %g to %g, not '%s'", o->name, o->min, o->max,
-                      text);
+            cli_error(cmd->name, "--%s takes a number from %g to %g, not '%s'", o->name, o->min,
+                      o->max, text);
             return CLI_EXIT_USAGE;
         }
         *(double *)o->value = v;

@@ -8,12 +8,11 @@
 #include "cli_image.h"
 #include "rtedge/gradient.h"
 
-
-#define FILTER_DETAILS                                                                        \
-    "IN: PGM/PPM (P2, P3, P5, P6), PNG or JPEG; colour is converted to grey as\n"             \
+#define FILTER_DETAILS                                                            \
+    "IN: PGM/PPM (P2, P3, P5, P6), PNG or JPEG; colour is converted to grey as\n" \
     "cv2.cvtColor(cv2.imread(IN), cv2.COLOR_BGR2GRAY) does. OUT: .pgm, .png or .npy.\n"
-#define INT16_DETAILS                                                                         \
-    "OUT .npy holds the int16 result; .pgm/.png its saturated absolute value\n"                \
+#define INT16_DETAILS                                                           \
+    "OUT .npy holds the int16 result; .pgm/.png its saturated absolute value\n" \
     "(cv2.convertScaleAbs).\n"
 
 static bool has_extension(const char *path, const char *ext)
@@ -49,7 +48,8 @@ int cli_filter_main(const cli_entry *self, int argc, char **argv, const filter_s
     rte_arena arena;
     void *out_memory = cli_new_u8(self->name, w, h, &out);
     void *d_memory = spec->int16 ? cli_new_s16(self->name, w, h, &d) : NULL;
-    void *arena_memory = cli_new_arena(self->name, spec->scratch ? spec->scratch(spec->ctx, w, h) : 0, &arena);
+    void *arena_memory =
+        cli_new_arena(self->name, spec->scratch ? spec->scratch(spec->ctx, w, h) : 0, &arena);
     rte_status st = RTE_ERR_NO_MEMORY;
     if (out_memory && arena_memory && (d_memory || !spec->int16))
         st = spec->apply(spec->ctx, &in.gray, &out, &d, &arena);
@@ -61,7 +61,8 @@ int cli_filter_main(const cli_entry *self, int argc, char **argv, const filter_s
         cli_error(self->name, "%s", rte_status_message(st));
         rc = CLI_EXIT_FAILURE;
     } else {
-        rc = npy ? cli_save_s16(self->name, paths[1], &d) : cli_save_gray(self->name, paths[1], &out);
+        rc = npy ? cli_save_s16(self->name, paths[1], &d)
+                 : cli_save_gray(self->name, paths[1], &out);
         if (rc == CLI_EXIT_OK && spec->report)
             spec->report(spec->ctx);
     }
@@ -71,4 +72,3 @@ int cli_filter_main(const cli_entry *self, int argc, char **argv, const filter_s
     free(arena_memory);
     return rc;
 }
-

@@ -17,9 +17,9 @@
 #include "rtedge/status.h"
 
 typedef struct filter_spec {
-    const char *details;   /* after the common input/output text */
+    const char *details; /* after the common input/output text */
     cli_option *options;
-    void *ctx;             /* the subcommand's option values and tables */
+    void *ctx; /* the subcommand's option values and tables */
     /* Checks the options and builds tables (configuration time); returns an
      * exit code (CLI_EXIT_USAGE after a message). NULL: nothing to check. */
     int (*prepare)(const char *name, void *ctx);
@@ -27,7 +27,7 @@ typedef struct filter_spec {
     /* The kernel: `gray` in, `out` (u8) or, for int16 results, `d` out. */
     rte_status (*apply)(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
                         rte_arena *arena);
-    bool int16;            /* the result is int16 (written to .npy, or |d| to an image) */
+    bool int16;                /* the result is int16 (written to .npy, or |d| to an image) */
     void (*report)(void *ctx); /* prints what the run found, after OUT is written; may be NULL */
 } filter_spec;
 

@@ -31,26 +31,72 @@ void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area)
 int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp)
 {
     int n = 0;
-    t[n++] = (cli_option){"binarize", CLI_STRING, &o->binarize, 0, 0, NULL,
-                          "otsu, canny (edges closed by an ellipse) or a fixed threshold 0..255", NULL};
-    t[n++] = (cli_option){"polarity", CLI_CHOICE, &o->polarity, 0, 0, cli_polarities,
-                          "objects darker or brighter than the table; auto: the image border is table", NULL};
-    t[n++] = (cli_option){"blur", CLI_INT, &o->blur, 1, RTE_GAUSSIAN_MAX_KSIZE, NULL,
-                          "odd Gaussian size before binarising (1 = none)", NULL};
-    t[n++] = (cli_option){"canny-low", CLI_INT, &o->canny_low, 0, 2040, NULL, "canny: lower threshold", NULL};
-    t[n++] = (cli_option){"canny-high", CLI_INT, &o->canny_high, 0, 2040, NULL, "canny: upper threshold", NULL};
-    t[n++] = (cli_option){"close", CLI_INT, &o->close, 1, RTE_MORPH_MAX_KSIZE, NULL,
-                          "canny: odd size of the closing ellipse", NULL};
-    t[n++] = (cli_option){"close-iterations", CLI_INT, &o->close_iterations, 1, 8, NULL,
+    t[n++] = (cli_option){"binarize",
+                          CLI_STRING,
+                          &o->binarize,
+                          0,
+                          0,
+                          NULL,
+                          "otsu, canny (edges closed by an ellipse) or a fixed threshold 0..255",
+                          NULL};
+    t[n++] =
+        (cli_option){"polarity",
+                     CLI_CHOICE,
+                     &o->polarity,
+                     0,
+                     0,
+                     cli_polarities,
+                     "objects darker or brighter than the table; auto: the image border is table",
+                     NULL};
+    t[n++] = (cli_option){"blur",
+                          CLI_INT,
+                          &o->blur,
+                          1,
+                          RTE_GAUSSIAN_MAX_KSIZE,
+                          NULL,
+                          "odd Gaussian size before binarising (1 = none)",
+                          NULL};
+    t[n++] = (cli_option){
+        "canny-low", CLI_INT, &o->canny_low, 0, 2040, NULL, "canny: lower threshold", NULL};
+    t[n++] = (cli_option){"canny-high", CLI_INT, &o->canny_high,           0,
+                          2040,         NULL,    "canny: upper threshold", NULL};
+    t[n++] = (cli_option){"close",
+                          CLI_INT,
+                          &o->close,
+                          1,
+                          RTE_MORPH_MAX_KSIZE,
+                          NULL,
+                          "canny: odd size of the closing ellipse",
+                          NULL};
+    t[n++] = (cli_option){"close-iterations",          CLI_INT, &o->close_iterations, 1, 8, NULL,
                           "canny: closing iterations", NULL};
-    t[n++] = (cli_option){"min-area", CLI_INT, &o->min_area, 0, 4194304, NULL, "smallest object, px", NULL};
+    t[n++] = (cli_option){"min-area", CLI_INT, &o->min_area,          0,
+                          4194304,    NULL,    "smallest object, px", NULL};
     if (grasp) {
-        t[n++] = (cli_option){"max-area", CLI_INT, &o->max_area, 0, 4194304, NULL,
-                              "largest object, px (0 = no limit)", NULL};
-        t[n++] = (cli_option){"skip-border", CLI_FLAG, &o->skip_border, 0, 0, NULL,
-                              "drop objects touching the image border", NULL};
-        t[n++] = (cli_option){"max-objects", CLI_INT, &o->max_objects, 1, 4096, NULL,
-                              "objects reported (the largest)", NULL};
+        t[n++] = (cli_option){"max-area",
+                              CLI_INT,
+                              &o->max_area,
+                              0,
+                              4194304,
+                              NULL,
+                              "largest object, px (0 = no limit)",
+                              NULL};
+        t[n++] = (cli_option){"skip-border",
+                              CLI_FLAG,
+                              &o->skip_border,
+                              0,
+                              0,
+                              NULL,
+                              "drop objects touching the image border",
+                              NULL};
+        t[n++] = (cli_option){"max-objects",
+                              CLI_INT,
+                              &o->max_objects,
+                              1,
+                              4096,
+                              NULL,
+                              "objects reported (the largest)",
+                              NULL};
     }
     t[n] = (cli_option){0};
     return n;
@@ -69,7 +115,8 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
         char *end;
         long t = strtol(o->binarize, &end, 10);
         if (end == o->binarize || *end || t < 0 || t > 255) {
-            cli_error(command, "--binarize must be otsu, canny or a threshold 0..255, not \"%s\"", o->binarize);
+            cli_error(command, "--binarize must be otsu, canny or a threshold 0..255, not \"%s\"",
+                      o->binarize);
             return CLI_EXIT_USAGE;
         }
         p->binarize = RTE_GRASP_FIXED;
@@ -108,7 +155,9 @@ static void print_fixed(int64_t v, int shift, int places)
     uint64_t a = neg ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
     /* integer part, then the fraction rounded to `places` decimals */
     uint64_t ip = a >> shift;
-    uint64_t fp = ((a & (((uint64_t)1 << shift) - 1)) * (uint64_t)scale + ((uint64_t)1 << (shift - 1))) >> shift;
+    uint64_t fp =
+        ((a & (((uint64_t)1 << shift) - 1)) * (uint64_t)scale + ((uint64_t)1 << (shift - 1))) >>
+        shift;
     if (fp == (uint64_t)scale) {
         ip++;
         fp = 0;
@@ -150,7 +199,8 @@ void *cli_overlay_canvas(const char *command, const cli_image *in, rte_image_u8c
     return mem;
 }
 
-void cli_overlay_label(rte_image_u8c3 *canvas, int32_t x, int32_t y, const char *text, rte_draw_color c)
+void cli_overlay_label(rte_image_u8c3 *canvas, int32_t x, int32_t y, const char *text,
+                       rte_draw_color c)
 {
     int32_t tw, th;
     rte_draw_text_size(text, 1, &tw, &th);
@@ -179,7 +229,8 @@ void cli_overlay_box(rte_image_u8c3 *canvas, const int32_t corners_q8[4][2], rte
 rte_draw_color cli_overlay_color(int32_t i)
 {
     static const rte_draw_color palette[] = {
-        {0, 0, 255}, {0, 200, 0}, {255, 160, 0}, {0, 200, 255}, {255, 0, 255}, {255, 255, 0}, {0, 128, 255}, {128, 0, 255},
+        {0, 0, 255},   {0, 200, 0},   {255, 160, 0}, {0, 200, 255},
+        {255, 0, 255}, {255, 255, 0}, {0, 128, 255}, {128, 0, 255},
     };
     return palette[(uint32_t)i % (sizeof palette / sizeof palette[0])];
 }

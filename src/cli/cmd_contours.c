@@ -57,8 +57,8 @@ static rte_status print_features(const rte_point *pts, int32_t n, feature_buffer
     /* the tutorial's epsilon: 0.02 x perimeter */
     const int64_t eps = (s.perimeter_q16 * 2 + 50) / 100;
     if (st == RTE_OK)
-        st = rte_shape_approx_poly(pts, n, (uint32_t)(eps < (1 << 26) ? eps : (1 << 26) - 1), b->approx, &na,
-                                   &b->arena);
+        st = rte_shape_approx_poly(pts, n, (uint32_t)(eps < (1 << 26) ? eps : (1 << 26) - 1),
+                                   b->approx, &na, &b->arena);
     if (st != RTE_OK)
         return st;
     printf(",\"area\":");
@@ -170,7 +170,8 @@ static rte_status print_contours(const rte_contours *cs, feature_buffers *b, int
         st = print_features(pts, c->count, b);
         printf("}");
     }
-    printf("],\"threshold\":%d,\"truncated\":%s}\n", (int)threshold, cs->truncated ? "true" : "false");
+    printf("],\"threshold\":%d,\"truncated\":%s}\n", (int)threshold,
+           cs->truncated ? "true" : "false");
     return st;
 }
 
@@ -183,19 +184,31 @@ int cmd_contours(const cli_entry *self, int argc, char **argv)
     int mode = RTE_CONTOURS_LIST, method = 1;
     cli_option options[CLI_PIPELINE_OPTIONS + 3];
     int n = cli_pipeline_option_table(options, &o, false);
-    options[n] = (cli_option){"mode", CLI_CHOICE, &mode, 0, 0, modes, "retrieval mode (= RETR_*)", NULL};
-    options[n + 1] = (cli_option){"method", CLI_CHOICE, &method, 0, 0, methods,
-                                  "chain approximation (= CHAIN_APPROX_NONE / SIMPLE)", NULL};
+    options[n] =
+        (cli_option){"mode", CLI_CHOICE, &mode, 0, 0, modes, "retrieval mode (= RETR_*)", NULL};
+    options[n + 1] = (cli_option){"method",
+                                  CLI_CHOICE,
+                                  &method,
+                                  0,
+                                  0,
+                                  methods,
+                                  "chain approximation (= CHAIN_APPROX_NONE / SIMPLE)",
+                                  NULL};
     options[n + 2] = (cli_option){0};
-    cli_command cmd = {self->name, "IN", self->summary,
-                       "IN: PGM/PPM, PNG or JPEG. Binarised as the grasp path does (no blur by default):\n"
-                       "a fixed threshold N with --polarity bright is cv2.threshold(img, N, 255, THRESH_BINARY);\n"
-                       "then = cv2.findContours(bin, mode, method). Contours smaller than --min-area are\n"
-                       "left out; \"index\" and \"hierarchy\" refer to the full list.\n"
-                       "Prints {\"contours\":[{\"index\",\"points\",\"hierarchy\",\"area\",\"perimeter\",\"centroid\",\n"
-                       "\"bbox\",\"min_rect\",\"circle\",\"hull\",\"defects\",\"approx\",\"shape\",\"solidity\",\n"
-                       "\"extent\",\"aspect\"}],\"truncated\":false}.",
-                       options, 1};
+    cli_command cmd = {
+        self->name,
+        "IN",
+        self->summary,
+        "IN: PGM/PPM, PNG or JPEG. Binarised as the grasp path does (no blur by default):\n"
+        "a fixed threshold N with --polarity bright is cv2.threshold(img, N, 255, THRESH_BINARY);\n"
+        "then = cv2.findContours(bin, mode, method). Contours smaller than --min-area are\n"
+        "left out; \"index\" and \"hierarchy\" refer to the full list.\n"
+        "Prints "
+        "{\"contours\":[{\"index\",\"points\",\"hierarchy\",\"area\",\"perimeter\",\"centroid\",\n"
+        "\"bbox\",\"min_rect\",\"circle\",\"hull\",\"defects\",\"approx\",\"shape\",\"solidity\",\n"
+        "\"extent\",\"aspect\"}],\"truncated\":false}.",
+        options,
+        1};
     const char *path[1];
     int rc = cli_parse(&cmd, argc, argv, path);
     if (rc != CLI_EXIT_OK)
@@ -208,7 +221,8 @@ int cmd_contours(const cli_entry *self, int argc, char **argv)
         return rc;
     const int32_t w = in.gray.width, h = in.gray.height;
     if (w > RTE_SHAPE_MAX_COORD + 1 || h > RTE_SHAPE_MAX_COORD + 1) {
-        cli_error(self->name, "%s: %dx%d is larger than %d px a side", path[0], w, h, RTE_SHAPE_MAX_COORD + 1);
+        cli_error(self->name, "%s: %dx%d is larger than %d px a side", path[0], w, h,
+                  RTE_SHAPE_MAX_COORD + 1);
         cli_image_free(&in);
         return CLI_EXIT_INPUT;
     }
@@ -226,7 +240,8 @@ int cmd_contours(const cli_entry *self, int argc, char **argv)
         st = RTE_ERR_NO_MEMORY;
     if (st == RTE_OK)
         st = rte_contours_find(r.binary, (rte_contour_mode)mode,
-                               method ? RTE_CONTOURS_APPROX_SIMPLE : RTE_CONTOURS_APPROX_NONE, &cs, &b.arena);
+                               method ? RTE_CONTOURS_APPROX_SIMPLE : RTE_CONTOURS_APPROX_NONE, &cs,
+                               &b.arena);
     if (st == RTE_OK)
         st = print_contours(&cs, &b, o.min_area, r.threshold);
     if (st != RTE_OK) {

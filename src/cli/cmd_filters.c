@@ -22,8 +22,8 @@ static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
 
 /* --- gray --- */
 
-static rte_status gray_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                             rte_arena *arena)
+static rte_status gray_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
+                             rte_image_s16 *d, rte_arena *arena)
 {
     for (int32_t y = 0; y < gray->height; y++)
         memcpy(rte_u8_row(out, y), rte_u8_row(gray, y), (size_t)gray->width);
@@ -42,10 +42,11 @@ int cmd_gray(const cli_entry *self, int argc, char **argv)
 static int blur_prepare(const char *name, void *ctx)
 {
     blur_options *o = ctx;
-    rte_status st = rte_gaussian_kernel_init(&o->kernel, o->ksize, o->ksize_y < 0 ? o->ksize : o->ksize_y,
-                                             o->sigma, o->sigma_y);
+    rte_status st = rte_gaussian_kernel_init(
+        &o->kernel, o->ksize, o->ksize_y < 0 ? o->ksize : o->ksize_y, o->sigma, o->sigma_y);
     if (st != RTE_OK) {
-        cli_error(name, "Gaussian kernel size %d, sigma %g: %s", o->ksize, o->sigma, rte_status_message(st));
+        cli_error(name, "Gaussian kernel size %d, sigma %g: %s", o->ksize, o->sigma,
+                  rte_status_message(st));
         return CLI_EXIT_USAGE;
     }
     return CLI_EXIT_OK;
@@ -56,8 +57,8 @@ static size_t blur_scratch(void *ctx, int32_t w, int32_t h)
     return rte_gaussian_blur_u8_scratch_size(w, h, &((blur_options *)ctx)->kernel);
 }
 
-static rte_status blur_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                             rte_arena *arena)
+static rte_status blur_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
+                             rte_image_s16 *d, rte_arena *arena)
 {
     return rte_gaussian_blur_u8(gray, out, &((blur_options *)ctx)->kernel, arena);
 }
@@ -66,13 +67,21 @@ int cmd_blur(const cli_entry *self, int argc, char **argv)
 {
     blur_options b = {.ksize = 5, .ksize_y = -1};
     cli_option options[] = {
-        {"ksize", CLI_INT, &b.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "odd kernel size, 0 = from --sigma", NULL},
+        {"ksize", CLI_INT, &b.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL,
+         "odd kernel size, 0 = from --sigma", NULL},
         {"sigma", CLI_DOUBLE, &b.sigma, 0, 100, NULL, "sigma, 0 = from the kernel size", NULL},
-        {"ksize-y", CLI_INT, &b.ksize_y, -1, RTE_GAUSSIAN_MAX_KSIZE, NULL, "vertical size, -1 = --ksize", NULL},
+        {"ksize-y", CLI_INT, &b.ksize_y, -1, RTE_GAUSSIAN_MAX_KSIZE, NULL,
+         "vertical size, -1 = --ksize", NULL},
         {"sigma-y", CLI_DOUBLE, &b.sigma_y, 0, 100, NULL, "vertical sigma, 0 = --sigma", NULL},
         {0}};
-    filter_spec spec = {"= cv2.GaussianBlur(img, (ksize, ksize-y), sigma, sigmaY=sigma-y)", options, &b,
-                        blur_prepare, blur_scratch, blur_apply, false, NULL};
+    filter_spec spec = {"= cv2.GaussianBlur(img, (ksize, ksize-y), sigma, sigmaY=sigma-y)",
+                        options,
+                        &b,
+                        blur_prepare,
+                        blur_scratch,
+                        blur_apply,
+                        false,
+                        NULL};
     return cli_filter_main(self, argc, argv, &spec);
 }
 
@@ -90,8 +99,8 @@ static size_t median_scratch(void *ctx, int32_t w, int32_t h)
     return rte_median_blur_u8_scratch_size(w, h, *(int *)ctx);
 }
 
-static rte_status median_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                               rte_arena *arena)
+static rte_status median_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
+                               rte_image_s16 *d, rte_arena *arena)
 {
     return rte_median_blur_u8(gray, out, *(int *)ctx, arena);
 }
@@ -99,9 +108,16 @@ static rte_status median_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8
 int cmd_median(const cli_entry *self, int argc, char **argv)
 {
     int ksize = 3;
-    cli_option options[] = {{"ksize", CLI_INT, &ksize, 1, 5, NULL, "aperture: 1, 3 or 5", NULL}, {0}};
-    filter_spec spec = {"= cv2.medianBlur(img, ksize)", options, &ksize,
-                        median_prepare, median_scratch, median_apply, false, NULL};
+    cli_option options[] = {{"ksize", CLI_INT, &ksize, 1, 5, NULL, "aperture: 1, 3 or 5", NULL},
+                            {0}};
+    filter_spec spec = {"= cv2.medianBlur(img, ksize)",
+                        options,
+                        &ksize,
+                        median_prepare,
+                        median_scratch,
+                        median_apply,
+                        false,
+                        NULL};
     return cli_filter_main(self, argc, argv, &spec);
 }
 
@@ -112,7 +128,7 @@ typedef enum derivative_kind { DERIV_SOBEL, DERIV_SCHARR, DERIV_LAPLACIAN } deri
 typedef struct derivative_options {
     derivative_kind kind;
     int dx, dy, ksize;
-    bool blur_first;   /* log: Gaussian blur, then the Laplacian */
+    bool blur_first; /* log: Gaussian blur, then the Laplacian */
     blur_options blur;
 } derivative_options;
 
@@ -147,8 +163,8 @@ static size_t derivative_scratch(void *ctx, int32_t w, int32_t h)
     return scratch;
 }
 
-static rte_status derivative_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                                   rte_arena *arena)
+static rte_status derivative_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
+                                   rte_image_s16 *d, rte_arena *arena)
 {
     derivative_options *o = ctx;
     switch (o->kind) {
@@ -168,7 +184,8 @@ static rte_status derivative_apply(void *ctx, const rte_image_u8 *gray, rte_imag
 static int derivative_main(const cli_entry *self, int argc, char **argv, derivative_options *o,
                            cli_option *options, const char *details)
 {
-    filter_spec spec = {details, options, o, derivative_prepare, derivative_scratch, derivative_apply, true, NULL};
+    filter_spec spec = {details,          options, o,   derivative_prepare, derivative_scratch,
+                        derivative_apply, true,    NULL};
     return cli_filter_main(self, argc, argv, &spec);
 }
 
@@ -180,37 +197,44 @@ int cmd_sobel(const cli_entry *self, int argc, char **argv)
         {"dy", CLI_INT, &o.dy, 0, 2, NULL, "order of the y derivative", NULL},
         {"ksize", CLI_INT, &o.ksize, 1, 7, NULL, "aperture: 1, 3, 5 or 7", NULL},
         {0}};
-    return derivative_main(self, argc, argv, &o, options, "= cv2.Sobel(img, cv2.CV_16S, dx, dy, ksize=ksize)");
+    return derivative_main(self, argc, argv, &o, options,
+                           "= cv2.Sobel(img, cv2.CV_16S, dx, dy, ksize=ksize)");
 }
 
 int cmd_scharr(const cli_entry *self, int argc, char **argv)
 {
     derivative_options o = {.kind = DERIV_SCHARR, .dx = 1, .dy = 0};
-    cli_option options[] = {
-        {"dx", CLI_INT, &o.dx, 0, 1, NULL, "x derivative (dx + dy = 1)", NULL},
-        {"dy", CLI_INT, &o.dy, 0, 1, NULL, "y derivative", NULL},
-        {0}};
+    cli_option options[] = {{"dx", CLI_INT, &o.dx, 0, 1, NULL, "x derivative (dx + dy = 1)", NULL},
+                            {"dy", CLI_INT, &o.dy, 0, 1, NULL, "y derivative", NULL},
+                            {0}};
     return derivative_main(self, argc, argv, &o, options, "= cv2.Scharr(img, cv2.CV_16S, dx, dy)");
 }
 
 int cmd_laplacian(const cli_entry *self, int argc, char **argv)
 {
     derivative_options o = {.kind = DERIV_LAPLACIAN, .ksize = 1};
-    cli_option options[] = {{"ksize", CLI_INT, &o.ksize, 1, 3, NULL, "aperture: 1 or 3", NULL}, {0}};
-    return derivative_main(self, argc, argv, &o, options, "= cv2.Laplacian(img, cv2.CV_16S, ksize=ksize)");
+    cli_option options[] = {{"ksize", CLI_INT, &o.ksize, 1, 3, NULL, "aperture: 1 or 3", NULL},
+                            {0}};
+    return derivative_main(self, argc, argv, &o, options,
+                           "= cv2.Laplacian(img, cv2.CV_16S, ksize=ksize)");
 }
 
 int cmd_log(const cli_entry *self, int argc, char **argv)
 {
-    derivative_options o = {.kind = DERIV_LAPLACIAN, .ksize = 1, .blur_first = true,
+    derivative_options o = {.kind = DERIV_LAPLACIAN,
+                            .ksize = 1,
+                            .blur_first = true,
                             .blur = {.ksize = 3, .ksize_y = -1}};
     cli_option options[] = {
-        {"blur", CLI_INT, &o.blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "Gaussian kernel size, 0 = from --sigma", NULL},
-        {"sigma", CLI_DOUBLE, &o.blur.sigma, 0, 100, NULL, "Gaussian sigma, 0 = from the size", NULL},
+        {"blur", CLI_INT, &o.blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL,
+         "Gaussian kernel size, 0 = from --sigma", NULL},
+        {"sigma", CLI_DOUBLE, &o.blur.sigma, 0, 100, NULL, "Gaussian sigma, 0 = from the size",
+         NULL},
         {"ksize", CLI_INT, &o.ksize, 1, 3, NULL, "Laplacian aperture: 1 or 3", NULL},
         {0}};
-    return derivative_main(self, argc, argv, &o, options,
-                           "= cv2.Laplacian(cv2.GaussianBlur(img, (blur, blur), sigma), cv2.CV_16S, ksize=ksize)");
+    return derivative_main(
+        self, argc, argv, &o, options,
+        "= cv2.Laplacian(cv2.GaussianBlur(img, (blur, blur), sigma), cv2.CV_16S, ksize=ksize)");
 }
 
 /* --- canny --- */
@@ -231,7 +255,8 @@ size_t cli_canny_scratch(void *ctx, int32_t w, int32_t h)
     canny_options *o = ctx;
     size_t scratch = rte_canny_scratch_size(w, h, o->aperture);
     if (o->blur_first) /* the blurred image, then the larger of the two kernels' needs */
-        scratch = rte_arena_piece_size((size_t)w * (size_t)h) + max_size(scratch, blur_scratch(&o->blur, w, h));
+        scratch = rte_arena_piece_size((size_t)w * (size_t)h) +
+                  max_size(scratch, blur_scratch(&o->blur, w, h));
     return scratch;
 }
 
@@ -255,7 +280,8 @@ rte_status cli_canny_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *ou
         int32_t low = 0, high = 0;
         st = rte_histogram_u8(gray, hist);
         if (st == RTE_OK && o->auto_rule == 1)
-            st = rte_threshold_auto_canny_median(hist, (int32_t)(o->auto_sigma * 1000 + 0.5), &low, &high);
+            st = rte_threshold_auto_canny_median(hist, (int32_t)(o->auto_sigma * 1000 + 0.5), &low,
+                                                 &high);
         else if (st == RTE_OK)
             st = rte_threshold_auto_canny_otsu(hist, &low, &high);
         o->low = low;
@@ -275,7 +301,8 @@ static void canny_report(void *ctx)
 
 canny_options cli_canny_defaults(void)
 {
-    return (canny_options){.low = 50, .high = 150, .auto_sigma = 0.33, .aperture = 3, .blur = {.ksize_y = -1}};
+    return (canny_options){
+        .low = 50, .high = 150, .auto_sigma = 0.33, .aperture = 3, .blur = {.ksize_y = -1}};
 }
 
 int cli_canny_option_rows(cli_option *rows, canny_options *o)
@@ -285,10 +312,13 @@ int cli_canny_option_rows(cli_option *rows, canny_options *o)
         {"low", CLI_DOUBLE, &o->low, -1e6, 1e6, NULL, "lower hysteresis threshold", NULL},
         {"high", CLI_DOUBLE, &o->high, -1e6, 1e6, NULL, "upper hysteresis threshold", NULL},
         {"aperture", CLI_INT, &o->aperture, 3, 5, NULL, "Sobel aperture: 3 or 5", NULL},
-        {"l2", CLI_FLAG, &o->l2, 0, 0, NULL, "L2 gradient magnitude (squared, as OpenCV compares it)", NULL},
-        {"blur", CLI_INT, &o->blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL, "Gaussian blur first with this odd size; 0 = none unless --sigma", NULL},
+        {"l2", CLI_FLAG, &o->l2, 0, 0, NULL,
+         "L2 gradient magnitude (squared, as OpenCV compares it)", NULL},
+        {"blur", CLI_INT, &o->blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL,
+         "Gaussian blur first with this odd size; 0 = none unless --sigma", NULL},
         {"sigma", CLI_DOUBLE, &o->blur.sigma, 0, 100, NULL, "Gaussian sigma of that blur", NULL},
-        {"auto", CLI_CHOICE, &o->auto_rule, 0, 0, auto_rules, "thresholds from the image: median rule or Otsu rule", NULL},
+        {"auto", CLI_CHOICE, &o->auto_rule, 0, 0, auto_rules,
+         "thresholds from the image: median rule or Otsu rule", NULL},
         {"auto-sigma", CLI_DOUBLE, &o->auto_sigma, 0, 1, NULL, "s of the median rule", NULL}};
     for (int i = 0; i < CLI_CANNY_OPTIONS; i++)
         rows[i] = r[i];
@@ -300,12 +330,19 @@ int cmd_canny(const cli_entry *self, int argc, char **argv)
     canny_options o = cli_canny_defaults();
     cli_option options[CLI_CANNY_OPTIONS + 1];
     options[cli_canny_option_rows(options, &o)] = (cli_option){0};
-    filter_spec spec = {"= cv2.Canny(cv2.GaussianBlur(img, (blur, blur), sigma), low, high,\n"
-                        "            apertureSize=aperture, L2gradient=l2)\n"
-                        "--auto median: low = max(0, (1-s) * median), high = min(255, (1+s) * median),\n"
-                        "truncated to integers; --auto otsu: high = Otsu's threshold, low = high / 2.\n"
-                        "Prints the thresholds used as JSON: {\"low\":L,\"high\":H}.",
-                        options, &o, cli_canny_prepare, cli_canny_scratch, cli_canny_apply, false, canny_report};
+    filter_spec spec = {
+        "= cv2.Canny(cv2.GaussianBlur(img, (blur, blur), sigma), low, high,\n"
+        "            apertureSize=aperture, L2gradient=l2)\n"
+        "--auto median: low = max(0, (1-s) * median), high = min(255, (1+s) * median),\n"
+        "truncated to integers; --auto otsu: high = Otsu's threshold, low = high / 2.\n"
+        "Prints the thresholds used as JSON: {\"low\":L,\"high\":H}.",
+        options,
+        &o,
+        cli_canny_prepare,
+        cli_canny_scratch,
+        cli_canny_apply,
+        false,
+        canny_report};
     return cli_filter_main(self, argc, argv, &spec);
 }
 
@@ -322,7 +359,8 @@ typedef struct threshold_options {
 static int threshold_prepare(const char *name, void *ctx)
 {
     threshold_options *o = ctx;
-    rte_status st = rte_threshold_params_init(&o->params, (rte_threshold_type)o->type, o->value, o->maxval, o->otsu);
+    rte_status st = rte_threshold_params_init(&o->params, (rte_threshold_type)o->type, o->value,
+                                              o->maxval, o->otsu);
     if (st != RTE_OK) {
         cli_error(name, "%s", rte_status_message(st));
         return CLI_EXIT_USAGE;
@@ -330,8 +368,8 @@ static int threshold_prepare(const char *name, void *ctx)
     return CLI_EXIT_OK;
 }
 
-static rte_status threshold_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                                  rte_arena *arena)
+static rte_status threshold_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
+                                  rte_image_s16 *d, rte_arena *arena)
 {
     threshold_options *o = ctx;
     return rte_threshold_u8(gray, out, &o->params, &o->used);
@@ -344,17 +382,25 @@ static void threshold_report(void *ctx)
 
 int cmd_threshold(const cli_entry *self, int argc, char **argv)
 {
-    static const char *const types[] = {"binary", "binary_inv", "trunc", "tozero", "tozero_inv", NULL};
+    static const char *const types[] = {"binary", "binary_inv", "trunc",
+                                        "tozero", "tozero_inv", NULL};
     threshold_options o = {.value = 127, .maxval = 255};
     cli_option options[] = {
         {"value", CLI_DOUBLE, &o.value, -1e6, 1e6, NULL, "threshold (ignored with --otsu)", NULL},
         {"maxval", CLI_DOUBLE, &o.maxval, -1e6, 1e6, NULL, "value for binary and binary_inv", NULL},
         {"type", CLI_CHOICE, &o.type, 0, 0, types, "threshold type", NULL},
-        {"otsu", CLI_FLAG, &o.otsu, 0, 0, NULL, "Otsu's threshold from the image's histogram", NULL},
+        {"otsu", CLI_FLAG, &o.otsu, 0, 0, NULL, "Otsu's threshold from the image's histogram",
+         NULL},
         {0}};
     filter_spec spec = {"= cv2.threshold(img, value, maxval, type [+ cv2.THRESH_OTSU]);\n"
                         "prints the threshold used as JSON: {\"threshold\":T}.",
-                        options, &o, threshold_prepare, NULL, threshold_apply, false, threshold_report};
+                        options,
+                        &o,
+                        threshold_prepare,
+                        NULL,
+                        threshold_apply,
+                        false,
+                        threshold_report};
     return cli_filter_main(self, argc, argv, &spec);
 }
 
@@ -375,7 +421,8 @@ static int morphology_prepare(const char *name, void *ctx)
         if (strcmp(ops[i], name) == 0)
             o->op = (rte_morph_op)i;
     int h = o->ksize_y ? o->ksize_y : o->ksize;
-    rte_status st = rte_morphology_element_init(&o->element, (rte_morph_shape)o->shape, o->ksize, h);
+    rte_status st =
+        rte_morphology_element_init(&o->element, (rte_morph_shape)o->shape, o->ksize, h);
     if (st != RTE_OK) {
         cli_error(name, "element %dx%d: %s", o->ksize, h, rte_status_message(st));
         return CLI_EXIT_USAGE;
@@ -389,8 +436,8 @@ static size_t morphology_scratch(void *ctx, int32_t w, int32_t h)
     return rte_morphology_scratch_size(w, h, &o->element, o->iterations);
 }
 
-static rte_status morphology_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                                   rte_arena *arena)
+static rte_status morphology_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
+                                   rte_image_s16 *d, rte_arena *arena)
 {
     morphology_options *o = ctx;
     return rte_morphology_u8(gray, out, o->op, &o->element, o->iterations, arena);
@@ -403,12 +450,20 @@ int cmd_morphology(const cli_entry *self, int argc, char **argv)
     cli_option options[] = {
         {"shape", CLI_CHOICE, &o.shape, 0, 0, shapes, "structuring element", NULL},
         {"ksize", CLI_INT, &o.ksize, 1, RTE_MORPH_MAX_KSIZE, NULL, "element width", NULL},
-        {"ksize-y", CLI_INT, &o.ksize_y, 0, RTE_MORPH_MAX_KSIZE, NULL, "element height, 0 = --ksize", NULL},
+        {"ksize-y", CLI_INT, &o.ksize_y, 0, RTE_MORPH_MAX_KSIZE, NULL,
+         "element height, 0 = --ksize", NULL},
         {"iterations", CLI_INT, &o.iterations, 1, 100, NULL, "times applied", NULL},
         {0}};
-    filter_spec spec = {"= cv2.erode / cv2.dilate / cv2.morphologyEx(MORPH_OPEN / MORPH_CLOSE) with\n"
-                        "cv2.getStructuringElement(shape, (ksize, ksize-y)) and iterations.",
-                        options, &o, morphology_prepare, morphology_scratch, morphology_apply, false, NULL};
+    filter_spec spec = {
+        "= cv2.erode / cv2.dilate / cv2.morphologyEx(MORPH_OPEN / MORPH_CLOSE) with\n"
+        "cv2.getStructuringElement(shape, (ksize, ksize-y)) and iterations.",
+        options,
+        &o,
+        morphology_prepare,
+        morphology_scratch,
+        morphology_apply,
+        false,
+        NULL};
     return cli_filter_main(self, argc, argv, &spec);
 }
 
@@ -463,8 +518,8 @@ static size_t mask_scratch(void *ctx, int32_t w, int32_t h)
     return rte_polygon_mask_scratch_size(((mask_options *)ctx)->count);
 }
 
-static rte_status mask_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
-                             rte_arena *arena)
+static rte_status mask_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
+                             rte_image_s16 *d, rte_arena *arena)
 {
     mask_options *o = ctx;
     rte_polygon poly = {o->vertex, o->count};
@@ -475,13 +530,21 @@ static rte_status mask_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *
 int cmd_mask(const cli_entry *self, int argc, char **argv)
 {
     mask_options o = {0};
-    cli_option options[] = {
-        {"polygon", CLI_STRING, &o.polygon, 0, 0, NULL, "vertices in pixels: \"x,y;x,y;...\" (required)", NULL},
-        {"mask-only", CLI_FLAG, &o.mask_only, 0, 0, NULL, "write the 0/255 mask instead of the masked image", NULL},
-        {0}};
-    filter_spec spec = {"= mask = zeros; cv2.fillPoly(mask, [pts], 255); cv2.bitwise_and(img, mask)\n"
-                        "Example (the lane tutorial's trapezoid on 960x540):\n"
-                        "  rtedge mask road.jpg roi.png --polygon \"0,540;460,310;500,310;960,540\"",
-                        options, &o, mask_prepare, mask_scratch, mask_apply, false, NULL};
+    cli_option options[] = {{"polygon", CLI_STRING, &o.polygon, 0, 0, NULL,
+                             "vertices in pixels: \"x,y;x,y;...\" (required)", NULL},
+                            {"mask-only", CLI_FLAG, &o.mask_only, 0, 0, NULL,
+                             "write the 0/255 mask instead of the masked image", NULL},
+                            {0}};
+    filter_spec spec = {
+        "= mask = zeros; cv2.fillPoly(mask, [pts], 255); cv2.bitwise_and(img, mask)\n"
+        "Example (the lane tutorial's trapezoid on 960x540):\n"
+        "  rtedge mask road.jpg roi.png --polygon \"0,540;460,310;500,310;960,540\"",
+        options,
+        &o,
+        mask_prepare,
+        mask_scratch,
+        mask_apply,
+        false,
+        NULL};
     return cli_filter_main(self, argc, argv, &spec);
 }

@@ -10,9 +10,9 @@
 #include "commands.h"
 #include "rtedge/grasp.h"
 
-#define PIPELINE_DETAILS \
+#define PIPELINE_DETAILS                                                                          \
     "IN: PGM/PPM, PNG or JPEG (colour becomes grey as cv2.cvtColor(cv2.imread(IN), BGR2GRAY)).\n" \
-    "grey -> Gaussian blur -> Otsu, a fixed threshold or Canny + close -> external contours\n" \
+    "grey -> Gaussian blur -> Otsu, a fixed threshold or Canny + close -> external contours\n"    \
     "-> area filter -> features (moments, minimum-area box, hull, shape class)."
 
 typedef struct grasp_run {
@@ -27,15 +27,21 @@ typedef struct grasp_run {
 
 /* Parses, loads and runs the pipeline. Returns CLI_EXIT_OK to go on, -1
  * after --help, or an exit code (everything freed then). */
-static int grasp_start(grasp_run *run, const cli_entry *self, int argc, char **argv, const char *details,
-                       int default_min_area)
+static int grasp_start(grasp_run *run, const cli_entry *self, int argc, char **argv,
+                       const char *details, int default_min_area)
 {
     *run = (grasp_run){.name = self->name};
     cli_pipeline_defaults(&run->opts, 5, default_min_area);
     cli_option options[CLI_PIPELINE_OPTIONS + 2];
     int n = cli_pipeline_option_table(options, &run->opts, true);
-    options[n] = (cli_option){"overlay", CLI_STRING, &run->overlay, 0, 0, NULL,
-                              "draw the objects on the input and write it here (.png, .ppm)", NULL};
+    options[n] = (cli_option){"overlay",
+                              CLI_STRING,
+                              &run->overlay,
+                              0,
+                              0,
+                              NULL,
+                              "draw the objects on the input and write it here (.png, .ppm)",
+                              NULL};
     options[n + 1] = (cli_option){0};
     cli_command cmd = {self->name, "IN", self->summary, details, options, 1};
     int rc = cli_parse(&cmd, argc, argv, run->paths);
@@ -73,8 +79,8 @@ static void grasp_end(grasp_run *run)
 }
 
 /* The object's outline in its colour. */
-static void draw_contour(rte_image_u8c3 *canvas, const rte_grasp_result *r, const rte_grasp_object *o,
-                         rte_draw_color c)
+static void draw_contour(rte_image_u8c3 *canvas, const rte_grasp_result *r,
+                         const rte_grasp_object *o, rte_draw_color c)
 {
     const rte_contour *ct = &r->contours->contours[o->contour];
     rte_draw_polyline(canvas, r->contours->points + ct->offset, ct->count, 1, c, 1);
@@ -83,7 +89,8 @@ static void draw_contour(rte_image_u8c3 *canvas, const rte_grasp_result *r, cons
 static int32_t q8_px(int32_t v) { return (v + 128) >> 8; }
 
 /* Draws with draw_object for every object and writes the overlay. */
-static int overlay(grasp_run *run, void (*draw_object)(rte_image_u8c3 *, const grasp_run *, int32_t))
+static int overlay(grasp_run *run,
+                   void (*draw_object)(rte_image_u8c3 *, const grasp_run *, int32_t))
 {
     if (!run->overlay)
         return CLI_EXIT_OK;
@@ -129,12 +136,14 @@ static void print_q8_pair(int32_t x, int32_t y)
 int cmd_grasp(const cli_entry *self, int argc, char **argv)
 {
     grasp_run run;
-    int rc = grasp_start(&run, self, argc, argv,
-                         PIPELINE_DETAILS "\nGrasp: the centroid, the gripper closing across the short side of the\n"
-                                          "minimum-area box (angle in degrees, image axes, y down), opened to that side.\n"
-                                          "Prints {\"objects\":[{\"center\",\"angle\",\"width\",\"area\",\"shape\",\"box\"}],...}\n"
-                                          "largest first.",
-                         100);
+    int rc = grasp_start(
+        &run, self, argc, argv,
+        PIPELINE_DETAILS
+        "\nGrasp: the centroid, the gripper closing across the short side of the\n"
+        "minimum-area box (angle in degrees, image axes, y down), opened to that side.\n"
+        "Prints {\"objects\":[{\"center\",\"angle\",\"width\",\"area\",\"shape\",\"box\"}],...}\n"
+        "largest first.",
+        100);
     if (rc != CLI_EXIT_OK)
         return rc < 0 ? CLI_EXIT_OK : rc;
     const rte_grasp_result *r = &run.result;
@@ -158,9 +167,11 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
     }
     const rte_grasp_timing *t = &r->timing;
     printf("],\"threshold\":%d,\"truncated\":%s,\"dropped_objects\":%d,"
-           "\"timing_ns\":{\"blur\":%lld,\"binarize\":%lld,\"contours\":%lld,\"features\":%lld,\"total\":%lld}}\n",
-           (int)r->threshold, r->truncated ? "true" : "false", (int)r->dropped_objects, (long long)t->blur_ns,
-           (long long)t->binarize_ns, (long long)t->contours_ns, (long long)t->features_ns, (long long)t->total_ns);
+           "\"timing_ns\":{\"blur\":%lld,\"binarize\":%lld,\"contours\":%lld,\"features\":%lld,"
+           "\"total\":%lld}}\n",
+           (int)r->threshold, r->truncated ? "true" : "false", (int)r->dropped_objects,
+           (long long)t->blur_ns, (long long)t->binarize_ns, (long long)t->contours_ns,
+           (long long)t->features_ns, (long long)t->total_ns);
     rc = overlay(&run, draw_grasp);
     grasp_end(&run);
     return rc;
@@ -172,7 +183,8 @@ static void draw_shape(rte_image_u8c3 *canvas, const grasp_run *run, int32_t i)
     const rte_draw_color c = cli_overlay_color(i);
     draw_contour(canvas, &run->result, o, c);
     rte_draw_dot(canvas, q8_px(o->x_q8), q8_px(o->y_q8), 2, c);
-    cli_overlay_label(canvas, q8_px(o->x_q8) - 20, q8_px(o->y_q8) + 5, rte_grasp_shape_name(o->info.shape), c);
+    cli_overlay_label(canvas, q8_px(o->x_q8) - 20, q8_px(o->y_q8) + 5,
+                      rte_grasp_shape_name(o->info.shape), c);
 }
 
 int cmd_shapes(const cli_entry *self, int argc, char **argv)
@@ -185,13 +197,14 @@ int cmd_shapes(const cli_entry *self, int argc, char **argv)
     if (rc != CLI_EXIT_OK)
         return rc < 0 ? CLI_EXIT_OK : rc;
     const rte_grasp_result *r = &run.result;
-    printf("%-3s %-10s %10s %10s %8s %7s %8s %8s\n", "#", "shape", "area", "perimeter", "solidity", "aspect",
-           "cx", "cy");
+    printf("%-3s %-10s %10s %10s %8s %7s %8s %8s\n", "#", "shape", "area", "perimeter", "solidity",
+           "aspect", "cx", "cy");
     for (int32_t i = 0; i < r->n_objects; i++) {
         const rte_shape_info *s = &r->objects[i].info;
-        printf("%-3d %-10s %10.1f %10.2f %8.3f %7.3f %8.2f %8.2f\n", (int)i, rte_grasp_shape_name(s->shape),
-               s->area2 / 2.0, s->perimeter_q16 / 65536.0, s->solidity_q16 / 65536.0, s->aspect_q16 / 65536.0,
-               r->objects[i].x_q8 / 256.0, r->objects[i].y_q8 / 256.0);
+        printf("%-3d %-10s %10.1f %10.2f %8.3f %7.3f %8.2f %8.2f\n", (int)i,
+               rte_grasp_shape_name(s->shape), s->area2 / 2.0, s->perimeter_q16 / 65536.0,
+               s->solidity_q16 / 65536.0, s->aspect_q16 / 65536.0, r->objects[i].x_q8 / 256.0,
+               r->objects[i].y_q8 / 256.0);
     }
     if (r->truncated)
         printf("(truncated: %d more objects)\n", (int)r->dropped_objects);

@@ -58,7 +58,8 @@ static size_t transform_scratch(const hough_run *o, const rte_hough_config *cfg,
     switch (o->kind) {
     case HOUGH_LINES: return rte_hough_lines_scratch_size(cfg, o->max_out);
     case HOUGH_SEGMENTS: return rte_hough_segments_scratch_size(cfg);
-    default: return max_size(rte_hough_circles_scratch_size(w, h, cp), rte_sobel_scratch_size(w, h, 3));
+    default:
+        return max_size(rte_hough_circles_scratch_size(w, h, cp), rte_sobel_scratch_size(w, h, 3));
     }
 }
 
@@ -69,7 +70,8 @@ static rte_status make_edges(hough_run *o, const rte_image_u8 *gray, hough_buffe
     rte_status st = RTE_OK;
     const rte_image_u8 *src = gray;
     if (!o->edges_given && o->canny.blur_first) {
-        if ((st = rte_gaussian_blur_u8(gray, &b->blurred, &o->canny.blur.kernel, &b->arena)) != RTE_OK)
+        if ((st = rte_gaussian_blur_u8(gray, &b->blurred, &o->canny.blur.kernel, &b->arena)) !=
+            RTE_OK)
             return st;
         src = &b->blurred;
     }
@@ -99,7 +101,8 @@ static void draw_full_line(rte_image_u8c3 *img, double rho, double theta, rte_dr
 /* Scratch, the edge map (unless IN is one), the gradients (circles) and
  * the output array; false when one cannot be had (said on stderr). */
 static bool alloc_buffers(const char *name, hough_run *o, const rte_hough_config *cfg,
-                          const rte_hough_circles_params *cp, int32_t w, int32_t h, hough_buffers *b)
+                          const rte_hough_circles_params *cp, int32_t w, int32_t h,
+                          hough_buffers *b)
 {
     size_t scratch = transform_scratch(o, cfg, cp, w, h);
     if (!o->edges_given)
@@ -108,13 +111,15 @@ static bool alloc_buffers(const char *name, hough_run *o, const rte_hough_config
         return false;
     if (!o->edges_given && !(b->edges_mem = cli_new_u8(name, w, h, &b->edges)))
         return false;
-    if (o->canny.blur_first && !o->edges_given && !(b->blurred_mem = cli_new_u8(name, w, h, &b->blurred)))
+    if (o->canny.blur_first && !o->edges_given &&
+        !(b->blurred_mem = cli_new_u8(name, w, h, &b->blurred)))
         return false;
     if (o->kind == HOUGH_CIRCLES && (!(b->dx_mem = cli_new_s16(name, w, h, &b->dx)) ||
                                      !(b->dy_mem = cli_new_s16(name, w, h, &b->dy))))
         return false;
-    size_t item = o->kind == HOUGH_LINES ? sizeof(rte_hough_line)
-                  : o->kind == HOUGH_SEGMENTS ? sizeof(rte_hough_segment) : sizeof(rte_hough_circle);
+    size_t item = o->kind == HOUGH_LINES      ? sizeof(rte_hough_line)
+                  : o->kind == HOUGH_SEGMENTS ? sizeof(rte_hough_segment)
+                                              : sizeof(rte_hough_circle);
     b->out_mem = malloc((size_t)o->max_out * item + 1);
     return b->out_mem != NULL;
 }
@@ -125,22 +130,23 @@ static rte_status transform(hough_run *o, const rte_hough_config *cfg,
 {
     switch (o->kind) {
     case HOUGH_LINES:
-        return rte_hough_lines(cfg, &b->edges, o->threshold, &b->arena, b->out_mem, o->max_out, count,
-                               truncated);
+        return rte_hough_lines(cfg, &b->edges, o->threshold, &b->arena, b->out_mem, o->max_out,
+                               count, truncated);
     case HOUGH_SEGMENTS: {
         rte_hough_segments_params p = {o->threshold, o->min_length, o->max_gap, (uint32_t)o->seed};
-        return rte_hough_segments(cfg, &b->edges, &p, &b->arena, b->out_mem, o->max_out, count, truncated);
+        return rte_hough_segments(cfg, &b->edges, &p, &b->arena, b->out_mem, o->max_out, count,
+                                  truncated);
     }
     default:
-        return rte_hough_circles(&b->edges, &b->dx, &b->dy, cp, &b->arena, b->out_mem, o->max_out, count,
-                                 truncated);
+        return rte_hough_circles(&b->edges, &b->dx, &b->dy, cp, &b->arena, b->out_mem, o->max_out,
+                                 count, truncated);
     }
 }
 
 /* The JSON (without its closing "truncated") and, onto canvas when given,
  * the overlay. */
-static void print_results(const hough_run *o, const rte_hough_config *cfg, const void *out, int32_t count,
-                          rte_image_u8c3 *canvas)
+static void print_results(const hough_run *o, const rte_hough_config *cfg, const void *out,
+                          int32_t count, rte_image_u8c3 *canvas)
 {
     const rte_draw_color red = {0, 0, 255}, green = {0, 255, 0};
     if (o->kind == HOUGH_LINES) {
@@ -148,7 +154,8 @@ static void print_results(const hough_run *o, const rte_hough_config *cfg, const
         printf("{\"lines\":[");
         for (int32_t i = 0; i < count; i++) {
             double rho = rte_hough_line_rho(cfg, &l[i]), theta = rte_hough_line_theta(cfg, &l[i]);
-            printf("%s{\"rho\":%.9g,\"theta\":%.9g,\"votes\":%d}", i ? "," : "", rho, theta, (int)l[i].votes);
+            printf("%s{\"rho\":%.9g,\"theta\":%.9g,\"votes\":%d}", i ? "," : "", rho, theta,
+                   (int)l[i].votes);
             if (canvas)
                 draw_full_line(canvas, rho, theta, red);
         }
@@ -156,8 +163,8 @@ static void print_results(const hough_run *o, const rte_hough_config *cfg, const
         const rte_hough_segment *s = out;
         printf("{\"segments\":[");
         for (int32_t i = 0; i < count; i++) {
-            printf("%s{\"x1\":%d,\"y1\":%d,\"x2\":%d,\"y2\":%d}", i ? "," : "", (int)s[i].x0, (int)s[i].y0,
-                   (int)s[i].x1, (int)s[i].y1);
+            printf("%s{\"x1\":%d,\"y1\":%d,\"x2\":%d,\"y2\":%d}", i ? "," : "", (int)s[i].x0,
+                   (int)s[i].y0, (int)s[i].x1, (int)s[i].y1);
             if (canvas)
                 rte_draw_line(canvas, s[i].x0, s[i].y0, s[i].x1, s[i].y1, red, 2);
         }
@@ -165,8 +172,8 @@ static void print_results(const hough_run *o, const rte_hough_config *cfg, const
         const rte_hough_circle *c = out;
         printf("{\"circles\":[");
         for (int32_t i = 0; i < count; i++) {
-            printf("%s{\"x\":%.4g,\"y\":%.4g,\"r\":%.4g,\"votes\":%d}", i ? "," : "", c[i].x_q4 / 16.0,
-                   c[i].y_q4 / 16.0, c[i].r_q4 / 16.0, (int)c[i].votes);
+            printf("%s{\"x\":%.4g,\"y\":%.4g,\"r\":%.4g,\"votes\":%d}", i ? "," : "",
+                   c[i].x_q4 / 16.0, c[i].y_q4 / 16.0, c[i].r_q4 / 16.0, (int)c[i].votes);
             if (canvas) {
                 int32_t x = (c[i].x_q4 + 8) >> 4, y = (c[i].y_q4 + 8) >> 4;
                 rte_draw_circle(canvas, x, y, (c[i].r_q4 + 8) >> 4, green, 2);
@@ -181,10 +188,22 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
 {
     cli_option options[CLI_CANNY_OPTIONS + 16];
     int n = cli_canny_option_rows(options, &o->canny);
-    options[n++] = (cli_option){"edges", CLI_FLAG, &o->edges_given, 0, 0, NULL,
-                                "IN is an edge map (non-zero = edge): no blur, no Canny", NULL};
-    options[n++] = (cli_option){"overlay", CLI_STRING, &o->overlay, 0, 0, NULL,
-                                "draw the result on the input into this .png/.ppm", NULL};
+    options[n++] = (cli_option){"edges",
+                                CLI_FLAG,
+                                &o->edges_given,
+                                0,
+                                0,
+                                NULL,
+                                "IN is an edge map (non-zero = edge): no blur, no Canny",
+                                NULL};
+    options[n++] = (cli_option){"overlay",
+                                CLI_STRING,
+                                &o->overlay,
+                                0,
+                                0,
+                                NULL,
+                                "draw the result on the input into this .png/.ppm",
+                                NULL};
     for (int i = 0; i < n_extra; i++)
         options[n++] = extra[i];
     options[n] = (cli_option){0};
@@ -195,8 +214,8 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
         return rc < 0 ? CLI_EXIT_OK : rc;
     if ((rc = cli_canny_prepare(self->name, &o->canny)) != CLI_EXIT_OK)
         return rc;
-    rte_hough_circles_params cp = {(int32_t)lround(o->dp * 256), o->min_dist, o->votes, o->min_radius,
-                                   o->max_radius};
+    rte_hough_circles_params cp = {(int32_t)lround(o->dp * 256), o->min_dist, o->votes,
+                                   o->min_radius, o->max_radius};
 
     cli_image in;
     if ((rc = cli_load(self->name, path[0], &in)) != CLI_EXIT_OK)
@@ -207,8 +226,8 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
     if (o->kind != HOUGH_CIRCLES)
         st = rte_hough_config_init(&cfg, w, h, o->rho, o->theta, o->min_theta, o->max_theta);
     if (st != RTE_OK) {
-        cli_error(self->name, "--rho %g --theta %g --min-theta %g --max-theta %g: %s", o->rho, o->theta,
-                  o->min_theta, o->max_theta, rte_status_message(st));
+        cli_error(self->name, "--rho %g --theta %g --min-theta %g --max-theta %g: %s", o->rho,
+                  o->theta, o->min_theta, o->max_theta, rte_status_message(st));
         cli_image_free(&in);
         return CLI_EXIT_USAGE;
     }
@@ -245,64 +264,96 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
 }
 
 #define EDGES_DETAILS                                                                              \
-    "IN: PGM/PPM, PNG or JPEG (grey as cv2.cvtColor(cv2.imread(IN), COLOR_BGR2GRAY)). Edges are\n"   \
-    "cv2.Canny(cv2.GaussianBlur(img, (blur, blur), sigma), low, high) as `rtedge canny` makes them\n" \
+    "IN: PGM/PPM, PNG or JPEG (grey as cv2.cvtColor(cv2.imread(IN), COLOR_BGR2GRAY)). Edges are\n" \
+    "cv2.Canny(cv2.GaussianBlur(img, (blur, blur), sigma), low, high) as `rtedge canny` makes "    \
+    "them\n"                                                                                       \
     "(same options), or IN itself with --edges. theta in radians, coordinates in pixels.\n"
 
 /* The accumulator resolution options of lines and segments. */
-#define RESOLUTION_ROWS(o)                                                                    \
+#define RESOLUTION_ROWS(o)                                                                     \
     {"rho", CLI_DOUBLE, &(o).rho, 0.015625, 65536, NULL, "distance resolution, pixels", NULL}, \
-    {"theta", CLI_DOUBLE, &(o).theta, 1e-4, 3.2, NULL, "angle resolution, radians", NULL}
+    {                                                                                          \
+        "theta", CLI_DOUBLE, &(o).theta, 1e-4, 3.2, NULL, "angle resolution, radians", NULL    \
+    }
 
 int cmd_lines(const cli_entry *self, int argc, char **argv)
 {
-    hough_run o = {.kind = HOUGH_LINES, .canny = cli_canny_defaults(), .max_out = 256, .rho = 1,
-                   .theta = PI / 180, .max_theta = PI, .threshold = 100};
+    hough_run o = {.kind = HOUGH_LINES,
+                   .canny = cli_canny_defaults(),
+                   .max_out = 256,
+                   .rho = 1,
+                   .theta = PI / 180,
+                   .max_theta = PI,
+                   .threshold = 100};
     cli_option extra[] = {
         RESOLUTION_ROWS(o),
         {"min-theta", CLI_DOUBLE, &o.min_theta, -64, 64, NULL, "smallest angle, radians", NULL},
         {"max-theta", CLI_DOUBLE, &o.max_theta, -64, 64, NULL, "largest angle, radians", NULL},
-        {"threshold", CLI_INT, &o.threshold, 0, 1e9, NULL, "a line needs more votes than this", NULL},
-        {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL, "most lines reported (then truncated: true)", NULL}};
+        {"threshold", CLI_INT, &o.threshold, 0, 1e9, NULL, "a line needs more votes than this",
+         NULL},
+        {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL, "most lines reported (then truncated: true)",
+         NULL}};
     return hough_main(self, argc, argv, &o, extra, (int)(sizeof extra / sizeof extra[0]),
-                      EDGES_DETAILS "= cv2.HoughLines(edges, rho, theta, threshold, min_theta=, max_theta=)\n"
-                                    "(integer accumulator; sorted by votes, then theta, then rho).\n"
-                                    "Prints {\"lines\":[{\"rho\",\"theta\",\"votes\"}],\"truncated\":false}.");
+                      EDGES_DETAILS
+                      "= cv2.HoughLines(edges, rho, theta, threshold, min_theta=, max_theta=)\n"
+                      "(integer accumulator; sorted by votes, then theta, then rho).\n"
+                      "Prints {\"lines\":[{\"rho\",\"theta\",\"votes\"}],\"truncated\":false}.");
 }
 
 int cmd_segments(const cli_entry *self, int argc, char **argv)
 {
-    hough_run o = {.kind = HOUGH_SEGMENTS, .canny = cli_canny_defaults(), .max_out = 4096, .rho = 1,
-                   .theta = PI / 180, .max_theta = PI, .threshold = 50, .min_length = 30, .max_gap = 10};
+    hough_run o = {.kind = HOUGH_SEGMENTS,
+                   .canny = cli_canny_defaults(),
+                   .max_out = 4096,
+                   .rho = 1,
+                   .theta = PI / 180,
+                   .max_theta = PI,
+                   .threshold = 50,
+                   .min_length = 30,
+                   .max_gap = 10};
     cli_option extra[] = {
         RESOLUTION_ROWS(o),
         {"threshold", CLI_INT, &o.threshold, 1, 1e9, NULL, "accumulator votes a line needs", NULL},
-        {"min-length", CLI_INT, &o.min_length, 0, 65535, NULL, "shortest segment (Euclidean), pixels", NULL},
+        {"min-length", CLI_INT, &o.min_length, 0, 65535, NULL,
+         "shortest segment (Euclidean), pixels", NULL},
         {"max-gap", CLI_INT, &o.max_gap, 0, 1e6, NULL, "longest gap bridged, pixels", NULL},
-        {"seed", CLI_INT, &o.seed, 0, INT32_MAX, NULL, "point order of the search, 0 = RTE_HOUGH_SEGMENTS_SEED", NULL},
-        {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL, "most segments reported (then truncated: true)", NULL}};
+        {"seed", CLI_INT, &o.seed, 0, INT32_MAX, NULL,
+         "point order of the search, 0 = RTE_HOUGH_SEGMENTS_SEED", NULL},
+        {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL,
+         "most segments reported (then truncated: true)", NULL}};
     return hough_main(self, argc, argv, &o, extra, (int)(sizeof extra / sizeof extra[0]),
-                      EDGES_DETAILS "~ cv2.HoughLinesP(edges, rho, theta, threshold, minLineLength=min-length,\n"
-                                    "maxLineGap=max-gap), deterministic; deviations in docs/hough.md.\n"
-                                    "Prints {\"segments\":[{\"x1\",\"y1\",\"x2\",\"y2\"}],\"truncated\":false}.");
+                      EDGES_DETAILS
+                      "~ cv2.HoughLinesP(edges, rho, theta, threshold, minLineLength=min-length,\n"
+                      "maxLineGap=max-gap), deterministic; deviations in docs/hough.md.\n"
+                      "Prints {\"segments\":[{\"x1\",\"y1\",\"x2\",\"y2\"}],\"truncated\":false}.");
 }
 
 int cmd_circles(const cli_entry *self, int argc, char **argv)
 {
-    hough_run o = {.kind = HOUGH_CIRCLES, .canny = cli_canny_defaults(), .max_out = 256, .dp = 1,
-                   .min_dist = 20, .votes = 30};
+    hough_run o = {.kind = HOUGH_CIRCLES,
+                   .canny = cli_canny_defaults(),
+                   .max_out = 256,
+                   .dp = 1,
+                   .min_dist = 20,
+                   .votes = 30};
     o.canny.low = 50;
     o.canny.high = 100;
     cli_option extra[] = {
         {"dp", CLI_DOUBLE, &o.dp, 1, 64, NULL, "inverse accumulator resolution", NULL},
-        {"min-dist", CLI_INT, &o.min_dist, 1, 1e6, NULL, "smallest distance between centres, pixels", NULL},
-        {"votes", CLI_INT, &o.votes, 1, 1e9, NULL, "param2: accumulator votes a centre needs", NULL},
+        {"min-dist", CLI_INT, &o.min_dist, 1, 1e6, NULL,
+         "smallest distance between centres, pixels", NULL},
+        {"votes", CLI_INT, &o.votes, 1, 1e9, NULL, "param2: accumulator votes a centre needs",
+         NULL},
         {"min-radius", CLI_INT, &o.min_radius, 0, 65535, NULL, "smallest radius, pixels", NULL},
-        {"max-radius", CLI_INT, &o.max_radius, 0, 65535, NULL, "largest radius, pixels; 0 = image size", NULL},
-        {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL, "most circles reported (then truncated: true)", NULL}};
-    return hough_main(self, argc, argv, &o, extra, (int)(sizeof extra / sizeof extra[0]),
-                      EDGES_DETAILS "Gradients: 3x3 Sobel of the (blurred) image or of IN with --edges.\n"
-                                    "= cv2.HoughCircles(blurred, HOUGH_GRADIENT, dp, min-dist, param1=high,\n"
-                                    "param2=votes, minRadius=, maxRadius=) with --low = high / 2 (the defaults).\n"
-                                    "Prints {\"circles\":[{\"x\",\"y\",\"r\",\"votes\"}],\"truncated\":false}.");
+        {"max-radius", CLI_INT, &o.max_radius, 0, 65535, NULL,
+         "largest radius, pixels; 0 = image size", NULL},
+        {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL,
+         "most circles reported (then truncated: true)", NULL}};
+    return hough_main(
+        self, argc, argv, &o, extra, (int)(sizeof extra / sizeof extra[0]),
+        EDGES_DETAILS
+        "Gradients: 3x3 Sobel of the (blurred) image or of IN with --edges.\n"
+        "= cv2.HoughCircles(blurred, HOUGH_GRADIENT, dp, min-dist, param1=high,\n"
+        "param2=votes, minRadius=, maxRadius=) with --low = high / 2 (the defaults).\n"
+        "Prints {\"circles\":[{\"x\",\"y\",\"r\",\"votes\"}],\"truncated\":false}.");
 }

@@ -130,8 +130,8 @@ static void print_result(const rte_lane_result *r, long frame, bool segments)
     printf(",");
     print_lane("right", &r->lane[RTE_LANE_RIGHT]);
     if (r->centre_valid)
-        printf(",\"offset_px\":%.2f,\"offset_fraction\":%.3f,\"heading_mrad\":%d", r->offset_q8 / 256.0,
-               r->offset_permille / 1000.0, r->heading_mrad);
+        printf(",\"offset_px\":%.2f,\"offset_fraction\":%.3f,\"heading_mrad\":%d",
+               r->offset_q8 / 256.0, r->offset_permille / 1000.0, r->heading_mrad);
     else
         printf(",\"offset_px\":null,\"offset_fraction\":null,\"heading_mrad\":null");
     printf(",\"canny\":[%d,%d],\"segment_count\":%d,\"truncated\":%s", r->canny_low, r->canny_high,
@@ -140,7 +140,8 @@ static void print_result(const rte_lane_result *r, long frame, bool segments)
         printf(",\"segments\":[");
         for (int32_t i = 0; i < r->segment_count; i++) {
             const rte_lane_segment *s = &r->segments[i];
-            printf("%s[%d,%d,%d,%d,\"%s\"]", i ? "," : "", s->x0, s->y0, s->x1, s->y1, uses[s->use]);
+            printf("%s[%d,%d,%d,%d,\"%s\"]", i ? "," : "", s->x0, s->y0, s->x1, s->y1,
+                   uses[s->use]);
         }
         printf("]");
     }
@@ -155,7 +156,8 @@ static void print_result(const rte_lane_result *r, long frame, bool segments)
 static void draw_line(rte_image_u8c3 *img, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
                       const uint8_t bgr[3], int32_t thick)
 {
-    const int32_t dx = abs(x1 - x0), dy = -abs(y1 - y0), sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
+    const int32_t dx = abs(x1 - x0), dy = -abs(y1 - y0), sx = x0 < x1 ? 1 : -1,
+                  sy = y0 < y1 ? 1 : -1;
     int32_t err = dx + dy;
     for (;;) {
         for (int32_t oy = -(thick / 2); oy <= thick / 2; oy++)
@@ -206,8 +208,8 @@ static int write_overlay(const char *name, const char *path, const cli_image *in
     for (int side = 0; side < 2; side++) {
         const rte_lane *l = &r->lane[side];
         if (l->found)
-            draw_line(&img, (l->x_bottom_q8 + 128) >> 8, l->y_bottom, (l->x_top_q8 + 128) >> 8, l->y_top,
-                      side == RTE_LANE_LEFT ? blue : red, l->predicted ? 1 : 3);
+            draw_line(&img, (l->x_bottom_q8 + 128) >> 8, l->y_bottom, (l->x_top_q8 + 128) >> 8,
+                      l->y_top, side == RTE_LANE_LEFT ? blue : red, l->predicted ? 1 : 3);
     }
     char msg[RTE_IO_MESSAGE_SIZE];
     rte_status st = rte_image_write_bgr(path, &img, msg, sizeof msg);
@@ -271,11 +273,13 @@ static int lanes_directory(const char *name, const lanes_options *o, const char 
         if ((rc = cli_load(name, path, &in)) != CLI_EXIT_OK)
             break;
         rte_lane_config cfg;
-        if (!ctx && (rc = lanes_config(name, o, in.gray.width, in.gray.height, &cfg)) == CLI_EXIT_OK)
+        if (!ctx &&
+            (rc = lanes_config(name, o, in.gray.width, in.gray.height, &cfg)) == CLI_EXIT_OK)
             rc = lanes_create(name, &cfg, &ctx);
         if (rc == CLI_EXIT_OK) {
             rte_lane_result r;
-            rte_status st = rte_lane_process_gray(ctx, &in.gray, in.bgr.buf ? &in.bgr : NULL, i, &r);
+            rte_status st =
+                rte_lane_process_gray(ctx, &in.gray, in.bgr.buf ? &in.bgr : NULL, i, &r);
             if (st != RTE_OK) {
                 cli_error(name, "%s: %s", path, rte_status_message(st));
                 rc = CLI_EXIT_FAILURE;
@@ -313,7 +317,8 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
     if (rc == CLI_EXIT_OK)
         rc = lanes_create(name, &cfg, &ctx);
     rte_image_u8 gray = rte_image_u8_view(mem, info.width, info.height, 0);
-    const int64_t frame_ns = info.fps_num > 0 ? (int64_t)1000000000 * info.fps_den / info.fps_num : 0;
+    const int64_t frame_ns =
+        info.fps_num > 0 ? (int64_t)1000000000 * info.fps_den / info.fps_num : 0;
     for (long i = 0; rc == CLI_EXIT_OK; i++) {
         st = rte_y4m_read_gray(reader, &gray, msg, sizeof msg);
         if (st == RTE_ERR_END)
@@ -337,37 +342,55 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
 
 int cmd_lanes(const cli_entry *self, int argc, char **argv)
 {
-    lanes_options o = {NULL, NULL, NULL, -1, -1, 1, 0, false, -1, -1, -1, -1, -1, 5, -1, -1, 512, 0};
+    lanes_options o = {NULL, NULL, NULL, -1, -1, 1,  0,  false, -1,
+                       -1,   -1,   -1,   -1, 5,  -1, -1, 512,   0};
     cli_option options[] = {
-        {"overlay", CLI_STRING, &o.overlay, 0, 0, NULL, "write IN with the lanes drawn (left blue, right red)", NULL},
-        {"sequence", CLI_STRING, &o.sequence, 0, 0, NULL, "track over a directory of images or a .y4m file", NULL},
-        {"roi", CLI_STRING, &o.roi, 0, 0, NULL, "ROI polygon 'x,y;x,y;...' in fractions (default: trapezoid)", NULL},
+        {"overlay", CLI_STRING, &o.overlay, 0, 0, NULL,
+         "write IN with the lanes drawn (left blue, right red)", NULL},
+        {"sequence", CLI_STRING, &o.sequence, 0, 0, NULL,
+         "track over a directory of images or a .y4m file", NULL},
+        {"roi", CLI_STRING, &o.roi, 0, 0, NULL,
+         "ROI polygon 'x,y;x,y;...' in fractions (default: trapezoid)", NULL},
         {"canny-low", CLI_INT, &o.canny_low, -1, 2040, NULL, "Canny low threshold, -1 = 50", NULL},
-        {"canny-high", CLI_INT, &o.canny_high, -1, 2040, NULL, "Canny high threshold, -1 = 150", NULL},
-        {"auto-canny", CLI_CHOICE, &o.auto_canny, 0, 0, auto_choices, "thresholds from the ROI histogram (none: --canny-low/high)", NULL},
+        {"canny-high", CLI_INT, &o.canny_high, -1, 2040, NULL, "Canny high threshold, -1 = 150",
+         NULL},
+        {"auto-canny", CLI_CHOICE, &o.auto_canny, 0, 0, auto_choices,
+         "thresholds from the ROI histogram (none: --canny-low/high)", NULL},
         {"fit", CLI_CHOICE, &o.fit, 0, 0, fit_choices, "per-side line fit", NULL},
         {"no-color", CLI_FLAG, &o.no_color, 0, 0, NULL, "ignore colour (grey edges only)", NULL},
-        {"hough-threshold", CLI_INT, &o.hough_threshold, -1, 100000, NULL, "segment votes, -1 = by height", NULL},
-        {"min-length", CLI_INT, &o.min_length, -1, 100000, NULL, "shortest segment, -1 = by height", NULL},
-        {"max-gap", CLI_INT, &o.max_gap, -1, 100000, NULL, "longest gap bridged, -1 = by height", NULL},
-        {"hough-seed", CLI_INT, &o.hough_seed, 0, INT32_MAX, NULL, "point order of the Hough search, 0 = built in", NULL},
+        {"hough-threshold", CLI_INT, &o.hough_threshold, -1, 100000, NULL,
+         "segment votes, -1 = by height", NULL},
+        {"min-length", CLI_INT, &o.min_length, -1, 100000, NULL, "shortest segment, -1 = by height",
+         NULL},
+        {"max-gap", CLI_INT, &o.max_gap, -1, 100000, NULL, "longest gap bridged, -1 = by height",
+         NULL},
+        {"hough-seed", CLI_INT, &o.hough_seed, 0, INT32_MAX, NULL,
+         "point order of the Hough search, 0 = built in", NULL},
         {"hold", CLI_INT, &o.hold, -1, 1000, NULL, "frames a lost lane is predicted, -1 = 5", NULL},
-        {"gate", CLI_INT, &o.gate, -1, 10000, NULL, "segment gate around tracked lanes (px), -1 = by height", NULL},
-        {"alpha", CLI_INT, &o.alpha, -1, 256, NULL, "tracker: share of a measurement taken, /256 (256 = no smoothing)", NULL},
-        {"beta", CLI_INT, &o.beta, -1, 256, NULL, "tracker: share of the innovation into the velocity, /256", NULL},
+        {"gate", CLI_INT, &o.gate, -1, 10000, NULL,
+         "segment gate around tracked lanes (px), -1 = by height", NULL},
+        {"alpha", CLI_INT, &o.alpha, -1, 256, NULL,
+         "tracker: share of a measurement taken, /256 (256 = no smoothing)", NULL},
+        {"beta", CLI_INT, &o.beta, -1, 256, NULL,
+         "tracker: share of the innovation into the velocity, /256", NULL},
         {"blur", CLI_INT, &o.blur, 1, 31, NULL, "Gaussian kernel size (odd)", NULL},
-        {"max-segments", CLI_INT, &o.max_segments, 1, RTE_LANE_MAX_SEGMENTS, NULL, "segments kept per frame", NULL},
+        {"max-segments", CLI_INT, &o.max_segments, 1, RTE_LANE_MAX_SEGMENTS, NULL,
+         "segments kept per frame", NULL},
         {0}};
     /* With --sequence there is no IN. */
     int positionals = 1;
     for (int i = 1; i < argc; i++)
         if (strcmp(argv[i], "--sequence") == 0 || strncmp(argv[i], "--sequence=", 11) == 0)
             positionals = 0;
-    cli_command cmd = {self->name, "IN | --sequence DIR_OR_Y4M", self->summary,
-                       "Prints the lanes as JSON: (x1, y1) on the bottom row, (x2, y2) on the ROI's\n"
-                       "top row; offset_px = lane centre minus image centre on the bottom row.\n"
-                       "With --sequence, one JSON line per frame, tracked.",
-                       options, positionals};
+    cli_command cmd = {
+        self->name,
+        "IN | --sequence DIR_OR_Y4M",
+        self->summary,
+        "Prints the lanes as JSON: (x1, y1) on the bottom row, (x2, y2) on the ROI's\n"
+        "top row; offset_px = lane centre minus image centre on the bottom row.\n"
+        "With --sequence, one JSON line per frame, tracked.",
+        options,
+        positionals};
     const char *in = NULL;
     int rc = cli_parse(&cmd, argc, argv, &in);
     if (rc != CLI_EXIT_OK)

@@ -17,7 +17,8 @@ size_t rte_arena_piece_size(size_t bytes)
 void *rte_arena_alloc(rte_arena *arena, size_t bytes)
 {
     uintptr_t start = (uintptr_t)arena->base + arena->used;
-    size_t pad = (size_t)((RTE_ARENA_ALIGN - (start & (RTE_ARENA_ALIGN - 1))) & (RTE_ARENA_ALIGN - 1));
+    size_t pad =
+        (size_t)((RTE_ARENA_ALIGN - (start & (RTE_ARENA_ALIGN - 1))) & (RTE_ARENA_ALIGN - 1));
     if (!arena->base || pad > arena->size - arena->used || bytes > arena->size - arena->used - pad)
         return NULL;
     arena->used += pad + bytes;

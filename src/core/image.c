@@ -2,13 +2,13 @@
 
 rte_image_u8 rte_image_u8_view(void *buf, int32_t width, int32_t height, int32_t stride)
 {
-    rte_image_u8 img = { width, height, stride ? stride : width, (uint8_t *)buf };
+    rte_image_u8 img = {width, height, stride ? stride : width, (uint8_t *)buf};
     return img;
 }
 
 rte_image_s16 rte_image_s16_view(void *buf, int32_t width, int32_t height, int32_t stride)
 {
-    rte_image_s16 img = { width, height, stride ? stride : width, (int16_t *)buf };
+    rte_image_s16 img = {width, height, stride ? stride : width, (int16_t *)buf};
     return img;
 }
 

@@ -17,8 +17,14 @@
 #define RTED_MSG 512
 
 typedef enum rted_source_kind {
-    RTED_SOURCE_AUTO = 0, RTED_SOURCE_Y4M, RTED_SOURCE_IMAGES, RTED_SOURCE_RAW,
-    RTED_SOURCE_LCM_LOG, RTED_SOURCE_LCM, RTED_SOURCE_V4L2, RTED_SOURCE_LIBCAMERA,
+    RTED_SOURCE_AUTO = 0,
+    RTED_SOURCE_Y4M,
+    RTED_SOURCE_IMAGES,
+    RTED_SOURCE_RAW,
+    RTED_SOURCE_LCM_LOG,
+    RTED_SOURCE_LCM,
+    RTED_SOURCE_V4L2,
+    RTED_SOURCE_LIBCAMERA,
 } rted_source_kind;
 
 typedef enum rted_pace { RTED_PACE_RECORDED = 0, RTED_PACE_FPS, RTED_PACE_FAST } rted_pace;
@@ -29,15 +35,15 @@ typedef struct rted_config {
     char source_path[RTED_TEXT];
     char source_channel[RTED_TEXT];
     char source_format[16];
-    int32_t width, height;          /* maxima (raw: the frame size); 0 = from the source */
+    int32_t width, height; /* maxima (raw: the frame size); 0 = from the source */
     int32_t pace;
     double fps;
     double speed;
     bool loop;
-    int32_t max_frames;             /* stop after this many processed frames; 0 = never */
-    int32_t max_pause_ms;           /* pace = recorded: longer pauses are not waited out */
+    int32_t max_frames;              /* stop after this many processed frames; 0 = never */
+    int32_t max_pause_ms;            /* pace = recorded: longer pauses are not waited out */
     char source_controls[RTED_TEXT]; /* v4l2: "name=value;..." */
-    char record_path[RTED_TEXT];    /* LCM log of the delivered frames; "" = none */
+    char record_path[RTED_TEXT];     /* LCM log of the delivered frames; "" = none */
     /* [lane] */
     bool lane_enabled;
     int32_t lane_max_segments, lane_blur_ksize;
@@ -61,22 +67,26 @@ typedef struct rted_config {
     /* [params] */
     bool params_enabled;
     char params_channel[64];
-    char params_keys[RTED_TEXT];    /* "section.key,..."; "" = every numeric runtime key */
+    char params_keys[RTED_TEXT]; /* "section.key,..."; "" = every numeric runtime key */
     int32_t params_max_per_second;
     /* [deadline] */
-    double deadline_ms;             /* 0 = 1000 / fps (or 1000 / 30) */
-    double grasp_min_budget_ms;     /* skip grasp when less than this is left */
-    double max_late_ms;             /* pacer: drop frames later than this; < 0 never */
+    double deadline_ms;         /* 0 = 1000 / fps (or 1000 / 30) */
+    double grasp_min_budget_ms; /* skip grasp when less than this is left */
+    double max_late_ms;         /* pacer: drop frames later than this; < 0 never */
     /* [realtime] */
-    int32_t rt_priority;            /* 0 = no SCHED_FIFO */
-    int32_t rt_cpu;                 /* -1 = no affinity */
+    int32_t rt_priority; /* 0 = no SCHED_FIFO */
+    int32_t rt_cpu;      /* -1 = no affinity */
     bool rt_mlockall;
 } rted_config;
 
 /* One key of the table (config_keys.c), for typed access (params_t). */
 typedef struct rted_key rted_key;
 typedef enum rted_key_type {
-    RTED_KEY_INT = 0, RTED_KEY_REAL, RTED_KEY_BOOL, RTED_KEY_TEXT, RTED_KEY_CHOICE,
+    RTED_KEY_INT = 0,
+    RTED_KEY_REAL,
+    RTED_KEY_BOOL,
+    RTED_KEY_TEXT,
+    RTED_KEY_CHOICE,
 } rted_key_type;
 
 /* The key named "section.key" (NULL when there is none). */

@@ -75,8 +75,10 @@ static bool check_listed(const char *name, size_t len, void *user)
     const rted_key_type type = k ? rted_key_get_type(k) : RTED_KEY_TEXT;
     if (!k || !rted_key_is_runtime(k) || type == RTED_KEY_TEXT || type == RTED_KEY_CHOICE) {
         rted_msgf(lc->msg, lc->msg_size, "params.keys: '%s' is not %s", buf,
-            !k ? "a key" : !rted_key_is_runtime(k) ? "a runtime key (it fixes sizes or the source)"
-                                       : "a numeric or boolean key (params_t carries no text)");
+                  !k ? "a key"
+                  : !rted_key_is_runtime(k)
+                      ? "a runtime key (it fixes sizes or the source)"
+                      : "a numeric or boolean key (params_t carries no text)");
         return false;
     }
     return true;
@@ -143,12 +145,13 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
     int32_t xy[16];
     if (rted_parse_roi(c->lane_roi, xy, 8) < 0) {
         rted_msgf(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
-            c->lane_roi);
+                  c->lane_roi);
         return false;
     }
-    if (c->lane_canny_low >= 0 && c->lane_canny_high >= 0 && c->lane_canny_low > c->lane_canny_high) {
-        rted_msgf(msg, msg_size, "lane.canny_low (%d) exceeds lane.canny_high (%d)", c->lane_canny_low,
-            c->lane_canny_high);
+    if (c->lane_canny_low >= 0 && c->lane_canny_high >= 0 &&
+        c->lane_canny_low > c->lane_canny_high) {
+        rted_msgf(msg, msg_size, "lane.canny_low (%d) exceeds lane.canny_high (%d)",
+                  c->lane_canny_low, c->lane_canny_high);
         return false;
     }
     if ((c->lane_canny_low < 0) != (c->lane_canny_high < 0)) {
@@ -168,9 +171,10 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
         return false;
     }
     if (rted_parse_controls(c->source_controls, NULL, 0) < 0) {
-        rted_msgf(msg, msg_size, "source.controls: '%s' is not 'name=value;...' with at most %d "
-            "integer values and names of at most %d characters", c->source_controls,
-            RTE_V4L2_MAX_CONTROLS, RTE_V4L2_NAME_SIZE - 1);
+        rted_msgf(msg, msg_size,
+                  "source.controls: '%s' is not 'name=value;...' with at most %d "
+                  "integer values and names of at most %d characters",
+                  c->source_controls, RTE_V4L2_MAX_CONTROLS, RTE_V4L2_NAME_SIZE - 1);
         return false;
     }
     if (!c->lcm_url[0]) {
@@ -182,18 +186,23 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
         return false;
     /* liblcm takes a subscription's channel as a regular expression: a plain
      * name only, and none of the daemon's own (it would read its output). */
-    if (!c->params_channel[0] || strspn(c->params_channel, "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                        "abcdefghijklmnopqrstuvwxyz0123456789_-") !=
-                                     strlen(c->params_channel)) {
-        rted_msgf(msg, msg_size, "params.channel: '%s' is not a channel name of letters, digits, "
-            "'_' and '-'", c->params_channel);
+    if (!c->params_channel[0] ||
+        strspn(c->params_channel,
+               "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+               "abcdefghijklmnopqrstuvwxyz0123456789_-") != strlen(c->params_channel)) {
+        rted_msgf(msg, msg_size,
+                  "params.channel: '%s' is not a channel name of letters, digits, "
+                  "'_' and '-'",
+                  c->params_channel);
         return false;
     }
     const char *own[] = {c->lane_channel, c->grasp_channel, c->status_channel, c->image_channel};
     for (size_t i = 0; i < sizeof own / sizeof own[0]; i++)
         if (!strcmp(own[i], c->params_channel)) {
-            rted_msgf(msg, msg_size, "params.channel: %s is also one of the channels rtedged "
-                "publishes on", c->params_channel);
+            rted_msgf(msg, msg_size,
+                      "params.channel: %s is also one of the channels rtedged "
+                      "publishes on",
+                      c->params_channel);
             return false;
         }
     return true;
@@ -212,14 +221,17 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
                    {"lane.gate_px", c->lane_gate_px}};
     for (size_t i = 0; c->lane_enabled && i < sizeof lengths / sizeof lengths[0]; i++)
         if (lengths[i].value > span) {
-            rted_msgf(msg, msg_size, "%s = %d is beyond the %dx%d frame's width + height (%lld): "
-                "nothing could ever reach it", lengths[i].name, lengths[i].value, width, height,
-                (long long)span);
+            rted_msgf(msg, msg_size,
+                      "%s = %d is beyond the %dx%d frame's width + height (%lld): "
+                      "nothing could ever reach it",
+                      lengths[i].name, lengths[i].value, width, height, (long long)span);
             return false;
         }
     if (c->grasp_enabled && c->grasp_min_area > area) {
-        rted_msgf(msg, msg_size, "grasp.min_area = %d px is beyond the %dx%d frame's %lld px: no "
-            "object could ever be found", c->grasp_min_area, width, height, (long long)area);
+        rted_msgf(msg, msg_size,
+                  "grasp.min_area = %d px is beyond the %dx%d frame's %lld px: no "
+                  "object could ever be found",
+                  c->grasp_min_area, width, height, (long long)area);
         return false;
     }
     if (!c->lane_enabled)
@@ -228,15 +240,15 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
     int32_t n = rted_parse_roi(c->lane_roi, xy, RTE_LANE_MAX_ROI_VERTICES);
     if (n < 0) {
         rted_msgf(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
-            c->lane_roi);
+                  c->lane_roi);
         return false;
     }
     rte_vertex q16[RTE_LANE_MAX_ROI_VERTICES], px[RTE_LANE_MAX_ROI_VERTICES];
     for (int32_t i = 0; i < n; i++)
         q16[i] = (rte_vertex){xy[2 * i], xy[2 * i + 1]};
     if (rte_polygon_from_fractions(q16, n, width, height, px) != RTE_OK) {
-        rted_msgf(msg, msg_size, "lane.roi: '%s' cannot be placed on a %dx%d frame", c->lane_roi, width,
-            height);
+        rted_msgf(msg, msg_size, "lane.roi: '%s' cannot be placed on a %dx%d frame", c->lane_roi,
+                  width, height);
         return false;
     }
     rte_point pts[RTE_LANE_MAX_ROI_VERTICES];
@@ -249,17 +261,18 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
     int32_t y1 = box.y + box.height > height ? height : box.y + box.height;
     int64_t inside_w = x1 - x0, inside_h = y1 - y0;
     if (inside_w < RTED_ROI_MIN_SIDE || inside_h < RTED_ROI_MIN_SIDE) {
-        rted_msgf(msg, msg_size, "lane.roi: '%s' covers %lldx%lld px of the %dx%d frame: at least "
-            "%dx%d are needed", c->lane_roi, inside_w > 0 ? (long long)inside_w : 0,
-            inside_h > 0 ? (long long)inside_h : 0, width, height, RTED_ROI_MIN_SIDE,
-            RTED_ROI_MIN_SIDE);
+        rted_msgf(msg, msg_size,
+                  "lane.roi: '%s' covers %lldx%lld px of the %dx%d frame: at least "
+                  "%dx%d are needed",
+                  c->lane_roi, inside_w > 0 ? (long long)inside_w : 0,
+                  inside_h > 0 ? (long long)inside_h : 0, width, height, RTED_ROI_MIN_SIDE,
+                  RTED_ROI_MIN_SIDE);
         return false;
     }
     if (llabs(rte_shape_area2(pts, n)) * 1000 < 2 * area) {
         rted_msgf(msg, msg_size, "lane.roi: '%s' encloses less than 1/1000 of the %dx%d frame",
-            c->lane_roi, width, height);
+                  c->lane_roi, width, height);
         return false;
     }
     return true;
 }
-

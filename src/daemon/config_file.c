@@ -150,7 +150,7 @@ bool rted_config_set(rted_config *c, const char *assignment, const char *origin,
     const rted_key *k = rted_config_lookup(trim(buf), trim(dot + 1), &known);
     if (!k) {
         rted_msgf(msg, msg_size, known ? "%s: unknown key '%s.%s'" : "%s: unknown section '%s'%.0s",
-            origin, trim(buf), trim(dot + 1));
+                  origin, trim(buf), trim(dot + 1));
         return false;
     }
     char why[RTED_MSG], name[160];
@@ -161,4 +161,3 @@ bool rted_config_set(rted_config *c, const char *assignment, const char *origin,
     }
     return true;
 }
-

@@ -25,34 +25,54 @@
 struct rted_key {
     const char *section, *key;
     rted_key_type type;
-    size_t offset, size;      /* size: K_TEXT capacity */
-    double min, max;          /* K_INT, K_REAL */
-    bool has_unset;           /* `unset` is allowed besides min..max ("the default") */
+    size_t offset, size; /* size: K_TEXT capacity */
+    double min, max;     /* K_INT, K_REAL */
+    bool has_unset;      /* `unset` is allowed besides min..max ("the default") */
     double unset;
     const char *const *choices; /* K_ENUM, NULL-terminated */
-    bool runtime;             /* may change while running (SIGHUP, params_t) */
+    bool runtime;               /* may change while running (SIGHUP, params_t) */
     const char *def;
     const char *help;
 };
 typedef struct rted_key key_def;
 
-static const char *const source_kinds[] = {"auto", "y4m", "images", "raw", "lcm-log", "lcm",
-                                           "v4l2", "libcamera", NULL};
+static const char *const source_kinds[] = {"auto", "y4m",  "images",    "raw", "lcm-log",
+                                           "lcm",  "v4l2", "libcamera", NULL};
 static const char *const paces[] = {"recorded", "fps", "fast", NULL};
 static const char *const canny_modes[] = {"fixed", "median", "otsu", NULL};
 static const char *const binarizers[] = {"otsu", "fixed", "canny-close", NULL};
 static const char *const polarities[] = {"auto", "dark", "bright", NULL};
 
 #define OFF(f) offsetof(rted_config, f)
-#define INT(s, k, f, lo, hi, rt, d, h) {s, k, K_INT, OFF(f), 0, lo, hi, false, 0, NULL, rt, d, h}
+#define INT(s, k, f, lo, hi, rt, d, h)                           \
+    {                                                            \
+        s, k, K_INT, OFF(f), 0, lo, hi, false, 0, NULL, rt, d, h \
+    }
 /* An integer or real key whose value `u` means "the default" besides lo..hi. */
-#define INTU(s, k, f, u, lo, hi, rt, d, h) {s, k, K_INT, OFF(f), 0, lo, hi, true, u, NULL, rt, d, h}
-#define REAL(s, k, f, lo, hi, rt, d, h) {s, k, K_REAL, OFF(f), 0, lo, hi, false, 0, NULL, rt, d, h}
-#define REALU(s, k, f, u, lo, hi, rt, d, h) {s, k, K_REAL, OFF(f), 0, lo, hi, true, u, NULL, rt, d, h}
-#define BOOL(s, k, f, rt, d, h) {s, k, K_BOOL, OFF(f), 0, 0, 1, false, 0, NULL, rt, d, h}
-#define TEXT(s, k, f, rt, d, h) \
-    {s, k, K_TEXT, OFF(f), sizeof(((rted_config *)0)->f), 0, 0, false, 0, NULL, rt, d, h}
-#define ENUM(s, k, f, ch, rt, d, h) {s, k, K_ENUM, OFF(f), 0, 0, 0, false, 0, ch, rt, d, h}
+#define INTU(s, k, f, u, lo, hi, rt, d, h)                      \
+    {                                                           \
+        s, k, K_INT, OFF(f), 0, lo, hi, true, u, NULL, rt, d, h \
+    }
+#define REAL(s, k, f, lo, hi, rt, d, h)                           \
+    {                                                             \
+        s, k, K_REAL, OFF(f), 0, lo, hi, false, 0, NULL, rt, d, h \
+    }
+#define REALU(s, k, f, u, lo, hi, rt, d, h)                      \
+    {                                                            \
+        s, k, K_REAL, OFF(f), 0, lo, hi, true, u, NULL, rt, d, h \
+    }
+#define BOOL(s, k, f, rt, d, h)                                 \
+    {                                                           \
+        s, k, K_BOOL, OFF(f), 0, 0, 1, false, 0, NULL, rt, d, h \
+    }
+#define TEXT(s, k, f, rt, d, h)                                                             \
+    {                                                                                       \
+        s, k, K_TEXT, OFF(f), sizeof(((rted_config *)0)->f), 0, 0, false, 0, NULL, rt, d, h \
+    }
+#define ENUM(s, k, f, ch, rt, d, h)                           \
+    {                                                         \
+        s, k, K_ENUM, OFF(f), 0, 0, 0, false, 0, ch, rt, d, h \
+    }
 
 static const key_def keys[] = {
     ENUM("source", "kind", source_kind, source_kinds, false, "auto",
@@ -168,11 +188,11 @@ static const key_def keys[] = {
         "counted in status_t's config_rate_limited and dropped, not queued"),
 
     REALU("deadline", "ms", deadline_ms, 0, 0.1, 10000, true, "0",
-         "per-frame budget, capture to publish; 0: 1000 / source.fps"),
+          "per-frame budget, capture to publish; 0: 1000 / source.fps"),
     REAL("deadline", "grasp_min_budget_ms", grasp_min_budget_ms, 0, 10000, true, "2",
          "skip the grasp path when less than this is left of the budget"),
     REALU("deadline", "max_late_ms", max_late_ms, -1, 0, 60000, false, "100",
-         "drop frames later than this behind their pace; -1: never"),
+          "drop frames later than this behind their pace; -1: never"),
 
     INT("realtime", "priority", rt_priority, 0, 99, false, "0",
         "SCHED_FIFO priority; 0: normal scheduling (a warning if not permitted)"),
@@ -221,7 +241,7 @@ static bool store_int(rted_config *c, const key_def *k, long long v, char *why, 
     if (!(k->has_unset && (double)v == k->unset) && ((double)v < k->min || (double)v > k->max)) {
         char u[32];
         rted_msgf(why, why_size, "%lld is out of range %.0f..%.0f%s", v, k->min, k->max,
-            unset_text(k, u, sizeof u));
+                  unset_text(k, u, sizeof u));
         return false;
     }
     *(int32_t *)((char *)c + k->offset) = (int32_t)v;
@@ -238,7 +258,7 @@ static bool store_real(rted_config *c, const key_def *k, double v, char *why, si
     if (!(k->has_unset && v == k->unset) && (v < k->min || v > k->max)) {
         char u[32];
         rted_msgf(why, why_size, "%g is out of range %g..%g%s", v, k->min, k->max,
-            unset_text(k, u, sizeof u));
+                  unset_text(k, u, sizeof u));
         return false;
     }
     *(double *)((char *)c + k->offset) = v;
@@ -248,7 +268,7 @@ static bool store_real(rted_config *c, const key_def *k, double v, char *why, si
 /* Stores `value` (text, as in the file) into the key's field; false and a
  * reason otherwise. */
 bool rted_config_store(rted_config *c, const rted_key *k, const char *value, char *why,
-                      size_t why_size)
+                       size_t why_size)
 {
     char *field = (char *)c + k->offset;
     char *end;
@@ -258,7 +278,7 @@ bool rted_config_store(rted_config *c, const rted_key *k, const char *value, cha
         long long v = strtoll(value, &end, 10);
         if (end == value || *end || errno) {
             rted_msgf(why, why_size, "'%s' is not an integer%s", value,
-                errno == ERANGE ? " of 64 bits" : "");
+                      errno == ERANGE ? " of 64 bits" : "");
             return false;
         }
         return store_int(c, k, v, why, why_size);
@@ -276,8 +296,8 @@ bool rted_config_store(rted_config *c, const rted_key *k, const char *value, cha
         if (!strcasecmp(value, "true") || !strcasecmp(value, "yes") || !strcmp(value, "1") ||
             !strcasecmp(value, "on"))
             *(bool *)field = true;
-        else if (!strcasecmp(value, "false") || !strcasecmp(value, "no") ||
-                 !strcmp(value, "0") || !strcasecmp(value, "off"))
+        else if (!strcasecmp(value, "false") || !strcasecmp(value, "no") || !strcmp(value, "0") ||
+                 !strcasecmp(value, "off"))
             *(bool *)field = false;
         else {
             rted_msgf(why, why_size, "'%s' is not a boolean (true/false)", value);
@@ -354,8 +374,7 @@ bool rted_config_set_real(rted_config *c, const rted_key *k, double value, char 
     return store_real(c, k, value, why, why_size);
 }
 
-bool rted_config_set_bool(rted_config *c, const rted_key *k, bool value, char *why,
-                          size_t why_size)
+bool rted_config_set_bool(rted_config *c, const rted_key *k, bool value, char *why, size_t why_size)
 {
     if (k->type != K_BOOL)
         return wrong_type(k, "a boolean", why, why_size);
@@ -464,9 +483,10 @@ uint64_t rted_config_hash(const rted_config *c)
     uint64_t h = 14695981039346656037ull;
     for (size_t i = 0; i < N_KEYS; i++) {
         const char *field = (const char *)c + keys[i].offset;
-        size_t n = keys[i].type == K_TEXT ? strlen(field)
+        size_t n = keys[i].type == K_TEXT   ? strlen(field)
                    : keys[i].type == K_REAL ? sizeof(double)
-                   : keys[i].type == K_BOOL ? sizeof(bool) : sizeof(int32_t);
+                   : keys[i].type == K_BOOL ? sizeof(bool)
+                                            : sizeof(int32_t);
         h = fnv(h, keys[i].key, strlen(keys[i].key));
         h = fnv(h, field, n);
     }
@@ -481,10 +501,10 @@ bool rted_config_fixed_change(const rted_config *now, const rted_config *next, c
         if (k->runtime)
             continue;
         const char *a = (const char *)now + k->offset, *b = (const char *)next + k->offset;
-        bool same = k->type == K_TEXT ? !strcmp(a, b)
+        bool same = k->type == K_TEXT   ? !strcmp(a, b)
                     : k->type == K_REAL ? *(const double *)a == *(const double *)b
                     : k->type == K_BOOL ? *(const bool *)a == *(const bool *)b
-                    : *(const int32_t *)a == *(const int32_t *)b;
+                                        : *(const int32_t *)a == *(const int32_t *)b;
         if (!same) {
             snprintf(name, name_size, "%s.%s", k->section, k->key);
             return true;

@@ -18,12 +18,12 @@ typedef struct rted_daemon rted_daemon;
 
 /* Counters since start (the status message carries them too). */
 typedef struct rted_counters {
-    uint64_t received;        /* frames the source handed out */
+    uint64_t received; /* frames the source handed out */
     uint64_t processed;
-    uint64_t dropped;         /* stale (pacer) plus the source's own drops */
-    uint64_t bad_frames;      /* unreadable frames the source skipped */
+    uint64_t dropped;    /* stale (pacer) plus the source's own drops */
+    uint64_t bad_frames; /* unreadable frames the source skipped */
     uint64_t deadline_misses;
-    uint64_t stages_skipped;  /* grasp paths (and images) skipped to keep the deadline */
+    uint64_t stages_skipped; /* grasp paths (and images) skipped to keep the deadline */
     uint64_t published;
     uint64_t publish_errors;
     uint64_t status_sent;
@@ -37,23 +37,24 @@ typedef struct rted_counters {
 
 /* rtedged's exit codes (docs/daemon.md). */
 enum {
-    RTED_EXIT_OK = 0,         /* the recording ended, max_frames, or SIGINT/SIGTERM */
-    RTED_EXIT_FAILED = 1,     /* cannot start (source, transport, memory) or the source failed */
-    RTED_EXIT_CONFIG = 2,     /* a bad configuration or command line */
-    RTED_EXIT_NO_FRAMES = 3,  /* a recording (or a whole pass of a looping one) had no readable frame */
+    RTED_EXIT_OK = 0,     /* the recording ended, max_frames, or SIGINT/SIGTERM */
+    RTED_EXIT_FAILED = 1, /* cannot start (source, transport, memory) or the source failed */
+    RTED_EXIT_CONFIG = 2, /* a bad configuration or command line */
+    RTED_EXIT_NO_FRAMES =
+        3, /* a recording (or a whole pass of a looping one) had no readable frame */
 };
 
 typedef enum rted_step {
-    RTED_STEP_FRAME = 0,  /* a frame was processed */
-    RTED_STEP_IDLE,       /* nothing processed (waited, dropped, bad frame, timeout) */
-    RTED_STEP_END,        /* the recording ended (and does not loop) or max_frames reached */
-    RTED_STEP_FAILED,     /* the source failed */
-    RTED_STEP_EMPTY,      /* a recording, or a pass of a looping one, had no readable frame */
+    RTED_STEP_FRAME = 0, /* a frame was processed */
+    RTED_STEP_IDLE,      /* nothing processed (waited, dropped, bad frame, timeout) */
+    RTED_STEP_END,       /* the recording ended (and does not loop) or max_frames reached */
+    RTED_STEP_FAILED,    /* the source failed */
+    RTED_STEP_EMPTY,     /* a recording, or a pass of a looping one, had no readable frame */
 } rted_step;
 
 /* config_path: re-read on SIGHUP (NULL: reload refused). */
-bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *config_path,
-                      char *msg, size_t msg_size);
+bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *config_path, char *msg,
+                      size_t msg_size);
 void rted_daemon_close(rted_daemon *d);
 /* One frame: read, pace, analyse, publish; status when due. */
 rted_step rted_daemon_step(rted_daemon *d);

@@ -42,8 +42,8 @@ struct rted_daemon {
     char source_id[RTED_TEXT + 16];
     int32_t width, height; /* the source's maxima */
     rte_pacer pacer;
-    uint64_t passes;        /* rewinds of a looping recording so far */
-    uint64_t pass_frames;   /* frames the source delivered in this pass */
+    uint64_t passes;      /* rewinds of a looping recording so far */
+    uint64_t pass_frames; /* frames the source delivered in this pass */
 
     rte_lane_context *lane;
     rte_lane_config lane_base; /* defaults for the frame size, before the file's keys */
@@ -75,17 +75,17 @@ struct rted_daemon {
 
     rted_counters n;
     int32_t ring[RTED_RING], sorted[RTED_RING];
-    uint32_t ring_n;          /* latencies in the window (may exceed RTED_RING) */
+    uint32_t ring_n; /* latencies in the window (may exceed RTED_RING) */
     int32_t window_max;
     uint64_t window_processed;
     int64_t window_start_ns;
     rte_source_state state;
     rte_source_state reported_state; /* the source's state in the last status */
-    volatile sig_atomic_t *stop; /* rted_daemon_run's flag: ends a wait for a frame's time */
+    volatile sig_atomic_t *stop;     /* rted_daemon_run's flag: ends a wait for a frame's time */
 
     /* stderr lines that could repeat without end */
     rted_log_limit log_frames, log_params;
-    rte_status path_said[2];  /* the lane's and grasp path's last failure said */
+    rte_status path_said[2]; /* the lane's and grasp path's last failure said */
 };
 
 /* source_open.c */

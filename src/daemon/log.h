@@ -12,11 +12,11 @@
 #define RTED_LOG_WINDOW_NS 10000000000LL
 
 typedef struct rted_log_limit {
-    const char *what;          /* e.g. "bad-frame", for the summary line */
-    uint32_t burst;            /* lines per window */
+    const char *what; /* e.g. "bad-frame", for the summary line */
+    uint32_t burst;   /* lines per window */
     int64_t window_start_ns;
-    uint32_t lines;            /* printed in this window */
-    uint64_t suppressed;       /* left out in this window */
+    uint32_t lines;      /* printed in this window */
+    uint64_t suppressed; /* left out in this window */
 } rted_log_limit;
 
 /* printf into a caller's message buffer (nothing when size is 0). */

@@ -25,8 +25,9 @@ static void path_error(rted_daemon *d, int path, const rte_source_frame *f, rte_
         return;
     d->path_said[path] = st;
     rted_log("%s path: frame %llu (%dx%d) not processed: %s (said once; status_t counts "
-             "path_errors)", path ? "grasp" : "lane", (unsigned long long)f->sequence,
-             f->frame.width, f->frame.height, rte_status_message(st));
+             "path_errors)",
+             path ? "grasp" : "lane", (unsigned long long)f->sequence, f->frame.width,
+             f->frame.height, rte_status_message(st));
 }
 
 static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
@@ -85,8 +86,8 @@ static rted_step end_of_pass(rted_daemon *d)
     d->n.bad_frames = ss.bad_frames;
     d->state = RTE_SOURCE_ENDED;
     if (!d->pass_frames) {
-        rted_log("%s: %s gave no readable frame (%llu bad frames in all): stopping",
-                 d->source_id, d->passes ? "a whole pass of the recording" : "the recording",
+        rted_log("%s: %s gave no readable frame (%llu bad frames in all): stopping", d->source_id,
+                 d->passes ? "a whole pass of the recording" : "the recording",
                  (unsigned long long)ss.bad_frames);
         return RTED_STEP_EMPTY;
     }

@@ -13,8 +13,16 @@
 
 static volatile sig_atomic_t stop_flag, reload_flag;
 
-static void on_stop(int sig) { stop_flag = 1; (void)sig; }
-static void on_hup(int sig) { reload_flag = 1; (void)sig; }
+static void on_stop(int sig)
+{
+    stop_flag = 1;
+    (void)sig;
+}
+static void on_hup(int sig)
+{
+    reload_flag = 1;
+    (void)sig;
+}
 
 static void usage(FILE *f)
 {
@@ -83,10 +91,10 @@ static bool key_option(const char *a, const char **key, const char **fixed)
     static const struct {
         const char *flag, *key, *fixed;
     } flags[] = {
-        {"--loop", NULL, "source.loop=true"},  {"--fast", NULL, "source.pace=fast"},
-        {"--source", "source.path", NULL},     {"--fps", "source.fps", NULL},
-        {"--speed", "source.speed", NULL},     {"--max-frames", "source.max_frames", NULL},
-        {"--lcm-url", "publish.url", NULL},    {"--deadline-ms", "deadline.ms", NULL},
+        {"--loop", NULL, "source.loop=true"}, {"--fast", NULL, "source.pace=fast"},
+        {"--source", "source.path", NULL},    {"--fps", "source.fps", NULL},
+        {"--speed", "source.speed", NULL},    {"--max-frames", "source.max_frames", NULL},
+        {"--lcm-url", "publish.url", NULL},   {"--deadline-ms", "deadline.ms", NULL},
         {"--record", "source.record", NULL},
     };
     for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)

@@ -58,11 +58,11 @@ static void fill_lane(rtedge_lane_t *m, const rte_lane *l)
 void rted_publish_lane(rted_daemon *d, const rte_source_frame *f, const rte_lane_result *r)
 {
     rtedge_lane_detection_t *m = &d->lane_msg;
-    int32_t n = r->segment_count < d->cfg.lane_max_segments ? r->segment_count
-                                                            : d->cfg.lane_max_segments;
+    int32_t n =
+        r->segment_count < d->cfg.lane_max_segments ? r->segment_count : d->cfg.lane_max_segments;
     for (int32_t i = 0; i < n; i++)
-        d->segments[i] = (rtedge_segment_t){r->segments[i].x0, r->segments[i].y0,
-                                            r->segments[i].x1, r->segments[i].y1};
+        d->segments[i] = (rtedge_segment_t){r->segments[i].x0, r->segments[i].y0, r->segments[i].x1,
+                                            r->segments[i].y1};
     m->nsegments = n;
     m->segments_truncated = r->truncated || n < r->segment_count;
     fill_lane(&m->left, &r->lane[RTE_LANE_LEFT]);
@@ -126,8 +126,8 @@ void rted_publish_image(rted_daemon *d, const rte_source_frame *f, const rte_ima
     /* A view of the grey image when it is packed, else the daemon's copy. */
     if (g->stride != g->width) {
         for (int32_t y = 0; y < g->height; y++)
-            memcpy(d->gray.buf + (size_t)y * (size_t)g->width, g->buf + (size_t)y * (size_t)g->stride,
-                   (size_t)g->width);
+            memcpy(d->gray.buf + (size_t)y * (size_t)g->width,
+                   g->buf + (size_t)y * (size_t)g->stride, (size_t)g->width);
         g = &d->gray;
     }
     m->utime = f->capture_ns / 1000;

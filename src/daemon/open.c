@@ -99,7 +99,7 @@ static bool open_grasp(rted_daemon *d, char *msg, size_t msg_size)
     rte_status st = rte_grasp_create(&gc, &d->grasp);
     if (st != RTE_OK) {
         rted_msgf(msg, msg_size, "the grasp configuration is invalid for this source: %s",
-            rte_status_message(st));
+                  rte_status_message(st));
         return false;
     }
     return true;
@@ -133,9 +133,13 @@ static bool open_publisher(rted_daemon *d, char *msg, size_t msg_size)
 {
     const rted_config *c = &d->cfg;
     size_t gray_bytes = (size_t)d->width * (size_t)d->height;
-    rte_publish_limits lim = {RTED_TEXT + 16, RTE_LANE_MAX_ROI_VERTICES, c->lane_max_segments,
-                              c->grasp_max_objects, RTED_MAX_SETS,
-                              c->publish_images ? (int32_t)gray_bytes : 0, 0};
+    rte_publish_limits lim = {RTED_TEXT + 16,
+                              RTE_LANE_MAX_ROI_VERTICES,
+                              c->lane_max_segments,
+                              c->grasp_max_objects,
+                              RTED_MAX_SETS,
+                              c->publish_images ? (int32_t)gray_bytes : 0,
+                              0};
     char why[RTED_MSG];
     if (rte_publisher_create(&d->pub, c->lcm_url, &lim, why, sizeof why) != RTE_OK) {
         snprintf(msg, msg_size, "cannot publish to %s: %s", c->lcm_url, why);
@@ -161,8 +165,8 @@ static bool open_after_source(rted_daemon *d, char *msg, size_t msg_size)
     return !c->record_path[0] || rted_open_recording(d, msg, msg_size);
 }
 
-bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *config_path,
-                      char *msg, size_t msg_size)
+bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *config_path, char *msg,
+                      size_t msg_size)
 {
     *out = NULL;
     rted_daemon *d = calloc(1, sizeof *d);

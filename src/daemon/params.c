@@ -76,8 +76,10 @@ static bool get_name(reader *r, int32_t index, char *name, char *why, size_t why
         return refuse(why, why_size, "value %d: the name does not end with a NUL byte", index + 1);
     for (uint32_t i = 0; i + 1 < len; i++)
         if (!name_char(b[i]))
-            return refuse(why, why_size, "value %d: byte %u of the name is 0x%02x (names are "
-                          "'section.key' of a-z, 0-9, '_' and '.')", index + 1, i, b[i]);
+            return refuse(why, why_size,
+                          "value %d: byte %u of the name is 0x%02x (names are "
+                          "'section.key' of a-z, 0-9, '_' and '.')",
+                          index + 1, i, b[i]);
     memcpy(name, b, len);
     return true;
 }
@@ -135,8 +137,9 @@ static const char *kind_name(int8_t kind)
 /* The kind a key of this type takes. */
 static int8_t kind_for(rted_key_type t)
 {
-    return t == RTED_KEY_INT ? RTEDGE_PARAM_T_KIND_INT
-           : t == RTED_KEY_REAL ? RTEDGE_PARAM_T_KIND_REAL : RTEDGE_PARAM_T_KIND_BOOL;
+    return t == RTED_KEY_INT    ? RTEDGE_PARAM_T_KIND_INT
+           : t == RTED_KEY_REAL ? RTEDGE_PARAM_T_KIND_REAL
+                                : RTEDGE_PARAM_T_KIND_BOOL;
 }
 
 /* One value onto *next; false and *why (without the "value N" prefix). */
@@ -147,18 +150,23 @@ static bool set_one(const rted_param *p, const rted_config *now, rted_config *ne
     if (!k)
         return refuse(why, why_size, "no such key");
     if (!rted_key_is_runtime(k))
-        return refuse(why, why_size, "cannot change while running (it fixes sizes or the "
+        return refuse(why, why_size,
+                      "cannot change while running (it fixes sizes or the "
                       "source): restart rtedged");
     rted_key_type t = rted_key_get_type(k);
     if (t == RTED_KEY_TEXT || t == RTED_KEY_CHOICE)
-        return refuse(why, why_size, "takes %s, which params_t cannot carry: set it in the "
-                      "configuration file and send SIGHUP", t == RTED_KEY_TEXT ? "text" : "a choice");
+        return refuse(why, why_size,
+                      "takes %s, which params_t cannot carry: set it in the "
+                      "configuration file and send SIGHUP",
+                      t == RTED_KEY_TEXT ? "text" : "a choice");
     if (!rted_config_params_allowed(now, p->name))
         return refuse(why, why_size, "not in params.keys");
     const char *given = kind_name(p->kind);
     if (!given)
-        return refuse(why, why_size, "kind %d is none of KIND_INT (1), KIND_REAL (2), "
-                      "KIND_BOOL (3)", p->kind);
+        return refuse(why, why_size,
+                      "kind %d is none of KIND_INT (1), KIND_REAL (2), "
+                      "KIND_BOOL (3)",
+                      p->kind);
     if (p->kind != kind_for(t))
         return refuse(why, why_size, "takes %s, not %s", kind_name(kind_for(t)), given);
     switch (t) {
@@ -183,8 +191,8 @@ bool rted_params_to_config(const rted_params_request *req, const rted_config *no
         char reason[RTED_MSG];
         for (int32_t j = 0; j < i; j++)
             if (!strcmp(req->params[j].name, p->name))
-                return refuse(why, why_size, "value %d (%s): given twice (values %d and %d)",
-                              i + 1, p->name, j + 1, i + 1);
+                return refuse(why, why_size, "value %d (%s): given twice (values %d and %d)", i + 1,
+                              p->name, j + 1, i + 1);
         if (!set_one(p, now, next, reason, sizeof reason))
             return refuse(why, why_size, "value %d (%s): %s", i + 1, p->name, reason);
     }

@@ -24,12 +24,13 @@
 #define RTED_PARAM_NAME_MAX 64
 /* The largest valid message: fingerprint, utime, request_id, nparams, then
  * per value a name (length, bytes), kind, int_value and real_value. */
-#define RTED_PARAMS_MAX_BYTES (8 + 8 + 8 + 4 + RTED_PARAMS_MAX * (4 + RTED_PARAM_NAME_MAX + 1 + 8 + 8))
+#define RTED_PARAMS_MAX_BYTES \
+    (8 + 8 + 8 + 4 + RTED_PARAMS_MAX * (4 + RTED_PARAM_NAME_MAX + 1 + 8 + 8))
 #define RTED_PARAMS_MIN_BYTES (8 + 8 + 8 + 4)
 
 typedef struct rted_param {
     char name[RTED_PARAM_NAME_MAX];
-    int8_t kind;            /* RTEDGE_PARAM_T_KIND_* */
+    int8_t kind; /* RTEDGE_PARAM_T_KIND_* */
     int64_t int_value;
     double real_value;
 } rted_param;
@@ -37,7 +38,7 @@ typedef struct rted_param {
 typedef struct rted_params_request {
     int64_t utime;
     int64_t request_id;
-    bool have_id;           /* request_id was read (for messages about a bad request) */
+    bool have_id; /* request_id was read (for messages about a bad request) */
     int32_t count;
     rted_param params[RTED_PARAMS_MAX];
 } rted_params_request;

@@ -77,8 +77,10 @@ bool rted_daemon_apply(rted_daemon *d, const rted_config *next, char *msg, size_
 {
     char fixed[160];
     if (rted_config_fixed_change(&d->cfg, next, fixed, sizeof fixed)) {
-        snprintf(msg, msg_size, "%s cannot change while running (it fixes sizes or the source): "
-                 "restart rtedged", fixed);
+        snprintf(msg, msg_size,
+                 "%s cannot change while running (it fixes sizes or the source): "
+                 "restart rtedged",
+                 fixed);
         d->n.refused++;
         return false;
     }
@@ -88,7 +90,8 @@ bool rted_daemon_apply(rted_daemon *d, const rted_config *next, char *msg, size_
         return false;
     }
     rte_lane_params lp;
-    if (d->lane && (!rted_lane_params(d, next, &lp) || rte_lane_set_params(d->lane, &lp) != RTE_OK)) {
+    if (d->lane &&
+        (!rted_lane_params(d, next, &lp) || rte_lane_set_params(d->lane, &lp) != RTE_OK)) {
         snprintf(msg, msg_size, "the lane parameters were refused by the lane path");
         d->n.refused++;
         return false;
@@ -165,8 +168,10 @@ static void on_params(const lcm_recv_buf_t *rbuf, const char *channel, void *use
     }
     if (d->params_in_window >= d->cfg.params_max_per_second) {
         d->n.rate_limited++;
-        rted_log_limited(&d->log_params, "params message dropped: more than %d a second "
-                         "(params.max_per_second)", d->cfg.params_max_per_second);
+        rted_log_limited(&d->log_params,
+                         "params message dropped: more than %d a second "
+                         "(params.max_per_second)",
+                         d->cfg.params_max_per_second);
         return;
     }
     d->params_in_window++;
@@ -184,7 +189,8 @@ void rted_params_open(rted_daemon *d)
     lcm_t *lcm = rte_publisher_lcm(d->pub);
     if (!lcm) {
         rted_log("warning: params.enabled needs an LCM transport (udpm://, memq://), not %s: "
-                 "no params channel", c->lcm_url);
+                 "no params channel",
+                 c->lcm_url);
         return;
     }
     d->params_sub = lcm_subscribe(lcm, c->params_channel, on_params, d);
@@ -205,8 +211,7 @@ void rted_params_poll(rted_daemon *d)
         return;
     lcm_t *lcm = rte_publisher_lcm(d->pub);
     struct pollfd pfd = {lcm_get_fileno(lcm), POLLIN, 0};
-    for (int i = 0; i < RTED_PARAMS_PER_STEP && poll(&pfd, 1, 0) > 0 && (pfd.revents & POLLIN);
-         i++)
+    for (int i = 0; i < RTED_PARAMS_PER_STEP && poll(&pfd, 1, 0) > 0 && (pfd.revents & POLLIN); i++)
         if (lcm_handle(lcm) != 0)
             break;
 }

@@ -46,8 +46,8 @@ bool rted_open_recording(rted_daemon *d, char *msg, size_t msg_size)
     const rted_config *c = &d->cfg;
     size_t bytes = record_bytes(d->source.format, d->width, d->height);
     if (!bytes || bytes > (1u << 30)) {
-        snprintf(msg, msg_size, "source.record: cannot record %dx%d %s frames", d->width,
-                 d->height, rte_pixel_format_name(d->source.format));
+        snprintf(msg, msg_size, "source.record: cannot record %dx%d %s frames", d->width, d->height,
+                 rte_pixel_format_name(d->source.format));
         return false;
     }
     d->rec_buf = malloc(bytes);
@@ -84,8 +84,8 @@ void rted_record_frame(rted_daemon *d, const rte_source_frame *f)
         int32_t rows = p ? (fr->height + 1) / 2 : fr->height;
         uint8_t *dst = d->rec_buf + (p ? (size_t)stride * (size_t)fr->height : 0);
         for (int32_t y = 0; y < rows; y++)
-            memcpy(dst + (size_t)y * (size_t)stride, fr->plane[p] + (size_t)y * (size_t)fr->stride[p],
-                   (size_t)layout.stride[p]);
+            memcpy(dst + (size_t)y * (size_t)stride,
+                   fr->plane[p] + (size_t)y * (size_t)fr->stride[p], (size_t)layout.stride[p]);
     }
     rtedge_image_t *m = &d->rec_msg;
     m->utime = f->capture_ns / 1000;

@@ -46,8 +46,8 @@ static rted_source_kind guess_kind(const char *path)
 
 static const char *kind_name(rted_source_kind k)
 {
-    static const char *const names[] = {"auto", "y4m",  "images", "raw",
-                                        "lcm-log", "lcm", "v4l2", "libcamera"};
+    static const char *const names[] = {"auto",    "y4m", "images", "raw",
+                                        "lcm-log", "lcm", "v4l2",   "libcamera"};
     return names[k];
 }
 
@@ -110,16 +110,19 @@ static rte_status open_libcamera(rte_source *source, const rted_config *c, rte_p
 bool rted_open_source(rted_daemon *d, char *msg, size_t msg_size)
 {
     const rted_config *c = &d->cfg;
-    rted_source_kind kind = c->source_kind ? (rted_source_kind)c->source_kind
-                                           : guess_kind(c->source_path);
+    rted_source_kind kind =
+        c->source_kind ? (rted_source_kind)c->source_kind : guess_kind(c->source_path);
     uint32_t fourcc = 0;
     if (kind == RTED_SOURCE_V4L2 && !v4l2_format(c->source_format, &fourcc)) {
-        rted_msgf(msg, msg_size, "source.format: a V4L2 camera is read as yuyv, uyvy, grey, nv12 or "
-            "mjpeg, not: %s", c->source_format);
+        rted_msgf(msg, msg_size,
+                  "source.format: a V4L2 camera is read as yuyv, uyvy, grey, nv12 or "
+                  "mjpeg, not: %s",
+                  c->source_format);
         return false;
     }
     rte_pixel_format fmt = c->source_format[0] && kind != RTED_SOURCE_V4L2
-                               ? rte_pixel_format_parse(c->source_format) : 0;
+                               ? rte_pixel_format_parse(c->source_format)
+                               : 0;
     if (c->source_format[0] && kind != RTED_SOURCE_V4L2 && !fmt) {
         rted_msgf(msg, msg_size, "source.format: unknown pixel format: %s", c->source_format);
         return false;
@@ -132,14 +135,14 @@ bool rted_open_source(rted_daemon *d, char *msg, size_t msg_size)
         st = rte_y4m_source_open(&d->source, c->source_path, why, sizeof why);
         break;
     case RTED_SOURCE_IMAGES: {
-        rte_images_source_config ic = {c->source_path, fmt ? fmt : RTE_PIXEL_BGR24, c->width,
-                                       c->height, fps_num, fps_den};
+        rte_images_source_config ic = {
+            c->source_path, fmt ? fmt : RTE_PIXEL_BGR24, c->width, c->height, fps_num, fps_den};
         st = rte_images_source_open(&d->source, &ic, why, sizeof why);
         break;
     }
     case RTED_SOURCE_RAW: {
-        rte_raw_source_config rc = {c->source_path, fmt ? fmt : RTE_PIXEL_GREY, c->width,
-                                    c->height, fps_num, fps_den};
+        rte_raw_source_config rc = {
+            c->source_path, fmt ? fmt : RTE_PIXEL_GREY, c->width, c->height, fps_num, fps_den};
         st = rte_raw_source_open(&d->source, &rc, why, sizeof why);
         break;
     }
@@ -151,14 +154,9 @@ bool rted_open_source(rted_daemon *d, char *msg, size_t msg_size)
                                      : rte_lcm_log_source_open(&d->source, &lc, why, sizeof why);
         break;
     }
-    case RTED_SOURCE_V4L2:
-        st = open_v4l2(&d->source, c, fourcc, why, sizeof why);
-        break;
-    case RTED_SOURCE_LIBCAMERA:
-        st = open_libcamera(&d->source, c, fmt, why, sizeof why);
-        break;
-    case RTED_SOURCE_AUTO:
-        break;
+    case RTED_SOURCE_V4L2: st = open_v4l2(&d->source, c, fourcc, why, sizeof why); break;
+    case RTED_SOURCE_LIBCAMERA: st = open_libcamera(&d->source, c, fmt, why, sizeof why); break;
+    case RTED_SOURCE_AUTO: break;
     }
     if (st != RTE_OK) {
         snprintf(msg, msg_size, "cannot open %s source %s: %s", kind_name(kind), c->source_path,
@@ -168,8 +166,8 @@ bool rted_open_source(rted_daemon *d, char *msg, size_t msg_size)
     /* Cameras say what they settled on (size, format, rate, adjustments). */
     if (why[0] && (kind == RTED_SOURCE_V4L2 || kind == RTED_SOURCE_LIBCAMERA))
         rted_log("%s source: %s", kind_name(kind), why);
-    d->recorded = kind != RTED_SOURCE_LCM && kind != RTED_SOURCE_V4L2 &&
-                  kind != RTED_SOURCE_LIBCAMERA;
+    d->recorded =
+        kind != RTED_SOURCE_LCM && kind != RTED_SOURCE_V4L2 && kind != RTED_SOURCE_LIBCAMERA;
     snprintf(d->source_id, sizeof d->source_id, "%s:%s", kind_name(kind), c->source_path);
     d->width = d->source.max_width;
     d->height = d->source.max_height;

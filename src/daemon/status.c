@@ -72,8 +72,8 @@ void rted_daemon_publish_status(rted_daemon *d)
     s->path_errors = (int64_t)d->n.path_errors;
     s->window_us = (t - d->window_start_ns) / 1000;
     window_latency(d, &s->latency_p50_us, &s->latency_p99_us, &s->latency_max_us);
-    s->fps = s->window_us > 0 ? (float)((double)d->window_processed * 1e6 / (double)s->window_us)
-                              : 0.0f;
+    s->fps =
+        s->window_us > 0 ? (float)((double)d->window_processed * 1e6 / (double)s->window_us) : 0.0f;
     s->arena_bytes = (int64_t)d->arena.size;
     s->arena_peak_bytes = (int64_t)d->arena.high_water;
     s->config_hash = (int64_t)d->config_hash;
@@ -106,4 +106,3 @@ void rted_record_latency(rted_daemon *d, int64_t lat_ns)
     if (v > d->window_max)
         d->window_max = v;
 }
-

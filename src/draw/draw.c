@@ -124,7 +124,8 @@ static int outcode(int64_t x, int64_t y, int64_t xmin, int64_t ymin, int64_t xma
 static int clip(int64_t *x0, int64_t *y0, int64_t *x1, int64_t *y1, int64_t xmin, int64_t ymin,
                 int64_t xmax, int64_t ymax)
 {
-    int c0 = outcode(*x0, *y0, xmin, ymin, xmax, ymax), c1 = outcode(*x1, *y1, xmin, ymin, xmax, ymax);
+    int c0 = outcode(*x0, *y0, xmin, ymin, xmax, ymax),
+        c1 = outcode(*x1, *y1, xmin, ymin, xmax, ymax);
     for (int iter = 0; iter < 8; iter++) {
         if (!(c0 | c1))
             return 1;
@@ -224,7 +225,8 @@ rte_status rte_draw_circle(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t 
     return RTE_OK;
 }
 
-rte_status rte_draw_dot(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r, rte_draw_color color)
+rte_status rte_draw_dot(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r,
+                        rte_draw_color color)
 {
     if (!image_ok(img) || r < 0 || r > RTE_MAX_SIDE)
         return RTE_ERR_ARGUMENT;
@@ -233,9 +235,11 @@ rte_status rte_draw_dot(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r, 
     for (int64_t dy = 0; dy <= r; dy++) {
         while (half > 0 && half * half + dy * dy > rr)
             half--;
-        fill_rect(img, (int64_t)cx - half, (int64_t)cy + dy, (int64_t)cx + half, (int64_t)cy + dy, color);
+        fill_rect(img, (int64_t)cx - half, (int64_t)cy + dy, (int64_t)cx + half, (int64_t)cy + dy,
+                  color);
         if (dy)
-            fill_rect(img, (int64_t)cx - half, (int64_t)cy - dy, (int64_t)cx + half, (int64_t)cy - dy, color);
+            fill_rect(img, (int64_t)cx - half, (int64_t)cy - dy, (int64_t)cx + half,
+                      (int64_t)cy - dy, color);
     }
     return RTE_OK;
 }
@@ -259,7 +263,8 @@ rte_status rte_draw_text(rte_image_u8c3 *img, int32_t x, int32_t y, const char *
         for (int32_t row = 0; row < RTE_DRAW_GLYPH_H; row++)
             for (int32_t col = 0; col < RTE_DRAW_GLYPH_W; col++)
                 if (g[row] & (0x10 >> col)) {
-                    const int64_t px = ox + (int64_t)col * scale, py = (int64_t)y + (int64_t)row * scale;
+                    const int64_t px = ox + (int64_t)col * scale,
+                                  py = (int64_t)y + (int64_t)row * scale;
                     fill_rect(img, px, py, px + scale - 1, py + scale - 1, color);
                 }
     }

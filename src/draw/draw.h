@@ -45,7 +45,8 @@ rte_status rte_draw_circle(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t 
                            rte_draw_color color, int32_t thickness);
 
 /* Filled disc of radius r >= 0: every pixel with dx^2 + dy^2 <= r^2 + r. */
-rte_status rte_draw_dot(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r, rte_draw_color color);
+rte_status rte_draw_dot(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r,
+                        rte_draw_color color);
 
 /* Text with its top-left corner at (x, y); scale 1..16. Returns RTE_OK. */
 rte_status rte_draw_text(rte_image_u8c3 *img, int32_t x, int32_t y, const char *text,

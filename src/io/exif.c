@@ -23,8 +23,11 @@ int io_exif_orientation(FILE *f, long tiff, long len)
     else
         return 1;
 #define U16(p) (le ? (unsigned)((p)[0] | (p)[1] << 8) : (unsigned)((p)[0] << 8 | (p)[1]))
-#define U32(p) (le ? ((uint32_t)(p)[0] | (uint32_t)(p)[1] << 8 | (uint32_t)(p)[2] << 16 | (uint32_t)(p)[3] << 24) \
-                   : ((uint32_t)(p)[0] << 24 | (uint32_t)(p)[1] << 16 | (uint32_t)(p)[2] << 8 | (uint32_t)(p)[3]))
+#define U32(p)                                                                       \
+    (le ? ((uint32_t)(p)[0] | (uint32_t)(p)[1] << 8 | (uint32_t)(p)[2] << 16 |       \
+           (uint32_t)(p)[3] << 24)                                                   \
+        : ((uint32_t)(p)[0] << 24 | (uint32_t)(p)[1] << 16 | (uint32_t)(p)[2] << 8 | \
+           (uint32_t)(p)[3]))
     if (U16(b + 2) != 0x2A)
         return 1;
     uint32_t ifd = U32(b + 4);
@@ -47,19 +50,48 @@ int io_exif_orientation(FILE *f, long tiff, long len)
 
 /* dst = src turned as OpenCV's ExifTransform does: flips for 2-4, a
  * transpose followed by the same flips for 5-8. */
-void io_reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientation, const io_target *dst)
+void io_reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientation,
+                 const io_target *dst)
 {
     ptrdiff_t sstride = (ptrdiff_t)sw * c;
     /* The source pixel of dst (0, y) and the steps per x and per y. */
     ptrdiff_t origin = 0, step_x = c, step_y = sstride;
     switch (orientation) {
-    case 2: origin = (sw - 1) * c; step_x = -c; step_y = sstride; break;
-    case 3: origin = (sh - 1) * sstride + (sw - 1) * c; step_x = -c; step_y = -sstride; break;
-    case 4: origin = (sh - 1) * sstride; step_x = c; step_y = -sstride; break;
-    case 5: origin = 0; step_x = sstride; step_y = c; break;
-    case 6: origin = (sh - 1) * sstride; step_x = -sstride; step_y = c; break;
-    case 7: origin = (sh - 1) * sstride + (sw - 1) * c; step_x = -sstride; step_y = -c; break;
-    case 8: origin = (sw - 1) * c; step_x = sstride; step_y = -c; break;
+    case 2:
+        origin = (sw - 1) * c;
+        step_x = -c;
+        step_y = sstride;
+        break;
+    case 3:
+        origin = (sh - 1) * sstride + (sw - 1) * c;
+        step_x = -c;
+        step_y = -sstride;
+        break;
+    case 4:
+        origin = (sh - 1) * sstride;
+        step_x = c;
+        step_y = -sstride;
+        break;
+    case 5:
+        origin = 0;
+        step_x = sstride;
+        step_y = c;
+        break;
+    case 6:
+        origin = (sh - 1) * sstride;
+        step_x = -sstride;
+        step_y = c;
+        break;
+    case 7:
+        origin = (sh - 1) * sstride + (sw - 1) * c;
+        step_x = -sstride;
+        step_y = -c;
+        break;
+    case 8:
+        origin = (sw - 1) * c;
+        step_x = sstride;
+        step_y = -c;
+        break;
     default: break;
     }
     const int32_t w = dst->width, h = dst->height; /* locals: byte stores could alias them */
@@ -70,4 +102,3 @@ void io_reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientat
             memcpy(d + (size_t)x * (size_t)c, s, (size_t)c);
     }
 }
-

@@ -64,8 +64,8 @@ void io_put_rgb_row(const io_target *t, int32_t y, const uint8_t *rgb)
 /* ------------------------------------------------------------------ */
 /* Probing */
 
-rte_status io_set_info(rte_image_info *info, int32_t coded_width, int32_t coded_height, int orientation,
-                       int32_t channels, rte_file_format format)
+rte_status io_set_info(rte_image_info *info, int32_t coded_width, int32_t coded_height,
+                       int orientation, int32_t channels, rte_file_format format)
 {
     int swap = orientation >= 5;
     info->width = swap ? coded_height : coded_width;
@@ -93,12 +93,14 @@ static rte_status detect_and_probe(FILE *f, const io_msg *m, rte_image_info *inf
     if (n == 0)
         return io_fail(m, RTE_ERR_TRUNCATED, "empty file");
 
-    static const uint8_t png_sig[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
+    static const uint8_t png_sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     if (sig[0] == 0x89) {
         if (n < 8)
             return memcmp(sig, png_sig, n) == 0
-                       ? io_fail(m, RTE_ERR_TRUNCATED, "truncated: PNG signature cut after %zu bytes", n)
-                       : io_fail(m, RTE_ERR_FORMAT, "unknown file format (not PGM/PPM, PNG or JPEG)");
+                       ? io_fail(m, RTE_ERR_TRUNCATED,
+                                 "truncated: PNG signature cut after %zu bytes", n)
+                       : io_fail(m, RTE_ERR_FORMAT,
+                                 "unknown file format (not PGM/PPM, PNG or JPEG)");
         if (memcmp(sig, png_sig, 8) != 0)
             return io_fail(m, RTE_ERR_FORMAT, "bad PNG signature");
         return png_probe(f, m, info);
@@ -124,7 +126,7 @@ static FILE *open_read(const io_msg *m, rte_status *st)
 
 rte_status rte_image_probe(const char *path, rte_image_info *info, char *msg, size_t msg_size)
 {
-    io_msg m = { path, msg, msg_size };
+    io_msg m = {path, msg, msg_size};
     clear_msg(msg, msg_size);
     if (!path || !info)
         return io_fail(&m, RTE_ERR_ARGUMENT, "no path or no info");
@@ -186,8 +188,8 @@ typedef enum want { WANT_NATIVE, WANT_BGR, WANT_GRAY } want;
 
 /* Everything before decoding is checked here: the size against the reader,
  * and against the caller's buffer or view. */
-static rte_status read_file(rte_image_reader *r, const io_msg *m, want w, io_target *t, size_t capacity,
-                            rte_image_info *info)
+static rte_status read_file(rte_image_reader *r, const io_msg *m, want w, io_target *t,
+                            size_t capacity, rte_image_info *info)
 {
     rte_status st;
     FILE *f = open_read(m, &st);
@@ -206,8 +208,9 @@ static rte_status read_file(rte_image_reader *r, const io_msg *m, want w, io_tar
     if (w == WANT_NATIVE) {
         size_t need = (size_t)info->width * (size_t)info->height * (size_t)info->channels;
         if (capacity < need) {
-            st = io_fail(m, RTE_ERR_NO_MEMORY, "%dx%dx%d image needs %zu bytes, the buffer holds %zu",
-                         (int)info->width, (int)info->height, (int)info->channels, need, capacity);
+            st = io_fail(m, RTE_ERR_NO_MEMORY,
+                         "%dx%dx%d image needs %zu bytes, the buffer holds %zu", (int)info->width,
+                         (int)info->height, (int)info->channels, need, capacity);
             goto done;
         }
         t->width = info->width;
@@ -221,8 +224,8 @@ static rte_status read_file(rte_image_reader *r, const io_msg *m, want w, io_tar
             goto done;
         }
         if (t->width != info->width || t->height != info->height) {
-            st = io_fail(m, RTE_ERR_SIZE, "image is %dx%d, the destination is %dx%d", (int)info->width,
-                         (int)info->height, (int)t->width, (int)t->height);
+            st = io_fail(m, RTE_ERR_SIZE, "image is %dx%d, the destination is %dx%d",
+                         (int)info->width, (int)info->height, (int)t->width, (int)t->height);
             goto done;
         }
     }
@@ -242,25 +245,25 @@ done:
 rte_status rte_image_read(rte_image_reader *reader, const char *path, void *buf, size_t capacity,
                           rte_image_info *info, char *msg, size_t msg_size)
 {
-    io_msg m = { path, msg, msg_size };
+    io_msg m = {path, msg, msg_size};
     clear_msg(msg, msg_size);
     if (!reader || !path || !buf || !info)
         return io_fail(&m, RTE_ERR_ARGUMENT, "no reader, path, buffer or info");
-    io_target t = { (uint8_t *)buf, 0, 0, 0, 0 };
+    io_target t = {(uint8_t *)buf, 0, 0, 0, 0};
     return read_file(reader, &m, WANT_NATIVE, &t, capacity, info);
 }
 
 rte_status rte_image_read_bgr(rte_image_reader *reader, const char *path, const rte_image_u8c3 *dst,
                               char *msg, size_t msg_size)
 {
-    io_msg m = { path, msg, msg_size };
+    io_msg m = {path, msg, msg_size};
     clear_msg(msg, msg_size);
     if (!reader || !path)
         return io_fail(&m, RTE_ERR_ARGUMENT, "no reader or path");
     rte_status st = rte_image_u8c3_check(dst);
     if (st != RTE_OK)
         return io_fail(&m, st, "bad destination image");
-    io_target t = { dst->buf, (size_t)dst->stride, dst->width, dst->height, 3 };
+    io_target t = {dst->buf, (size_t)dst->stride, dst->width, dst->height, 3};
     rte_image_info info;
     return read_file(reader, &m, WANT_BGR, &t, 0, &info);
 }
@@ -268,14 +271,14 @@ rte_status rte_image_read_bgr(rte_image_reader *reader, const char *path, const 
 rte_status rte_image_read_gray(rte_image_reader *reader, const char *path, const rte_image_u8 *dst,
                                char *msg, size_t msg_size)
 {
-    io_msg m = { path, msg, msg_size };
+    io_msg m = {path, msg, msg_size};
     clear_msg(msg, msg_size);
     if (!reader || !path)
         return io_fail(&m, RTE_ERR_ARGUMENT, "no reader or path");
     rte_status st = rte_image_u8_check(dst);
     if (st != RTE_OK)
         return io_fail(&m, st, "bad destination image");
-    io_target t = { dst->buf, (size_t)dst->stride, dst->width, dst->height, 1 };
+    io_target t = {dst->buf, (size_t)dst->stride, dst->width, dst->height, 1};
     rte_image_info info;
     return read_file(reader, &m, WANT_GRAY, &t, 0, &info);
 }
@@ -325,8 +328,12 @@ static rte_status write_file(const io_msg *m, const struct write_job *j)
     rte_status st;
     switch (j->format) {
     case RTE_FILE_PGM:
-    case RTE_FILE_PPM: st = pnm_write(f, m, j->buf, j->stride_bytes, j->w, j->h, j->channels); break;
-    case RTE_FILE_PNG: st = png_write(f, m, j->buf, j->stride_bytes, j->w, j->h, j->channels); break;
+    case RTE_FILE_PPM:
+        st = pnm_write(f, m, j->buf, j->stride_bytes, j->w, j->h, j->channels);
+        break;
+    case RTE_FILE_PNG:
+        st = png_write(f, m, j->buf, j->stride_bytes, j->w, j->h, j->channels);
+        break;
     default:
         st = npy_write(f, m, j->buf, j->stride_bytes, j->w, j->h, j->channels, j->dtype, j->elem);
         break;
@@ -343,10 +350,11 @@ struct ext_format {
 };
 
 /* The checks every writer shares, then the format from the extension. */
-static rte_status write_checked(const char *path, char *msg, size_t msg_size, rte_status view_status,
-                                struct write_job *j, const struct ext_format *formats, const char *kind)
+static rte_status write_checked(const char *path, char *msg, size_t msg_size,
+                                rte_status view_status, struct write_job *j,
+                                const struct ext_format *formats, const char *kind)
 {
-    io_msg m = { path, msg, msg_size };
+    io_msg m = {path, msg, msg_size};
     clear_msg(msg, msg_size);
     if (!path)
         return io_fail(&m, RTE_ERR_ARGUMENT, "no path");
@@ -360,39 +368,48 @@ static rte_status write_checked(const char *path, char *msg, size_t msg_size, rt
     return io_fail(&m, RTE_ERR_ARGUMENT, "unknown extension for %s", kind);
 }
 
-rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg, size_t msg_size)
+rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg,
+                                size_t msg_size)
 {
-    static const struct ext_format formats[] = {
-        { ".pgm", RTE_FILE_PGM }, { ".png", RTE_FILE_PNG }, { ".npy", RTE_FILE_NPY }, { NULL, RTE_FILE_UNKNOWN }
-    };
+    static const struct ext_format formats[] = {{".pgm", RTE_FILE_PGM},
+                                                {".png", RTE_FILE_PNG},
+                                                {".npy", RTE_FILE_NPY},
+                                                {NULL, RTE_FILE_UNKNOWN}};
     rte_status st = rte_image_u8_check(img);
-    struct write_job j = { 0 };
+    struct write_job j = {0};
     if (st == RTE_OK)
-        j = (struct write_job){ img->buf, (size_t)img->stride, img->width, img->height, 1, RTE_FILE_UNKNOWN,
-                                "|u1", 1 };
-    return write_checked(path, msg, msg_size, st, &j, formats, "a grey image (use .pgm, .png or .npy)");
+        j = (struct write_job){img->buf, (size_t)img->stride, img->width, img->height,
+                               1,        RTE_FILE_UNKNOWN,    "|u1",      1};
+    return write_checked(path, msg, msg_size, st, &j, formats,
+                         "a grey image (use .pgm, .png or .npy)");
 }
 
-rte_status rte_image_write_bgr(const char *path, const rte_image_u8c3 *img, char *msg, size_t msg_size)
+rte_status rte_image_write_bgr(const char *path, const rte_image_u8c3 *img, char *msg,
+                               size_t msg_size)
 {
-    static const struct ext_format formats[] = {
-        { ".ppm", RTE_FILE_PPM }, { ".png", RTE_FILE_PNG }, { ".npy", RTE_FILE_NPY }, { NULL, RTE_FILE_UNKNOWN }
-    };
+    static const struct ext_format formats[] = {{".ppm", RTE_FILE_PPM},
+                                                {".png", RTE_FILE_PNG},
+                                                {".npy", RTE_FILE_NPY},
+                                                {NULL, RTE_FILE_UNKNOWN}};
     rte_status st = rte_image_u8c3_check(img);
-    struct write_job j = { 0 };
+    struct write_job j = {0};
     if (st == RTE_OK)
-        j = (struct write_job){ img->buf, (size_t)img->stride, img->width, img->height, 3, RTE_FILE_UNKNOWN,
-                                "|u1", 1 };
-    return write_checked(path, msg, msg_size, st, &j, formats, "a colour image (use .ppm, .png or .npy)");
+        j = (struct write_job){img->buf, (size_t)img->stride, img->width, img->height,
+                               3,        RTE_FILE_UNKNOWN,    "|u1",      1};
+    return write_checked(path, msg, msg_size, st, &j, formats,
+                         "a colour image (use .ppm, .png or .npy)");
 }
 
-rte_status rte_image_write_s16(const char *path, const rte_image_s16 *img, char *msg, size_t msg_size)
+rte_status rte_image_write_s16(const char *path, const rte_image_s16 *img, char *msg,
+                               size_t msg_size)
 {
-    static const struct ext_format formats[] = { { ".npy", RTE_FILE_NPY }, { NULL, RTE_FILE_UNKNOWN } };
+    static const struct ext_format formats[] = {{".npy", RTE_FILE_NPY}, {NULL, RTE_FILE_UNKNOWN}};
     rte_status st = rte_image_s16_check(img);
-    struct write_job j = { 0 };
+    struct write_job j = {0};
     if (st == RTE_OK)
-        j = (struct write_job){ img->buf, (size_t)img->stride * sizeof(int16_t), img->width, img->height, 1,
-                                RTE_FILE_UNKNOWN, "<i2", 2 };
+        j = (struct write_job){img->buf,   (size_t)img->stride * sizeof(int16_t),
+                               img->width, img->height,
+                               1,          RTE_FILE_UNKNOWN,
+                               "<i2",      2};
     return write_checked(path, msg, msg_size, st, &j, formats, "an int16 image (use .npy)");
 }

@@ -46,11 +46,11 @@ extern "C" {
 
 typedef enum rte_file_format {
     RTE_FILE_UNKNOWN = 0,
-    RTE_FILE_PGM,  /* P2 (text) or P5 (binary), maxval 1..255 */
-    RTE_FILE_PPM,  /* P3 (text) or P6 (binary), maxval 1..255 */
+    RTE_FILE_PGM, /* P2 (text) or P5 (binary), maxval 1..255 */
+    RTE_FILE_PPM, /* P3 (text) or P6 (binary), maxval 1..255 */
     RTE_FILE_PNG,
     RTE_FILE_JPEG,
-    RTE_FILE_NPY,  /* written only */
+    RTE_FILE_NPY, /* written only */
 } rte_file_format;
 
 /* What a file holds, from its header. */
@@ -123,9 +123,12 @@ rte_status rte_image_read_gray(rte_image_reader *reader, const char *path, const
  * listed. The readers themselves go by content, not by name. */
 bool rte_image_path_has_image_extension(const char *path);
 
-rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg, size_t msg_size);
-rte_status rte_image_write_bgr(const char *path, const rte_image_u8c3 *img, char *msg, size_t msg_size);
-rte_status rte_image_write_s16(const char *path, const rte_image_s16 *img, char *msg, size_t msg_size);
+rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg,
+                                size_t msg_size);
+rte_status rte_image_write_bgr(const char *path, const rte_image_u8c3 *img, char *msg,
+                               size_t msg_size);
+rte_status rte_image_write_s16(const char *path, const rte_image_s16 *img, char *msg,
+                               size_t msg_size);
 
 #ifdef __cplusplus
 }

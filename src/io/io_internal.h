@@ -19,7 +19,8 @@ typedef struct io_msg {
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-rte_status io_fail(const io_msg *m, rte_status st, const char *fmt, ...);
+rte_status
+io_fail(const io_msg *m, rte_status st, const char *fmt, ...);
 
 /* The same for a failed stdio call: appends strerror(errno). */
 rte_status io_fail_errno(const io_msg *m, rte_status st, const char *what);
@@ -42,13 +43,13 @@ enum { IO_BUFFER_SIZE = 1 << 16 };
 
 struct rte_image_reader {
     int32_t max_width, max_height;
-    uint8_t *row;           /* one decoded row of any format: max_width * 8 bytes */
-    uint8_t *file;          /* a whole JPEG file */
+    uint8_t *row;  /* one decoded row of any format: max_width * 8 bytes */
+    uint8_t *file; /* a whole JPEG file */
     size_t file_capacity;
-    uint8_t *pixels;        /* a whole decoded image before EXIF reorientation */
+    uint8_t *pixels; /* a whole decoded image before EXIF reorientation */
     size_t pixels_capacity;
-    void *tj;               /* libjpeg-turbo decompressor (tjhandle) */
-    char *io_buffer;        /* stdio's buffer for the file being read */
+    void *tj;        /* libjpeg-turbo decompressor (tjhandle) */
+    char *io_buffer; /* stdio's buffer for the file being read */
 };
 
 /* The formats. probe reads the header of f (positioned at its start);
@@ -69,13 +70,13 @@ void jpeg_decoder_free(void *tj);
 size_t jpeg_max_file_bytes(int32_t max_width, int32_t max_height);
 
 /* Writers: rows of `channels` bytes per pixel (BGR when 3). */
-rte_status pnm_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride, int32_t w, int32_t h,
-                     int channels);
-rte_status png_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride, int32_t w, int32_t h,
-                     int channels);
+rte_status pnm_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride, int32_t w,
+                     int32_t h, int channels);
+rte_status png_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride, int32_t w,
+                     int32_t h, int channels);
 /* dtype "|u1" or "<i2"; shape (h, w) or (h, w, 3) when channels is 3. */
-rte_status npy_write(FILE *f, const io_msg *m, const void *buf, size_t stride_bytes, int32_t w, int32_t h,
-                     int channels, const char *dtype, size_t elem_size);
+rte_status npy_write(FILE *f, const io_msg *m, const void *buf, size_t stride_bytes, int32_t w,
+                     int32_t h, int channels, const char *dtype, size_t elem_size);
 
 /* Reads n bytes at absolute offset pos; 0 when the file is shorter. */
 int io_read_at(FILE *f, long pos, uint8_t *out, size_t n);
@@ -88,11 +89,12 @@ int io_exif_orientation(FILE *f, long tiff, long len);
 
 /* dst = src (sw x sh, c channels, packed) turned by an EXIF orientation,
  * as OpenCV's ExifTransform does; dst is sh x sw for 5..8. */
-void io_reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientation, const io_target *dst);
+void io_reorient(const uint8_t *src, int32_t sw, int32_t sh, int c, int orientation,
+                 const io_target *dst);
 
 /* Fills info from a coded size; orientations 5..8 swap the axes. */
-rte_status io_set_info(rte_image_info *info, int32_t coded_width, int32_t coded_height, int orientation,
-                       int32_t channels, rte_file_format format);
+rte_status io_set_info(rte_image_info *info, int32_t coded_width, int32_t coded_height,
+                       int orientation, int32_t channels, rte_file_format format);
 
 /* Grey row -> target row (copy or replicate to BGR). */
 void io_put_gray_row(const io_target *t, int32_t y, const uint8_t *gray);

@@ -18,7 +18,7 @@
 typedef struct jpeg_header {
     int32_t width, height; /* as coded, before reorientation */
     int components;
-    int orientation;       /* 1..8, 1 when absent or unknown */
+    int orientation; /* 1..8, 1 when absent or unknown */
 } jpeg_header;
 
 void *jpeg_decoder_new(void) { return tjInitDecompress(); }
@@ -32,7 +32,8 @@ void jpeg_decoder_free(void *tj)
 size_t jpeg_max_file_bytes(int32_t max_width, int32_t max_height)
 {
     unsigned long n = tjBufSize(max_width, max_height, TJSAMP_444);
-    return (n == (unsigned long)-1 ? (size_t)max_width * (size_t)max_height * 6 : (size_t)n) + ((size_t)1 << 20);
+    return (n == (unsigned long)-1 ? (size_t)max_width * (size_t)max_height * 6 : (size_t)n) +
+           ((size_t)1 << 20);
 }
 
 static bool is_sof(int marker)
@@ -52,10 +53,11 @@ static rte_status read_header(FILE *f, const io_msg *m, jpeg_header *h)
         return io_fail(m, RTE_ERR_FORMAT, "not a JPEG file (no SOI marker)");
     for (;;) {
         if (!io_read_at(f, pos, b, 2))
-            return io_fail(m, RTE_ERR_TRUNCATED, "truncated JPEG: the file ends in the headers at byte %ld", pos);
+            return io_fail(m, RTE_ERR_TRUNCATED,
+                           "truncated JPEG: the file ends in the headers at byte %ld", pos);
         if (b[0] != 0xFF)
-            return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: expected a marker at byte %ld, found 0x%02x", pos,
-                           b[0]);
+            return io_fail(m, RTE_ERR_CORRUPT,
+                           "corrupt JPEG: expected a marker at byte %ld, found 0x%02x", pos, b[0]);
         int marker = b[1];
         if (marker == 0xFF) { /* fill byte */
             pos++;
@@ -66,25 +68,30 @@ static rte_status read_header(FILE *f, const io_msg *m, jpeg_header *h)
             continue;
         }
         if (marker == 0xD8 || marker == 0xD9 || marker == 0x00)
-            return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: unexpected marker 0x%02x at byte %ld", marker, pos);
+            return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: unexpected marker 0x%02x at byte %ld",
+                           marker, pos);
         if (!io_read_at(f, pos + 2, b, 2))
-            return io_fail(m, RTE_ERR_TRUNCATED, "truncated JPEG: the file ends in the headers at byte %ld", pos);
+            return io_fail(m, RTE_ERR_TRUNCATED,
+                           "truncated JPEG: the file ends in the headers at byte %ld", pos);
         long len = (long)(b[0] << 8 | b[1]);
         if (len < 2)
-            return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: marker 0x%02x at byte %ld has length %ld", marker,
-                           pos, len);
+            return io_fail(m, RTE_ERR_CORRUPT,
+                           "corrupt JPEG: marker 0x%02x at byte %ld has length %ld", marker, pos,
+                           len);
         if (marker == 0xDA)
             break;
         if (is_sof(marker)) {
             if (len < 8 || !io_read_at(f, pos + 4, b, 6))
                 return len < 8 ? io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: short frame header")
-                               : io_fail(m, RTE_ERR_TRUNCATED, "truncated JPEG: the frame header is cut");
+                               : io_fail(m, RTE_ERR_TRUNCATED,
+                                         "truncated JPEG: the frame header is cut");
             if (have_sof)
                 return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: two frame headers");
             if (marker == 0xC3 || marker == 0xC7 || marker == 0xCB || marker == 0xCF)
                 return io_fail(m, RTE_ERR_UNSUPPORTED, "lossless JPEG is not supported");
             if (b[0] != 8)
-                return io_fail(m, RTE_ERR_UNSUPPORTED, "%d-bit JPEG samples are not supported", b[0]);
+                return io_fail(m, RTE_ERR_UNSUPPORTED, "%d-bit JPEG samples are not supported",
+                               b[0]);
             h->height = b[1] << 8 | b[2];
             h->width = b[3] << 8 | b[4];
             h->components = b[5];
@@ -98,13 +105,15 @@ static rte_status read_header(FILE *f, const io_msg *m, jpeg_header *h)
     if (!have_sof)
         return io_fail(m, RTE_ERR_CORRUPT, "corrupt JPEG: no frame header before the scan");
     if (h->width == 0 || h->height == 0)
-        return io_fail(m, RTE_ERR_UNSUPPORTED, "JPEG with size %dx%d (zero or set by DNL) is not supported",
-                       (int)h->width, (int)h->height);
+        return io_fail(m, RTE_ERR_UNSUPPORTED,
+                       "JPEG with size %dx%d (zero or set by DNL) is not supported", (int)h->width,
+                       (int)h->height);
     if (h->width > RTE_MAX_SIDE || h->height > RTE_MAX_SIDE)
-        return io_fail(m, RTE_ERR_TOO_LARGE, "size %dx%d exceeds the maximum side %d", (int)h->width,
-                       (int)h->height, RTE_MAX_SIDE);
+        return io_fail(m, RTE_ERR_TOO_LARGE, "size %dx%d exceeds the maximum side %d",
+                       (int)h->width, (int)h->height, RTE_MAX_SIDE);
     if (h->components != 1 && h->components != 3)
-        return io_fail(m, RTE_ERR_UNSUPPORTED, "JPEG with %d components (CMYK?) is not supported", h->components);
+        return io_fail(m, RTE_ERR_UNSUPPORTED, "JPEG with %d components (CMYK?) is not supported",
+                       h->components);
     if (app1 >= 0)
         h->orientation = app1_size > 6 ? io_exif_orientation(f, app1 + 6, app1_size - 6) : 1;
     return RTE_OK;
@@ -112,16 +121,17 @@ static rte_status read_header(FILE *f, const io_msg *m, jpeg_header *h)
 
 rte_status jpeg_probe(FILE *f, const io_msg *m, rte_image_info *info)
 {
-    jpeg_header h = { 0 };
+    jpeg_header h = {0};
     rte_status st = read_header(f, m, &h);
     if (st != RTE_OK)
         return st;
-    return io_set_info(info, h.width, h.height, h.orientation, h.components == 1 ? 1 : 3, RTE_FILE_JPEG);
+    return io_set_info(info, h.width, h.height, h.orientation, h.components == 1 ? 1 : 3,
+                       RTE_FILE_JPEG);
 }
 
 rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_target *dst)
 {
-    jpeg_header h = { 0 };
+    jpeg_header h = {0};
     rte_status st = read_header(f, m, &h);
     if (st != RTE_OK)
         return st;
@@ -131,8 +141,8 @@ rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_t
     if (size < 0)
         return io_fail_errno(m, RTE_ERR_IO, "cannot tell the size");
     if ((unsigned long)size > r->file_capacity)
-        return io_fail(m, RTE_ERR_TOO_LARGE, "the file is %ld bytes, the reader holds at most %zu", size,
-                       r->file_capacity);
+        return io_fail(m, RTE_ERR_TOO_LARGE, "the file is %ld bytes, the reader holds at most %zu",
+                       size, r->file_capacity);
     rewind(f);
     if (fread(r->file, 1, (size_t)size, f) != (size_t)size)
         return io_fail_errno(m, RTE_ERR_IO, "read error");
@@ -143,7 +153,8 @@ rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_t
     int w = h.width, ht = h.height;
     tjhandle tj = r->tj;
     if (!tj)
-        return io_fail(m, RTE_ERR_NO_MEMORY, "no JPEG decoder (out of memory after an earlier error)");
+        return io_fail(m, RTE_ERR_NO_MEMORY,
+                       "no JPEG decoder (out of memory after an earlier error)");
 
     int pf = dst->channels == 1 ? TJPF_GRAY : TJPF_BGR;
     /* Warnings (e.g. premature end of data) are errors; progressive files
@@ -151,9 +162,11 @@ rte_status jpeg_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_t
     int flags = TJFLAG_ACCURATEDCT | TJFLAG_STOPONWARNING | TJFLAG_LIMITSCANS;
     int rc;
     if (h.orientation == 1) {
-        rc = tjDecompress2(tj, r->file, (unsigned long)size, dst->buf, w, (int)dst->stride, ht, pf, flags);
+        rc = tjDecompress2(tj, r->file, (unsigned long)size, dst->buf, w, (int)dst->stride, ht, pf,
+                           flags);
     } else {
-        rc = tjDecompress2(tj, r->file, (unsigned long)size, r->pixels, w, w * dst->channels, ht, pf, flags);
+        rc = tjDecompress2(tj, r->file, (unsigned long)size, r->pixels, w, w * dst->channels, ht,
+                           pf, flags);
         if (rc == 0)
             io_reorient(r->pixels, w, ht, dst->channels, h.orientation, dst);
     }

@@ -7,15 +7,17 @@
 
 #include "io_internal.h"
 
-rte_status npy_write(FILE *f, const io_msg *m, const void *buf, size_t stride_bytes, int32_t w, int32_t h,
-                     int channels, const char *dtype, size_t elem_size)
+rte_status npy_write(FILE *f, const io_msg *m, const void *buf, size_t stride_bytes, int32_t w,
+                     int32_t h, int channels, const char *dtype, size_t elem_size)
 {
     char header[256];
     int n = channels == 3
                 ? snprintf(header + 10, sizeof header - 10,
-                           "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d, 3), }", dtype, (int)h, (int)w)
+                           "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d, 3), }", dtype,
+                           (int)h, (int)w)
                 : snprintf(header + 10, sizeof header - 10,
-                           "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d), }", dtype, (int)h, (int)w);
+                           "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d), }", dtype,
+                           (int)h, (int)w);
     size_t total = 10 + (size_t)n + 1; /* magic + version + length, dict, '\n' */
     size_t padded = (total + 63) / 64 * 64;
     memcpy(header, "\x93NUMPY\x01\x00", 8);

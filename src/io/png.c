@@ -65,13 +65,16 @@ static rte_status walk_chunks(FILE *f, const io_msg *m, int *orientation)
     int have_exif = 0;
     for (;;) {
         if (!io_read_at(f, pos, b, 8))
-            return io_fail(m, RTE_ERR_TRUNCATED, "truncated PNG: the file ends at byte %ld, before IEND", pos);
+            return io_fail(m, RTE_ERR_TRUNCATED,
+                           "truncated PNG: the file ends at byte %ld, before IEND", pos);
         uint32_t len = be32(b);
         if (len > 0x7FFFFFFFu)
-            return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: chunk length %u at byte %ld", (unsigned)len, pos);
+            return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: chunk length %u at byte %ld",
+                           (unsigned)len, pos);
         if (memcmp(b + 4, "IEND", 4) == 0) {
             if (len != 0)
-                return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IEND has length %u", (unsigned)len);
+                return io_fail(m, RTE_ERR_CORRUPT, "corrupt PNG: IEND has length %u",
+                               (unsigned)len);
             if (!io_read_at(f, pos + 8, b, 4))
                 return io_fail(m, RTE_ERR_TRUNCATED, "truncated PNG: the IEND chunk is cut");
             if (!chunk_crc_ok(f, pos, 0))
@@ -79,8 +82,9 @@ static rte_status walk_chunks(FILE *f, const io_msg *m, int *orientation)
             rewind(f);
             return RTE_OK;
         }
-        if (!have_exif && memcmp(b + 4, "eXIf", 4) == 0 && len >= 2 && io_read_at(f, pos + 8, b, 2) &&
-            b[0] == b[1] && (b[0] == 'I' || b[0] == 'M') && chunk_crc_ok(f, pos, len)) {
+        if (!have_exif && memcmp(b + 4, "eXIf", 4) == 0 && len >= 2 &&
+            io_read_at(f, pos + 8, b, 2) && b[0] == b[1] && (b[0] == 'I' || b[0] == 'M') &&
+            chunk_crc_ok(f, pos, len)) {
             have_exif = 1;
             *orientation = io_exif_orientation(f, pos + 8, (long)len);
         }
@@ -115,18 +119,20 @@ rte_status png_probe(FILE *f, const io_msg *m, rte_image_info *info)
     if (w == 0 || ht == 0 || w > 0x7FFFFFFFu || ht > 0x7FFFFFFFu)
         return io_fail(m, RTE_ERR_FORMAT, "bad PNG header: size %ux%u", (unsigned)w, (unsigned)ht);
     if (!valid_depth(color_type, depth))
-        return io_fail(m, RTE_ERR_FORMAT, "bad PNG header: colour type %d with bit depth %d", color_type, depth);
+        return io_fail(m, RTE_ERR_FORMAT, "bad PNG header: colour type %d with bit depth %d",
+                       color_type, depth);
     if (h[26] != 0 || h[27] != 0 || h[28] > 1)
-        return io_fail(m, RTE_ERR_FORMAT, "bad PNG header: unknown compression, filter or interlace method");
+        return io_fail(m, RTE_ERR_FORMAT,
+                       "bad PNG header: unknown compression, filter or interlace method");
     if (w > RTE_MAX_SIDE || ht > RTE_MAX_SIDE)
-        return io_fail(m, RTE_ERR_TOO_LARGE, "size %ux%u exceeds the maximum side %d", (unsigned)w, (unsigned)ht,
-                       RTE_MAX_SIDE);
+        return io_fail(m, RTE_ERR_TOO_LARGE, "size %ux%u exceeds the maximum side %d", (unsigned)w,
+                       (unsigned)ht, RTE_MAX_SIDE);
     int orientation;
     rte_status st = walk_chunks(f, m, &orientation);
     if (st != RTE_OK)
         return st;
-    return io_set_info(info, (int32_t)w, (int32_t)ht, orientation, (color_type == 0 || color_type == 4) ? 1 : 3,
-                       RTE_FILE_PNG);
+    return io_set_info(info, (int32_t)w, (int32_t)ht, orientation,
+                       (color_type == 0 || color_type == 4) ? 1 : 3, RTE_FILE_PNG);
 }
 
 static rte_status spng_status(const io_msg *m, int err)
@@ -150,8 +156,8 @@ static rte_status spng_status(const io_msg *m, int err)
 }
 
 /* n pixels of a raw scanline -> 8-bit grey (out_channels 1) or RGB (3). */
-static void convert_scanline(const uint8_t *restrict raw, uint8_t *restrict out, uint32_t n, int color_type,
-                             int depth, const uint8_t (*plte)[3])
+static void convert_scanline(const uint8_t *restrict raw, uint8_t *restrict out, uint32_t n,
+                             int color_type, int depth, const uint8_t (*plte)[3])
 {
     if (depth < 8) { /* grey or palette, packed from the most significant bit */
         int per_byte = 8 / depth, mask = (1 << depth) - 1;
@@ -196,8 +202,8 @@ static void convert_scanline(const uint8_t *restrict raw, uint8_t *restrict out,
 }
 
 /* Converted pixels (grey or RGB) to target columns x0, x0 + dx, ... of row y. */
-static void scatter(const io_target *t, int32_t y, const uint8_t *px, int px_channels, uint32_t n, uint32_t x0,
-                    uint32_t dx)
+static void scatter(const io_target *t, int32_t y, const uint8_t *px, int px_channels, uint32_t n,
+                    uint32_t x0, uint32_t dx)
 {
     if (dx == 1) {
         if (px_channels == 1)
@@ -221,7 +227,8 @@ static void scatter(const io_target *t, int32_t y, const uint8_t *px, int px_cha
     }
 }
 
-static rte_status decode_rows(spng_ctx *ctx, rte_image_reader *r, const io_msg *m, const io_target *dst)
+static rte_status decode_rows(spng_ctx *ctx, rte_image_reader *r, const io_msg *m,
+                              const io_target *dst)
 {
     struct spng_ihdr ihdr;
     int err = spng_get_ihdr(ctx, &ihdr);
@@ -248,9 +255,12 @@ static rte_status decode_rows(spng_ctx *ctx, rte_image_reader *r, const io_msg *
     if (err)
         return spng_status(m, err);
 
-    static const uint8_t x_start[7] = { 0, 4, 0, 2, 0, 1, 0 };
-    static const uint8_t x_step[7] = { 8, 8, 4, 4, 2, 2, 1 };
-    int samples = ihdr.color_type == 2 ? 3 : ihdr.color_type == 4 ? 2 : ihdr.color_type == 6 ? 4 : 1;
+    static const uint8_t x_start[7] = {0, 4, 0, 2, 0, 1, 0};
+    static const uint8_t x_step[7] = {8, 8, 4, 4, 2, 2, 1};
+    int samples = ihdr.color_type == 2   ? 3
+                  : ihdr.color_type == 4 ? 2
+                  : ihdr.color_type == 6 ? 4
+                                         : 1;
     size_t raw_capacity = (size_t)r->max_width * 8 + 8;
     uint8_t *raw = r->row, *px = r->row + raw_capacity;
     int px_channels = (ihdr.color_type == 0 || ihdr.color_type == 4) ? 1 : 3;
@@ -320,8 +330,8 @@ rte_status png_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_ta
 }
 
 /* Writes 8-bit grey or RGB (from BGR rows) progressively, row by row. */
-rte_status png_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride, int32_t w, int32_t h,
-                     int channels)
+rte_status png_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride, int32_t w,
+                     int32_t h, int channels)
 {
     spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
     uint8_t *rgb = channels == 3 ? malloc((size_t)w * 3) : NULL;
@@ -330,12 +340,14 @@ rte_status png_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride
         st = io_fail(m, RTE_ERR_NO_MEMORY, "out of memory for the PNG encoder");
         goto done;
     }
-    struct spng_ihdr ihdr = { (uint32_t)w, (uint32_t)h, 8, (uint8_t)(channels == 3 ? 2 : 0), 0, 0, 0 };
+    struct spng_ihdr ihdr = {(uint32_t)w, (uint32_t)h, 8, (uint8_t)(channels == 3 ? 2 : 0),
+                             0,           0,           0};
     int err = spng_set_png_file(ctx, f);
     if (!err)
         err = spng_set_ihdr(ctx, &ihdr);
     if (!err)
-        err = spng_encode_image(ctx, NULL, 0, SPNG_FMT_PNG, SPNG_ENCODE_PROGRESSIVE | SPNG_ENCODE_FINALIZE);
+        err = spng_encode_image(ctx, NULL, 0, SPNG_FMT_PNG,
+                                SPNG_ENCODE_PROGRESSIVE | SPNG_ENCODE_FINALIZE);
     size_t row_bytes = (size_t)w * (size_t)channels;
     for (int32_t y = 0; !err && y < h; y++) {
         const uint8_t *row = buf + (size_t)y * stride;
@@ -352,8 +364,8 @@ rte_status png_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride
             err = 0;
     }
     if (err)
-        st = io_fail(m, err == SPNG_IO_ERROR ? RTE_ERR_IO : RTE_ERR_ARGUMENT, "cannot write PNG: %s",
-                     spng_strerror(err));
+        st = io_fail(m, err == SPNG_IO_ERROR ? RTE_ERR_IO : RTE_ERR_ARGUMENT,
+                     "cannot write PNG: %s", spng_strerror(err));
 done:
     free(rgb);
     spng_ctx_free(ctx);

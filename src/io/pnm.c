@@ -39,9 +39,9 @@ static const char *describe(int c, char *text, size_t size)
 
 typedef enum number_result {
     NUMBER_OK,
-    NUMBER_EOF,      /* the file ends before the number */
-    NUMBER_BAD,      /* a byte that cannot start a number (kept in *c) */
-    NUMBER_BAD_END,  /* a byte that cannot follow a number (kept in *c) */
+    NUMBER_EOF,     /* the file ends before the number */
+    NUMBER_BAD,     /* a byte that cannot start a number (kept in *c) */
+    NUMBER_BAD_END, /* a byte that cannot follow a number (kept in *c) */
 } number_result;
 
 static void skip_comment(FILE *f)
@@ -95,12 +95,14 @@ static rte_status header_number(FILE *f, const io_msg *m, const char *what, long
     char text[32];
     switch (read_number(f, value, &c, end)) {
     case NUMBER_OK: return RTE_OK;
-    case NUMBER_EOF: return io_fail(m, RTE_ERR_TRUNCATED, "truncated: the header ends before the %s", what);
+    case NUMBER_EOF:
+        return io_fail(m, RTE_ERR_TRUNCATED, "truncated: the header ends before the %s", what);
     case NUMBER_BAD:
-        return io_fail(m, RTE_ERR_FORMAT, "bad header: expected a number for the %s, found %s", what,
-                       describe(c, text, sizeof text));
+        return io_fail(m, RTE_ERR_FORMAT, "bad header: expected a number for the %s, found %s",
+                       what, describe(c, text, sizeof text));
     case NUMBER_BAD_END:
-        return io_fail(m, RTE_ERR_FORMAT, "bad header: %s followed by %s", what, describe(c, text, sizeof text));
+        return io_fail(m, RTE_ERR_FORMAT, "bad header: %s followed by %s", what,
+                       describe(c, text, sizeof text));
     }
     return RTE_ERR_FORMAT;
 }
@@ -119,7 +121,8 @@ static rte_status read_header(FILE *f, const io_msg *m, pnm_header *h)
     if (c2 == EOF)
         return io_fail(m, RTE_ERR_TRUNCATED, "truncated: the header ends after the magic number");
     if (!is_space(c2))
-        return io_fail(m, RTE_ERR_FORMAT, "bad header: no whitespace after the magic number P%c", c1);
+        return io_fail(m, RTE_ERR_FORMAT, "bad header: no whitespace after the magic number P%c",
+                       c1);
     h->magic = c1;
     h->binary = c1 >= '5';
     h->channels = (c1 == '3' || c1 == '6') ? 3 : 1;
@@ -136,15 +139,17 @@ static rte_status read_header(FILE *f, const io_msg *m, pnm_header *h)
     if (w == 0 || ht == 0)
         return io_fail(m, RTE_ERR_FORMAT, "bad header: size %ldx%ld (zero width or height)", w, ht);
     if (w > RTE_MAX_SIDE || ht > RTE_MAX_SIDE)
-        return io_fail(m, RTE_ERR_TOO_LARGE, "size %ldx%ld exceeds the maximum side %d", w, ht, RTE_MAX_SIDE);
+        return io_fail(m, RTE_ERR_TOO_LARGE, "size %ldx%ld exceeds the maximum side %d", w, ht,
+                       RTE_MAX_SIDE);
     if (maxval == 0 || maxval > 65535)
         return io_fail(m, RTE_ERR_FORMAT, "bad header: maxval %ld (must be 1..255)", maxval);
     if (maxval > 255)
-        return io_fail(m, RTE_ERR_UNSUPPORTED, "maxval %ld: 16-bit samples are not supported (only 1..255)",
-                       maxval);
+        return io_fail(m, RTE_ERR_UNSUPPORTED,
+                       "maxval %ld: 16-bit samples are not supported (only 1..255)", maxval);
     /* Binary pixels start right after the one whitespace byte ending maxval. */
     if (h->binary && end == '#')
-        return io_fail(m, RTE_ERR_FORMAT, "bad header: maxval must be followed by one whitespace character");
+        return io_fail(m, RTE_ERR_FORMAT,
+                       "bad header: maxval must be followed by one whitespace character");
     if (h->binary && end == EOF)
         return io_fail(m, RTE_ERR_TRUNCATED, "truncated: expected %ld pixel bytes, found 0",
                        w * ht * h->channels);
@@ -156,16 +161,17 @@ static rte_status read_header(FILE *f, const io_msg *m, pnm_header *h)
 
 rte_status pnm_probe(FILE *f, const io_msg *m, rte_image_info *info)
 {
-    pnm_header h = { 0 };
+    pnm_header h = {0};
     rte_status st = read_header(f, m, &h);
     if (st != RTE_OK)
         return st;
-    return io_set_info(info, h.width, h.height, 1, h.channels, h.channels == 3 ? RTE_FILE_PPM : RTE_FILE_PGM);
+    return io_set_info(info, h.width, h.height, 1, h.channels,
+                       h.channels == 3 ? RTE_FILE_PPM : RTE_FILE_PGM);
 }
 
 /* One row of text values into `row` (scaled to 0..255). */
-static rte_status read_text_row(FILE *f, const io_msg *m, const pnm_header *h, const uint8_t *lut, uint8_t *row,
-                                int32_t y)
+static rte_status read_text_row(FILE *f, const io_msg *m, const pnm_header *h, const uint8_t *lut,
+                                uint8_t *row, int32_t y)
 {
     size_t n = (size_t)h->width * (size_t)h->channels;
     size_t total = n * (size_t)h->height;
@@ -177,9 +183,11 @@ static rte_status read_text_row(FILE *f, const io_msg *m, const pnm_header *h, c
         switch (read_number(f, &v, &c, &end)) {
         case NUMBER_OK: break;
         case NUMBER_EOF:
-            return io_fail(m, RTE_ERR_TRUNCATED, "truncated: expected %zu pixel values, found %zu", total, index);
+            return io_fail(m, RTE_ERR_TRUNCATED, "truncated: expected %zu pixel values, found %zu",
+                           total, index);
         case NUMBER_BAD:
-            return io_fail(m, RTE_ERR_FORMAT, "bad pixel value %zu: found %s", index, describe(c, text, sizeof text));
+            return io_fail(m, RTE_ERR_FORMAT, "bad pixel value %zu: found %s", index,
+                           describe(c, text, sizeof text));
         case NUMBER_BAD_END:
             return io_fail(m, RTE_ERR_FORMAT, "bad pixel value %zu: a number followed by %s", index,
                            describe(c, text, sizeof text));
@@ -191,7 +199,7 @@ static rte_status read_text_row(FILE *f, const io_msg *m, const pnm_header *h, c
 
 rte_status pnm_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_target *dst)
 {
-    pnm_header h = { 0 };
+    pnm_header h = {0};
     rte_status st = read_header(f, m, &h);
     if (st != RTE_OK)
         return st;
@@ -205,13 +213,15 @@ rte_status pnm_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_ta
     size_t row_bytes = (size_t)h.width * (size_t)h.channels;
     for (int32_t y = 0; y < h.height; y++) {
         /* Grey into grey needs no conversion: read straight into the target. */
-        uint8_t *row = (h.channels == dst->channels && h.channels == 1) ? io_target_row(dst, y) : r->row;
+        uint8_t *row =
+            (h.channels == dst->channels && h.channels == 1) ? io_target_row(dst, y) : r->row;
         if (h.binary) {
             size_t got = fread(row, 1, row_bytes, f);
             if (got < row_bytes) {
                 if (ferror(f))
                     return io_fail_errno(m, RTE_ERR_IO, "read error");
-                return io_fail(m, RTE_ERR_TRUNCATED, "truncated: expected %zu pixel bytes, found %zu",
+                return io_fail(m, RTE_ERR_TRUNCATED,
+                               "truncated: expected %zu pixel bytes, found %zu",
                                row_bytes * (size_t)h.height, row_bytes * (size_t)y + got);
             }
         } else {
@@ -227,8 +237,8 @@ rte_status pnm_decode(rte_image_reader *r, FILE *f, const io_msg *m, const io_ta
     return RTE_OK;
 }
 
-rte_status pnm_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride, int32_t w, int32_t h,
-                     int channels)
+rte_status pnm_write(FILE *f, const io_msg *m, const uint8_t *buf, size_t stride, int32_t w,
+                     int32_t h, int channels)
 {
     if (fprintf(f, "P%c\n%d %d\n255\n", channels == 3 ? '6' : '5', (int)w, (int)h) < 0)
         return io_fail_errno(m, RTE_ERR_IO, "cannot write");

@@ -43,8 +43,9 @@ static int64_t y4m_chroma_bytes(const char *tag, int64_t w, int64_t h)
 {
     if (strcmp(tag, "mono") == 0)
         return 0;
-    if (strncmp(tag, "420", 3) == 0 && (tag[3] == 0 || strcmp(tag + 3, "jpeg") == 0 ||
-                                        strcmp(tag + 3, "paldv") == 0 || strcmp(tag + 3, "mpeg2") == 0))
+    if (strncmp(tag, "420", 3) == 0 &&
+        (tag[3] == 0 || strcmp(tag + 3, "jpeg") == 0 || strcmp(tag + 3, "paldv") == 0 ||
+         strcmp(tag + 3, "mpeg2") == 0))
         return 2 * ((w + 1) / 2) * ((h + 1) / 2);
     if (strcmp(tag, "422") == 0)
         return 2 * ((w + 1) / 2) * h;
@@ -153,8 +154,8 @@ rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
     } else {
         st = rte_y4m_parse_header(line, &in, why, sizeof why);
     }
-    if (st == RTE_OK && ((max_width > 0 && in.width > max_width) ||
-                         (max_height > 0 && in.height > max_height))) {
+    if (st == RTE_OK &&
+        ((max_width > 0 && in.width > max_width) || (max_height > 0 && in.height > max_height))) {
         st = RTE_ERR_TOO_LARGE;
         snprintf(why, sizeof why, "frame larger than allowed");
     }
@@ -188,7 +189,8 @@ rte_status rte_y4m_read_gray(rte_y4m_reader *r, const rte_image_u8 *dst, char *m
     if (rc == -1)
         return RTE_ERR_END;
     if (rc != 0 || strncmp(line, "FRAME", 5) != 0 || (line[5] != 0 && line[5] != ' '))
-        return y4m_fail(rc == -2 && strncmp(line, "FRAME", 5) == 0 ? RTE_ERR_TRUNCATED : RTE_ERR_FORMAT,
+        return y4m_fail(rc == -2 && strncmp(line, "FRAME", 5) == 0 ? RTE_ERR_TRUNCATED
+                                                                   : RTE_ERR_FORMAT,
                         msg, msg_size, "missing FRAME marker", NULL);
     for (int32_t y = 0; y < dst->height; y++)
         if (fread(dst->buf + (size_t)y * (size_t)dst->stride, 1, (size_t)dst->width, r->file) !=

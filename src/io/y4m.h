@@ -20,9 +20,9 @@ typedef struct rte_y4m_reader rte_y4m_reader;
 
 typedef struct rte_y4m_info {
     int32_t width, height;
-    int32_t fps_num, fps_den;   /* F tag (0/0 when absent) */
-    int32_t chroma_bytes;       /* bytes of chroma after each Y plane */
-    char chroma[16];            /* the C tag's value, e.g. "420jpeg", "mono" */
+    int32_t fps_num, fps_den; /* F tag (0/0 when absent) */
+    int32_t chroma_bytes;     /* bytes of chroma after each Y plane */
+    char chroma[16];          /* the C tag's value, e.g. "420jpeg", "mono" */
 } rte_y4m_info;
 
 /* Parses a stream header line ("YUV4MPEG2 W.. H.. ...", without its '\n';

@@ -47,8 +47,8 @@ rte_status rte_grasp_get_params(const rte_grasp_ctx *ctx, rte_grasp_params *para
 
 const char *rte_grasp_shape_name(rte_shape_class shape)
 {
-    static const char *const names[] = {"other", "triangle", "square", "rectangle",
-                                        "pentagon", "hexagon", "circle"};
+    static const char *const names[] = {"other",    "triangle", "square", "rectangle",
+                                        "pentagon", "hexagon",  "circle"};
     return (unsigned)shape < sizeof names / sizeof names[0] ? names[shape] : "other";
 }
 
@@ -186,8 +186,8 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
     const int64_t t2 = rte_clock_now_ns();
 
     if (st == RTE_OK)
-        st = rte_contours_find(&bin, RTE_CONTOURS_EXTERNAL, RTE_CONTOURS_APPROX_SIMPLE, &ctx->contours,
-                               &ctx->arena);
+        st = rte_contours_find(&bin, RTE_CONTOURS_EXTERNAL, RTE_CONTOURS_APPROX_SIMPLE,
+                               &ctx->contours, &ctx->arena);
     const int64_t t3 = rte_clock_now_ns();
     if (st != RTE_OK) {
         ctx->contours.n_contours = 0;
@@ -210,7 +210,8 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
             if (r.x == 0 || r.y == 0 || r.x + r.width == w || r.y + r.height == h)
                 continue;
         }
-        n_best = keep_largest(ctx->best, n_best, p->max_objects, (grasp_candidate){a2, i}, &dropped);
+        n_best =
+            keep_largest(ctx->best, n_best, p->max_objects, (grasp_candidate){a2, i}, &dropped);
     }
 
     int32_t n = 0;

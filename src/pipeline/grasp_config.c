@@ -21,35 +21,38 @@ void rte_grasp_config_default(rte_grasp_config *config)
         .blur_ksize = 5,
         .close_ksize = 5,
         .close_iterations = 2,
-        .params = {
-            .binarize = RTE_GRASP_OTSU,
-            .threshold = 127,
-            .polarity = RTE_GRASP_AUTO,
-            .canny_low = 50,
-            .canny_high = 150,
-            .min_area = 100,
-            .max_area = 0,
-            .skip_border = 0,
-            .max_objects = 64,
-        },
+        .params =
+            {
+                .binarize = RTE_GRASP_OTSU,
+                .threshold = 127,
+                .polarity = RTE_GRASP_AUTO,
+                .canny_low = 50,
+                .canny_high = 150,
+                .min_area = 100,
+                .max_area = 0,
+                .skip_border = 0,
+                .max_objects = 64,
+            },
     };
 }
 
 static int config_ok(const rte_grasp_config *c)
 {
-    return c && c->max_width >= 1 && c->max_width <= RTE_SHAPE_MAX_COORD + 1 && c->max_height >= 1 &&
-           c->max_height <= RTE_SHAPE_MAX_COORD + 1 && c->max_contours >= 1 &&
+    return c && c->max_width >= 1 && c->max_width <= RTE_SHAPE_MAX_COORD + 1 &&
+           c->max_height >= 1 && c->max_height <= RTE_SHAPE_MAX_COORD + 1 && c->max_contours >= 1 &&
            c->max_contours <= (1 << 20) && c->max_points >= 1 && c->max_points <= (1 << 26) &&
            c->max_objects >= 1 && c->max_objects <= 4096 && c->blur_ksize >= 1 &&
            c->blur_ksize <= RTE_GAUSSIAN_MAX_KSIZE && (c->blur_ksize & 1) && c->close_ksize >= 1 &&
-           c->close_ksize <= RTE_MORPH_MAX_KSIZE && (c->close_ksize & 1) && c->close_iterations >= 1 &&
-           c->close_iterations <= 8 && rte_grasp_check_params(c, &c->params) == RTE_OK;
+           c->close_ksize <= RTE_MORPH_MAX_KSIZE && (c->close_ksize & 1) &&
+           c->close_iterations >= 1 && c->close_iterations <= 8 &&
+           rte_grasp_check_params(c, &c->params) == RTE_OK;
 }
 
 static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
 
 /* The arena: the largest need of any one stage (each resets it). */
-static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k, const rte_morph_element *e)
+static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k,
+                         const rte_morph_element *e)
 {
     const int32_t w = c->max_width, h = c->max_height;
     size_t s = rte_gaussian_blur_u8_scratch_size(w, h, k);
@@ -60,11 +63,14 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
 }
 
 /* The pieces of the block, in order; with base NULL only counts bytes. */
-static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *c, size_t arena_bytes)
+static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *c,
+                     size_t arena_bytes)
 {
     const size_t image = (size_t)c->max_width * (size_t)c->max_height;
     const size_t sizes[] = {
-        image, image, image,
+        image,
+        image,
+        image,
         (size_t)c->max_points * sizeof(rte_point),
         (size_t)c->max_contours * sizeof(rte_contour),
         (size_t)c->max_objects * sizeof(grasp_candidate),
@@ -115,7 +121,8 @@ size_t rte_grasp_memory_size(const rte_grasp_config *config)
     return block_size(config, arena_size(config, &k, &e));
 }
 
-rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t bytes, rte_grasp_ctx **out)
+rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t bytes,
+                          rte_grasp_ctx **out)
 {
     if (!out)
         return RTE_ERR_ARGUMENT;
@@ -127,7 +134,8 @@ rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t b
     const size_t arena_bytes = arena_size(config, &k, &e);
     if (bytes < block_size(config, arena_bytes))
         return RTE_ERR_NO_MEMORY;
-    const uintptr_t base = ((uintptr_t)memory + RTE_ARENA_ALIGN - 1) & ~(uintptr_t)(RTE_ARENA_ALIGN - 1);
+    const uintptr_t base =
+        ((uintptr_t)memory + RTE_ARENA_ALIGN - 1) & ~(uintptr_t)(RTE_ARENA_ALIGN - 1);
     rte_grasp_ctx *ctx = (rte_grasp_ctx *)base;
     memset(ctx, 0, sizeof *ctx);
     ctx->blur = k;

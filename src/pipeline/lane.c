@@ -17,10 +17,7 @@ const char *rte_lane_stage_name(rte_lane_stage stage)
     return (unsigned)stage < RTE_LANE_STAGES ? names[stage] : "unknown";
 }
 
-static bool in_range(int32_t v, int32_t lo, int32_t hi)
-{
-    return v >= lo && v <= hi;
-}
+static bool in_range(int32_t v, int32_t lo, int32_t hi) { return v >= lo && v <= hi; }
 
 rte_status rte_lane_set_params(rte_lane_context *ctx, const rte_lane_params *p)
 {
@@ -31,7 +28,8 @@ rte_status rte_lane_set_params(rte_lane_context *ctx, const rte_lane_params *p)
         !in_range(p->yellow_rg_min, 0, 256) || !in_range(p->yellow_b_margin, 0, 255) ||
         !in_range(p->dim_q8, 0, 256) || !in_range(p->hough_threshold, 1, 1 << 20) ||
         !in_range(p->min_length, 0, 1 << 20) || !in_range(p->max_gap, 0, 1 << 20) ||
-        !in_range(p->left_min_slope_q8, 1, 1 << 20) || p->left_max_slope_q8 < p->left_min_slope_q8 ||
+        !in_range(p->left_min_slope_q8, 1, 1 << 20) ||
+        p->left_max_slope_q8 < p->left_min_slope_q8 ||
         !in_range(p->right_min_slope_q8, 1, 1 << 20) ||
         p->right_max_slope_q8 < p->right_min_slope_q8 || p->left_max_slope_q8 > (1 << 20) ||
         p->right_max_slope_q8 > (1 << 20) || !in_range((int32_t)p->fit, 0, 1) ||
@@ -56,9 +54,11 @@ void rte_lane_reset(rte_lane_context *ctx)
 }
 
 /* A view of rows y0..y1-1, columns x0..x1-1 of img. */
-static rte_image_u8 lane_view(const rte_image_u8 *img, int32_t x0, int32_t y0, int32_t x1, int32_t y1)
+static rte_image_u8 lane_view(const rte_image_u8 *img, int32_t x0, int32_t y0, int32_t x1,
+                              int32_t y1)
 {
-    rte_image_u8 v = {x1 - x0, y1 - y0, img->stride, img->buf + (size_t)y0 * (size_t)img->stride + (size_t)x0};
+    rte_image_u8 v = {x1 - x0, y1 - y0, img->stride,
+                      img->buf + (size_t)y0 * (size_t)img->stride + (size_t)x0};
     return v;
 }
 
@@ -117,8 +117,8 @@ static void lane_stage_end(rte_lane_result *out, rte_lane_stage stage, int64_t *
 
 /* The grey stage's part here: the crop of `gray` to the ROI's bounding
  * box, or the colour cue of it when there is colour. */
-static rte_image_u8 lane_stage_gray(rte_lane_context *ctx, const rte_image_u8 *gray, const uint8_t *color,
-                                    int32_t color_stride, bool rgb)
+static rte_image_u8 lane_stage_gray(rte_lane_context *ctx, const rte_image_u8 *gray,
+                                    const uint8_t *color, int32_t color_stride, bool rgb)
 {
     const rte_lane_params *p = &ctx->params;
     const int32_t cx0 = ctx->crop_x0, cy0 = ctx->crop_y0, cx1 = ctx->crop_x1, cy1 = ctx->crop_y1;
@@ -177,9 +177,10 @@ static rte_status lane_stage_hough(rte_lane_context *ctx, const rte_image_u8 *ed
                                    bool *truncated)
 {
     const rte_lane_params *p = &ctx->params;
-    const rte_hough_segments_params hp = {p->hough_threshold, p->min_length, p->max_gap, p->hough_seed};
-    rte_status st = rte_hough_segments(ctx->hough, edges, &hp, &ctx->arena, ctx->raw, ctx->cfg.max_segments,
-                                       count, truncated);
+    const rte_hough_segments_params hp = {p->hough_threshold, p->min_length, p->max_gap,
+                                          p->hough_seed};
+    rte_status st = rte_hough_segments(ctx->hough, edges, &hp, &ctx->arena, ctx->raw,
+                                       ctx->cfg.max_segments, count, truncated);
     if (st != RTE_OK)
         return st;
     for (int32_t i = 0; i < *count; i++) {
@@ -194,16 +195,19 @@ static rte_status lane_stage_hough(rte_lane_context *ctx, const rte_image_u8 *ed
 
 /* One side of the fit stage: its segments members[0..n) fitted, the line
  * refined on the edge pixels, the tracker moved, the lane filled in. */
-static void lane_fit_one_side(rte_lane_context *ctx, const rte_image_u8 *edges, const rte_image_u8 *mask,
-                              int side, int32_t *members, int32_t n, rte_lane *lane)
+static void lane_fit_one_side(rte_lane_context *ctx, const rte_image_u8 *edges,
+                              const rte_image_u8 *mask, int side, int32_t *members, int32_t n,
+                              rte_lane *lane)
 {
     const rte_lane_params *p = &ctx->params;
     lane_line line = {0, 0, (lane->y_bottom + lane->y_top) / 2};
     const lane_fit_hint hint = rte_lane_track_hint(&ctx->track[side], lane->y_top, lane->y_bottom);
-    const int64_t support = rte_lane_fit_side(ctx, members, n, &hint, &line,
-                                              side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
+    const int64_t support =
+        rte_lane_fit_side(ctx, members, n, &hint, &line,
+                          side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
     if (support > 0 && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
-        rte_lane_refine_on_edges(edges, mask, ctx->crop_x0, ctx->crop_y0, &hint, (int64_t)p->outlier_px, &line);
+        rte_lane_refine_on_edges(edges, mask, ctx->crop_x0, ctx->crop_y0, &hint,
+                                 (int64_t)p->outlier_px, &line);
     const bool seen = support > 0 && support >= p->min_support_px;
     rte_lane_track_update(ctx, side, seen, &line, support, lane);
 }
@@ -235,9 +239,11 @@ static void lane_centre(rte_lane_result *out, int32_t w, int32_t y_bottom, int32
         const int64_t cb = ((int64_t)l->x_bottom_q8 + r->x_bottom_q8) / 2;
         const int64_t ct = ((int64_t)l->x_top_q8 + r->x_top_q8) / 2;
         out->offset_q8 = (int32_t)(cb - (int64_t)(w - 1) * 128);
-        out->offset_permille = (int32_t)((int64_t)out->offset_q8 * 1000 / (r->x_bottom_q8 - l->x_bottom_q8));
+        out->offset_permille =
+            (int32_t)((int64_t)out->offset_q8 * 1000 / (r->x_bottom_q8 - l->x_bottom_q8));
         const int64_t dy = y_bottom - y_top;
-        out->heading_tan_q16 = dy > 0 ? lane_clamp32((ct - cb) * 256 / dy, -INT32_MAX, INT32_MAX) : 0;
+        out->heading_tan_q16 =
+            dy > 0 ? lane_clamp32((ct - cb) * 256 / dy, -INT32_MAX, INT32_MAX) : 0;
         out->heading_mrad = lane_atan_mrad(out->heading_tan_q16);
     }
 }

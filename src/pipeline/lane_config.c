@@ -16,8 +16,8 @@ void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height
     rte_lane_params *p = &cfg->params;
     const int32_t one = RTE_POLYGON_FRACTION_ONE;
     /* The tutorial trapezoid: bottom corners, apex band at 60% of the height. */
-    const rte_vertex roi[4] = {{0, one}, {one * 45 / 100, one * 60 / 100},
-                               {one * 55 / 100, one * 60 / 100}, {one, one}};
+    const rte_vertex roi[4] = {
+        {0, one}, {one * 45 / 100, one * 60 / 100}, {one * 55 / 100, one * 60 / 100}, {one, one}};
     memcpy(p->roi, roi, sizeof roi);
     p->roi_count = 4;
     p->canny_mode = RTE_LANE_CANNY_MEDIAN; /* robust to exposure: see docs/lanes.md */
@@ -35,8 +35,8 @@ void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height
     p->min_length = 20 * s / 540 > 8 ? 20 * s / 540 : 8;
     p->max_gap = 20 * s / 540 > 4 ? 20 * s / 540 : 4;
     p->hough_seed = 0;
-    p->left_min_slope_q8 = 128;   /* |dy/dx| >= 0.5: steeper than 27 degrees */
-    p->left_max_slope_q8 = 2560;  /* <= 10: not vertical (image borders, poles) */
+    p->left_min_slope_q8 = 128;  /* |dy/dx| >= 0.5: steeper than 27 degrees */
+    p->left_max_slope_q8 = 2560; /* <= 10: not vertical (image borders, poles) */
     p->right_min_slope_q8 = 128;
     p->right_max_slope_q8 = 2560;
     p->fit = RTE_LANE_FIT_LEAST_SQUARES;
@@ -79,7 +79,8 @@ rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
     }
     if (rte_gaussian_kernel_init(&ctx->blur, cfg->blur_ksize, cfg->blur_ksize, 0, 0) != RTE_OK ||
         rte_hough_config_init(ctx->hough, cfg->max_width, cfg->max_height, 1.0,
-                              3.14159265358979323846 / 180.0, 0.0, 3.14159265358979323846) != RTE_OK ||
+                              3.14159265358979323846 / 180.0, 0.0,
+                              3.14159265358979323846) != RTE_OK ||
         rte_canny_params_init(&ctx->canny, 50, 150, 3, false) != RTE_OK ||
         rte_lane_set_params(ctx, &cfg->params) != RTE_OK) {
         rte_lane_destroy(ctx);

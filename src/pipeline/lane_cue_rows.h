@@ -28,7 +28,8 @@ static inline void lane_cue_pixels(const uint8_t *restrict g, const uint8_t *res
         const uint8_t mn = r < gg ? r : gg;
         const uint8_t mb = mn > yb ? (uint8_t)(mn - yb) : 0; /* B may be at most this */
         const uint8_t white = (uint8_t)(-(uint8_t)((b >= wm) & (gg >= wm) & (r >= wm)) & white_on);
-        const uint8_t yellow = (uint8_t)(-(uint8_t)((mn >= ym) & (mn >= yb) & (b <= mb)) & yellow_on);
+        const uint8_t yellow =
+            (uint8_t)(-(uint8_t)((mn >= ym) & (mn >= yb) & (b <= mb)) & yellow_on);
         const uint8_t paint = white | yellow; /* 0xFF or 0 */
         d[x] = (uint8_t)(paint | (~paint & (uint8_t)((g[x] * dim) >> 8)));
     }

@@ -121,7 +121,8 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *membe
     if (lane_abs64(line->slope_q16) > 64 * 65536)
         return false;
     /* x at y_mid from the weighted means (Q8) */
-    line->x_mid_q8 = sx * 128 / w + ((line->slope_q16 * ((int64_t)line->y_mid * 256 - sy * 128 / w)) >> 16);
+    line->x_mid_q8 =
+        sx * 128 / w + ((line->slope_q16 * ((int64_t)line->y_mid * 256 - sy * 128 / w)) >> 16);
     return true;
 }
 
@@ -129,8 +130,8 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *membe
  * squares, segments beyond outlier_px are marked and the rest refitted
  * (twice, so an outlier that pulled the start is caught on the second
  * pass). Returns the supporting length. */
-int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, const lane_fit_hint *hint,
-                          lane_line *line, rte_lane_segment_use use)
+int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n,
+                          const lane_fit_hint *hint, lane_line *line, rte_lane_segment_use use)
 {
     rte_lane_segment *segs = ctx->segments;
     if (n == 0)

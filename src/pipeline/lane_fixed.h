@@ -9,10 +9,7 @@
 
 #include "lane_internal.h"
 
-static inline int64_t lane_abs64(int64_t v)
-{
-    return v < 0 ? -v : v;
-}
+static inline int64_t lane_abs64(int64_t v) { return v < 0 ? -v : v; }
 
 static inline int32_t lane_clamp32(int64_t v, int64_t lo, int64_t hi)
 {

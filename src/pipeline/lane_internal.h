@@ -44,7 +44,7 @@ typedef struct lane_fit_hint {
 struct rte_lane_context {
     rte_lane_config cfg;
     rte_lane_params params;
-    bool roi_dirty;           /* rebuild the mask on the next frame */
+    bool roi_dirty;                /* rebuild the mask on the next frame */
     int32_t roi_width, roi_height; /* the frame size the mask was built for */
     rte_vertex roi_px[RTE_LANE_MAX_ROI_VERTICES];
     int32_t crop_x0, crop_y0, crop_x1, crop_y1; /* the ROI's bounding box, clipped */
@@ -52,15 +52,15 @@ struct rte_lane_context {
     rte_hough_config *hough;
     rte_canny_params canny;
     /* Images of max_width x max_height */
-    rte_image_u8 gray;        /* grey when the frame is not grey itself */
-    rte_image_u8 cue;         /* grey with the colour cue */
+    rte_image_u8 gray; /* grey when the frame is not grey itself */
+    rte_image_u8 cue;  /* grey with the colour cue */
     rte_image_u8 blurred;
     rte_image_u8 edges;
-    rte_image_u8 mask;        /* ROI polygon, crop coordinates */
+    rte_image_u8 mask; /* ROI polygon, crop coordinates */
     /* Segments */
     rte_hough_segment *raw;
     rte_lane_segment *segments;
-    int32_t *order;           /* per-side index lists and weighted-median work */
+    int32_t *order; /* per-side index lists and weighted-median work */
     int64_t *keys;
     rte_arena arena;
     lane_track track[2];
@@ -92,13 +92,13 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
 /* lane_fit.c: the robust fit of one side over the segments members[0..n)
  * (reordered; the inliers are marked `use`). Returns the supporting
  * length. */
-int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n, const lane_fit_hint *hint,
-                          lane_line *line, rte_lane_segment_use use);
+int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n,
+                          const lane_fit_hint *hint, lane_line *line, rte_lane_segment_use use);
 
 /* lane_refine.c: the segment fit refined on the edge pixels along it
  * (`edges` and the ROI mask `roi` are the crop at (cx0, cy0); `tol` the
  * band's half-width on the bottom row). */
-void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
-                              const lane_fit_hint *hint, int64_t tol, lane_line *line);
+void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                              int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line);
 
 #endif

@@ -47,7 +47,8 @@ static inline void band_add(band_pixels *px, int64_t x)
  * in the row above or below at one of the two columns the slope reaches
  * there, so edges crossing the line (shadows, patch borders, car bumpers)
  * do not count. Eight pixels at a time away from the map's borders. */
-static band_pixels band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16)
+static band_pixels band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb,
+                            int64_t slope_q16)
 {
     band_pixels px = {0, 0, INT64_MAX, INT64_MIN};
     const uint8_t *row = rte_u8_row(edges, y);
@@ -101,11 +102,12 @@ static band_pixels band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, in
  * search left without a segment (or split differently) then count by
  * their pixels, so the lane does not depend on which segments the search
  * happened to find, and a marking's two edges put the line on its centre. */
-void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
-                              const lane_fit_hint *hint, int64_t tol, lane_line *line)
+void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                              int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line)
 {
     const int32_t y0 = hint->y_top > cy0 ? hint->y_top : cy0;
-    const int32_t y1 = hint->y_bottom < cy0 + edges->height - 1 ? hint->y_bottom : cy0 + edges->height - 1;
+    const int32_t y1 =
+        hint->y_bottom < cy0 + edges->height - 1 ? hint->y_bottom : cy0 + edges->height - 1;
     const int64_t half_span = (hint->y_bottom - hint->y_top) / 2 + 1;
     for (int pass = 0; pass < 3; pass++) {
         /* Sums over the pixels of rw, rw Y, rw r, rw Y^2 and rw Y r, with
@@ -116,7 +118,8 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
         int64_t sw = 0, sy = 0, sr = 0, syy = 0, syr = 0;
         for (int32_t y = y0; y <= y1; y++) {
             const int64_t band = band_px(hint, tol, y);
-            const int64_t lx = lane_line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0, xb = xa + 2 * band;
+            const int64_t lx = lane_line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0,
+                          xb = xa + 2 * band;
             /* Only rows where the whole band is inside the ROI: where the
              * ROI's border cuts a marking, its edge on the inside alone
              * would pull the line off the marking's centre. */
@@ -140,7 +143,7 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
             syr += rw * Y * r;
         }
         if (sw < 256 * 8)
-            return; /* hardly any paint near the line: keep it */
+            return;                          /* hardly any paint near the line: keep it */
         const int64_t my_q8 = sy * 256 / sw; /* mean Y */
         const int64_t cyy = syy - ((my_q8 * sy) >> 8), cyr = syr - ((my_q8 * sr) >> 8);
         /* The tracked slope as a prior with the weight of a marking along a
@@ -148,7 +151,8 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
         const int64_t prior = hint->weight / 6;
         int64_t dslope_q16 = 0;
         if (prior > 0)
-            dslope_q16 = lane_div_q16(cyr + (prior * (hint->slope_q16 - line->slope_q16) >> 8), (cyy + prior) * 256);
+            dslope_q16 = lane_div_q16(cyr + (prior * (hint->slope_q16 - line->slope_q16) >> 8),
+                                      (cyy + prior) * 256);
         else if (cyy >= sw * 64) /* rows spread over ~8 px at least */
             dslope_q16 = lane_div_q16(cyr, cyy * 256);
         const int64_t slope = line->slope_q16 + dslope_q16;

@@ -10,8 +10,7 @@ static int64_t track_x_q8(const lane_track *t, int32_t y_bottom, int32_t y_top, 
     const int32_t span = y_bottom - y_top;
     if (span <= 0)
         return t->x_bottom_q8;
-    return t->x_bottom_q8 +
-           (int64_t)(t->x_top_q8 - t->x_bottom_q8) * (y_bottom - y) / span;
+    return t->x_bottom_q8 + (int64_t)(t->x_top_q8 - t->x_bottom_q8) * (y_bottom - y) / span;
 }
 
 /* Sorts the Hough segments into sides by slope, position and the gate;
@@ -56,7 +55,8 @@ lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_
 {
     lane_fit_hint hint = {y_top, y_bottom, 0, 0};
     if (t->valid && y_bottom > y_top) {
-        const int64_t dx = ((int64_t)t->x_top_q8 + t->v_top_q8) - ((int64_t)t->x_bottom_q8 + t->v_bottom_q8);
+        const int64_t dx =
+            ((int64_t)t->x_top_q8 + t->v_top_q8) - ((int64_t)t->x_bottom_q8 + t->v_bottom_q8);
         const int64_t rows = (y_bottom - y_top) / 5 + 1; /* a fifth of the lane */
         hint.slope_q16 = lane_clamp32(dx * 256 / (y_top - y_bottom), -64 * 65536, 64 * 65536);
         hint.weight = rows * rows * rows * 128; /* 128: the mean row weight */
@@ -90,7 +90,8 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
             const int64_t share = lane_clamp32(support * 256 / len, 32, 256); /* /256 */
             const int64_t alpha = (int64_t)p->alpha_q8 * share >> 8;
             const int64_t step = (int64_t)p->max_step_px * 256;
-            const int64_t rb = lane_clamp32(mb - pb, -step, step), rt = lane_clamp32(mt - pt, -step, step);
+            const int64_t rb = lane_clamp32(mb - pb, -step, step),
+                          rt = lane_clamp32(mt - pt, -step, step);
             t->x_bottom_q8 = lane_clamp32(pb + ((rb * alpha) >> 8), -lim, lim);
             t->x_top_q8 = lane_clamp32(pt + ((rt * alpha) >> 8), -lim, lim);
             t->v_bottom_q8 = lane_clamp32(t->v_bottom_q8 + ((rb * p->beta_q8) >> 8), -step, step);

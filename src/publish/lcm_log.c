@@ -14,8 +14,8 @@
 
 /* ---- writing ---- */
 
-rte_status rte_lcm_log_writer_open(rte_lcm_log_writer *w, const char *path, int append,
-                                   char *msg, size_t msg_size)
+rte_status rte_lcm_log_writer_open(rte_lcm_log_writer *w, const char *path, int append, char *msg,
+                                   size_t msg_size)
 {
     w->fd = -1;
     w->next_event = 0;
@@ -86,8 +86,8 @@ void rte_lcm_log_writer_close(rte_lcm_log_writer *w)
 
 /* ---- reading ---- */
 
-rte_status rte_lcm_log_reader_open(rte_lcm_log_reader *r, const char *path,
-                                   size_t max_event_bytes, char *msg, size_t msg_size)
+rte_status rte_lcm_log_reader_open(rte_lcm_log_reader *r, const char *path, size_t max_event_bytes,
+                                   char *msg, size_t msg_size)
 {
     memset(r, 0, sizeof *r);
     r->fd = -1;
@@ -154,8 +154,8 @@ static int64_t resync(int fd, int64_t at)
     return next >= 0 ? next : (int64_t)lseek(fd, 0, SEEK_END);
 }
 
-static rte_status read_event(rte_lcm_log_reader *r, rte_lcm_log_event *ev, int head_only,
-                             char *msg, size_t msg_size)
+static rte_status read_event(rte_lcm_log_reader *r, rte_lcm_log_event *ev, int head_only, char *msg,
+                             size_t msg_size)
 {
     uint8_t h[RTE_LCM_LOG_HEADER_SIZE];
     ssize_t n = read_at(r->fd, h, sizeof h, r->offset);
@@ -183,7 +183,7 @@ static rte_status read_event(rte_lcm_log_reader *r, rte_lcm_log_event *ev, int h
     if (channel_len == 0 || channel_len > RTE_LCM_LOG_MAX_CHANNEL || size > INT32_MAX) {
         r->offset = resync(r->fd, at);
         rte_source_msgf(msg, msg_size, "log offset %lld: impossible lengths (channel %u, data %u)",
-             (long long)at, channel_len, size);
+                        (long long)at, channel_len, size);
         return RTE_ERR_CORRUPT;
     }
     int64_t end = at + (int64_t)sizeof h + channel_len + size;
@@ -216,7 +216,7 @@ static rte_status read_event(rte_lcm_log_reader *r, rte_lcm_log_event *ev, int h
     if (n != (ssize_t)want) {
         r->offset = (int64_t)lseek(r->fd, 0, SEEK_END);
         rte_source_msgf(msg, msg_size, "log event %lld on %s: data cut short (%zd of %u bytes)",
-             (long long)ev->eventnum, ev->channel, n, size);
+                        (long long)ev->eventnum, ev->channel, n, size);
         return n < 0 ? RTE_ERR_IO : RTE_ERR_TRUNCATED;
     }
     r->offset = end;

@@ -24,8 +24,8 @@ typedef struct rte_lcm_log_writer {
 } rte_lcm_log_writer;
 
 /* Creates (append = 0: truncates) or appends to the log at path. */
-rte_status rte_lcm_log_writer_open(rte_lcm_log_writer *w, const char *path, int append,
-                                   char *msg, size_t msg_size);
+rte_status rte_lcm_log_writer_open(rte_lcm_log_writer *w, const char *path, int append, char *msg,
+                                   size_t msg_size);
 /* One event, one writev(); no allocation. */
 rte_status rte_lcm_log_write(rte_lcm_log_writer *w, int64_t utime, const char *channel,
                              const void *data, size_t size, char *msg, size_t msg_size);
@@ -41,15 +41,15 @@ typedef struct rte_lcm_log_event {
 
 typedef struct rte_lcm_log_reader {
     int fd;
-    uint8_t *buf;       /* max_event_bytes, allocated at open */
+    uint8_t *buf; /* max_event_bytes, allocated at open */
     size_t capacity;
-    int64_t offset;     /* file offset of the next event */
+    int64_t offset; /* file offset of the next event */
 } rte_lcm_log_reader;
 
 /* Opens a log for reading; events whose data exceed max_event_bytes are
  * skipped (RTE_ERR_TOO_LARGE). */
-rte_status rte_lcm_log_reader_open(rte_lcm_log_reader *r, const char *path,
-                                   size_t max_event_bytes, char *msg, size_t msg_size);
+rte_status rte_lcm_log_reader_open(rte_lcm_log_reader *r, const char *path, size_t max_event_bytes,
+                                   char *msg, size_t msg_size);
 /* The next event. RTE_ERR_END at the end of the file. A damaged event
  * (no sync word, impossible lengths) gives RTE_ERR_CORRUPT and the reader
  * moves on to the next sync word; an event cut short by the end of the file

@@ -15,8 +15,8 @@
 #include "sources/source_msg.h"
 
 struct rte_publisher {
-    lcm_t *lcm;              /* memq://, udpm:// */
-    rte_lcm_log_writer log;  /* file:// (log.fd >= 0) */
+    lcm_t *lcm;             /* memq://, udpm:// */
+    rte_lcm_log_writer log; /* file:// (log.fd >= 0) */
     rte_publish_limits limits;
     uint8_t *buf;
     size_t capacity;
@@ -37,15 +37,9 @@ typedef struct worst_case {
     uint8_t *bytes;
 } worst_case;
 
-static void *zalloc(size_t n, size_t size)
-{
-    return calloc(n ? n : 1, size);
-}
+static void *zalloc(size_t n, size_t size) { return calloc(n ? n : 1, size); }
 
-static size_t max_size(size_t a, size_t b)
-{
-    return a > b ? a : b;
-}
+static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
 
 static size_t worst_case_size(const rte_publish_limits *l)
 {
@@ -98,8 +92,8 @@ static size_t worst_case_size(const rte_publish_limits *l)
         rtedge_image_t image = {0};
         image.nmetadata = l->max_metadata;
         image.metadata = w.metadata;
-        size = max_size(size, (size_t)rtedge_image_t_encoded_size(&image) +
-                                  (size_t)l->max_image_bytes);
+        size = max_size(size,
+                        (size_t)rtedge_image_t_encoded_size(&image) + (size_t)l->max_image_bytes);
     }
     free(w.text);
     free(w.roi);
@@ -141,10 +135,10 @@ static rte_status parse_file_url(const char *url, char *path, size_t capacity, i
 static int limits_ok(const rte_publish_limits *l)
 {
     return l->max_text >= 0 && l->max_text <= 65535 && l->max_roi_points >= 0 &&
-           l->max_roi_points <= INT16_MAX && l->max_segments >= 0 &&
-           l->max_segments <= 1000000 && l->max_objects >= 0 && l->max_objects <= 100000 &&
-           l->max_params >= 0 && l->max_params <= 10000 && l->max_image_bytes >= 0 &&
-           l->max_image_bytes <= (1 << 30) && l->max_metadata >= 0 && l->max_metadata <= 1000;
+           l->max_roi_points <= INT16_MAX && l->max_segments >= 0 && l->max_segments <= 1000000 &&
+           l->max_objects >= 0 && l->max_objects <= 100000 && l->max_params >= 0 &&
+           l->max_params <= 10000 && l->max_image_bytes >= 0 && l->max_image_bytes <= (1 << 30) &&
+           l->max_metadata >= 0 && l->max_metadata <= 1000;
 }
 
 rte_status rte_publisher_create(rte_publisher **out, const char *url,
@@ -207,15 +201,9 @@ void rte_publisher_destroy(rte_publisher *pub)
     free(pub);
 }
 
-size_t rte_publisher_buffer_size(const rte_publisher *pub)
-{
-    return pub->capacity;
-}
+size_t rte_publisher_buffer_size(const rte_publisher *pub) { return pub->capacity; }
 
-lcm_t *rte_publisher_lcm(rte_publisher *pub)
-{
-    return pub->lcm;
-}
+lcm_t *rte_publisher_lcm(rte_publisher *pub) { return pub->lcm; }
 
 void rte_publisher_get_stats(const rte_publisher *pub, rte_publish_stats *stats)
 {
@@ -281,11 +269,9 @@ static rte_status check_header(rte_publisher *pub, const char *channel, const rt
     if (!text_ok(h->source_id, l->max_text))
         return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
                       "%s: source_id missing or longer than %d bytes", channel, l->max_text);
-    if (h->roi_npoints < 0 || h->roi_npoints > l->max_roi_points ||
-        (h->roi_npoints > 0 && !h->roi))
-        return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
-                      "%s: %d ROI points, at most %d", channel, h->roi_npoints,
-                      l->max_roi_points);
+    if (h->roi_npoints < 0 || h->roi_npoints > l->max_roi_points || (h->roi_npoints > 0 && !h->roi))
+        return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d ROI points, at most %d",
+                      channel, h->roi_npoints, l->max_roi_points);
     return RTE_OK;
 }
 
@@ -294,8 +280,8 @@ static int count_ok(int32_t n, const void *array, int32_t max)
     return n >= 0 && n <= max && (n == 0 || array);
 }
 
-static rte_status check_channel(rte_publisher *pub, const char *channel, const void *m,
-                                char *msg, size_t msg_size)
+static rte_status check_channel(rte_publisher *pub, const char *channel, const void *m, char *msg,
+                                size_t msg_size)
 {
     if (!channel || !m || channel[0] == '\0' ||
         strnlen(channel, RTE_LCM_LOG_MAX_CHANNEL + 1) > RTE_LCM_LOG_MAX_CHANNEL)
@@ -320,8 +306,8 @@ rte_status rte_publish_lane(rte_publisher *pub, const char *channel,
     if (st != RTE_OK)
         return st;
     if (!count_ok(m->nsegments, m->segments, pub->limits.max_segments))
-        return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d segments, at most %d",
-                      channel, m->nsegments, pub->limits.max_segments);
+        return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d segments, at most %d", channel,
+                      m->nsegments, pub->limits.max_segments);
     int len = rtedge_lane_detection_t_encode(pub->buf, 0, encode_limit(pub), m);
     return send_encoded(pub, channel, len, msg, msg_size);
 }
@@ -335,8 +321,8 @@ rte_status rte_publish_grasp(rte_publisher *pub, const char *channel,
     if (st != RTE_OK)
         return st;
     if (!count_ok(m->nobjects, m->objects, pub->limits.max_objects))
-        return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d objects, at most %d",
-                      channel, m->nobjects, pub->limits.max_objects);
+        return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d objects, at most %d", channel,
+                      m->nobjects, pub->limits.max_objects);
     int len = rtedge_grasp_detection_t_encode(pub->buf, 0, encode_limit(pub), m);
     return send_encoded(pub, channel, len, msg, msg_size);
 }
@@ -365,13 +351,13 @@ rte_status rte_publish_image(rte_publisher *pub, const char *channel, const rted
     if (!count_ok(m->size, m->data, l->max_image_bytes) ||
         !count_ok(m->nmetadata, m->metadata, l->max_metadata))
         return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
-                      "%s: image of %d bytes with %d metadata, at most %d and %d", channel,
-                      m->size, m->nmetadata, l->max_image_bytes, l->max_metadata);
+                      "%s: image of %d bytes with %d metadata, at most %d and %d", channel, m->size,
+                      m->nmetadata, l->max_image_bytes, l->max_metadata);
     for (int32_t i = 0; i < m->nmetadata; i++)
         if (!text_ok(m->metadata[i].key, l->max_text) ||
             !count_ok(m->metadata[i].n, m->metadata[i].value, l->max_text))
-            return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
-                          "%s: metadata %d over %d bytes", channel, i, l->max_text);
+            return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: metadata %d over %d bytes",
+                          channel, i, l->max_text);
     int len = rtedge_image_t_encode(pub->buf, 0, encode_limit(pub), m);
     return send_encoded(pub, channel, len, msg, msg_size);
 }

@@ -47,19 +47,19 @@ extern "C" {
  * beyond them are refused (RTE_ERR_TOO_LARGE): the caller bounds its arrays
  * and sets the message's *_truncated flag. */
 typedef struct rte_publish_limits {
-    int32_t max_text;         /* bytes of any string field (source_id), NUL excluded */
-    int32_t max_roi_points;   /* header.roi_npoints */
-    int32_t max_segments;     /* lane_detection_t.nsegments */
-    int32_t max_objects;      /* grasp_detection_t.nobjects */
-    int32_t max_params;       /* params_t.nparams */
-    int32_t max_image_bytes;  /* image_t.size (0: images are not published) */
-    int32_t max_metadata;     /* image_t.nmetadata, each at most max_text bytes of key and value */
+    int32_t max_text;        /* bytes of any string field (source_id), NUL excluded */
+    int32_t max_roi_points;  /* header.roi_npoints */
+    int32_t max_segments;    /* lane_detection_t.nsegments */
+    int32_t max_objects;     /* grasp_detection_t.nobjects */
+    int32_t max_params;      /* params_t.nparams */
+    int32_t max_image_bytes; /* image_t.size (0: images are not published) */
+    int32_t max_metadata;    /* image_t.nmetadata, each at most max_text bytes of key and value */
 } rte_publish_limits;
 
 typedef struct rte_publish_stats {
-    uint64_t messages;        /* published */
-    uint64_t bytes;           /* encoded bytes published */
-    uint64_t refused;         /* over the limits or failed to send */
+    uint64_t messages; /* published */
+    uint64_t bytes;    /* encoded bytes published */
+    uint64_t refused;  /* over the limits or failed to send */
 } rte_publish_stats;
 
 typedef struct rte_publisher rte_publisher;
@@ -77,12 +77,12 @@ rte_status rte_publish_lane(rte_publisher *pub, const char *channel,
                             const rtedge_lane_detection_t *m, char *msg, size_t msg_size);
 rte_status rte_publish_grasp(rte_publisher *pub, const char *channel,
                              const rtedge_grasp_detection_t *m, char *msg, size_t msg_size);
-rte_status rte_publish_status(rte_publisher *pub, const char *channel,
-                              const rtedge_status_t *m, char *msg, size_t msg_size);
+rte_status rte_publish_status(rte_publisher *pub, const char *channel, const rtedge_status_t *m,
+                              char *msg, size_t msg_size);
 rte_status rte_publish_image(rte_publisher *pub, const char *channel, const rtedge_image_t *m,
                              char *msg, size_t msg_size);
-rte_status rte_publish_params(rte_publisher *pub, const char *channel,
-                              const rtedge_params_t *m, char *msg, size_t msg_size);
+rte_status rte_publish_params(rte_publisher *pub, const char *channel, const rtedge_params_t *m,
+                              char *msg, size_t msg_size);
 
 /* The publisher's lcm_t (memq://, udpm://) for subscribing on the same
  * instance (memq delivers only within it); NULL for file://. */

@@ -16,21 +16,18 @@
 #include "io/imageio.h"
 
 typedef struct images_source {
-    rte_recording rec;           /* first: see recorded.h */
+    rte_recording rec; /* first: see recorded.h */
     rte_pixel_format format;
     int32_t fps_num, fps_den;
     char **names;
     size_t count;
     rte_image_reader *reader;
-    uint8_t *decoded;            /* max * 3 bytes: what the file holds */
-    uint8_t *converted;          /* max * channels bytes: the other channel count */
+    uint8_t *decoded;   /* max * 3 bytes: what the file holds */
+    uint8_t *converted; /* max * channels bytes: the other channel count */
     size_t decoded_size;
 } images_source;
 
-static void images_rewind(void *impl)
-{
-    (void)impl; /* the slot index is all the state */
-}
+static void images_rewind(void *impl) { (void)impl; /* the slot index is all the state */ }
 
 static int compare_names(const void *a, const void *b)
 {
@@ -109,8 +106,8 @@ static rte_status images_next(void *impl, rte_source_frame *out, int32_t timeout
         return rte_recording_end(&s->rec, msg, msg_size);
     const char *name = s->names[s->rec.index];
     rte_image_info info;
-    rte_status st = rte_image_read(s->reader, name, s->decoded, s->decoded_size, &info, msg,
-                                   msg_size);
+    rte_status st =
+        rte_image_read(s->reader, name, s->decoded, s->decoded_size, &info, msg, msg_size);
     if (st != RTE_OK)
         return rte_recording_bad(&s->rec, st);
     int32_t w = info.width, h = info.height;
@@ -225,8 +222,7 @@ rte_status rte_images_source_open(rte_source *source, const rte_images_source_co
         images_close(s);
         return st;
     }
-    rte_recording_attach(source, &rte_images_source_ops, s, max_w, max_h,
-                         config->format);
+    rte_recording_attach(source, &rte_images_source_ops, s, max_w, max_h, config->format);
     rte_source_msgf(msg, msg_size, "%zu image files, up to %dx%d", s->count, max_w, max_h);
     return RTE_OK;
 }

@@ -104,8 +104,10 @@ static rte_status decode_header(const uint8_t *data, int32_t size, rte_pixel_for
         need = (int64_t)stride * h + (int64_t)stride * ((h + 1) / 2 - 1) + (w + 1) / 2 * 2;
     if (stride < row_bytes(f, w) || bytes < 0 || need > bytes ||
         (int64_t)IMAGE_FIXED_BYTES + bytes > size) {
-        rte_source_msgf(msg, msg_size, "image_t %dx%d, stride %d, %d data bytes in a %d-byte "
-                        "message: inconsistent", w, h, stride, bytes, size);
+        rte_source_msgf(msg, msg_size,
+                        "image_t %dx%d, stride %d, %d data bytes in a %d-byte "
+                        "message: inconsistent",
+                        w, h, stride, bytes, size);
         return RTE_ERR_CORRUPT;
     }
     *hd = (image_header){hd->utime, f, w, h, stride};
@@ -237,8 +239,7 @@ static rte_status peek_first_image(const char *path, const char *channel, rte_pi
     return st == RTE_ERR_END ? RTE_ERR_FORMAT : st;
 }
 
-static rte_status check_config(const rte_lcm_source_config *c, int live, char *msg,
-                               size_t msg_size)
+static rte_status check_config(const rte_lcm_source_config *c, int live, char *msg, size_t msg_size)
 {
     if (!c || !c->url || (live && !c->channel)) {
         rte_source_msgf(msg, msg_size, "lcm: missing url%s", live ? " or channel" : "");
@@ -295,9 +296,8 @@ rte_status rte_lcm_log_source_open(rte_source *source, const rte_lcm_source_conf
     if (s->max_w == 0)
         st = peek_first_image(path, s->channel, &s->format, &s->max_w, &s->max_h, msg, msg_size);
     if (st == RTE_OK)
-        st = rte_lcm_log_reader_open(&s->reader, path,
-                                     message_capacity(s->format, s->max_w, s->max_h), msg,
-                                     msg_size);
+        st = rte_lcm_log_reader_open(
+            &s->reader, path, message_capacity(s->format, s->max_w, s->max_h), msg, msg_size);
     if (st != RTE_OK) {
         lcm_log_close(s);
         return st;
@@ -305,8 +305,7 @@ rte_status rte_lcm_log_source_open(rte_source *source, const rte_lcm_source_conf
     /* Frame interval after a rewind: unknown in general, 1/30 s. */
     rte_recording_init(&s->rec, rte_recording_frame_ns(1, RTE_RECORDED_DEFAULT_FPS, 1),
                        lcm_log_rewind);
-    rte_recording_attach(source, &rte_lcm_log_source_ops, s, s->max_w, s->max_h,
-                         s->format);
+    rte_recording_attach(source, &rte_lcm_log_source_ops, s, s->max_w, s->max_h, s->format);
     rte_source_msgf(msg, msg_size, "%s: image_t %s up to %dx%d", path,
                     rte_pixel_format_name(s->format), s->max_w, s->max_h);
     return RTE_OK;
@@ -320,11 +319,11 @@ typedef struct lcm_live_source {
     lcm_subscription_t *sub;
     rte_pixel_format format;
     int32_t max_w, max_h;
-    uint8_t *buf;       /* the newest message */
+    uint8_t *buf; /* the newest message */
     size_t capacity;
-    int32_t size;       /* of the message in buf; -1: it did not fit */
-    int pending;        /* buf holds a message not handed out yet */
-    uint32_t replaced;  /* messages replaced by newer ones since the last frame */
+    int32_t size;      /* of the message in buf; -1: it did not fit */
+    int pending;       /* buf holds a message not handed out yet */
+    uint32_t replaced; /* messages replaced by newer ones since the last frame */
 } lcm_live_source;
 
 static void on_image(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
@@ -370,8 +369,8 @@ static rte_status lcm_live_next(void *impl, rte_source_frame *out, int32_t timeo
     }
     rte_frame frame;
     int64_t utime;
-    rte_status st = decode_image(s->buf, s->size, s->format, s->max_w, s->max_h, &frame, &utime,
-                                 msg, msg_size);
+    rte_status st =
+        decode_image(s->buf, s->size, s->format, s->max_w, s->max_h, &frame, &utime, msg, msg_size);
     if (st != RTE_OK)
         return rte_recording_bad(&s->rec, st);
     rte_recording_deliver(&s->rec, out, &frame, utime * 1000);
@@ -415,14 +414,14 @@ rte_status rte_lcm_live_source_open(rte_source *source, const rte_lcm_source_con
         s->sub = lcm_subscribe(s->lcm, config->channel, on_image, s);
     if (!s->sub) {
         rte_source_msgf(msg, msg_size, "%s: %s", config->url,
-                        !s->buf ? "no memory" : !s->lcm ? "liblcm cannot open it"
-                                                        : "cannot subscribe");
+                        !s->buf   ? "no memory"
+                        : !s->lcm ? "liblcm cannot open it"
+                                  : "cannot subscribe");
         st = !s->buf ? RTE_ERR_NO_MEMORY : RTE_ERR_IO;
         lcm_live_close(s);
         return st;
     }
-    rte_recording_attach(source, &lcm_live_source_ops, s, s->max_w, s->max_h,
-                         s->format);
+    rte_recording_attach(source, &lcm_live_source_ops, s, s->max_w, s->max_h, s->format);
     rte_source_msgf(msg, msg_size, "%s channel %s: image_t %s up to %dx%d", config->url,
                     config->channel, rte_pixel_format_name(s->format), s->max_w, s->max_h);
     return RTE_OK;

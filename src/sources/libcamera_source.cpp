@@ -20,7 +20,8 @@
 
 #include "source_msg.h"
 
-namespace {
+namespace
+{
 
 using namespace libcamera;
 
@@ -32,9 +33,9 @@ struct FormatPair {
 // libcamera names formats after DRM, which lists components from the most
 // significant bit: its BGR888 is R,G,B in memory.
 const FormatPair kFormats[] = {
-    { RTE_PIXEL_GREY, formats::R8 },    { RTE_PIXEL_RGB24, formats::BGR888 },
-    { RTE_PIXEL_BGR24, formats::RGB888 }, { RTE_PIXEL_YUYV, formats::YUYV },
-    { RTE_PIXEL_UYVY, formats::UYVY },  { RTE_PIXEL_NV12, formats::NV12 },
+    {RTE_PIXEL_GREY, formats::R8},      {RTE_PIXEL_RGB24, formats::BGR888},
+    {RTE_PIXEL_BGR24, formats::RGB888}, {RTE_PIXEL_YUYV, formats::YUYV},
+    {RTE_PIXEL_UYVY, formats::UYVY},    {RTE_PIXEL_NV12, formats::NV12},
 };
 
 rte_pixel_format to_rte(const PixelFormat &f)
@@ -60,7 +61,7 @@ struct Mapping {
 
 class Source
 {
-public:
+  public:
     ~Source();
     rte_status open(const rte_libcamera_config &cfg, rte_libcamera_info *info, char *msg,
                     size_t msg_size);
@@ -70,7 +71,7 @@ public:
     rte_pixel_format format{};
     int32_t width = 0, height = 0;
 
-private:
+  private:
     void on_complete(Request *request);
     void on_disconnect();
     rte_status find_camera(const rte_libcamera_config &cfg, char *msg, size_t msg_size);
@@ -202,7 +203,7 @@ rte_status Source::find_camera(const rte_libcamera_config &cfg, char *msg, size_
             rte_source_msgf(msg, msg_size, "no libcamera camera \"%s\"", cfg.camera);
         else
             rte_source_msgf(msg, msg_size, "no libcamera camera %d (%zu found)", cfg.index,
-                       manager_->cameras().size());
+                            manager_->cameras().size());
         return RTE_ERR_DEVICE;
     }
     if (camera_->acquire() != 0) {
@@ -219,7 +220,7 @@ rte_status Source::find_camera(const rte_libcamera_config &cfg, char *msg, size_
 rte_status Source::configure_stream(const rte_libcamera_config &cfg, bool *adjusted, char *msg,
                                     size_t msg_size)
 {
-    config_ = camera_->generateConfiguration({ StreamRole::VideoRecording });
+    config_ = camera_->generateConfiguration({StreamRole::VideoRecording});
     if (!config_ || config_->size() != 1) {
         rte_source_msgf(msg, msg_size, "%s: no video stream", camera_->id().c_str());
         return RTE_ERR_UNSUPPORTED;
@@ -233,24 +234,24 @@ rte_status Source::configure_stream(const rte_libcamera_config &cfg, bool *adjus
     CameraConfiguration::Status status = config_->validate();
     if (status == CameraConfiguration::Invalid) {
         rte_source_msgf(msg, msg_size, "%s: configuration %s is invalid", camera_->id().c_str(),
-                   sc.toString().c_str());
+                        sc.toString().c_str());
         return RTE_ERR_UNSUPPORTED;
     }
     format = to_rte(sc.pixelFormat);
     if (!format) {
         rte_source_msgf(msg, msg_size, "%s: libcamera settled on %s, which rtedge does not read",
-                   camera_->id().c_str(), sc.pixelFormat.toString().c_str());
+                        camera_->id().c_str(), sc.pixelFormat.toString().c_str());
         return RTE_ERR_UNSUPPORTED;
     }
     if (sc.bufferCount < 2 || sc.bufferCount > RTE_LIBCAMERA_MAX_BUFFERS ||
         sc.size.width > RTE_MAX_SIDE || sc.size.height > RTE_MAX_SIDE) {
         rte_source_msgf(msg, msg_size, "%s: %s is out of range", camera_->id().c_str(),
-                   sc.toString().c_str());
+                        sc.toString().c_str());
         return RTE_ERR_UNSUPPORTED;
     }
     if (camera_->configure(config_.get()) != 0) {
         rte_source_msgf(msg, msg_size, "%s: configure %s failed", camera_->id().c_str(),
-                   sc.toString().c_str());
+                        sc.toString().c_str());
         return RTE_ERR_DEVICE;
     }
     stream_ = sc.stream();
@@ -307,9 +308,9 @@ void Source::describe(bool adjusted, rte_libcamera_info *info, char *msg, size_t
 {
     const StreamConfiguration &sc = config_->at(0);
     size_t n_buffers = allocator_->buffers(stream_).size();
-    rte_source_msgf(msg, msg_size, "libcamera %s: %s, stride %d, %zu buffers%s", camera_->id().c_str(),
-               sc.toString().c_str(), stride_, n_buffers,
-               adjusted ? " (adjusted from the request)" : "");
+    rte_source_msgf(msg, msg_size, "libcamera %s: %s, stride %d, %zu buffers%s",
+                    camera_->id().c_str(), sc.toString().c_str(), stride_, n_buffers,
+                    adjusted ? " (adjusted from the request)" : "");
     if (info) {
         memset(info, 0, sizeof(*info));
         snprintf(info->id, sizeof(info->id), "%s", camera_->id().c_str());
@@ -494,12 +495,9 @@ void source_get_stats(const void *impl, rte_source_stats *stats)
     *stats = static_cast<const Source *>(impl)->stats;
 }
 
-void source_close(void *impl)
-{
-    delete static_cast<Source *>(impl);
-}
+void source_close(void *impl) { delete static_cast<Source *>(impl); }
 
-const rte_source_ops kOps = { "libcamera", source_next, source_get_stats, source_close };
+const rte_source_ops kOps = {"libcamera", source_next, source_get_stats, source_close};
 
 } // namespace
 
@@ -550,7 +548,7 @@ extern "C" int rte_libcamera_list(FILE *out)
         n++;
         std::fprintf(out, "libcamera %s\n", camera->id().c_str());
         std::unique_ptr<CameraConfiguration> cfg =
-            camera->generateConfiguration({ StreamRole::VideoRecording });
+            camera->generateConfiguration({StreamRole::VideoRecording});
         if (!cfg || cfg->size() == 0)
             continue;
         const StreamFormats &formats = cfg->at(0).formats();

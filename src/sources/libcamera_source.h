@@ -19,13 +19,13 @@ extern "C" {
 #define RTE_LIBCAMERA_ID_SIZE 128
 
 typedef struct rte_libcamera_config {
-    const char *camera;        /* the camera's id (as `cam -l` shows it); NULL: by index */
-    int32_t index;             /* position in the camera manager's list when camera is NULL */
+    const char *camera; /* the camera's id (as `cam -l` shows it); NULL: by index */
+    int32_t index;      /* position in the camera manager's list when camera is NULL */
     /* RTE_PIXEL_GREY (R8), _RGB24 (BGR888), _BGR24 (RGB888), _YUYV, _UYVY
      * or _NV12 (0: the camera's default, which must be one of these). */
     rte_pixel_format format;
-    int32_t width, height;     /* 0, 0: the camera's default size */
-    int32_t buffers;           /* 2..RTE_LIBCAMERA_MAX_BUFFERS (0: 4) */
+    int32_t width, height; /* 0, 0: the camera's default size */
+    int32_t buffers;       /* 2..RTE_LIBCAMERA_MAX_BUFFERS (0: 4) */
 } rte_libcamera_config;
 
 typedef struct rte_libcamera_info {
@@ -33,7 +33,7 @@ typedef struct rte_libcamera_info {
     rte_pixel_format format;
     int32_t width, height, stride;
     int32_t buffers;
-    bool adjusted;             /* libcamera changed the size or format asked for */
+    bool adjusted; /* libcamera changed the size or format asked for */
 } rte_libcamera_info;
 
 /* Starts the camera manager, acquires and configures the camera, allocates

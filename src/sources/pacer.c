@@ -13,10 +13,9 @@ rte_status rte_pacer_init(rte_pacer *pacer, const rte_pacer_config *config)
     rte_pacer_config c = *config;
     if (c.speed_permille == 0)
         c.speed_permille = 1000;
-    int ok = (c.mode == RTE_PACE_RECORDED && c.speed_permille > 0 &&
-              c.speed_permille <= 1000000) ||
-             (c.mode == RTE_PACE_FPS && c.fps_num > 0 && c.fps_den > 0 &&
-              c.fps_num <= 1000000 && c.fps_den <= 1000000) ||
+    int ok = (c.mode == RTE_PACE_RECORDED && c.speed_permille > 0 && c.speed_permille <= 1000000) ||
+             (c.mode == RTE_PACE_FPS && c.fps_num > 0 && c.fps_den > 0 && c.fps_num <= 1000000 &&
+              c.fps_den <= 1000000) ||
              c.mode == RTE_PACE_FAST;
     if (!ok)
         return RTE_ERR_ARGUMENT;
@@ -71,9 +70,8 @@ rte_pace_action rte_pacer_decide(rte_pacer *pacer, int64_t recorded_ns, int64_t 
          * overflowing (only a max_pause_ns of 0 lets spans grow that far). */
         uint64_t span = (uint64_t)recorded_ns - (uint64_t)pacer->first_recorded_ns;
         uint64_t speed = (uint64_t)c->speed_permille, q = span / speed;
-        offset = q > (uint64_t)INT64_MAX / 4000
-                     ? INT64_MAX / 4
-                     : (int64_t)(q * 1000 + span % speed * 1000 / speed);
+        offset = q > (uint64_t)INT64_MAX / 4000 ? INT64_MAX / 4
+                                                : (int64_t)(q * 1000 + span % speed * 1000 / speed);
     }
     int64_t due = pacer->origin_ns + offset;
     if (due > now_ns) {

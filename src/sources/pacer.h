@@ -40,10 +40,10 @@ typedef enum rte_pace_mode {
 
 typedef struct rte_pacer_config {
     rte_pace_mode mode;
-    int32_t speed_permille;     /* RECORDED: 1..1000000 (0: 1000) */
-    int32_t fps_num, fps_den;   /* FPS: both > 0 */
-    int64_t max_late_ns;        /* drop frames later than this; < 0: never */
-    int64_t max_pause_ns;       /* RECORDED: longer pauses start the pace again; <= 0: none */
+    int32_t speed_permille;   /* RECORDED: 1..1000000 (0: 1000) */
+    int32_t fps_num, fps_den; /* FPS: both > 0 */
+    int64_t max_late_ns;      /* drop frames later than this; < 0: never */
+    int64_t max_pause_ns;     /* RECORDED: longer pauses start the pace again; <= 0: none */
 } rte_pacer_config;
 
 typedef enum rte_pace_action {
@@ -55,12 +55,12 @@ typedef enum rte_pace_action {
 typedef struct rte_pacer {
     rte_pacer_config config;
     int started;
-    int64_t origin_ns;          /* when the first frame was due */
+    int64_t origin_ns; /* when the first frame was due */
     int64_t first_recorded_ns;
-    int64_t last_recorded_ns;   /* of the last frame processed or dropped */
-    uint64_t frames;            /* processed or dropped since the origin */
+    int64_t last_recorded_ns; /* of the last frame processed or dropped */
+    uint64_t frames;          /* processed or dropped since the origin */
     uint64_t dropped;
-    uint64_t restarts;          /* RECORDED: pace started again (back in time, a pause) */
+    uint64_t restarts; /* RECORDED: pace started again (back in time, a pause) */
 } rte_pacer;
 
 /* RTE_ERR_ARGUMENT for a bad mode, speed or frame rate. */

@@ -72,8 +72,8 @@ static void raw_close(void *impl)
 
 const rte_source_ops rte_raw_source_ops = {"raw", raw_next, rte_recording_get_stats, raw_close};
 
-rte_status rte_raw_source_open(rte_source *source, const rte_raw_source_config *config,
-                               char *msg, size_t msg_size)
+rte_status rte_raw_source_open(rte_source *source, const rte_raw_source_config *config, char *msg,
+                               size_t msg_size)
 {
     if (!source || !config || !config->path) {
         rte_source_msgf(msg, msg_size, "raw: missing argument");

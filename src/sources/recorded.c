@@ -63,8 +63,7 @@ int64_t rte_recording_frame_ns(uint64_t index, int32_t fps_num, int32_t fps_den)
                      q % (uint64_t)fps_num * 1000000000u / (uint64_t)fps_num);
 }
 
-rte_status rte_recording_check_fps(int32_t *fps_num, int32_t *fps_den, char *msg,
-                                   size_t msg_size)
+rte_status rte_recording_check_fps(int32_t *fps_num, int32_t *fps_den, char *msg, size_t msg_size)
 {
     if (*fps_num == 0 && *fps_den == 0) {
         *fps_num = RTE_RECORDED_DEFAULT_FPS;
@@ -85,8 +84,8 @@ void rte_recording_get_stats(const void *impl, rte_source_stats *stats)
 rte_status rte_recorded_source_rewind(rte_source *source)
 {
     const rte_source_ops *ops = source ? source->ops : NULL;
-    if (ops != &rte_images_source_ops && ops != &rte_y4m_source_ops &&
-        ops != &rte_raw_source_ops && ops != &rte_lcm_log_source_ops)
+    if (ops != &rte_images_source_ops && ops != &rte_y4m_source_ops && ops != &rte_raw_source_ops &&
+        ops != &rte_lcm_log_source_ops)
         return RTE_ERR_UNSUPPORTED;
     rte_recording *rec = source->impl;
     /* Keep time and sequence growing: the first frame again comes one frame

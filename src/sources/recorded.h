@@ -11,13 +11,13 @@
 
 typedef struct rte_recording {
     rte_source_stats stats;
-    void (*rewind)(void *impl);  /* back to the first frame; NULL: live */
-    uint64_t index;              /* frame slots read in this pass (bad ones too) */
-    uint64_t sequence_base;      /* sequence of this pass's first frame */
-    int64_t frame_ns;            /* nominal frame interval */
-    int64_t first_ns;            /* the recording's time of its first frame (-1: none yet) */
-    int64_t ns_offset;           /* added to recorded times: grows with each rewind */
-    int64_t last_ns;             /* the last recorded_ns delivered */
+    void (*rewind)(void *impl); /* back to the first frame; NULL: live */
+    uint64_t index;             /* frame slots read in this pass (bad ones too) */
+    uint64_t sequence_base;     /* sequence of this pass's first frame */
+    int64_t frame_ns;           /* nominal frame interval */
+    int64_t first_ns;           /* the recording's time of its first frame (-1: none yet) */
+    int64_t ns_offset;          /* added to recorded times: grows with each rewind */
+    int64_t last_ns;            /* the last recorded_ns delivered */
 } rte_recording;
 
 /* frame_ns: the interval a rewind leaves between the last frame and the
@@ -37,8 +37,7 @@ rte_status rte_recording_end(rte_recording *rec, char *msg, size_t msg_size);
 /* recorded_ns of frame `index` at fps_num/fps_den frames per second. */
 int64_t rte_recording_frame_ns(uint64_t index, int32_t fps_num, int32_t fps_den);
 /* fps_num/fps_den defaulted and checked (RTE_ERR_ARGUMENT). */
-rte_status rte_recording_check_fps(int32_t *fps_num, int32_t *fps_den, char *msg,
-                                   size_t msg_size);
+rte_status rte_recording_check_fps(int32_t *fps_num, int32_t *fps_den, char *msg, size_t msg_size);
 void rte_recording_get_stats(const void *impl, rte_source_stats *stats);
 
 /* The ops of the recordings that can rewind. */

@@ -55,8 +55,7 @@ rte_status rte_images_source_open(rte_source *source, const rte_images_source_co
  * RTE_PIXEL_GREY, 4:2:0 as RTE_PIXEL_NV12 (U and V interleaved on reading).
  * recorded_ns from the F tag (30 fps without one). A FRAME header that is
  * not one is a bad frame: the reader skips to the next "FRAME". */
-rte_status rte_y4m_source_open(rte_source *source, const char *path, char *msg,
-                               size_t msg_size);
+rte_status rte_y4m_source_open(rte_source *source, const char *path, char *msg, size_t msg_size);
 
 /* Raw frames one after another, as `v4l2-ctl --stream-to` writes them
  * (tightly packed: rte_frame_packed_size bytes per frame). A last frame cut
@@ -68,8 +67,8 @@ typedef struct rte_raw_source_config {
     int32_t fps_num, fps_den; /* 0: 30 fps */
 } rte_raw_source_config;
 
-rte_status rte_raw_source_open(rte_source *source, const rte_raw_source_config *config,
-                               char *msg, size_t msg_size);
+rte_status rte_raw_source_open(rte_source *source, const rte_raw_source_config *config, char *msg,
+                               size_t msg_size);
 
 /* image_t (lcmtypes/rtedge_image_t.lcm, = bot_core.image_t) messages: from
  * an LCM log file, or live from a channel. Formats GRAY, BGR, RGB, YUYV,
@@ -81,7 +80,7 @@ typedef struct rte_lcm_source_config {
     /* The log's path ("file://" prefix allowed) or, live, the LCM URL
      * (udpm://..., memq:// for tests). */
     const char *url;
-    const char *channel;   /* the log: NULL for every channel; live: required */
+    const char *channel; /* the log: NULL for every channel; live: required */
     /* The frames' format and largest size. A log may leave them 0: they are
      * then taken from its first image_t. */
     rte_pixel_format format;

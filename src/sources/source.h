@@ -24,32 +24,32 @@ extern "C" {
 #define RTE_SOURCE_MESSAGE_SIZE 256
 
 typedef struct rte_source_frame {
-    rte_frame frame;      /* pixels: a view of the source's buffer */
-    int64_t capture_ns;   /* capture time on CLOCK_MONOTONIC (for recordings: when it was read) */
-    int64_t recorded_ns;  /* the recording's own timestamp (pacing); live sources: = capture_ns */
-    uint64_t sequence;    /* the source's frame number: the driver's, or the index in a recording */
-    uint32_t dropped;     /* frames lost just before this one, as far as the source can tell
+    rte_frame frame;     /* pixels: a view of the source's buffer */
+    int64_t capture_ns;  /* capture time on CLOCK_MONOTONIC (for recordings: when it was read) */
+    int64_t recorded_ns; /* the recording's own timestamp (pacing); live sources: = capture_ns */
+    uint64_t sequence;   /* the source's frame number: the driver's, or the index in a recording */
+    uint32_t dropped;    /* frames lost just before this one, as far as the source can tell
                              (gaps in the driver's sequence numbers and older frames skipped
                              in favour of this one) */
 } rte_source_frame;
 
 typedef enum rte_source_state {
-    RTE_SOURCE_STREAMING = 0,  /* frames are coming */
-    RTE_SOURCE_RECONNECTING,   /* a device went away; it is being reopened with backoff */
-    RTE_SOURCE_ENDED,          /* a recording is finished */
-    RTE_SOURCE_FAILED,         /* cannot go on */
+    RTE_SOURCE_STREAMING = 0, /* frames are coming */
+    RTE_SOURCE_RECONNECTING,  /* a device went away; it is being reopened with backoff */
+    RTE_SOURCE_ENDED,         /* a recording is finished */
+    RTE_SOURCE_FAILED,        /* cannot go on */
 } rte_source_state;
 
 /* Counters a source keeps for the daemon's status message. */
 typedef struct rte_source_stats {
     rte_source_state state;
-    uint64_t frames;        /* frames handed out */
-    uint64_t driver_drops;  /* frames the driver or recording lost (sequence gaps) */
-    uint64_t skipped;       /* frames that were ready but not handed out because a newer one
+    uint64_t frames;       /* frames handed out */
+    uint64_t driver_drops; /* frames the driver or recording lost (sequence gaps) */
+    uint64_t skipped;      /* frames that were ready but not handed out because a newer one
                                was (live sources deliver the newest frame) */
-    uint64_t bad_frames;    /* frames skipped because they could not be decoded */
-    uint64_t reconnects;    /* successful reopenings after a device loss */
-    uint64_t errors;        /* errors reported through next() */
+    uint64_t bad_frames;   /* frames skipped because they could not be decoded */
+    uint64_t reconnects;   /* successful reopenings after a device loss */
+    uint64_t errors;       /* errors reported through next() */
 } rte_source_stats;
 
 typedef struct rte_source_ops {

@@ -148,8 +148,8 @@ static void describe(const v4l2_source *s, char *msg, size_t msg_size)
     rte_v4l2_copy_string(adjustments, sizeof(adjustments), msg ? msg : "", msg ? msg_size : 1);
     const rte_v4l2_info *i = &s->info;
     rte_source_msgf(msg, msg_size, "%s (%s, %s): %s %dx%d, %u/%u s per frame, %d buffers%s",
-               i->path, i->card, i->bus_info, rte_v4l2_fourcc_name(i->fourcc, name), i->width,
-               i->height, i->interval_num, i->interval_den, i->buffers, adjustments);
+                    i->path, i->card, i->bus_info, rte_v4l2_fourcc_name(i->fourcc, name), i->width,
+                    i->height, i->interval_num, i->interval_den, i->buffers, adjustments);
 }
 
 static void v4l2_get_stats(const void *impl, rte_source_stats *stats)
@@ -167,7 +167,7 @@ static void v4l2_close(void *impl)
     free(s);
 }
 
-const rte_source_ops rte_v4l2_source_ops = { "v4l2", rte_v4l2_next, v4l2_get_stats, v4l2_close };
+const rte_source_ops rte_v4l2_source_ops = {"v4l2", rte_v4l2_next, v4l2_get_stats, v4l2_close};
 
 /* The driver's timestamp type is only known from a dequeued buffer's
  * flags; QUERYBUF returns them too, so look at buffer 0 after streaming
@@ -206,7 +206,7 @@ rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *confi
         (decode_to != RTE_PIXEL_GREY && decode_to != RTE_PIXEL_BGR24)) {
         char name[5];
         rte_source_msgf(msg, msg_size, "V4L2 format %s is not one rtedge reads",
-                   rte_v4l2_fourcc_name(fourcc, name));
+                        rte_v4l2_fourcc_name(fourcc, name));
         return RTE_ERR_UNSUPPORTED;
     }
 

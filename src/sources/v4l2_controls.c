@@ -40,23 +40,21 @@ rte_status rte_v4l2_set_control(v4l2_source *s, const char *name, int32_t value,
     case V4L2_CTRL_TYPE_INTEGER_MENU:
         if (value < qc.minimum || value > qc.maximum) {
             rte_source_msgf(msg, msg_size, "control \"%s\": %d is outside %d..%d", qc.name, value,
-                       qc.minimum, qc.maximum);
+                            qc.minimum, qc.maximum);
             return RTE_ERR_ARGUMENT;
         }
         break;
-    case V4L2_CTRL_TYPE_BUTTON:
-        value = 0;
-        break;
+    case V4L2_CTRL_TYPE_BUTTON: value = 0; break;
     default:
         rte_source_msgf(msg, msg_size, "control \"%s\" is not an integer, boolean, menu or button",
-                   qc.name);
+                        qc.name);
         return RTE_ERR_UNSUPPORTED;
     }
     if (qc.flags & V4L2_CTRL_FLAG_READ_ONLY) {
         rte_source_msgf(msg, msg_size, "control \"%s\" is read-only", qc.name);
         return RTE_ERR_ARGUMENT;
     }
-    struct v4l2_control c = { qc.id, value };
+    struct v4l2_control c = {qc.id, value};
     if (rte_v4l2_xioctl(s, VIDIOC_S_CTRL, &c) < 0) {
         int err = errno;
         rte_source_msgf(msg, msg_size, "control \"%s\" = %d: %s", qc.name, value, strerror(err));

@@ -31,9 +31,9 @@ typedef struct v4l2_mapping {
 
 typedef struct v4l2_source {
     rte_v4l2_config cfg;
-    char device[64];         /* cfg.device points here */
+    char device[64]; /* cfg.device points here */
     const rte_v4l2_ops *ops;
-    int fd;                  /* -1 while the device is lost */
+    int fd; /* -1 while the device is lost */
     rte_v4l2_info info;
 
     /* Fixed at open: what a reopened device must fit into. */
@@ -43,11 +43,11 @@ typedef struct v4l2_source {
 
     v4l2_mapping buf[RTE_V4L2_MAX_BUFFERS];
     int32_t n_buf;
-    int32_t held;            /* buffer handed out by the last next(), -1: none */
+    int32_t held; /* buffer handed out by the last next(), -1: none */
 
     /* Sequence bookkeeping, reset when the device is reopened. */
     bool have_seq;
-    uint32_t last_seq;       /* last sequence dequeued */
+    uint32_t last_seq; /* last sequence dequeued */
     bool have_delivered;
     uint32_t last_delivered; /* last sequence handed out */
 
@@ -55,7 +55,7 @@ typedef struct v4l2_source {
     int32_t backoff_ms;
     rte_source_stats stats;
 
-    tjhandle tj;             /* MJPEG only */
+    tjhandle tj; /* MJPEG only */
     uint8_t *decoded;
     size_t decoded_size;
 } v4l2_source;

@@ -86,8 +86,8 @@ rte_status rte_v4l2_open_node(v4l2_source *s, char *msg, size_t msg_size)
         rte_status st = rte_v4l2_query_node(s, &cap);
         if (st != RTE_OK) {
             rte_source_msgf(msg, msg_size, "%s: %s", want,
-                       st == RTE_ERR_DEVICE ? strerror(errno)
-                                            : "not a video capture node with streaming I/O");
+                            st == RTE_ERR_DEVICE ? strerror(errno)
+                                                 : "not a video capture node with streaming I/O");
             rte_v4l2_close_fd(s);
             return st;
         }
@@ -145,25 +145,26 @@ static rte_status negotiate_format(v4l2_source *s, bool reopening, char *msg, si
     rte_v4l2_fourcc_name(p->pixelformat, got_name);
 
     if (rte_v4l2_delivered_format(p->pixelformat, s->cfg.decode_to) == 0) {
-        rte_source_msgf(msg, msg_size, "%s: asked for %s, the driver offers %s, which rtedge does not read",
-                   s->info.path, want_name, got_name);
+        rte_source_msgf(msg, msg_size,
+                        "%s: asked for %s, the driver offers %s, which rtedge does not read",
+                        s->info.path, want_name, got_name);
         return RTE_ERR_UNSUPPORTED;
     }
     if (p->field != V4L2_FIELD_NONE && p->field != V4L2_FIELD_ANY) {
         rte_source_msgf(msg, msg_size, "%s: the driver sends interlaced fields (%u)", s->info.path,
-                   p->field);
+                        p->field);
         return RTE_ERR_UNSUPPORTED;
     }
     if (p->width < 1 || p->height < 1 || p->width > RTE_MAX_SIDE || p->height > RTE_MAX_SIDE) {
         rte_source_msgf(msg, msg_size, "%s: the driver settled on %ux%u", s->info.path, p->width,
-                   p->height);
+                        p->height);
         return RTE_ERR_TOO_LARGE;
     }
     uint32_t min_line = (uint32_t)bytes_per_pixel(p->pixelformat) * p->width;
     uint32_t line = p->bytesperline ? p->bytesperline : min_line;
     if (line < min_line || line > INT32_MAX / 4) {
         rte_source_msgf(msg, msg_size, "%s: bytesperline %u does not hold a %u-pixel row",
-                   s->info.path, p->bytesperline, p->width);
+                        s->info.path, p->bytesperline, p->width);
         return RTE_ERR_FORMAT;
     }
     rte_v4l2_info got = s->info;
@@ -174,19 +175,19 @@ static rte_status negotiate_format(v4l2_source *s, bool reopening, char *msg, si
     got.sizeimage = p->sizeimage;
     if (got.fourcc != V4L2_PIX_FMT_MJPEG && got.sizeimage < rte_v4l2_raw_frame_bytes(&got)) {
         rte_source_msgf(msg, msg_size, "%s: sizeimage %u is smaller than a %dx%d %s frame",
-                   s->info.path, got.sizeimage, got.width, got.height, got_name);
+                        s->info.path, got.sizeimage, got.width, got.height, got_name);
         return RTE_ERR_FORMAT;
     }
-    if (reopening && (got.fourcc != s->open_fourcc || got.width > s->max_width ||
-                      got.height > s->max_height)) {
+    if (reopening &&
+        (got.fourcc != s->open_fourcc || got.width > s->max_width || got.height > s->max_height)) {
         rte_source_msgf(msg, msg_size, "%s came back with %s %dx%d, not the %dx%d it had",
-                   s->info.path, got_name, got.width, got.height, s->max_width, s->max_height);
+                        s->info.path, got_name, got.width, got.height, s->max_width, s->max_height);
         return RTE_ERR_TOO_LARGE;
     }
     if (got.fourcc != s->cfg.fourcc || got.width != s->cfg.width || got.height != s->cfg.height) {
         got.adjusted = true;
         rte_source_msg_append(msg, msg_size, "; driver adjusted %s %dx%d to %s %dx%d", want_name,
-                   s->cfg.width, s->cfg.height, got_name, got.width, got.height);
+                              s->cfg.width, s->cfg.height, got_name, got.width, got.height);
     }
     s->info = got;
     return RTE_OK;
@@ -203,7 +204,7 @@ static void set_frame_rate(v4l2_source *s, char *msg, size_t msg_size)
     if (rte_v4l2_xioctl(s, VIDIOC_G_PARM, &parm) < 0) {
         if (s->cfg.fps > 0)
             rte_source_msg_append(msg, msg_size, "; no frame rate control (VIDIOC_G_PARM: %s)",
-                       strerror(errno));
+                                  strerror(errno));
         return;
     }
     if (s->cfg.fps > 0) {
@@ -222,10 +223,11 @@ static void set_frame_rate(v4l2_source *s, char *msg, size_t msg_size)
     const struct v4l2_fract *t = &parm.parm.capture.timeperframe;
     s->info.interval_num = t->numerator;
     s->info.interval_den = t->denominator;
-    if (s->cfg.fps > 0 && t->numerator && (uint64_t)t->denominator != (uint64_t)s->cfg.fps * t->numerator) {
+    if (s->cfg.fps > 0 && t->numerator &&
+        (uint64_t)t->denominator != (uint64_t)s->cfg.fps * t->numerator) {
         s->info.adjusted = true;
-        rte_source_msg_append(msg, msg_size, "; driver adjusted %d fps to %u/%u s per frame", s->cfg.fps,
-                   t->numerator, t->denominator);
+        rte_source_msg_append(msg, msg_size, "; driver adjusted %d fps to %u/%u s per frame",
+                              s->cfg.fps, t->numerator, t->denominator);
     }
 }
 

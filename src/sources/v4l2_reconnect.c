@@ -18,7 +18,7 @@ rte_status rte_v4l2_device_lost(v4l2_source *s, const char *what, int err, char 
     s->backoff_ms = s->cfg.reconnect_min_ms;
     s->retry_at_ns = s->ops->now_ns(s->ops->ctx) + (int64_t)s->backoff_ms * 1000000;
     rte_source_msgf(msg, msg_size, "%s: %s: %s; reconnecting", s->info.path, what,
-               err ? strerror(err) : "error condition");
+                    err ? strerror(err) : "error condition");
     return RTE_ERR_DEVICE;
 }
 
@@ -35,14 +35,14 @@ rte_status rte_v4l2_reconnect(v4l2_source *s, int64_t deadline_ns, char *msg, si
     now = s->ops->now_ns(s->ops->ctx);
     if (now < s->retry_at_ns) {
         rte_source_msgf(msg, msg_size, "%s: reconnecting, next attempt in %lld ms", s->info.path,
-                   (long long)((s->retry_at_ns - now + 999999) / 1000000));
+                        (long long)((s->retry_at_ns - now + 999999) / 1000000));
         return RTE_ERR_TIMEOUT;
     }
     rte_status st = rte_v4l2_setup_device(s, true, msg, msg_size);
     if (st != RTE_OK) {
         s->stats.errors++;
         s->backoff_ms = s->backoff_ms > s->cfg.reconnect_max_ms / 2 ? s->cfg.reconnect_max_ms
-                                                                   : 2 * s->backoff_ms;
+                                                                    : 2 * s->backoff_ms;
         s->retry_at_ns = now + (int64_t)s->backoff_ms * 1000000;
         rte_source_msg_append(msg, msg_size, "; retrying in %d ms", s->backoff_ms);
         return RTE_ERR_DEVICE;

@@ -65,29 +65,29 @@ typedef struct rte_v4l2_config {
     /* For MJPEG, what the frames are decoded to: RTE_PIXEL_GREY or
      * RTE_PIXEL_BGR24 (0: GREY). Ignored for the raw formats. */
     rte_pixel_format decode_to;
-    int32_t width, height;      /* requested; the driver may adjust them */
-    int32_t fps;                /* requested frames per second; 0 keeps the driver's */
-    int32_t buffers;            /* mmap buffers, 2..RTE_V4L2_MAX_BUFFERS (0: 4) */
-    int32_t reconnect_min_ms;   /* first reopening delay after a loss (0: 100) */
-    int32_t reconnect_max_ms;   /* the delay doubles up to this (0: 2000) */
+    int32_t width, height;    /* requested; the driver may adjust them */
+    int32_t fps;              /* requested frames per second; 0 keeps the driver's */
+    int32_t buffers;          /* mmap buffers, 2..RTE_V4L2_MAX_BUFFERS (0: 4) */
+    int32_t reconnect_min_ms; /* first reopening delay after a loss (0: 100) */
+    int32_t reconnect_max_ms; /* the delay doubles up to this (0: 2000) */
     int32_t n_controls;
     rte_v4l2_control controls[RTE_V4L2_MAX_CONTROLS]; /* set at open and at each reopening */
-    const rte_v4l2_ops *ops;    /* NULL: rte_v4l2_system_ops */
+    const rte_v4l2_ops *ops;                          /* NULL: rte_v4l2_system_ops */
 } rte_v4l2_config;
 
 /* What open found and the driver settled on. */
 typedef struct rte_v4l2_info {
     char path[RTE_V4L2_NAME_SIZE];
     char driver[16], card[RTE_V4L2_NAME_SIZE], bus_info[RTE_V4L2_NAME_SIZE];
-    uint32_t fourcc;              /* the format streamed (may differ from the config's) */
-    int32_t width, height;        /* as adjusted by the driver */
-    int32_t bytesperline;         /* stride of the first plane */
+    uint32_t fourcc;       /* the format streamed (may differ from the config's) */
+    int32_t width, height; /* as adjusted by the driver */
+    int32_t bytesperline;  /* stride of the first plane */
     uint32_t sizeimage;
     uint32_t interval_num, interval_den; /* time per frame in seconds (0/0: unknown) */
-    int32_t buffers;              /* buffers the driver granted */
-    bool timestamps_monotonic;    /* false: the driver's timestamps are not CLOCK_MONOTONIC and
+    int32_t buffers;                     /* buffers the driver granted */
+    bool timestamps_monotonic; /* false: the driver's timestamps are not CLOCK_MONOTONIC and
                                      capture_ns is taken when the buffer is dequeued */
-    bool adjusted;                /* the driver changed the size, format or frame rate */
+    bool adjusted;             /* the driver changed the size, format or frame rate */
 } rte_v4l2_info;
 
 /* Opens the camera and starts streaming. `info` (may be NULL) receives what

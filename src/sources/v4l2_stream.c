@@ -58,7 +58,8 @@ rte_status rte_v4l2_start_streaming(v4l2_source *s, char *msg, size_t msg_size)
     /* One buffer is held by the caller between next() calls: two is the
      * least that keeps the driver capturing. */
     if (req.count < 2 || req.count > RTE_V4L2_MAX_BUFFERS) {
-        rte_source_msgf(msg, msg_size, "%s: the driver granted %u buffers", s->info.path, req.count);
+        rte_source_msgf(msg, msg_size, "%s: the driver granted %u buffers", s->info.path,
+                        req.count);
         return RTE_ERR_DEVICE;
     }
     for (uint32_t i = 0; i < req.count; i++) {
@@ -68,7 +69,8 @@ rte_status rte_v4l2_start_streaming(v4l2_source *s, char *msg, size_t msg_size)
         b.memory = V4L2_MEMORY_MMAP;
         b.index = i;
         if (rte_v4l2_xioctl(s, VIDIOC_QUERYBUF, &b) < 0) {
-            rte_source_msgf(msg, msg_size, "%s: VIDIOC_QUERYBUF: %s", s->info.path, strerror(errno));
+            rte_source_msgf(msg, msg_size, "%s: VIDIOC_QUERYBUF: %s", s->info.path,
+                            strerror(errno));
             return RTE_ERR_DEVICE;
         }
         void *p = s->ops->mmap(s->ops->ctx, b.length, PROT_READ | PROT_WRITE, MAP_SHARED, s->fd,
@@ -81,8 +83,8 @@ rte_status rte_v4l2_start_streaming(v4l2_source *s, char *msg, size_t msg_size)
         s->buf[i].length = b.length;
         s->n_buf = (int32_t)i + 1;
         if (s->info.fourcc != V4L2_PIX_FMT_MJPEG && b.length < rte_v4l2_raw_frame_bytes(&s->info)) {
-            rte_source_msgf(msg, msg_size, "%s: buffer of %u bytes for %u-byte frames", s->info.path,
-                       b.length, (unsigned)rte_v4l2_raw_frame_bytes(&s->info));
+            rte_source_msgf(msg, msg_size, "%s: buffer of %u bytes for %u-byte frames",
+                            s->info.path, b.length, (unsigned)rte_v4l2_raw_frame_bytes(&s->info));
             return RTE_ERR_FORMAT;
         }
     }
@@ -144,12 +146,13 @@ static rte_status decode_mjpeg(v4l2_source *s, const uint8_t *jpeg, uint32_t siz
     /* A stream of tables only passes the header check with no size. */
     if (tjDecompressHeader3(s->tj, jpeg, size, &w, &h, &subsamp, &colorspace) != 0 || w < 1 ||
         h < 1) {
-        rte_source_msgf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path, tjGetErrorStr2(s->tj));
+        rte_source_msgf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path,
+                        tjGetErrorStr2(s->tj));
         return RTE_ERR_CORRUPT;
     }
     if (w > s->max_width || h > s->max_height) {
-        rte_source_msgf(msg, msg_size, "%s: JPEG frame of %dx%d in a %dx%d stream", s->info.path, w, h,
-                   s->max_width, s->max_height);
+        rte_source_msgf(msg, msg_size, "%s: JPEG frame of %dx%d in a %dx%d stream", s->info.path, w,
+                        h, s->max_width, s->max_height);
         return RTE_ERR_FORMAT;
     }
     bool bgr = s->out_format == RTE_PIXEL_BGR24;
@@ -157,7 +160,8 @@ static rte_status decode_mjpeg(v4l2_source *s, const uint8_t *jpeg, uint32_t siz
     if (tjDecompress2(s->tj, jpeg, size, s->decoded, w, pitch, h, bgr ? TJPF_BGR : TJPF_GRAY,
                       TJFLAG_FASTDCT) != 0 &&
         tjGetErrorCode(s->tj) == TJERR_FATAL) {
-        rte_source_msgf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path, tjGetErrorStr2(s->tj));
+        rte_source_msgf(msg, msg_size, "%s: bad JPEG frame: %s", s->info.path,
+                        tjGetErrorStr2(s->tj));
         return RTE_ERR_CORRUPT;
     }
     memset(f, 0, sizeof(*f));
@@ -191,7 +195,7 @@ static rte_status wait_readable(v4l2_source *s, int64_t deadline, int32_t timeou
         int wait_ms = -1;
         if (deadline >= 0)
             wait_ms = now >= deadline ? 0 : (int)((deadline - now + 999999) / 1000000);
-        struct pollfd pfd = { s->fd, POLLIN, 0 };
+        struct pollfd pfd = {s->fd, POLLIN, 0};
         int r = s->ops->poll(s->ops->ctx, &pfd, 1, wait_ms);
         if (r < 0) {
             if (errno == EINTR)
@@ -212,7 +216,7 @@ static rte_status wait_readable(v4l2_source *s, int64_t deadline, int32_t timeou
 typedef struct dequeue_round {
     struct v4l2_buffer newest; /* the newest usable buffer, still dequeued */
     bool have_newest;
-    bool bad;                  /* a buffer was marked bad or too short */
+    bool bad; /* a buffer was marked bad or too short */
 } dequeue_round;
 
 /* Takes everything that is ready; keeps the newest, gives the older ones
@@ -282,8 +286,8 @@ static int64_t capture_time(const v4l2_source *s, const struct v4l2_buffer *b)
      * clock (vivid stamps the end of the exposure, up to 0.9 frame
      * periods ahead): no frame is captured after it was dequeued. */
     if ((b->flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC) {
-        int64_t stamped = (int64_t)b->timestamp.tv_sec * 1000000000 +
-                          (int64_t)b->timestamp.tv_usec * 1000;
+        int64_t stamped =
+            (int64_t)b->timestamp.tv_sec * 1000000000 + (int64_t)b->timestamp.tv_usec * 1000;
         if (stamped < dequeued)
             return stamped;
     }

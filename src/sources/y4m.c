@@ -22,10 +22,10 @@
 /* A buffered reader on a file descriptor. */
 typedef struct y4m_file {
     int fd;
-    uint8_t *buf;        /* Y4M_READ_BUFFER bytes */
-    size_t pos, len;     /* unread bytes: buf[pos..len) */
-    long long offset;    /* file offset of buf[pos] */
-    int error;           /* errno of a failed read, 0 */
+    uint8_t *buf;     /* Y4M_READ_BUFFER bytes */
+    size_t pos, len;  /* unread bytes: buf[pos..len) */
+    long long offset; /* file offset of buf[pos] */
+    int error;        /* errno of a failed read, 0 */
 } y4m_file;
 
 static int fill(y4m_file *f)
@@ -76,14 +76,14 @@ static void seek_to(y4m_file *f, long long offset)
 typedef struct y4m_source {
     rte_recording rec; /* first: see recorded.h */
     y4m_file file;
-    long long data_start;       /* offset of the first FRAME */
+    long long data_start; /* offset of the first FRAME */
     int32_t width, height, fps_num, fps_den;
     int mono;
-    size_t y_bytes, c_bytes;    /* one plane of luma, one of chroma */
-    uint8_t *frame;             /* Y, then (4:2:0) interleaved UV */
-    uint8_t *chroma;            /* U then V as read */
+    size_t y_bytes, c_bytes; /* one plane of luma, one of chroma */
+    uint8_t *frame;          /* Y, then (4:2:0) interleaved UV */
+    uint8_t *chroma;         /* U then V as read */
     size_t frame_size;
-    char path_name[128];        /* for messages: the file name part */
+    char path_name[128]; /* for messages: the file name part */
 } y4m_source;
 
 /* One header line (without its '\n') into line; -1 at EOF before any
@@ -190,8 +190,8 @@ static rte_status y4m_next(void *impl, rte_source_frame *out, int32_t timeout_ms
     if (got != want) {
         int err = s->file.error;
         rte_source_msgf(msg, msg_size, "%s: frame %llu cut short: %zu of %zu bytes%s%s",
-                        s->path_name, (unsigned long long)s->rec.index, got, want,
-                        err ? ": " : "", err ? strerror(err) : "");
+                        s->path_name, (unsigned long long)s->rec.index, got, want, err ? ": " : "",
+                        err ? strerror(err) : "");
         return rte_recording_bad(&s->rec, err ? RTE_ERR_IO : RTE_ERR_TRUNCATED);
     }
     if (!s->mono) {
@@ -261,8 +261,8 @@ rte_status rte_y4m_source_open(rte_source *source, const char *path, char *msg, 
         s->data_start = s->file.offset;
         s->y_bytes = (size_t)s->width * (size_t)s->height;
         s->c_bytes = s->mono ? 0 : (size_t)((s->width + 1) / 2) * (size_t)((s->height + 1) / 2);
-        s->frame_size = rte_frame_packed_size(s->mono ? RTE_PIXEL_GREY : RTE_PIXEL_NV12,
-                                              s->width, s->height);
+        s->frame_size =
+            rte_frame_packed_size(s->mono ? RTE_PIXEL_GREY : RTE_PIXEL_NV12, s->width, s->height);
         s->frame = malloc(s->frame_size);
         s->chroma = malloc(s->c_bytes ? 2 * s->c_bytes : 1);
         if (!s->frame || !s->chroma)
@@ -277,7 +277,7 @@ rte_status rte_y4m_source_open(rte_source *source, const char *path, char *msg, 
     rte_recording_init(&s->rec, rte_recording_frame_ns(1, s->fps_num, s->fps_den), y4m_rewind);
     rte_recording_attach(source, &rte_y4m_source_ops, s, s->width, s->height,
                          s->mono ? RTE_PIXEL_GREY : RTE_PIXEL_NV12);
-    rte_source_msgf(msg, msg_size, "%s: %dx%d %s at %d/%d fps", s->path_name, s->width,
-                    s->height, s->mono ? "mono" : "4:2:0", s->fps_num, s->fps_den);
+    rte_source_msgf(msg, msg_size, "%s: %dx%d %s at %d/%d fps", s->path_name, s->width, s->height,
+                    s->mono ? "mono" : "4:2:0", s->fps_num, s->fps_den);
     return RTE_OK;
 }

@@ -71,8 +71,10 @@ static rte_status check_fails(const uint8_t *data, size_t n, int expected, const
     write_file(data, n);
     char msg[RTE_IO_MESSAGE_SIZE];
     rte_image_info info;
-    rte_status st = rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info, msg, sizeof msg);
-    if (st == RTE_OK || (expected != ANY_ERROR && (int)st != expected) || !strstr(msg, "bad-file.img: "))
+    rte_status st = rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info,
+                                   msg, sizeof msg);
+    if (st == RTE_OK || (expected != ANY_ERROR && (int)st != expected) ||
+        !strstr(msg, "bad-file.img: "))
         fail_msg("%s (%zu bytes): status %d, message \"%s\"", what, n, (int)st, msg);
 
     /* Through a view too, sized from the probe when the header is fine. */
@@ -80,7 +82,7 @@ static rte_status check_fails(const uint8_t *data, size_t n, int expected, const
     if (pst != RTE_OK && !strstr(msg, "bad-file.img: "))
         fail_msg("%s: probe message \"%s\"", what, msg);
     if (pst == RTE_OK && info.width <= MAX_SIDE && info.height <= MAX_SIDE) {
-        rte_image_u8c3 dst = { info.width, info.height, info.width * 3, pixels };
+        rte_image_u8c3 dst = {info.width, info.height, info.width * 3, pixels};
         rte_status st2 = rte_image_read_bgr(reader, path, &dst, msg, sizeof msg);
         if (st2 == RTE_OK || !strstr(msg, "bad-file.img: "))
             fail_msg("%s: read_bgr status %d, message \"%s\"", what, (int)st2, msg);
@@ -109,7 +111,7 @@ typedef struct blob {
 
 static blob load(const char *file)
 {
-    blob b = { NULL, 0 };
+    blob b = {NULL, 0};
     FILE *f = fopen(file, "rb");
     assert_non_null(f);
     fseek(f, 0, SEEK_END);
@@ -132,10 +134,10 @@ static blob make_file(const char *name, int32_t w, int32_t h, int channels)
     snprintf(file, sizeof file, "%s/%s", dir, name);
     char msg[RTE_IO_MESSAGE_SIZE];
     if (channels == 1) {
-        rte_image_u8 img = { w, h, w, px };
+        rte_image_u8 img = {w, h, w, px};
         assert_int_equal(rte_image_write_gray(file, &img, msg, sizeof msg), RTE_OK);
     } else {
-        rte_image_u8c3 img = { w, h, w * 3, px };
+        rte_image_u8c3 img = {w, h, w * 3, px};
         assert_int_equal(rte_image_write_bgr(file, &img, msg, sizeof msg), RTE_OK);
     }
     free(px);
@@ -152,8 +154,9 @@ static blob make_jpeg(int32_t w, int32_t h, int subsamp, int flags)
     tjhandle tj = tjInitCompress();
     unsigned char *jpg = NULL;
     unsigned long size = 0;
-    assert_int_equal(tjCompress2(tj, px, w, w * 3, h, TJPF_BGR, &jpg, &size, subsamp, 75, flags), 0);
-    blob b = { malloc(size), size };
+    assert_int_equal(tjCompress2(tj, px, w, w * 3, h, TJPF_BGR, &jpg, &size, subsamp, 75, flags),
+                     0);
+    blob b = {malloc(size), size};
     memcpy(b.data, jpg, size);
     tjFree(jpg);
     tjDestroy(tj);
@@ -167,7 +170,8 @@ static void assert_reads(const blob *b)
     char msg[RTE_IO_MESSAGE_SIZE];
     rte_image_info info;
     write_file(b->data, b->size);
-    if (rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info, msg, sizeof msg) != RTE_OK)
+    if (rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info, msg,
+                       sizeof msg) != RTE_OK)
         fail_msg("good file fails: %s", msg);
 }
 
@@ -228,25 +232,26 @@ static void pnm_headers(void **state)
     check_fails_str("P8 1 1 255\n\x01", RTE_ERR_FORMAT);
     check_fails_str("P5#c\n1 1 255\n\x01", RTE_ERR_FORMAT);
     check_fails_str(" P5 1 1 255\n\x01", RTE_ERR_FORMAT);
-    check_fails_str("P5 1 1 0\n\x01", RTE_ERR_FORMAT);           /* maxval 0 */
+    check_fails_str("P5 1 1 0\n\x01", RTE_ERR_FORMAT);            /* maxval 0 */
     check_fails_str("P5 1 1 256\n\x01\x02", RTE_ERR_UNSUPPORTED); /* 16-bit */
     check_fails_str("P5 1 1 65536\n\x01\x02", RTE_ERR_FORMAT);
     check_fails_str("P2 1 1 -1\n0\n", RTE_ERR_FORMAT);
-    check_fails_str("P5 0 2 255\n", RTE_ERR_FORMAT);              /* zero sizes */
+    check_fails_str("P5 0 2 255\n", RTE_ERR_FORMAT); /* zero sizes */
     check_fails_str("P5 2 0 255\n", RTE_ERR_FORMAT);
-    check_fails_str("P5 -3 2 255\n\x01", RTE_ERR_FORMAT);         /* negative */
+    check_fails_str("P5 -3 2 255\n\x01", RTE_ERR_FORMAT); /* negative */
     check_fails_str("P5 +3 2 255\n\x01", RTE_ERR_FORMAT);
-    check_fails_str("P5 3x 2 255\n\x01", RTE_ERR_FORMAT);         /* garbage */
+    check_fails_str("P5 3x 2 255\n\x01", RTE_ERR_FORMAT); /* garbage */
     check_fails_str("P5 3 2 25z\n\x01", RTE_ERR_FORMAT);
     check_fails_str("P5 3.5 2 255\n\x01", RTE_ERR_FORMAT);
     check_fails_str("P5 65536 65536 255\n\x01\x02\x03", RTE_ERR_TOO_LARGE);
     check_fails_str("P5 4294967297 2 255\n\x01", RTE_ERR_TOO_LARGE); /* overflows 32 bits */
     check_fails_str("P6 99999999999999999999 1 255\n\x01", RTE_ERR_TOO_LARGE);
-    check_fails_str("P5 30000 30000 255\n\x01\x02", RTE_ERR_TOO_LARGE); /* valid, beyond the reader */
+    check_fails_str("P5 30000 30000 255\n\x01\x02",
+                    RTE_ERR_TOO_LARGE); /* valid, beyond the reader */
     check_fails_str("P2 2 1 255\n1 -2\n", RTE_ERR_FORMAT);
     check_fails_str("P2 2 1 255\n1 x\n", RTE_ERR_FORMAT);
     check_fails_str("P3 1 1 255\n1 2 3z\n", RTE_ERR_FORMAT);
-    check_fails_str("P5 1 1 255", RTE_ERR_TRUNCATED);             /* no byte after maxval */
+    check_fails_str("P5 1 1 255", RTE_ERR_TRUNCATED); /* no byte after maxval */
     check_fails_str("P5 1 1 255#\n\x01", RTE_ERR_FORMAT);
 }
 
@@ -261,7 +266,8 @@ static void pnm_truncated(void **state)
     char msg[RTE_IO_MESSAGE_SIZE];
     rte_image_info info;
     write_file(pgm.data, pgm.size - 5);
-    assert_int_equal(rte_image_read(reader, path, pixels, 100, &info, msg, sizeof msg), RTE_ERR_TRUNCATED);
+    assert_int_equal(rte_image_read(reader, path, pixels, 100, &info, msg, sizeof msg),
+                     RTE_ERR_TRUNCATED);
     assert_non_null(strstr(msg, "bad-file.img: truncated: expected 91 pixel bytes, found 86"));
 
     /* A text PGM: every cut before the last value starts fails. */
@@ -282,12 +288,13 @@ static void png_truncated_and_corrupt(void **state)
     check_every_cut(rgb.data, 0, rgb.size, "cut RGB PNG");
 
     uint8_t *p = malloc(rgb.size + 64);
-    size_t ihdr = find_chunk(&rgb, "IHDR"), idat = find_chunk(&rgb, "IDAT"), iend = find_chunk(&rgb, "IEND");
+    size_t ihdr = find_chunk(&rgb, "IHDR"), idat = find_chunk(&rgb, "IDAT"),
+           iend = find_chunk(&rgb, "IEND");
     assert_true(ihdr && idat && iend);
     uint32_t idat_len = be32(rgb.data + idat);
 
     /* Bad CRCs: IHDR, IDAT, IEND. */
-    size_t crcs[] = { ihdr + 8 + 13, idat + 8 + idat_len, iend + 8 };
+    size_t crcs[] = {ihdr + 8 + 13, idat + 8 + idat_len, iend + 8};
     for (int i = 0; i < 3; i++) {
         memcpy(p, rgb.data, rgb.size);
         p[crcs[i]] ^= 0x40;
@@ -301,13 +308,15 @@ static void png_truncated_and_corrupt(void **state)
         write_file(p, rgb.size);
         char msg[RTE_IO_MESSAGE_SIZE];
         rte_image_info info;
-        rte_status st = rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info, msg, sizeof msg);
+        rte_status st = rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info,
+                                       msg, sizeof msg);
         /* A flip in the filter bytes or literals may still decode: then fine. */
         if (st != RTE_OK && !strstr(msg, "bad-file.img: "))
             fail_msg("IDAT flip: %s", msg);
     }
     /* Bad chunk lengths: huge, beyond the file, 2^31 and more, zero IDAT. */
-    const uint32_t lens[] = { 0x7FFFFFFFu, 0x80000000u, 0xFFFFFFFFu, idat_len + 1000, idat_len + 1, 0 };
+    const uint32_t lens[] = {0x7FFFFFFFu,     0x80000000u,  0xFFFFFFFFu,
+                             idat_len + 1000, idat_len + 1, 0};
     for (int i = 0; i < 6; i++) {
         memcpy(p, rgb.data, rgb.size);
         put_be32(p + idat, lens[i]);
@@ -322,11 +331,11 @@ static void png_truncated_and_corrupt(void **state)
         uint32_t value;
         int bytes, expected;
     } fields[] = {
-        { 8 + 8, 0, 4, RTE_ERR_FORMAT },           { 8 + 12, 0, 4, RTE_ERR_FORMAT },
-        { 8 + 8, 65536, 4, RTE_ERR_TOO_LARGE },    { 8 + 12, 0x80000000u, 4, RTE_ERR_FORMAT },
-        { 8 + 8, 30000, 4, RTE_ERR_TOO_LARGE },    { 8 + 16, 3, 1, RTE_ERR_FORMAT },
-        { 8 + 17, 5, 1, RTE_ERR_FORMAT },          { 8 + 18, 1, 1, RTE_ERR_FORMAT },
-        { 8 + 20, 2, 1, RTE_ERR_FORMAT },          { 8 + 17, 3, 1, ANY_ERROR }, /* palette, no PLTE */
+        {8 + 8, 0, 4, RTE_ERR_FORMAT},        {8 + 12, 0, 4, RTE_ERR_FORMAT},
+        {8 + 8, 65536, 4, RTE_ERR_TOO_LARGE}, {8 + 12, 0x80000000u, 4, RTE_ERR_FORMAT},
+        {8 + 8, 30000, 4, RTE_ERR_TOO_LARGE}, {8 + 16, 3, 1, RTE_ERR_FORMAT},
+        {8 + 17, 5, 1, RTE_ERR_FORMAT},       {8 + 18, 1, 1, RTE_ERR_FORMAT},
+        {8 + 20, 2, 1, RTE_ERR_FORMAT},       {8 + 17, 3, 1, ANY_ERROR}, /* palette, no PLTE */
     };
     for (size_t i = 0; i < sizeof fields / sizeof fields[0]; i++) {
         memcpy(p, rgb.data, rgb.size);
@@ -352,7 +361,7 @@ static void png_truncated_and_corrupt(void **state)
     check_fails(rgb.data, iend, RTE_ERR_TRUNCATED, "no IEND");
     /* An unknown critical chunk before IDAT. */
     memcpy(p, rgb.data, idat);
-    static const uint8_t crit[12] = { 0, 0, 0, 0, 'X', 'y', 'Z', 'w', 0, 0, 0, 0 };
+    static const uint8_t crit[12] = {0, 0, 0, 0, 'X', 'y', 'Z', 'w', 0, 0, 0, 0};
     memcpy(p + idat, crit, 12);
     fix_crc(p, idat);
     memcpy(p + idat + 12, rgb.data + idat, rgb.size - idat);
@@ -364,7 +373,8 @@ static void png_truncated_and_corrupt(void **state)
 
 static void jpeg_truncated_and_corrupt(void **state)
 {
-    blob jpg = make_jpeg(19, 11, TJSAMP_420, 0), prog = make_jpeg(17, 9, TJSAMP_444, TJFLAG_PROGRESSIVE);
+    blob jpg = make_jpeg(19, 11, TJSAMP_420, 0),
+         prog = make_jpeg(17, 9, TJSAMP_444, TJFLAG_PROGRESSIVE);
     blob grey = make_jpeg(8, 8, TJSAMP_GRAY, 0);
     assert_reads(&jpg);
     assert_reads(&prog);
@@ -403,27 +413,27 @@ static void jpeg_truncated_and_corrupt(void **state)
         uint8_t value;
         int expected;
     } edits[] = {
-        { dqt, 0x12, RTE_ERR_CORRUPT },     /* not a marker */
-        { dqt + 1, 0xD8, RTE_ERR_CORRUPT }, /* SOI again */
-        { dqt + 1, 0xD9, RTE_ERR_CORRUPT }, /* EOI in the headers */
-        { dqt + 1, 0x00, RTE_ERR_CORRUPT }, /* stuffed zero */
-        { dqt + 3, 0x00, ANY_ERROR },       /* length 0 or 1 */
-        { dqt + 3, 0x01, ANY_ERROR },
-        { dqt + 2, 0xFF, ANY_ERROR },       /* length beyond the file */
-        { dht + 4, 0x37, ANY_ERROR },       /* bad table class/index */
-        { sof + 1, 0xC3, RTE_ERR_UNSUPPORTED }, /* lossless */
-        { sof + 4, 12, RTE_ERR_UNSUPPORTED },   /* 12-bit */
-        { sof + 6, 0, RTE_ERR_UNSUPPORTED },    /* height 0 (DNL); the high byte is 0 */
-        { sof + 8, 0, RTE_ERR_UNSUPPORTED },    /* width 0 */
-        { sof + 5, 0xFF, RTE_ERR_TOO_LARGE },   /* 65291 rows */
-        { sof + 7, 0xFF, RTE_ERR_TOO_LARGE },
-        { sof + 9, 4, ANY_ERROR },              /* 4 components (length wrong) */
-        { sof + 9, 0, ANY_ERROR },
-        { sof + 11, 0x55, ANY_ERROR },          /* bad sampling factors */
-        { sof + 12, 9, ANY_ERROR },             /* quantisation table 9 */
-        { sos + 1, 0xC0, ANY_ERROR },           /* SOS turned into a second SOF */
-        { sos + 5, 7, ANY_ERROR },              /* scan names a missing component */
-        { sos + 6, 0x77, ANY_ERROR },           /* missing Huffman tables */
+        {dqt, 0x12, RTE_ERR_CORRUPT},     /* not a marker */
+        {dqt + 1, 0xD8, RTE_ERR_CORRUPT}, /* SOI again */
+        {dqt + 1, 0xD9, RTE_ERR_CORRUPT}, /* EOI in the headers */
+        {dqt + 1, 0x00, RTE_ERR_CORRUPT}, /* stuffed zero */
+        {dqt + 3, 0x00, ANY_ERROR},       /* length 0 or 1 */
+        {dqt + 3, 0x01, ANY_ERROR},
+        {dqt + 2, 0xFF, ANY_ERROR},           /* length beyond the file */
+        {dht + 4, 0x37, ANY_ERROR},           /* bad table class/index */
+        {sof + 1, 0xC3, RTE_ERR_UNSUPPORTED}, /* lossless */
+        {sof + 4, 12, RTE_ERR_UNSUPPORTED},   /* 12-bit */
+        {sof + 6, 0, RTE_ERR_UNSUPPORTED},    /* height 0 (DNL); the high byte is 0 */
+        {sof + 8, 0, RTE_ERR_UNSUPPORTED},    /* width 0 */
+        {sof + 5, 0xFF, RTE_ERR_TOO_LARGE},   /* 65291 rows */
+        {sof + 7, 0xFF, RTE_ERR_TOO_LARGE},
+        {sof + 9, 4, ANY_ERROR}, /* 4 components (length wrong) */
+        {sof + 9, 0, ANY_ERROR},
+        {sof + 11, 0x55, ANY_ERROR}, /* bad sampling factors */
+        {sof + 12, 9, ANY_ERROR},    /* quantisation table 9 */
+        {sos + 1, 0xC0, ANY_ERROR},  /* SOS turned into a second SOF */
+        {sos + 5, 7, ANY_ERROR},     /* scan names a missing component */
+        {sos + 6, 0x77, ANY_ERROR},  /* missing Huffman tables */
     };
     for (size_t i = 0; i < sizeof edits / sizeof edits[0]; i++) {
         memcpy(p, jpg.data, jpg.size);
@@ -444,7 +454,8 @@ static void jpeg_truncated_and_corrupt(void **state)
      * read beyond the segment and no crash. */
     uint8_t *q = malloc(jpg.size + 80);
     for (int i = 0; i < 200; i++) {
-        static const uint8_t head[14] = { 0xFF, 0xD8, 0xFF, 0xE1, 0, 66, 'E', 'x', 'i', 'f', 0, 0, 'I', 'I' };
+        static const uint8_t head[14] = {0xFF, 0xD8, 0xFF, 0xE1, 0, 66,  'E',
+                                         'x',  'i',  'f',  0,    0, 'I', 'I'};
         memcpy(q, head, sizeof head);
         if (i & 1)
             q[12] = q[13] = 'M';
@@ -456,7 +467,8 @@ static void jpeg_truncated_and_corrupt(void **state)
         write_file(q, jpg.size + 68);
         char msg[RTE_IO_MESSAGE_SIZE];
         rte_image_info info;
-        rte_status st = rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info, msg, sizeof msg);
+        rte_status st = rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info,
+                                       msg, sizeof msg);
         if (st != RTE_OK)
             fail_msg("garbage EXIF: %s", msg);
     }
@@ -481,7 +493,7 @@ static void real_files(void **state)
     const char *fixtures = getenv("RTE_FIXTURES_DIR");
     if (!fixtures)
         skip();
-    const char *names[] = { "smarties.png", "stuff.jpg", "smarties.ppm" };
+    const char *names[] = {"smarties.png", "stuff.jpg", "smarties.ppm"};
     for (int i = 0; i < 3; i++) {
         char file[512];
         snprintf(file, sizeof file, "%s/%s", fixtures, names[i]);
@@ -501,8 +513,8 @@ static void real_files(void **state)
             write_file(p, b.size);
             char msg[RTE_IO_MESSAGE_SIZE];
             rte_image_info info;
-            rte_status st =
-                rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3, &info, msg, sizeof msg);
+            rte_status st = rte_image_read(reader, path, pixels, (size_t)MAX_SIDE * MAX_SIDE * 3,
+                                           &info, msg, sizeof msg);
             if (st != RTE_OK && !strstr(msg, "bad-file.img: "))
                 fail_msg("%s flipped: %s", names[i], msg);
         }

@@ -35,8 +35,8 @@ static void path(char *out, size_t size, const char *name)
 
 typedef struct seen {
     int lanes, grasps, statuses, images;
-    int grasp_ok;           /* grasp messages whose objects match the drawn ones */
-    int lane_match;         /* lane messages within tolerance of the CSV */
+    int grasp_ok;   /* grasp messages whose objects match the drawn ones */
+    int lane_match; /* lane messages within tolerance of the CSV */
     int lane_checked;
     int deadline_met;
     int64_t last_sequence;
@@ -388,9 +388,13 @@ static void test_lcm_log_source(void **state)
     static uint8_t img[OW * OH];
     for (int k = 0; k < 8; k++) {
         objects_frame(k, img);
-        rtedge_image_t m = {.utime = 1000000 + k * 33333, .width = OW, .height = OH,
-                            .row_stride = OW, .pixelformat = RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
-                            .size = OW * OH, .data = img};
+        rtedge_image_t m = {.utime = 1000000 + k * 33333,
+                            .width = OW,
+                            .height = OH,
+                            .row_stride = OW,
+                            .pixelformat = RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
+                            .size = OW * OH,
+                            .data = img};
         assert_int_equal(rte_publish_image(pub, "CAMERA", &m, msg, sizeof msg), RTE_OK);
     }
     rte_publisher_destroy(pub);
@@ -423,7 +427,8 @@ static void test_reload(void **state)
     write_objects_y4m(y4m, 5, 0);
     snprintf(text, sizeof text,
              "[source]\npath = %s\npace = fast\nloop = true\n[publish]\nurl = memq://\n"
-             "[grasp]\nmin_area = 100\n", y4m);
+             "[grasp]\nmin_area = 100\n",
+             y4m);
     write_file(conf, text);
     rted_config c;
     rted_config_defaults(&c);
@@ -440,7 +445,8 @@ static void test_reload(void **state)
     /* The larger rectangle is 960 px, the smaller 900: a minimum of 920 keeps one. */
     snprintf(text, sizeof text,
              "[source]\npath = %s\npace = fast\nloop = true\n[publish]\nurl = memq://\n"
-             "[grasp]\nmin_area = 920\n", y4m);
+             "[grasp]\nmin_area = 920\n",
+             y4m);
     write_file(conf, text);
     assert_true(rted_daemon_reload(d, msg, sizeof msg));
     rted_counters n;
@@ -453,7 +459,8 @@ static void test_reload(void **state)
     /* A size change is refused and the old configuration stays. */
     snprintf(text, sizeof text,
              "[source]\npath = %s\npace = fast\nloop = true\n[publish]\nurl = memq://\n"
-             "[grasp]\nmin_area = 920\nmax_objects = 64\n", y4m);
+             "[grasp]\nmin_area = 920\nmax_objects = 64\n",
+             y4m);
     write_file(conf, text);
     assert_false(rted_daemon_reload(d, msg, sizeof msg));
     assert_non_null(strstr(msg, "grasp.max_objects"));
@@ -461,8 +468,8 @@ static void test_reload(void **state)
     assert_int_equal(n.refused, 1);
     assert_int_equal(n.reloads, 1);
     /* params_t: a runtime value applied, an out-of-range one and a size refused. */
-    rtedge_param_t p[1] = {{.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT,
-                            .int_value = 100}};
+    rtedge_param_t p[1] = {
+        {.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT, .int_value = 100}};
     rtedge_params_t pm = {.utime = 0, .request_id = 7, .nparams = 1, .params = p};
     uint8_t buf[512];
     int len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
@@ -488,10 +495,9 @@ static void test_params_channel(void **state)
     static seen s;
     memset(&s, 0, sizeof s);
     lcm_subscription_t *sub = lcm_subscribe(lcm, "RTEDGE_GRASP", on_message, &s);
-    rtedge_param_t p[2] = {{.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT,
-                            .int_value = 920},
-                           {.name = "deadline.ms", .kind = RTEDGE_PARAM_T_KIND_REAL,
-                            .real_value = 900}};
+    rtedge_param_t p[2] = {
+        {.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT, .int_value = 920},
+        {.name = "deadline.ms", .kind = RTEDGE_PARAM_T_KIND_REAL, .real_value = 900}};
     rtedge_params_t pm = {.request_id = 1, .nparams = 2, .params = p};
     uint8_t buf[512];
     int len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
@@ -509,8 +515,8 @@ static void test_params_channel(void **state)
     len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
     lcm_publish(lcm, "RTEDGE_PARAMS", buf, (unsigned)len);
     rted_daemon_step(d);
-    p[0] = (rtedge_param_t){.name = "lane.max_segments", .kind = RTEDGE_PARAM_T_KIND_INT,
-                            .int_value = 10};
+    p[0] = (rtedge_param_t){
+        .name = "lane.max_segments", .kind = RTEDGE_PARAM_T_KIND_INT, .int_value = 10};
     len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
     lcm_publish(lcm, "RTEDGE_PARAMS", buf, (unsigned)len);
     rted_daemon_step(d);
@@ -588,12 +594,12 @@ static void test_loop_without_good_frame(void **state)
         rted_step last;
         int max_steps;
     } cases[] = {
-        {"c", true, RTED_STEP_EMPTY, 3},    /* issue 18: one cut-short frame */
-        {"", true, RTED_STEP_EMPTY, 1},     /* a header only */
+        {"c", true, RTED_STEP_EMPTY, 3}, /* issue 18: one cut-short frame */
+        {"", true, RTED_STEP_EMPTY, 1},  /* a header only */
         {"xc", true, RTED_STEP_EMPTY, 4},
         {"", false, RTED_STEP_EMPTY, 1},
         {"gc", false, RTED_STEP_END, 4},
-        {"xgc", true, RTED_STEP_END, 40},   /* loops until max_frames */
+        {"xgc", true, RTED_STEP_END, 40}, /* loops until max_frames */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char y4m[512];
@@ -676,10 +682,9 @@ static void heap_run(const char *url, bool images, const char *record)
     print_message("%s: 999 frames, %llu messages, %llu status, %llu rewinds: %llu heap calls "
                   "(malloc %llu calloc %llu realloc %llu free %llu)\n",
                   url, (unsigned long long)n.published, (unsigned long long)n.status_sent,
-                  (unsigned long long)n.rewinds,
-                  (unsigned long long)heapcount_calls(&hc), (unsigned long long)hc.malloc_calls,
-                  (unsigned long long)hc.calloc_calls, (unsigned long long)hc.realloc_calls,
-                  (unsigned long long)hc.free_calls);
+                  (unsigned long long)n.rewinds, (unsigned long long)heapcount_calls(&hc),
+                  (unsigned long long)hc.malloc_calls, (unsigned long long)hc.calloc_calls,
+                  (unsigned long long)hc.realloc_calls, (unsigned long long)hc.free_calls);
     /* Nothing allocates. The only calls allowed are glibc's fseeko()
      * calling free(NULL) (its backup read area) when the Y4M source seeks
      * back for a rewind: at most one per rewind, none per frame. */

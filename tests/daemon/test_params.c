@@ -107,10 +107,9 @@ static void test_decode_valid(void **state)
     assert_string_equal(r.params[1].name, "deadline.ms");
     assert_true(r.params[1].real_value == 25.5);
     /* The same bytes as lcm-gen's encoder writes. */
-    rtedge_param_t p[2] = {{.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT,
-                            .int_value = 920},
-                           {.name = "deadline.ms", .kind = RTEDGE_PARAM_T_KIND_REAL,
-                            .real_value = 25.5}};
+    rtedge_param_t p[2] = {
+        {.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT, .int_value = 920},
+        {.name = "deadline.ms", .kind = RTEDGE_PARAM_T_KIND_REAL, .real_value = 25.5}};
     rtedge_params_t m = {.utime = 123456, .request_id = 42, .nparams = 2, .params = p};
     uint8_t gen[512];
     int len = rtedge_params_t_encode(gen, 0, sizeof gen, &m);
@@ -325,7 +324,8 @@ static void test_config_lists(void **state)
         expect_invalid(&c, bad[i][0], false, bad[i][1]);
     /* The frame checks: values that could never find anything on 160x120. */
     const char *frame[][2] = {
-        {"grasp.min_area=19201", "grasp.min_area = 19201 px is beyond the 160x120 frame's 19200 px"},
+        {"grasp.min_area=19201",
+         "grasp.min_area = 19201 px is beyond the 160x120 frame's 19200 px"},
         {"lane.hough_threshold=281", "lane.hough_threshold = 281 is beyond"},
         {"lane.min_length=1000", "lane.min_length = 1000 is beyond"},
         {"lane.roi=0.5,0.5;0.51,0.5;0.5,0.51", "covers 3x2 px of the 160x120 frame"},
@@ -384,11 +384,11 @@ static int issue_cases(hostile *h)
         {"kind 7", "grasp.min_area", 7, 5000, 0, 1},
         {"a negative count", "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 5000, 0, 0x80000000u},
         {"deadline.ms = 1e-300", "deadline.ms", RTEDGE_PARAM_T_KIND_REAL, 0, 1e-300, 1},
-        {"lane.hough_threshold = 100000", "lane.hough_threshold", RTEDGE_PARAM_T_KIND_INT,
-         100000, 0, 1},
+        {"lane.hough_threshold = 100000", "lane.hough_threshold", RTEDGE_PARAM_T_KIND_INT, 100000,
+         0, 1},
         {"grasp.min_area = 1e8", "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 100000000, 0, 1},
-        {"grasp.min_area beyond the frame", "grasp.min_area", RTEDGE_PARAM_T_KIND_INT,
-         OW * OH + 1, 0, 1},
+        {"grasp.min_area beyond the frame", "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, OW * OH + 1,
+         0, 1},
     };
     int n = 0;
     h[n].what = "nparams = 0x7fffffff";
@@ -465,9 +465,9 @@ static uint32_t rnd(uint32_t *seed)
  * lengths and counts forged), or random bytes. */
 static void hostile_message(writer *w, uint32_t *seed)
 {
-    static const char *const names[] = {"grasp.min_area", "lane.canny_low", "deadline.ms",
-                                        "lane.roi", "grasp.skip_border", "lane.max_segments",
-                                        "lane.hough_threshold"};
+    static const char *const names[] = {
+        "grasp.min_area",    "lane.canny_low",    "deadline.ms",         "lane.roi",
+        "grasp.skip_border", "lane.max_segments", "lane.hough_threshold"};
     uint32_t count = 1 + rnd(seed) % 4;
     put_head(w, (int64_t)rnd(seed), count);
     for (uint32_t i = 0; i < count; i++) {
@@ -532,10 +532,10 @@ static void test_handler_hostile_stream_no_heap(void **state)
     }
     rted_daemon_get_counters(d, &after);
     print_message("%d hostile messages and %d of issue 18's cases, %llu frames: %llu applied, "
-                  "%llu refused, %llu heap calls\n", N, N / 8, (unsigned long long)frames,
+                  "%llu refused, %llu heap calls\n",
+                  N, N / 8, (unsigned long long)frames,
                   (unsigned long long)(after.reloads - before.reloads),
-                  (unsigned long long)(after.refused - before.refused),
-                  (unsigned long long)calls);
+                  (unsigned long long)(after.refused - before.refused), (unsigned long long)calls);
     assert_int_equal(calls, 0);
     assert_int_equal(after.params_received - before.params_received, N + N / 8);
     assert_true(frames > 0);

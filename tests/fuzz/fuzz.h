@@ -51,12 +51,12 @@ static inline void fuzz_check_message(const char *msg, size_t size)
 }
 
 /* Fails the input (libFuzzer keeps it as a crash). */
-#define FUZZ_ASSERT(cond)                                                                      \
-    do {                                                                                       \
-        if (!(cond)) {                                                                         \
-            fprintf(stderr, "fuzz: %s:%d: %s\n", __FILE__, __LINE__, #cond);                   \
-            abort();                                                                           \
-        }                                                                                      \
+#define FUZZ_ASSERT(cond)                                                    \
+    do {                                                                     \
+        if (!(cond)) {                                                       \
+            fprintf(stderr, "fuzz: %s:%d: %s\n", __FILE__, __LINE__, #cond); \
+            abort();                                                         \
+        }                                                                    \
     } while (0)
 
 #endif

@@ -29,7 +29,9 @@ static inline rted_daemon *fuzz_daemon(void)
         for (int y = 0; y < FUZZ_H; y++)
             for (int x = 0; x < FUZZ_W; x++)
                 y4m[n++] = (x >= 20 + k && x < 50 + k && y >= 10 && y < 30) ||
-                                   (y > 50 && (x - y / 2) % 40 < 4) ? 220 : 40;
+                                   (y > 50 && (x - y / 2) % 40 < 4)
+                               ? 220
+                               : 40;
     }
     static char path[64];
     fuzz_file(y4m, n, path, sizeof path); /* kept open for the process */

@@ -30,8 +30,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FUZZ_ASSERT(info.width >= 1 && info.width <= FUZZ_MAX && info.height >= 1 &&
                     info.height <= FUZZ_MAX && (info.channels == 1 || info.channels == 3));
         /* The probe said the same (EXIF orientation included). */
-        FUZZ_ASSERT(probe == RTE_OK && probed.width == info.width &&
-                    probed.height == info.height && probed.channels == info.channels);
+        FUZZ_ASSERT(probe == RTE_OK && probed.width == info.width && probed.height == info.height &&
+                    probed.channels == info.channels);
         /* The other entry points on an image of the size found, with padding. */
         int32_t w = info.width, h = info.height;
         if ((w + 3) * h * 3 <= (int32_t)sizeof pixels) {

@@ -34,10 +34,32 @@ static uint64_t u64(input *in)
 
 static int64_t int_value(input *in)
 {
-    static const int64_t special[] = {0, 1, -1, 2, 3, 5, 15, 16, 255, 256, 1000, 2040, 2041,
-                                      16384, 16385, 65536, 6912, 6913, 100000, 67108864,
-                                      67108865, INT32_MAX, (int64_t)INT32_MAX + 1, INT32_MIN,
-                                      INT64_MAX, INT64_MIN};
+    static const int64_t special[] = {0,
+                                      1,
+                                      -1,
+                                      2,
+                                      3,
+                                      5,
+                                      15,
+                                      16,
+                                      255,
+                                      256,
+                                      1000,
+                                      2040,
+                                      2041,
+                                      16384,
+                                      16385,
+                                      65536,
+                                      6912,
+                                      6913,
+                                      100000,
+                                      67108864,
+                                      67108865,
+                                      INT32_MAX,
+                                      (int64_t)INT32_MAX + 1,
+                                      INT32_MIN,
+                                      INT64_MAX,
+                                      INT64_MIN};
     uint8_t how = u8(in);
     if (how < 128)
         return special[how % (sizeof special / sizeof special[0])];
@@ -50,8 +72,8 @@ static int64_t int_value(input *in)
 
 static double real_value(input *in)
 {
-    static const double special[] = {0, 0.1, 0.09999, 1, 2, 30, 1000, 10000, 10000.5, 60000,
-                                     -1, -0.5, 1e-300, -1e-300, 1e300, 5e-324};
+    static const double special[] = {0,       0.1,   0.09999, 1,    2,      30,      1000,  10000,
+                                     10000.5, 60000, -1,      -0.5, 1e-300, -1e-300, 1e300, 5e-324};
     uint8_t how = u8(in);
     if (how < 100)
         return special[how % (sizeof special / sizeof special[0])];
@@ -77,8 +99,8 @@ static size_t key_count(void)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static const char *const bad_names[] = {"lane", "lane.", ".x", "nosuch.key", "lane.canny",
-                                            "grasp.min_area2", "params.enabled"};
+    static const char *const bad_names[] = {
+        "lane", "lane.", ".x", "nosuch.key", "lane.canny", "grasp.min_area2", "params.enabled"};
     static size_t n_keys;
     if (!n_keys)
         n_keys = key_count();
@@ -95,16 +117,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         else
             rted_key_get_name(k, names[i], sizeof names[i]);
         rted_key_type t = rted_key_get_type(k);
-        int8_t right = t == RTED_KEY_REAL ? RTEDGE_PARAM_T_KIND_REAL
-                       : t == RTED_KEY_BOOL ? RTEDGE_PARAM_T_KIND_BOOL : RTEDGE_PARAM_T_KIND_INT;
+        int8_t right = t == RTED_KEY_REAL   ? RTEDGE_PARAM_T_KIND_REAL
+                       : t == RTED_KEY_BOOL ? RTEDGE_PARAM_T_KIND_BOOL
+                                            : RTEDGE_PARAM_T_KIND_INT;
         uint8_t kind = u8(&in);
-        params[i] = (rtedge_param_t){.name = names[i],
-                                     .kind = kind < 200 ? right : (int8_t)(kind % 9 - 1)};
+        params[i] =
+            (rtedge_param_t){.name = names[i], .kind = kind < 200 ? right : (int8_t)(kind % 9 - 1)};
         params[i].int_value = int_value(&in);
         params[i].real_value = real_value(&in);
     }
-    rtedge_params_t m = {.utime = (int64_t)u64(&in), .request_id = (int64_t)u64(&in),
-                         .nparams = count, .params = params};
+    rtedge_params_t m = {.utime = (int64_t)u64(&in),
+                         .request_id = (int64_t)u64(&in),
+                         .nparams = count,
+                         .params = params};
     static uint8_t buf[2 * RTED_PARAMS_MAX_BYTES];
     int len = rtedge_params_t_encode(buf, 0, sizeof buf, &m);
     FUZZ_ASSERT(len > 0);

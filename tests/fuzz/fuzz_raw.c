@@ -5,13 +5,17 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static const rte_pixel_format formats[] = {RTE_PIXEL_GREY, RTE_PIXEL_BGR24, RTE_PIXEL_RGB24,
-                                               RTE_PIXEL_YUYV, RTE_PIXEL_UYVY, RTE_PIXEL_NV12,
-                                               (rte_pixel_format)0, (rte_pixel_format)99};
+    static const rte_pixel_format formats[] = {
+        RTE_PIXEL_GREY, RTE_PIXEL_BGR24, RTE_PIXEL_RGB24,     RTE_PIXEL_YUYV,
+        RTE_PIXEL_UYVY, RTE_PIXEL_NV12,  (rte_pixel_format)0, (rte_pixel_format)99};
     if (size < 3)
         return 0;
-    rte_raw_source_config c = {NULL, formats[data[0] % 8], 1 + data[1] % 64, 1 + data[2] % 64,
-                               data[0] & 0x80 ? 0 : 25, data[0] & 0x40 ? 0 : 1};
+    rte_raw_source_config c = {NULL,
+                               formats[data[0] % 8],
+                               1 + data[1] % 64,
+                               1 + data[2] % 64,
+                               data[0] & 0x80 ? 0 : 25,
+                               data[0] & 0x40 ? 0 : 1};
     char path[64], msg[RTE_SOURCE_MESSAGE_SIZE];
     int fd = fuzz_file(data + 3, size - 3, path, sizeof path);
     c.path = path;

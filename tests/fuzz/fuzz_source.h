@@ -7,9 +7,9 @@
 #include "sources/recorded_source.h"
 
 typedef struct fuzz_passes {
-    uint64_t good[2], bad[2];  /* frames delivered and slots refused, per pass */
-    uint32_t bad_kinds;        /* 1 << status of each refusal */
-    bool capped[2];            /* the pass stopped at max_slots, not at the end */
+    uint64_t good[2], bad[2]; /* frames delivered and slots refused, per pass */
+    uint32_t bad_kinds;       /* 1 << status of each refusal */
+    bool capped[2];           /* the pass stopped at max_slots, not at the end */
 } fuzz_passes;
 
 /* Two passes of at most max_slots each with a rewind between them. Every

@@ -137,7 +137,7 @@ typedef struct golden {
 } golden;
 
 __attribute__((format(printf, 4, 5))) static void emit(golden *g, const char *what, uint64_t hash,
-                                                     const char *fmt, ...)
+                                                       const char *fmt, ...)
 {
     char note[160], line[512];
     va_list ap;
@@ -318,7 +318,7 @@ static void run_blur(golden *g, const input *in)
     static const struct {
         int32_t kx, ky;
         double sx, sy;
-    } cases[] = {{3, 3, 0, 0}, {5, 5, 0, 0}, {7, 7, 0, 0}, {9, 9, 0, 0}, {11, 11, 0, 0},
+    } cases[] = {{3, 3, 0, 0},   {5, 5, 0, 0},   {7, 7, 0, 0}, {9, 9, 0, 0}, {11, 11, 0, 0},
                  {15, 15, 0, 0}, {5, 5, 1.2, 0}, {3, 9, 0, 0}, {1, 7, 0, 0}, {0, 0, 2.0, 0.7}};
     rte_image_u8 dst = new_u8(g, in->w, in->h);
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -326,9 +326,9 @@ static void run_blur(golden *g, const input *in)
         snprintf(what, sizeof what, "gaussian.%dx%d.s%.1f,%.1f", cases[i].kx, cases[i].ky,
                  cases[i].sx, cases[i].sy);
         rte_gaussian_kernel k;
-        if (emit_status(g, what,
-                        rte_gaussian_kernel_init(&k, cases[i].kx, cases[i].ky, cases[i].sx,
-                                                 cases[i].sy)))
+        if (emit_status(
+                g, what,
+                rte_gaussian_kernel_init(&k, cases[i].kx, cases[i].ky, cases[i].sx, cases[i].sy)))
             continue;
         digest d = dg_new();
         dg_int(&d, k.ksize_x);
@@ -361,9 +361,9 @@ static void run_gradient(golden *g, const input *in)
     for (int32_t ksize = 1; ksize <= 7; ksize += 2)
         for (size_t o = 0; o < sizeof orders / sizeof orders[0]; o++) {
             snprintf(what, sizeof what, "sobel.k%d.d%d%d", ksize, orders[o][0], orders[o][1]);
-            if (!emit_status(g, what,
-                             rte_sobel_s16(&in->gray, &dst, orders[o][0], orders[o][1], ksize,
-                                           &g->arena)))
+            if (!emit_status(
+                    g, what,
+                    rte_sobel_s16(&in->gray, &dst, orders[o][0], orders[o][1], ksize, &g->arena)))
                 emit_s16(g, what, &dst);
         }
     for (int32_t o = 0; o < 2; o++) {
@@ -443,8 +443,8 @@ static void run_threshold(golden *g, const input *in)
     static const struct {
         double thresh, maxval;
         bool otsu;
-    } cases[] = {{127, 255, false}, {200.5, 100, false}, {-1, 255, false}, {0, 255, true},
-                 {0, 180, true}};
+    } cases[] = {
+        {127, 255, false}, {200.5, 100, false}, {-1, 255, false}, {0, 255, true}, {0, 180, true}};
     for (int type = RTE_THRESH_BINARY; type <= RTE_THRESH_TOZERO_INV; type++)
         for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
             snprintf(what, sizeof what, "threshold.t%d.%g,%g%s", type, cases[c].thresh,
@@ -459,7 +459,8 @@ static void run_threshold(golden *g, const input *in)
             int64_t nz;
             bool ok;
             uint64_t h = hash_u8(&dst, &nz, &ok);
-            emit(g, what, h, "used=%d nonzero=%" PRId64 "%s", used, nz, ok ? "" : " GUARD-OVERWRITTEN");
+            emit(g, what, h, "used=%d nonzero=%" PRId64 "%s", used, nz,
+                 ok ? "" : " GUARD-OVERWRITTEN");
         }
     uint32_t hist[256];
     if (emit_status(g, "histogram", rte_histogram_u8(&in->gray, hist)))
@@ -471,8 +472,9 @@ static void run_threshold(golden *g, const input *in)
     int32_t otsu = -1, lo = -1, hi = -1;
     if (!emit_status(g, "otsu", rte_threshold_otsu_u8(&in->gray, &otsu)))
         emit(g, "otsu", (uint64_t)otsu, "t=%d", otsu);
-    if (!emit_status(g, "auto-canny.median",
-                     rte_threshold_auto_canny_median(hist, RTE_AUTO_CANNY_SIGMA_PERMILLE, &lo, &hi)))
+    if (!emit_status(
+            g, "auto-canny.median",
+            rte_threshold_auto_canny_median(hist, RTE_AUTO_CANNY_SIGMA_PERMILLE, &lo, &hi)))
         emit(g, "auto-canny.median", (uint64_t)lo << 32 | (uint32_t)hi, "%d,%d", lo, hi);
     if (!emit_status(g, "auto-canny.otsu", rte_threshold_auto_canny_otsu(hist, &lo, &hi)))
         emit(g, "auto-canny.otsu", (uint64_t)lo << 32 | (uint32_t)hi, "%d,%d", lo, hi);
@@ -526,7 +528,8 @@ static void run_polygon(golden *g, const input *in)
     const rte_vertex frac[] = {{0, 65536}, {29491, 39322}, {36045, 39322}, {65536, 65536}};
     rte_vertex trapezoid[4];
     rte_image_u8 mask = new_u8(g, in->w, in->h), dst = new_u8(g, in->w, in->h);
-    if (emit_status(g, "polygon.mask", rte_polygon_from_fractions(frac, 4, in->w, in->h, trapezoid)))
+    if (emit_status(g, "polygon.mask",
+                    rte_polygon_from_fractions(frac, 4, in->w, in->h, trapezoid)))
         return;
     rte_polygon poly = {trapezoid, 4};
     if (!emit_status(g, "polygon.mask", rte_polygon_mask_build(&mask, &poly, 1, &g->arena))) {
@@ -536,8 +539,8 @@ static void run_polygon(golden *g, const input *in)
     }
     /* A self-intersecting star beside a triangle partly outside the image. */
     int32_t w = in->w, h = in->h;
-    const rte_vertex star[] = {{w / 2, 0},         {w * 4 / 5, h - 1}, {0, h / 3},
-                               {w - 1, h / 3},     {w / 5, h - 1}};
+    const rte_vertex star[] = {
+        {w / 2, 0}, {w * 4 / 5, h - 1}, {0, h / 3}, {w - 1, h / 3}, {w / 5, h - 1}};
     const rte_vertex tri[] = {{-w / 4, h / 2}, {w / 3, h + h / 5}, {w / 3, h / 3}};
     const rte_polygon polys[] = {{star, 5}, {tri, 3}};
     rte_image_u8 filled = copy_u8(g, &in->gray);
@@ -586,7 +589,8 @@ static void run_contours(golden *g, const input *in, const rte_image_u8 *bin, rt
     static const char *mode_names[] = {"external", "list", "ccomp", "tree"};
     char what[64];
     for (int mode = RTE_CONTOURS_EXTERNAL; mode <= RTE_CONTOURS_TREE; mode++)
-        for (int method = RTE_CONTOURS_APPROX_NONE; method <= RTE_CONTOURS_APPROX_SIMPLE; method++) {
+        for (int method = RTE_CONTOURS_APPROX_NONE; method <= RTE_CONTOURS_APPROX_SIMPLE;
+             method++) {
             snprintf(what, sizeof what, "contours.%s.%s", mode_names[mode],
                      method == RTE_CONTOURS_APPROX_NONE ? "none" : "simple");
             if (!emit_status(g, what,
@@ -596,8 +600,9 @@ static void run_contours(golden *g, const input *in, const rte_image_u8 *bin, rt
                      c->n_points);
         }
     /* Leaves the external, simple contours of the binary image in *c. */
-    if (emit_status(g, "contours", rte_contours_find(bin, RTE_CONTOURS_EXTERNAL,
-                                                     RTE_CONTOURS_APPROX_SIMPLE, c, &g->arena)))
+    if (emit_status(g, "contours",
+                    rte_contours_find(bin, RTE_CONTOURS_EXTERNAL, RTE_CONTOURS_APPROX_SIMPLE, c,
+                                      &g->arena)))
         c->n_contours = 0;
 }
 
@@ -606,15 +611,9 @@ static void dg_rotated_rect(digest *d, const rte_rotated_rect *r)
     dg_int32s(d, &r->cx_q8, INT32_FIELDS(*r));
 }
 
-static void dg_circle(digest *d, const rte_circle *c)
-{
-    dg_int32s(d, &c->cx_q8, INT32_FIELDS(*c));
-}
+static void dg_circle(digest *d, const rte_circle *c) { dg_int32s(d, &c->cx_q8, INT32_FIELDS(*c)); }
 
-static void dg_rect(digest *d, rte_rect r)
-{
-    dg_int32s(d, &r.x, INT32_FIELDS(r));
-}
+static void dg_rect(digest *d, rte_rect r) { dg_int32s(d, &r.x, INT32_FIELDS(r)); }
 
 static void dg_shape_info(digest *d, const rte_shape_info *s)
 {
@@ -637,11 +636,11 @@ static void dg_shape_info(digest *d, const rte_shape_info *s)
 
 static void dg_moments(digest *d, const rte_moments *m)
 {
-    const int64_t v[] = {m->s00,     m->s10,     m->s01,     m->s20,     m->s11,     m->s02,
-                         m->s30,     m->s21,     m->s12,     m->s03,     m->cx_q16,  m->cy_q16,
-                         m->mu20_q8, m->mu11_q8, m->mu02_q8, m->mu30_q8, m->mu21_q8, m->mu12_q8,
-                         m->mu03_q8, m->nu20_q32, m->nu11_q32, m->nu02_q32, m->nu30_q32,
-                         m->nu21_q32, m->nu12_q32, m->nu03_q32};
+    const int64_t v[] = {
+        m->s00,      m->s10,      m->s01,      m->s20,      m->s11,     m->s02,      m->s30,
+        m->s21,      m->s12,      m->s03,      m->cx_q16,   m->cy_q16,  m->mu20_q8,  m->mu11_q8,
+        m->mu02_q8,  m->mu30_q8,  m->mu21_q8,  m->mu12_q8,  m->mu03_q8, m->nu20_q32, m->nu11_q32,
+        m->nu02_q32, m->nu30_q32, m->nu21_q32, m->nu12_q32, m->nu03_q32};
     for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
         dg_int(d, v[i]);
     for (int i = 0; i < 7; i++)
@@ -653,9 +652,9 @@ static void dg_moments(digest *d, const rte_moments *m)
 static void run_shapes(golden *g, const rte_contours *c)
 {
     enum { AREA, PERIMETER, BOUNDS, MOMENTS, HULL, DEFECTS, APPROX, BOX, CIRCLE, CLASSIFY, N };
-    static const char *names[N] = {"area",  "perimeter",   "bounds", "moments",
-                                   "hull",  "defects",     "approx", "min-area-rect",
-                                   "enclosing-circle", "classify"};
+    static const char *names[N] = {
+        "area",    "perimeter", "bounds",        "moments",          "hull",
+        "defects", "approx",    "min-area-rect", "enclosing-circle", "classify"};
     digest d[N];
     for (int i = 0; i < N; i++)
         d[i] = dg_new();
@@ -689,9 +688,9 @@ static void run_shapes(golden *g, const rte_contours *c)
             dg_int(&d[HULL], pts_out[j].y);
         }
         int32_t n_def = 0;
-        rte_status dst = st == RTE_OK ? rte_shape_convexity_defects(pts, n, hull_idx, n_hull, defects,
-                                                                    &n_def)
-                                      : st;
+        rte_status dst =
+            st == RTE_OK ? rte_shape_convexity_defects(pts, n, hull_idx, n_hull, defects, &n_def)
+                         : st;
         dg_int(&d[DEFECTS], dst);
         for (int32_t j = 0; dst == RTE_OK && j < n_def; j++) {
             dg_int(&d[DEFECTS], defects[j].start);
@@ -741,7 +740,6 @@ static void run_shapes(golden *g, const rte_contours *c)
 }
 
 /* ---- Hough ---- */
-
 
 static void emit_records(golden *g, const char *what, const char *noun, const int32_t *first,
                          int32_t count, int32_t fields, bool truncated)
@@ -822,7 +820,8 @@ static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
         for (size_t s = 0; s < sizeof seg_cases / sizeof seg_cases[0]; s++) {
             snprintf(what, sizeof what, "hough.segments.r%g.v%d.l%d.g%d%s%.0x", line_cases[i].rho,
                      seg_cases[s].threshold, seg_cases[s].min_length, seg_cases[s].max_gap,
-                     seg_cases[s].seed ? ".s" : "", seg_cases[s].seed); /* the seed, when not the default */
+                     seg_cases[s].seed ? ".s" : "",
+                     seg_cases[s].seed); /* the seed, when not the default */
             if (emit_status(g, what,
                             rte_hough_segments(cfg, &edges, &seg_cases[s], &g->arena, segs,
                                                MAX_SEGMENTS, &count, &truncated)))
@@ -862,15 +861,15 @@ static void emit_lane(golden *g, const char *what, const rte_lane_result *r)
     digest d = dg_new();
     for (int s = 0; s < 2; s++) {
         const rte_lane *l = &r->lane[s];
-        const int64_t v[] = {l->found,     l->predicted, l->lost_frames,         l->x_bottom_q8,
-                             l->x_top_q8,  l->y_bottom,  l->y_top, l->confidence_permille,
+        const int64_t v[] = {l->found,     l->predicted, l->lost_frames, l->x_bottom_q8,
+                             l->x_top_q8,  l->y_bottom,  l->y_top,       l->confidence_permille,
                              l->support_px};
         for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
             dg_int(&d, v[i]);
     }
-    const int64_t v[] = {r->centre_valid,    r->offset_q8,    r->offset_permille,
-                         r->heading_tan_q16, r->heading_mrad, r->canny_low,
-                         r->canny_high,      r->segment_count, r->truncated, r->t_ns};
+    const int64_t v[] = {r->centre_valid, r->offset_q8, r->offset_permille, r->heading_tan_q16,
+                         r->heading_mrad, r->canny_low, r->canny_high,      r->segment_count,
+                         r->truncated,    r->t_ns};
     for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
         dg_int(&d, v[i]);
     for (int32_t i = 0; i < r->segment_count; i++) {
@@ -1052,7 +1051,8 @@ static void run_y4m(golden *g, const char *path, rte_hough_config *cfg)
         char what[48];
         snprintf(what, sizeof what, "lane.sequence.frame%03d", n);
         rte_lane_result r;
-        if (!emit_status(g, what, rte_lane_process_gray(ctx, &frame, NULL, (int64_t)n * 40000000, &r)))
+        if (!emit_status(g, what,
+                         rte_lane_process_gray(ctx, &frame, NULL, (int64_t)n * 40000000, &r)))
             emit_lane(g, what, &r);
         if (n++ == 0) { /* the first frame, as a colour image of grey pixels */
             in.gray = copy_u8(g, &frame);

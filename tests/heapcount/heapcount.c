@@ -91,20 +91,11 @@ int posix_memalign(void **out, size_t alignment, size_t size)
     return 0;
 }
 
-void *aligned_alloc(size_t alignment, size_t size)
-{
-    return memalign(alignment, size);
-}
+void *aligned_alloc(size_t alignment, size_t size) { return memalign(alignment, size); }
 
-void *valloc(size_t size)
-{
-    return memalign(4096, size);
-}
+void *valloc(size_t size) { return memalign(4096, size); }
 
-void *pvalloc(size_t size)
-{
-    return memalign(4096, (size + 4095) & ~(size_t)4095);
-}
+void *pvalloc(size_t size) { return memalign(4096, (size + 4095) & ~(size_t)4095); }
 
 #define LOAD(var) __atomic_load_n(&(var), __ATOMIC_RELAXED)
 #define CLEAR(var) __atomic_store_n(&(var), 0, __ATOMIC_RELAXED)
@@ -118,10 +109,7 @@ void heapcount_get(heapcount_counts *c)
     c->bytes = LOAD(n_bytes);
 }
 
-void heapcount_get_thread(heapcount_counts *c)
-{
-    *c = thread_counts;
-}
+void heapcount_get_thread(heapcount_counts *c) { *c = thread_counts; }
 
 void heapcount_reset(void)
 {
@@ -163,11 +151,11 @@ __attribute__((destructor)) static void heapcount_report(void)
     heapcount_counts c;
     heapcount_get(&c);
     char line[256];
-    int n = snprintf(line, sizeof line,
-                     "malloc %llu calloc %llu realloc %llu free %llu bytes %llu\n",
-                     (unsigned long long)c.malloc_calls, (unsigned long long)c.calloc_calls,
-                     (unsigned long long)c.realloc_calls, (unsigned long long)c.free_calls,
-                     (unsigned long long)c.bytes);
+    int n =
+        snprintf(line, sizeof line, "malloc %llu calloc %llu realloc %llu free %llu bytes %llu\n",
+                 (unsigned long long)c.malloc_calls, (unsigned long long)c.calloc_calls,
+                 (unsigned long long)c.realloc_calls, (unsigned long long)c.free_calls,
+                 (unsigned long long)c.bytes);
     int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0)
         return;

@@ -24,11 +24,11 @@ extern "C" {
 #endif
 
 typedef struct heapcount_counts {
-    uint64_t malloc_calls;   /* malloc, and the aligned allocators */
+    uint64_t malloc_calls; /* malloc, and the aligned allocators */
     uint64_t calloc_calls;
     uint64_t realloc_calls;
-    uint64_t free_calls;     /* free(NULL) included: it is still a call */
-    uint64_t bytes;          /* requested by malloc/calloc/realloc/aligned */
+    uint64_t free_calls; /* free(NULL) included: it is still a call */
+    uint64_t bytes;      /* requested by malloc/calloc/realloc/aligned */
 } heapcount_counts;
 
 /* The process's counts since the last reset. */

@@ -38,10 +38,7 @@ static inline float sample_f(uint32_t *s)
     return (float)(*s % 100000) / 64.0f;
 }
 
-static inline int32_t sample_i(uint32_t *s)
-{
-    return (int32_t)(sample_f(s) * 64.0f) - 50000;
-}
+static inline int32_t sample_i(uint32_t *s) { return (int32_t)(sample_f(s) * 64.0f) - 50000; }
 
 static inline void sample_header(rtedge_header_t *h, samples *s, uint32_t *r)
 {
@@ -101,11 +98,12 @@ static inline void samples_fill(samples *s, uint32_t seed)
     sample_header(&grasp->header, s, &r);
     for (int i = 0; i < SAMPLE_OBJECTS; i++) {
         rtedge_grasp_object_t *o = &s->objects[i];
-        float *fields[] = {&o->centroid_x, &o->centroid_y, &o->area, &o->perimeter,
-                           &o->rect_centre_x, &o->rect_centre_y, &o->rect_width,
-                           &o->rect_height, &o->rect_angle_deg, &o->solidity, &o->extent,
-                           &o->aspect_ratio, &o->grasp_x, &o->grasp_y,
-                           &o->approach_angle_deg, &o->opening_width_px};
+        float *fields[] = {&o->centroid_x,      &o->centroid_y,    &o->area,
+                           &o->perimeter,       &o->rect_centre_x, &o->rect_centre_y,
+                           &o->rect_width,      &o->rect_height,   &o->rect_angle_deg,
+                           &o->solidity,        &o->extent,        &o->aspect_ratio,
+                           &o->grasp_x,         &o->grasp_y,       &o->approach_angle_deg,
+                           &o->opening_width_px};
         for (unsigned k = 0; k < sizeof fields / sizeof fields[0]; k++)
             *fields[k] = sample_f(&r);
         for (int k = 0; k < 4; k++) {
@@ -151,9 +149,15 @@ static inline void samples_fill(samples *s, uint32_t seed)
     s->meta_value[1] = 2;
     s->meta_value[2] = 3;
     s->metadata[0] = (rtedge_image_metadata_t){(char *)"exposure", 3, s->meta_value};
-    s->image = (rtedge_image_t){1700000000000001LL, SAMPLE_IMAGE_W, SAMPLE_IMAGE_H,
-                                SAMPLE_IMAGE_W, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
-                                SAMPLE_IMAGE_W * SAMPLE_IMAGE_H, s->pixels, 1, s->metadata};
+    s->image = (rtedge_image_t){1700000000000001LL,
+                                SAMPLE_IMAGE_W,
+                                SAMPLE_IMAGE_H,
+                                SAMPLE_IMAGE_W,
+                                RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
+                                SAMPLE_IMAGE_W * SAMPLE_IMAGE_H,
+                                s->pixels,
+                                1,
+                                s->metadata};
 }
 
 /* The channels the samples go on, in sample_publish's order. */

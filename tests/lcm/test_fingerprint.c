@@ -49,7 +49,7 @@ static void test_same_bytes(void **state)
 static void test_pixel_formats_are_fourccs(void **state)
 {
     (void)state;
-#define FOURCC(a, b, c, d)                                                                      \
+#define FOURCC(a, b, c, d) \
     ((int32_t)((uint32_t)(a) | (uint32_t)(b) << 8 | (uint32_t)(c) << 16 | (uint32_t)(d) << 24))
     assert_int_equal(RTEDGE_IMAGE_T_PIXEL_FORMAT_UYVY, 1498831189);
     assert_int_equal(RTEDGE_IMAGE_T_PIXEL_FORMAT_UYVY, FOURCC('U', 'Y', 'V', 'Y'));

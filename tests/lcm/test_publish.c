@@ -51,18 +51,18 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 
 /* Decodes `data` as TYPE, re-encodes it and compares the bytes with what
  * encoding `orig` gives: every field survived. */
-#define CHECK_ROUND_TRIP(TYPE, orig, data, size)                                                \
-    do {                                                                                        \
-        TYPE decoded;                                                                           \
-        assert_int_equal(TYPE##_decode((data), 0, (size), &decoded), (size));                   \
-        uint8_t *a = malloc((size_t)(size)), *b = malloc((size_t)(size));                       \
-        assert_int_equal(TYPE##_encode(a, 0, (size), (orig)), (size));                          \
-        assert_int_equal(TYPE##_encode(b, 0, (size), &decoded), (size));                        \
-        assert_memory_equal(a, b, (size_t)(size));                                              \
-        assert_memory_equal(a, (data), (size_t)(size));                                         \
-        free(a);                                                                                \
-        free(b);                                                                                \
-        TYPE##_decode_cleanup(&decoded);                                                        \
+#define CHECK_ROUND_TRIP(TYPE, orig, data, size)                              \
+    do {                                                                      \
+        TYPE decoded;                                                         \
+        assert_int_equal(TYPE##_decode((data), 0, (size), &decoded), (size)); \
+        uint8_t *a = malloc((size_t)(size)), *b = malloc((size_t)(size));     \
+        assert_int_equal(TYPE##_encode(a, 0, (size), (orig)), (size));        \
+        assert_int_equal(TYPE##_encode(b, 0, (size), &decoded), (size));      \
+        assert_memory_equal(a, b, (size_t)(size));                            \
+        assert_memory_equal(a, (data), (size_t)(size));                       \
+        free(a);                                                              \
+        free(b);                                                              \
+        TYPE##_decode_cleanup(&decoded);                                      \
     } while (0)
 
 static rte_publisher *create(const char *url)
@@ -101,15 +101,9 @@ static void check_message(int index, const char *channel, const uint8_t *data, i
         rtedge_lane_detection_t_decode_cleanup(&d);
         break;
     }
-    case 1:
-        CHECK_ROUND_TRIP(rtedge_grasp_detection_t, &s->grasp, data, size);
-        break;
-    case 2:
-        CHECK_ROUND_TRIP(rtedge_status_t, &s->status, data, size);
-        break;
-    case 3:
-        CHECK_ROUND_TRIP(rtedge_params_t, &s->paramset, data, size);
-        break;
+    case 1: CHECK_ROUND_TRIP(rtedge_grasp_detection_t, &s->grasp, data, size); break;
+    case 2: CHECK_ROUND_TRIP(rtedge_status_t, &s->status, data, size); break;
+    case 3: CHECK_ROUND_TRIP(rtedge_params_t, &s->paramset, data, size); break;
     default: {
         CHECK_ROUND_TRIP(rtedge_image_t, &s->image, data, size);
         rtedge_image_t d;
@@ -273,9 +267,9 @@ static void test_limits_and_urls(void **state)
                      RTE_ERR_ARGUMENT);
     assert_int_equal(rte_publisher_create(&p, "file:///tmp/x?speed=2", &limits, msg, sizeof msg),
                      RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_publisher_create(&p, "file:///nonexistent-dir/x.log", &limits, msg,
-                                          sizeof msg),
-                     RTE_ERR_IO);
+    assert_int_equal(
+        rte_publisher_create(&p, "file:///nonexistent-dir/x.log", &limits, msg, sizeof msg),
+        RTE_ERR_IO);
     assert_int_equal(rte_publisher_create(&p, "nosuch://", &limits, msg, sizeof msg), RTE_ERR_IO);
     rte_publish_limits bad = limits;
     bad.max_segments = -1;
@@ -445,12 +439,9 @@ static void test_heap_calls_memq(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_memq_round_trip),
-        cmocka_unit_test(test_file_log_read_back),
-        cmocka_unit_test(test_limits_and_urls),
-        cmocka_unit_test(test_damaged_log),
-        cmocka_unit_test(test_heap_calls_file),
-        cmocka_unit_test(test_heap_calls_memq),
+        cmocka_unit_test(test_memq_round_trip), cmocka_unit_test(test_file_log_read_back),
+        cmocka_unit_test(test_limits_and_urls), cmocka_unit_test(test_damaged_log),
+        cmocka_unit_test(test_heap_calls_file), cmocka_unit_test(test_heap_calls_memq),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -28,8 +28,13 @@ extern char **environ;
 #define URL "udpm://239.255.76.67:7667?ttl=0"
 
 static const rte_publish_limits limits = {
-    .max_text = 64, .max_roi_points = 8, .max_segments = 16, .max_objects = 4,
-    .max_params = 4, .max_image_bytes = 100000, .max_metadata = 2,
+    .max_text = 64,
+    .max_roi_points = 8,
+    .max_segments = 16,
+    .max_objects = 4,
+    .max_params = 4,
+    .max_image_bytes = 100000,
+    .max_metadata = 2,
 };
 
 static void publish_one(rte_publisher *pub, int i, const samples *s)
@@ -107,8 +112,8 @@ static void test_udpm_round_trip_without_heap_calls(void **state)
     static uint8_t big[90000];
     for (size_t i = 0; i < sizeof big; i++)
         big[i] = (uint8_t)(i * 13);
-    rtedge_image_t img = {7, 300, 300, 300, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, (int32_t)sizeof big,
-                          big, 0, NULL};
+    rtedge_image_t img = {7,   300, 300, 300, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, (int32_t)sizeof big,
+                          big, 0,   NULL};
     for (int round = 0; round < 3; round++) {
         got.count = 0;
         heapcount_reset();
@@ -130,7 +135,8 @@ static void test_udpm_round_trip_without_heap_calls(void **state)
         heapcount_get(&c);
         if (counting && round == 2)
             print_message("a fragmented image over udpm: publishing thread 0 heap calls, "
-                          "process (receiving) %llu\n", (unsigned long long)heapcount_calls(&c));
+                          "process (receiving) %llu\n",
+                          (unsigned long long)heapcount_calls(&c));
     }
     if (!counting)
         print_message("heapcount is not interposed: heap calls not counted\n");
@@ -222,8 +228,8 @@ static void test_lcm_logplayer_plays_our_log(void **state)
     lcm_t *sub_lcm = lcm_create(URL);
     assert_non_null(sub_lcm);
     lcm_subscription_t *sub = lcm_subscribe(sub_lcm, ".*", on_message, NULL);
-    char *argv[] = {(char *)"lcm-logplayer", (char *)"--speed=10", (char *)"--lcm-url=" URL,
-                    path, NULL};
+    char *argv[] = {(char *)"lcm-logplayer", (char *)"--speed=10", (char *)"--lcm-url=" URL, path,
+                    NULL};
     pid_t player = spawn(argv);
     for (int i = 0; i < 5; i++) {
         got.count = 0;
@@ -252,8 +258,8 @@ static void test_live_lcm_source(void **state)
     rte_publisher *pub = NULL;
     assert_int_equal(rte_publisher_create(&pub, URL, &limits, msg, sizeof msg), RTE_OK);
     static uint8_t pixels[64 * 48];
-    rtedge_image_t img = {0, 64, 48, 64, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, 64 * 48, pixels, 0,
-                          NULL};
+    rtedge_image_t img = {0,       64,     48, 64,  RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
+                          64 * 48, pixels, 0,  NULL};
     rte_source_frame f;
     assert_int_equal(rte_source_next(&src, &f, 50, msg, sizeof msg), RTE_ERR_TIMEOUT);
     assert_int_equal(rte_recorded_source_rewind(&src), RTE_ERR_UNSUPPORTED); /* live */
@@ -297,8 +303,7 @@ static void test_live_lcm_source(void **state)
         assert_int_equal(f.dropped, 0);
     }
     if (counting) {
-        print_message("live lcm source: %llu heap calls in 19 frames\n",
-                      (unsigned long long)calls);
+        print_message("live lcm source: %llu heap calls in 19 frames\n", (unsigned long long)calls);
         assert_int_equal(calls, 0);
     }
     rte_source_get_stats(&src, &stats);
@@ -312,8 +317,8 @@ static void test_live_lcm_source(void **state)
     rte_lcm_source_config big_cfg = {URL, "BIG", RTE_PIXEL_GREY, 320, 240};
     assert_int_equal(rte_lcm_live_source_open(&src, &big_cfg, msg, sizeof msg), RTE_OK);
     static uint8_t big[320 * 240];
-    rtedge_image_t big_img = {0, 320, 240, 320, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
-                              (int32_t)sizeof big, big, 0, NULL};
+    rtedge_image_t big_img = {
+        0, 320, 240, 320, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, (int32_t)sizeof big, big, 0, NULL};
     for (int k = 0; k < 4; k++) {
         big[0] = (uint8_t)k;
         heapcount_reset();

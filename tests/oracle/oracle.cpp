@@ -10,7 +10,8 @@
 
 namespace fs = std::filesystem;
 
-namespace oracle {
+namespace oracle
+{
 
 static int env_int(const char *name, int fallback)
 {
@@ -86,9 +87,9 @@ std::vector<Input> random_inputs(std::mt19937 &rng)
         case 1: { // gradient plus noise
             for (int y = 0; y < h; y++)
                 for (int x = 0; x < w; x++)
-                    g.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>((x * 255) / std::max(1, w - 1) / 2 +
-                                                                    (y * 255) / std::max(1, h - 1) / 2 +
-                                                                    (int)(rng() % 21) - 10);
+                    g.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(
+                        (x * 255) / std::max(1, w - 1) / 2 + (y * 255) / std::max(1, h - 1) / 2 +
+                        (int)(rng() % 21) - 10);
             break;
         }
         case 2: { // blocks: rectangles and circles of random grey levels
@@ -98,7 +99,8 @@ std::vector<Input> random_inputs(std::mt19937 &rng)
                 cv::Point c((int)(rng() % (unsigned)w), (int)(rng() % (unsigned)h));
                 int r = 1 + (int)(rng() % (unsigned)(std::max(w, h) / 3 + 1));
                 if (rng() & 1)
-                    cv::rectangle(g, c, c + cv::Point(r, r / 2 + 1), cv::Scalar(rng() % 256), cv::FILLED);
+                    cv::rectangle(g, c, c + cv::Point(r, r / 2 + 1), cv::Scalar(rng() % 256),
+                                  cv::FILLED);
                 else
                     cv::circle(g, c, r, cv::Scalar(rng() % 256), cv::FILLED);
             }
@@ -108,7 +110,8 @@ std::vector<Input> random_inputs(std::mt19937 &rng)
             g.setTo(0);
             int dots = 1 + w * h / 50;
             for (int s = 0; s < dots; s++)
-                g.at<uint8_t>((int)(rng() % (unsigned)h), (int)(rng() % (unsigned)w)) = (uint8_t)(rng() % 256);
+                g.at<uint8_t>((int)(rng() % (unsigned)h), (int)(rng() % (unsigned)w)) =
+                    (uint8_t)(rng() % 256);
             break;
         }
         case 4: g.setTo(0); break;
@@ -126,8 +129,8 @@ std::vector<Input> random_inputs(std::mt19937 &rng)
         else
             cv::cvtColor(g, bgr, cv::COLOR_GRAY2BGR);
         Input in;
-        in.name = "random#" + std::to_string(i) + " " + std::to_string(w) + "x" + std::to_string(h) +
-                  " kind " + std::to_string(kind);
+        in.name = "random#" + std::to_string(i) + " " + std::to_string(w) + "x" +
+                  std::to_string(h) + " kind " + std::to_string(kind);
         in.gray = g;
         in.bgr = bgr;
         out.push_back(in);
@@ -142,7 +145,8 @@ rte_image_u8 padded_u8(const cv::Mat &m, std::vector<uint8_t> &storage, std::mt1
     int stride = m.cols + pad;
     storage.assign((size_t)stride * m.rows + 1, 0x5A);
     for (int y = 0; y < m.rows; y++)
-        std::copy(m.ptr<uint8_t>(y), m.ptr<uint8_t>(y) + m.cols, storage.data() + (size_t)y * stride);
+        std::copy(m.ptr<uint8_t>(y), m.ptr<uint8_t>(y) + m.cols,
+                  storage.data() + (size_t)y * stride);
     return rte_image_u8{m.cols, m.rows, stride, storage.data()};
 }
 
@@ -185,8 +189,9 @@ cv::Mat to_mat(const rte_image_s16 &img)
 long diff(const std::string &what, const cv::Mat &expected, const cv::Mat &actual)
 {
     if (expected.size() != actual.size() || expected.type() != actual.type()) {
-        std::fprintf(stderr, "DIFF %s: size/type %dx%d/%d vs %dx%d/%d\n", what.c_str(), expected.cols,
-                     expected.rows, expected.type(), actual.cols, actual.rows, actual.type());
+        std::fprintf(stderr, "DIFF %s: size/type %dx%d/%d vs %dx%d/%d\n", what.c_str(),
+                     expected.cols, expected.rows, expected.type(), actual.cols, actual.rows,
+                     actual.type());
         return (long)std::max(expected.total(), (size_t)1);
     }
     cv::Mat ne;
@@ -199,9 +204,9 @@ long diff(const std::string &what, const cv::Mat &expected, const cv::Mat &actua
         for (size_t i = 0; i < where.size() && i < 5; i++) {
             cv::Point p = where[i];
             double e = expected.reshape(1).depth() == CV_16S ? expected.reshape(1).at<int16_t>(p)
-                                                            : expected.reshape(1).at<uint8_t>(p);
+                                                             : expected.reshape(1).at<uint8_t>(p);
             double a = actual.reshape(1).depth() == CV_16S ? actual.reshape(1).at<int16_t>(p)
-                                                          : actual.reshape(1).at<uint8_t>(p);
+                                                           : actual.reshape(1).at<uint8_t>(p);
             std::fprintf(stderr, " (%d,%d) opencv=%g rtedge=%g", p.x, p.y, e, a);
         }
         std::fprintf(stderr, "\n");
@@ -235,8 +240,8 @@ static bool padding_intact(const rte_image_s16 &img)
 }
 
 template <typename Image>
-static void check_call(Tally &t, const std::string &what, int status, const rte_arena *arena, size_t mark,
-                       const cv::Mat &expected, const Image &dst)
+static void check_call(Tally &t, const std::string &what, int status, const rte_arena *arena,
+                       size_t mark, const cv::Mat &expected, const Image &dst)
 {
     if (status != RTE_OK)
         t.call_failed(what, status);
@@ -269,8 +274,8 @@ void Tally::call_failed(const std::string &what, int status)
 
 int Tally::finish() const
 {
-    std::printf("oracle %s: %ld cases, %ld differing pixels, %ld failed calls\n", suite.c_str(), cases,
-                differing, failed_calls);
+    std::printf("oracle %s: %ld cases, %ld differing pixels, %ld failed calls\n", suite.c_str(),
+                cases, differing, failed_calls);
     return (differing || failed_calls || cases == 0) ? 1 : 0;
 }
 

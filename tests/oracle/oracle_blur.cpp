@@ -19,7 +19,8 @@ extern "C" {
 #include "rtedge/blur.h"
 }
 
-namespace {
+namespace
+{
 
 struct Gauss {
     int kx, ky;
@@ -67,8 +68,8 @@ struct Runner {
     // Runs `blur(src view, dst view)` on a padded copy of the input, writing
     // to a padded blank destination or (in_place) over the copy itself.
     template <class Blur>
-    void compare(const std::string &what, const cv::Mat &src, const cv::Mat &expected, bool in_place,
-                 Blur blur)
+    void compare(const std::string &what, const cv::Mat &src, const cv::Mat &expected,
+                 bool in_place, Blur blur)
     {
         std::vector<uint8_t> s_mem, d_mem;
         rte_image_u8 s = oracle::padded_u8(src, s_mem, rng);
@@ -84,7 +85,8 @@ struct Runner {
             check(what, expected, d);
     }
 
-    void gaussian(const std::string &name, const cv::Mat &src, const Gauss &g, bool in_place = false)
+    void gaussian(const std::string &name, const cv::Mat &src, const Gauss &g,
+                  bool in_place = false)
     {
         std::string what = name + " " + describe(g) + (in_place ? " in place" : "");
         rte_gaussian_kernel k;
@@ -102,7 +104,8 @@ struct Runner {
 
     void median(const std::string &name, const cv::Mat &src, int ksize, bool in_place = false)
     {
-        std::string what = name + " median " + std::to_string(ksize) + (in_place ? " in place" : "");
+        std::string what =
+            name + " median " + std::to_string(ksize) + (in_place ? " in place" : "");
         cv::Mat expected;
         cv::medianBlur(src, expected, ksize);
         compare(what, src, expected, in_place, [&](const rte_image_u8 *s, rte_image_u8 *d) {

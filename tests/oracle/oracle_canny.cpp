@@ -15,7 +15,8 @@ extern "C" {
 #include "rtedge/canny.h"
 }
 
-namespace {
+namespace
+{
 
 std::string describe(double lo, double hi, int ap, bool l2)
 {
@@ -51,7 +52,8 @@ void check(oracle::Tally &t, const std::string &name, const cv::Mat &gray, doubl
     rte_image_u8 src = oracle::padded_u8(gray, sbuf, rng);
     rte_image_u8 dst = oracle::blank_u8(gray.cols, gray.rows, dbuf, rng);
     size_t mark = rte_arena_mark(arena);
-    st = ksize > 0 ? rte_canny_blurred_u8(&src, &dst, &k, &p, arena) : rte_canny_u8(&src, &dst, &p, arena);
+    st = ksize > 0 ? rte_canny_blurred_u8(&src, &dst, &k, &p, arena)
+                   : rte_canny_u8(&src, &dst, &p, arena);
     t.check(what, st, arena, mark, expected, dst);
 }
 
@@ -111,19 +113,20 @@ int main()
 
     // (low, high): ordinary, swapped, zero, negative, fractional, equal,
     // above every magnitude, and beyond int32 (OpenCV's x86-64 floor wraps).
-    const double pairs[][2] = { { 50, 150 }, { 200, 60 }, { 0, 0 }, { -5, 100 }, { 20.5, 60.75 },
-                                { 100.9, 100.2 }, { 1000, 30000 }, { 100, 1e10 }, { -1e10, 100 } };
+    const double pairs[][2] = {{50, 150},     {200, 60},     {0, 0},
+                               {-5, 100},     {20.5, 60.75}, {100.9, 100.2},
+                               {1000, 30000}, {100, 1e10},   {-1e10, 100}};
     for (const oracle::Input &in : oracle::file_inputs()) {
         if ((size_t)in.gray.cols > 1280 || in.gray.rows > 720) {
             t.call_failed(in.name + " (larger than the test arena)", -1);
             continue;
         }
-        for (int ap : { 3, 5 })
-            for (bool l2 : { false, true })
+        for (int ap : {3, 5})
+            for (bool l2 : {false, true})
                 for (const auto &pr : pairs)
                     check(t, in.name, in.gray, pr[0], pr[1], ap, l2, &scratch.arena, rng);
         // Aperture 7 (offered, not promised: OpenCV's float path).
-        for (bool l2 : { false, true }) {
+        for (bool l2 : {false, true}) {
             check(t, in.name, in.gray, 400, 1200, 7, l2, &scratch.arena, rng);
             check(t, in.name, in.gray, 2000.5, 900, 7, l2, &scratch.arena, rng);
         }
@@ -164,7 +167,8 @@ int main()
                 cv::max(dx, -32767, dx);
                 cv::max(dy, -32767, dy);
             }
-            check_gradient(t, in.name + " random", dx, dy, lo * 100, hi * 100, l2, &scratch.arena, rng);
+            check_gradient(t, in.name + " random", dx, dy, lo * 100, hi * 100, l2, &scratch.arena,
+                           rng);
         } else {
             cv::Sobel(in.gray, dx, CV_16S, 1, 0, 5, 1, 0, cv::BORDER_REFLECT);
             cv::Sobel(in.gray, dy, CV_16S, 0, 1, 5, 1, 0, cv::BORDER_REFLECT);

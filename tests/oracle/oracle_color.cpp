@@ -11,9 +11,13 @@ extern "C" {
 #include "rtedge/color.h"
 }
 
-namespace {
+namespace
+{
 
-int uniform(std::mt19937 &rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+int uniform(std::mt19937 &rng, int lo, int hi)
+{
+    return std::uniform_int_distribution<int>(lo, hi)(rng);
+}
 
 // A copy of `m` (any channel count) with rows `pad` bytes longer than needed.
 struct Padded {
@@ -49,7 +53,8 @@ struct Checker {
             t.add(what + " frame_to_gray", expected, oracle::to_mat(dst));
     }
 
-    void image(const std::string &what, rte_status st, const rte_image_u8 &dst, const cv::Mat &expected)
+    void image(const std::string &what, rte_status st, const rte_image_u8 &dst,
+               const cv::Mat &expected)
     {
         if (st != RTE_OK)
             t.call_failed(what, st);
@@ -90,9 +95,11 @@ struct Checker {
 
         std::vector<uint8_t> storage;
         rte_image_u8 dst = oracle::blank_u8(w, h, storage, rng);
-        image(name + " yuyv_to_gray", rte_color_yuyv_to_gray(p.data(), p.stride, &dst), dst, expected_yuyv);
+        image(name + " yuyv_to_gray", rte_color_yuyv_to_gray(p.data(), p.stride, &dst), dst,
+              expected_yuyv);
         dst = oracle::blank_u8(w, h, storage, rng);
-        image(name + " uyvy_to_gray", rte_color_uyvy_to_gray(p.data(), p.stride, &dst), dst, expected_uyvy);
+        image(name + " uyvy_to_gray", rte_color_uyvy_to_gray(p.data(), p.stride, &dst), dst,
+              expected_uyvy);
 
         frame(name + " YUYV", rte_frame{RTE_PIXEL_YUYV, w, h, {p.data(), nullptr}, {p.stride, 0}},
               expected_yuyv);

@@ -14,10 +14,11 @@ extern "C" {
 #include "rtedge/contours.h"
 }
 
-namespace {
+namespace
+{
 
-const int modes[] = { cv::RETR_EXTERNAL, cv::RETR_LIST, cv::RETR_CCOMP, cv::RETR_TREE };
-const int methods[] = { cv::CHAIN_APPROX_NONE, cv::CHAIN_APPROX_SIMPLE };
+const int modes[] = {cv::RETR_EXTERNAL, cv::RETR_LIST, cv::RETR_CCOMP, cv::RETR_TREE};
+const int methods[] = {cv::CHAIN_APPROX_NONE, cv::CHAIN_APPROX_SIMPLE};
 
 // One contour set flattened: per contour its count, hierarchy and points.
 cv::Mat flatten_cv(const std::vector<std::vector<cv::Point>> &cs, const std::vector<cv::Vec4i> &h)
@@ -64,7 +65,8 @@ void check(oracle::Tally &t, const std::string &name, const cv::Mat &bin, std::m
     oracle::Arena ar(rte_contours_scratch_size(bin.cols, bin.rows, maxc));
     for (int mode : modes) {
         for (int method : methods) {
-            std::string what = name + " mode " + std::to_string(mode) + " method " + std::to_string(method);
+            std::string what =
+                name + " mode " + std::to_string(mode) + " method " + std::to_string(method);
             std::vector<std::vector<cv::Point>> cs;
             std::vector<cv::Vec4i> h;
             cv::findContours(bin, cs, h, mode, method);
@@ -73,7 +75,8 @@ void check(oracle::Tally &t, const std::string &name, const cv::Mat &bin, std::m
             r.contours = cons.data();
             r.max_points = maxp;
             r.max_contours = maxc;
-            int st = rte_contours_find(&src, (rte_contour_mode)mode, (rte_contour_method)method, &r, &ar.arena);
+            int st = rte_contours_find(&src, (rte_contour_mode)mode, (rte_contour_method)method, &r,
+                                       &ar.arena);
             if (st != RTE_OK || r.truncated) {
                 t.call_failed(what, st ? st : -1);
                 continue;
@@ -122,8 +125,14 @@ cv::Mat random_scene(std::mt19937 &rng, int &kind)
             switch (U(0, 6)) {
             case 0: cv::circle(m, c, r, v, cv::FILLED, U(0, 1) ? cv::LINE_8 : cv::LINE_4); break;
             case 1: cv::circle(m, c, r, v, U(1, 3), U(0, 1) ? cv::LINE_8 : cv::LINE_4); break;
-            case 2: cv::rectangle(m, c, c + cv::Point(U(0, r), U(0, r)), v, U(0, 1) ? cv::FILLED : U(1, 2)); break;
-            case 3: cv::line(m, c, cv::Point(U(-3, w + 2), U(-3, h + 2)), v, 1, U(0, 1) ? cv::LINE_8 : cv::LINE_4); break;
+            case 2:
+                cv::rectangle(m, c, c + cv::Point(U(0, r), U(0, r)), v,
+                              U(0, 1) ? cv::FILLED : U(1, 2));
+                break;
+            case 3:
+                cv::line(m, c, cv::Point(U(-3, w + 2), U(-3, h + 2)), v, 1,
+                         U(0, 1) ? cv::LINE_8 : cv::LINE_4);
+                break;
             case 4:
                 for (int k = 0; k < 1 + r; k++)
                     m.at<uint8_t>(U(0, h - 1), U(0, w - 1)) = (uint8_t)v;
@@ -138,7 +147,7 @@ cv::Mat random_scene(std::mt19937 &rng, int &kind)
                 int k = U(3, 8);
                 for (int j = 0; j < k; j++)
                     poly.push_back(c + cv::Point(U(-r, r), U(-r, r)));
-                cv::fillPoly(m, std::vector<std::vector<cv::Point>>{ poly }, v);
+                cv::fillPoly(m, std::vector<std::vector<cv::Point>>{poly}, v);
                 break;
             }
             }
@@ -157,7 +166,7 @@ int main()
     std::mt19937 rng = oracle::make_rng();
 
     for (const auto &in : oracle::file_inputs()) {
-        for (int thr : { 60, 127, 200 }) {
+        for (int thr : {60, 127, 200}) {
             cv::Mat bin = in.gray > thr;
             check(t, in.name + " >" + std::to_string(thr), bin, rng);
         }
@@ -170,8 +179,9 @@ int main()
     for (int i = 0; i < n; i++) {
         int kind = 0;
         cv::Mat m = random_scene(rng, kind);
-        check(t, "random#" + std::to_string(i) + " " + std::to_string(m.cols) + "x" +
-                     std::to_string(m.rows) + " kind " + std::to_string(kind),
+        check(t,
+              "random#" + std::to_string(i) + " " + std::to_string(m.cols) + "x" +
+                  std::to_string(m.rows) + " kind " + std::to_string(kind),
               m, rng);
     }
     return t.finish();

@@ -12,7 +12,8 @@ extern "C" {
 #include "rtedge/gradient.h"
 }
 
-namespace {
+namespace
+{
 
 enum Op { SOBEL, SCHARR, LAPLACIAN };
 
@@ -23,7 +24,8 @@ void check(oracle::Tally &t, const std::string &name, const cv::Mat &gray, Op op
     std::string what = name;
     if (op == SOBEL) {
         cv::Sobel(gray, expected, CV_16S, dx, dy, ksize);
-        what += " sobel dx=" + std::to_string(dx) + " dy=" + std::to_string(dy) + " k=" + std::to_string(ksize);
+        what += " sobel dx=" + std::to_string(dx) + " dy=" + std::to_string(dy) +
+                " k=" + std::to_string(ksize);
     } else if (op == SCHARR) {
         cv::Scharr(gray, expected, CV_16S, dx, dy);
         what += " scharr dx=" + std::to_string(dx) + " dy=" + std::to_string(dy);
@@ -50,7 +52,8 @@ void check_abs(oracle::Tally &t, const std::string &what, const cv::Mat &s16, st
     std::vector<int16_t> sbuf;
     rte_image_s16 src = oracle::blank_s16(s16.cols, s16.rows, sbuf, rng);
     for (int y = 0; y < s16.rows; y++)
-        std::copy(s16.ptr<int16_t>(y), s16.ptr<int16_t>(y) + s16.cols, src.buf + (size_t)y * src.stride);
+        std::copy(s16.ptr<int16_t>(y), s16.ptr<int16_t>(y) + s16.cols,
+                  src.buf + (size_t)y * src.stride);
     std::vector<uint8_t> dbuf;
     rte_image_u8 dst = oracle::blank_u8(s16.cols, s16.rows, dbuf, rng);
     rte_status st = rte_abs_s16_u8(&src, &dst);
@@ -67,8 +70,9 @@ int main()
 {
     oracle::Tally t("gradient");
     std::mt19937 rng = oracle::make_rng();
-    const int sizes[] = { 1, 3, 5, 7 };
-    oracle::Arena scratch(rte_laplacian_scratch_size(8192, 1, 3) + rte_sobel_scratch_size(8192, 1, 7));
+    const int sizes[] = {1, 3, 5, 7};
+    oracle::Arena scratch(rte_laplacian_scratch_size(8192, 1, 3) +
+                          rte_sobel_scratch_size(8192, 1, 7));
 
     for (const oracle::Input &in : oracle::file_inputs()) {
         for (int k : sizes)

@@ -19,7 +19,8 @@ extern "C" {
 #include "rtedge/grasp.h"
 }
 
-namespace {
+namespace
+{
 
 struct Mode {
     const char *name;
@@ -59,14 +60,16 @@ cv::Mat opencv_binary(const cv::Mat &gray, const Mode &m)
     if (m.binarize == RTE_GRASP_CANNY_CLOSE) {
         cv::Mat edges;
         cv::Canny(blurred, edges, 50, 150);
-        cv::morphologyEx(edges, bin, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)),
+        cv::morphologyEx(edges, bin, cv::MORPH_CLOSE,
+                         cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)),
                          cv::Point(-1, -1), 2);
         return bin;
     }
     int t = m.threshold;
     if (m.binarize == RTE_GRASP_OTSU)
         t = (int)cv::threshold(blurred, bin, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
-    bool dark = m.polarity == RTE_GRASP_DARK || (m.polarity == RTE_GRASP_AUTO && border_mean(blurred) > t);
+    bool dark =
+        m.polarity == RTE_GRASP_DARK || (m.polarity == RTE_GRASP_AUTO && border_mean(blurred) > t);
     cv::threshold(blurred, bin, t, 255, dark ? cv::THRESH_BINARY_INV : cv::THRESH_BINARY);
     return bin;
 }
@@ -76,7 +79,8 @@ struct Stats {
     double worst_centre = 0, worst_width = 0, worst_angle = 0, worst_area_rel = 0;
 };
 
-void near(oracle::Tally &t, Stats &s, const std::string &what, double e, double a, double tol, double &worst)
+void near(oracle::Tally &t, Stats &s, const std::string &what, double e, double a, double tol,
+          double &worst)
 {
     s.tol_cases++;
     t.cases++;
@@ -85,12 +89,13 @@ void near(oracle::Tally &t, Stats &s, const std::string &what, double e, double 
         s.tol_fail++;
         t.differing++;
         if (s.tol_fail < 20)
-            std::fprintf(stderr, "TOL %s: opencv=%.9g rtedge=%.9g (tol %g)\n", what.c_str(), e, a, tol);
+            std::fprintf(stderr, "TOL %s: opencv=%.9g rtedge=%.9g (tol %g)\n", what.c_str(), e, a,
+                         tol);
     }
 }
 
-void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat &gray, const Mode &m,
-              rte_grasp_ctx *ctx, std::mt19937 &rng)
+void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat &gray,
+              const Mode &m, rte_grasp_ctx *ctx, std::mt19937 &rng)
 {
     rte_grasp_params p;
     rte_grasp_get_params(ctx, &p);
@@ -127,7 +132,8 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
         if (a2 >= 2 * kMinArea)
             kept.push_back({a2, i});
     }
-    std::stable_sort(kept.begin(), kept.end(), [](const Kept &a, const Kept &b) { return a.area2 > b.area2; });
+    std::stable_sort(kept.begin(), kept.end(),
+                     [](const Kept &a, const Kept &b) { return a.area2 > b.area2; });
     if ((int)kept.size() > kMaxObjects)
         kept.resize(kMaxObjects);
     std::vector<int> e, a;
@@ -151,10 +157,13 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
         s.objects++;
         cv::Moments mo = cv::moments(c);
         // Q8 centroid: rounding 1/512 plus the Q16 step before it
-        near(t, s, w + " cx", mo.m10 / mo.m00, o.x_q8 / 256.0, 0.5 / 256 + 1.0 / 65536, s.worst_centre);
-        near(t, s, w + " cy", mo.m01 / mo.m00, o.y_q8 / 256.0, 0.5 / 256 + 1.0 / 65536, s.worst_centre);
+        near(t, s, w + " cx", mo.m10 / mo.m00, o.x_q8 / 256.0, 0.5 / 256 + 1.0 / 65536,
+             s.worst_centre);
+        near(t, s, w + " cy", mo.m01 / mo.m00, o.y_q8 / 256.0, 0.5 / 256 + 1.0 / 65536,
+             s.worst_centre);
         cv::RotatedRect box = cv::minAreaRect(c);
-        const double lo = std::min(box.size.width, box.size.height), hi = std::max(box.size.width, box.size.height);
+        const double lo = std::min(box.size.width, box.size.height),
+                     hi = std::max(box.size.width, box.size.height);
         // the minimum area is unique; the box is not when areas tie, so the
         // opening and direction are compared where OpenCV's box is clearly
         // the only one (not a square, more than a few pixels)
@@ -209,6 +218,7 @@ int main()
     rte_grasp_destroy(ctx);
     std::printf("grasp: %ld objects compared; largest differences: centre %.5f px, box area %.2e "
                 "(relative), opening %.5f px, angle %.5f deg; %ld of %ld tolerance checks failed\n",
-                s.objects, s.worst_centre, s.worst_area_rel, s.worst_width, s.worst_angle, s.tol_fail, s.tol_cases);
+                s.objects, s.worst_centre, s.worst_area_rel, s.worst_width, s.worst_angle,
+                s.tol_fail, s.tol_cases);
     return t.finish();
 }

@@ -23,7 +23,8 @@ extern "C" {
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace
+{
 
 struct Checker {
     oracle::Tally &t;
@@ -47,7 +48,8 @@ struct Checker {
         std::vector<uint8_t> buf((size_t)stride * h, 0xA5);
         rte_image_u8c3 dst = {w, h, stride, buf.data()};
         char msg[RTE_IO_MESSAGE_SIZE];
-        if (!ok(rte_image_read_bgr(reader, path.c_str(), &dst, msg, sizeof msg), msg, "read_bgr " + path))
+        if (!ok(rte_image_read_bgr(reader, path.c_str(), &dst, msg, sizeof msg), msg,
+                "read_bgr " + path))
             return cv::Mat();
         return cv::Mat(h, w, CV_8UC3, buf.data(), (size_t)stride).clone();
     }
@@ -57,7 +59,8 @@ struct Checker {
         std::vector<uint8_t> buf;
         rte_image_u8 dst = oracle::blank_u8(w, h, buf, rng);
         char msg[RTE_IO_MESSAGE_SIZE];
-        if (!ok(rte_image_read_gray(reader, path.c_str(), &dst, msg, sizeof msg), msg, "read_gray " + path))
+        if (!ok(rte_image_read_gray(reader, path.c_str(), &dst, msg, sizeof msg), msg,
+                "read_gray " + path))
             return cv::Mat();
         return oracle::to_mat(dst);
     }
@@ -80,10 +83,12 @@ struct Checker {
         // The packed read in the file's own channels.
         std::vector<uint8_t> packed((size_t)info.width * info.height * info.channels + 7, 0xA5);
         rte_image_info info2;
-        if (!ok(rte_image_read(reader, path.c_str(), packed.data(), packed.size(), &info2, msg, sizeof msg), msg,
-                "read " + path))
+        if (!ok(rte_image_read(reader, path.c_str(), packed.data(), packed.size(), &info2, msg,
+                               sizeof msg),
+                msg, "read " + path))
             return;
-        cv::Mat native(info.height, info.width, info.channels == 3 ? CV_8UC3 : CV_8UC1, packed.data());
+        cv::Mat native(info.height, info.width, info.channels == 3 ? CV_8UC3 : CV_8UC1,
+                       packed.data());
         if (info.channels == 1) {
             cv::Mat gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
             t.add(label + " gray", gray, read_gray(path, info.width, info.height));
@@ -116,8 +121,9 @@ void chunk(std::vector<uint8_t> &png, const char *type, const std::vector<uint8_
 
 // samples: h rows of w * spp values (each < 2^depth), written as given.
 std::vector<uint8_t> encode_png(int w, int h, int color_type, int depth, bool interlace,
-                                const std::vector<uint16_t> &samples, const std::vector<uint8_t> &plte,
-                                const std::vector<uint8_t> &trns, const std::vector<uint8_t> &before_idat = {},
+                                const std::vector<uint16_t> &samples,
+                                const std::vector<uint8_t> &plte, const std::vector<uint8_t> &trns,
+                                const std::vector<uint8_t> &before_idat = {},
                                 const std::vector<uint8_t> &after_idat = {})
 {
     int spp = color_type == 2 ? 3 : color_type == 4 ? 2 : color_type == 6 ? 4 : 1;
@@ -217,7 +223,7 @@ std::vector<uint8_t> exif_tiff(int orientation, bool little)
     tiff.push_back(little ? 'I' : 'M');
     u16(0x2A);
     u32(8);
-    u16(2);                     // two entries: a resolution unit, then the orientation
+    u16(2); // two entries: a resolution unit, then the orientation
     u16(0x0128), u16(3), u32(1), u16(2), u16(0);
     u16(0x0112), u16(3), u32(1), u16((unsigned)orientation), u16(0);
     u32(0);
@@ -274,8 +280,8 @@ int main()
             std::string ext = e.path().extension().string();
             for (auto &ch : ext)
                 ch = (char)std::tolower((unsigned char)ch);
-            if (e.is_regular_file() &&
-                (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".pgm" || ext == ".ppm"))
+            if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg" ||
+                                        ext == ".pgm" || ext == ".ppm"))
                 paths.push_back(e.path().string());
         }
         std::sort(paths.begin(), paths.end());
@@ -296,8 +302,8 @@ int main()
         const oracle::Input &in = inputs[i];
         cv::Mat bgr = colour_of(in, rng);
         std::string base = tmp + "/r" + std::to_string(i);
-        std::string label = "random " + std::to_string(i) + " " + std::to_string(in.gray.cols) + "x" +
-                            std::to_string(in.gray.rows);
+        std::string label = "random " + std::to_string(i) + " " + std::to_string(in.gray.cols) +
+                            "x" + std::to_string(in.gray.rows);
         struct Out {
             std::string ext;
             const cv::Mat *m;
@@ -314,11 +320,14 @@ int main()
             {"_g.jpg", &in.gray, {cv::IMWRITE_JPEG_QUALITY, q}},
             {"_c.jpg", &bgr, {cv::IMWRITE_JPEG_QUALITY, q}},
             // progressive + optimised Huffman tables + restart markers
-            {"_cp.jpg", &bgr,
-             {cv::IMWRITE_JPEG_PROGRESSIVE, 1, cv::IMWRITE_JPEG_OPTIMIZE, 1, cv::IMWRITE_JPEG_RST_INTERVAL,
-              1 + (int)(rng() % 8)}},
+            {"_cp.jpg",
+             &bgr,
+             {cv::IMWRITE_JPEG_PROGRESSIVE, 1, cv::IMWRITE_JPEG_OPTIMIZE, 1,
+              cv::IMWRITE_JPEG_RST_INTERVAL, 1 + (int)(rng() % 8)}},
             // different luma/chroma quality: OpenCV then writes 4:4:4
-            {"_c444.jpg", &bgr, {cv::IMWRITE_JPEG_LUMA_QUALITY, q, cv::IMWRITE_JPEG_CHROMA_QUALITY, 100 - q / 2}},
+            {"_c444.jpg",
+             &bgr,
+             {cv::IMWRITE_JPEG_LUMA_QUALITY, q, cv::IMWRITE_JPEG_CHROMA_QUALITY, 100 - q / 2}},
         };
         for (const auto &o : outs) {
             std::string path = base + o.ext;
@@ -334,7 +343,8 @@ int main()
         cv::cvtColor(bgr, bgra, cv::COLOR_BGR2BGRA);
         in.gray.convertTo(g16, CV_16U, 257.0 - (rng() % 3));
         bgr.convertTo(c16, CV_16U, 255.0 + (rng() % 3));
-        for (auto &o : std::vector<Out>{{"_a.png", &bgra, {}}, {"_g16.png", &g16, {}}, {"_c16.png", &c16, {}}}) {
+        for (auto &o : std::vector<Out>{
+                 {"_a.png", &bgra, {}}, {"_g16.png", &g16, {}}, {"_c16.png", &c16, {}}}) {
             std::string path = base + o.ext;
             cv::imwrite(path, *o.m);
             c.check(path, label + o.ext);
@@ -352,13 +362,16 @@ int main()
             char msg[RTE_IO_MESSAGE_SIZE];
             for (const char *ext : {".pgm", ".png"}) {
                 std::string path = base + "_w" + ext;
-                if (c.ok(rte_image_write_gray(path.c_str(), &g, msg, sizeof msg), msg, "write " + path))
-                    t.add(label + " written" + ext, in.gray, cv::imread(path, cv::IMREAD_UNCHANGED));
+                if (c.ok(rte_image_write_gray(path.c_str(), &g, msg, sizeof msg), msg,
+                         "write " + path))
+                    t.add(label + " written" + ext, in.gray,
+                          cv::imread(path, cv::IMREAD_UNCHANGED));
                 std::remove(path.c_str());
             }
             for (const char *ext : {".ppm", ".png"}) {
                 std::string path = base + "_wc" + ext;
-                if (c.ok(rte_image_write_bgr(path.c_str(), &cimg, msg, sizeof msg), msg, "write " + path))
+                if (c.ok(rte_image_write_bgr(path.c_str(), &cimg, msg, sizeof msg), msg,
+                         "write " + path))
                     t.add(label + " written" + ext, bgr, cv::imread(path, cv::IMREAD_UNCHANGED));
                 std::remove(path.c_str());
             }
@@ -380,15 +393,18 @@ int main()
     struct Kind {
         int color_type, depth;
     };
-    const Kind kinds[] = {{0, 1}, {0, 2}, {0, 4}, {0, 8}, {0, 16}, {2, 8}, {2, 16}, {3, 1}, {3, 2},
-                          {3, 4}, {3, 8}, {4, 8}, {4, 16}, {6, 8}, {6, 16}};
+    const Kind kinds[] = {{0, 1}, {0, 2}, {0, 4}, {0, 8}, {0, 16}, {2, 8}, {2, 16}, {3, 1},
+                          {3, 2}, {3, 4}, {3, 8}, {4, 8}, {4, 16}, {6, 8}, {6, 16}};
     const int sizes[][2] = {{1, 1}, {1, 9}, {9, 1}, {3, 5}, {8, 8}, {13, 7}, {67, 33}, {250, 131}};
     int k = 0;
     for (const Kind &kind : kinds)
         for (const auto &sz : sizes)
             for (int interlace = 0; interlace < 2; interlace++) {
                 int w = sz[0], h = sz[1];
-                int spp = kind.color_type == 2 ? 3 : kind.color_type == 4 ? 2 : kind.color_type == 6 ? 4 : 1;
+                int spp = kind.color_type == 2   ? 3
+                          : kind.color_type == 4 ? 2
+                          : kind.color_type == 6 ? 4
+                                                 : 1;
                 int entries = kind.color_type == 3 ? 1 + (int)(rng() % (1u << kind.depth)) : 0;
                 std::vector<uint16_t> s((size_t)w * h * spp);
                 for (auto &v : s)
@@ -399,7 +415,8 @@ int main()
                 if (kind.color_type == 3 && (rng() & 1))
                     for (int e = 0; e < entries; e++)
                         trns.push_back((uint8_t)rng());
-                if ((kind.color_type == 0 || kind.color_type == 2) && (rng() & 1)) { // a transparent colour
+                if ((kind.color_type == 0 || kind.color_type == 2) &&
+                    (rng() & 1)) { // a transparent colour
                     for (int e = 0; e < (kind.color_type == 2 ? 3 : 1); e++) {
                         unsigned v = (unsigned)(rng() % (1u << kind.depth));
                         trns.push_back((uint8_t)(v >> 8));
@@ -431,11 +448,12 @@ int main()
                     where.insert(where.end(), good.begin(), good.end());
                 }
                 std::string path = tmp + "/k" + std::to_string(k++) + ".png";
-                write_bytes(path, encode_png(w, h, kind.color_type, kind.depth, interlace != 0, s, plte, trns,
-                                             before, after));
+                write_bytes(path, encode_png(w, h, kind.color_type, kind.depth, interlace != 0, s,
+                                             plte, trns, before, after));
                 char label[128];
-                std::snprintf(label, sizeof label, "png type %d depth %d %dx%d%s exif %d/%d", kind.color_type,
-                              kind.depth, w, h, interlace ? " interlaced" : "", variant, orient);
+                std::snprintf(label, sizeof label, "png type %d depth %d %dx%d%s exif %d/%d",
+                              kind.color_type, kind.depth, w, h, interlace ? " interlaced" : "",
+                              variant, orient);
                 c.check(path, label);
                 std::remove(path.c_str());
             }
@@ -484,8 +502,8 @@ int main()
         // A fresh compressor each time: libjpeg-turbo 2.1 keeps progressive
         // scan settings across calls on one handle.
         tjhandle tj = tjInitCompress();
-        int rc = tjCompress2(tj, bgr.data, bgr.cols, (int)bgr.step, bgr.rows, TJPF_BGR, &jpg, &size, samp, q,
-                             (i % 4 == 3 ? TJFLAG_PROGRESSIVE : 0));
+        int rc = tjCompress2(tj, bgr.data, bgr.cols, (int)bgr.step, bgr.rows, TJPF_BGR, &jpg, &size,
+                             samp, q, (i % 4 == 3 ? TJFLAG_PROGRESSIVE : 0));
         tjDestroy(tj);
         if (rc != 0) {
             t.call_failed("tjCompress2", -1);
@@ -496,8 +514,9 @@ int main()
         int orient = samp == TJSAMP_GRAY ? 1 + (int)(rng() % 8) : 1;
         std::string path = tmp + "/s" + std::to_string(i) + ".jpg";
         write_bytes(path, orient == 1 ? bytes : with_orientation(bytes, orient, (rng() & 1) != 0));
-        c.check(path, "jpeg subsampling " + std::to_string(samp) + " " + std::to_string(bgr.cols) + "x" +
-                          std::to_string(bgr.rows) + " orientation " + std::to_string(orient));
+        c.check(path, "jpeg subsampling " + std::to_string(samp) + " " + std::to_string(bgr.cols) +
+                          "x" + std::to_string(bgr.rows) + " orientation " +
+                          std::to_string(orient));
         std::remove(path.c_str());
     }
     fs::remove_all(tmp);

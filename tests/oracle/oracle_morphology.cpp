@@ -17,7 +17,8 @@ static const char *op_name(int op)
     return names[op];
 }
 
-static void run_opencv(const cv::Mat &src, cv::Mat &dst, int op, const cv::Mat &kernel, int iterations)
+static void run_opencv(const cv::Mat &src, cv::Mat &dst, int op, const cv::Mat &kernel,
+                       int iterations)
 {
     if (op == RTE_MORPH_ERODE)
         cv::erode(src, dst, kernel, cv::Point(-1, -1), iterations);
@@ -65,8 +66,8 @@ struct Checker {
         t.add(what + (in_place ? " in place" : ""), expected, oracle::to_mat(dst));
     }
 
-    void check_shape(const std::string &name, const cv::Mat &gray, int op, int shape, int kw, int kh,
-                     int iterations, std::mt19937 &rng)
+    void check_shape(const std::string &name, const cv::Mat &gray, int op, int shape, int kw,
+                     int kh, int iterations, std::mt19937 &rng)
     {
         rte_morph_element e;
         int st = rte_morphology_element_init(&e, (rte_morph_shape)shape, kw, kh);
@@ -78,7 +79,8 @@ struct Checker {
         cv::Mat kernel = cv::getStructuringElement(shape, cv::Size(kw, kh));
         // The element itself must equal OpenCV's.
         cv::Mat mask(kh, kw, CV_8UC1, e.mask);
-        t.add(what + " element " + std::to_string(kw) + "x" + std::to_string(kh), kernel, mask.clone());
+        t.add(what + " element " + std::to_string(kw) + "x" + std::to_string(kh), kernel,
+              mask.clone());
         check(what, gray, op, e, kernel, cv::Point(-1, -1), iterations, rng);
     }
 };
@@ -87,8 +89,8 @@ int main()
 {
     Checker c;
     std::mt19937 rng = oracle::make_rng();
-    const cv::Size sizes[] = {{3, 3}, {5, 5}, {2, 2}, {4, 6}, {7, 3}, {1, 9}, {9, 1}, {15, 15},
-                              {6, 4}, {11, 13}, {1, 1}, {31, 31}, {2, 7}, {14, 10}};
+    const cv::Size sizes[] = {{3, 3},   {5, 5}, {2, 2},   {4, 6}, {7, 3},   {1, 9}, {9, 1},
+                              {15, 15}, {6, 4}, {11, 13}, {1, 1}, {31, 31}, {2, 7}, {14, 10}};
     const int nsizes = (int)(sizeof sizes / sizeof sizes[0]);
 
     // Every element shape at every size (elements only).
@@ -139,7 +141,8 @@ int main()
                     c.t.call_failed(in.name + " mask element", st);
                     continue;
                 }
-                c.check(in.name + " custom mask anchor " + std::to_string(ax) + "," + std::to_string(ay),
+                c.check(in.name + " custom mask anchor " + std::to_string(ax) + "," +
+                            std::to_string(ay),
                         in.gray, op & 1, e, mask, cv::Point(ax, ay), it, rng);
                 continue;
             }

@@ -14,11 +14,15 @@ extern "C" {
 #include "rtedge/polygon_mask.h"
 }
 
-namespace {
+namespace
+{
 
 using Poly = std::vector<cv::Point>;
 
-int uniform(std::mt19937 &rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+int uniform(std::mt19937 &rng, int lo, int hi)
+{
+    return std::uniform_int_distribution<int>(lo, hi)(rng);
+}
 
 // One random polygon of a random kind around a random centre.
 Poly random_polygon(std::mt19937 &rng, int w, int h, std::string &kind, int max_vertices = 12)
@@ -121,8 +125,8 @@ struct RtePolygons {
 };
 
 // rte_polygon_mask_build against zeros + cv::fillPoly(mask, polys, 255).
-void check_mask(oracle::Tally &t, const std::string &what, int w, int h, const std::vector<Poly> &polys,
-                std::mt19937 &rng)
+void check_mask(oracle::Tally &t, const std::string &what, int w, int h,
+                const std::vector<Poly> &polys, std::mt19937 &rng)
 {
     cv::Mat expected = cv::Mat::zeros(h, w, CV_8UC1);
     cv::fillPoly(expected, polys, cv::Scalar(255), cv::LINE_8, 0);
@@ -131,7 +135,8 @@ void check_mask(oracle::Tally &t, const std::string &what, int w, int h, const s
     std::vector<uint8_t> storage;
     rte_image_u8 mask = oracle::blank_u8(w, h, storage, rng);
     rte_status st = rte_polygon_mask_build(&mask, rp.list.data(), rp.count(), &rp.scratch.arena);
-    std::string name = what + " " + std::to_string(w) + "x" + std::to_string(h) + " " + describe(polys);
+    std::string name =
+        what + " " + std::to_string(w) + "x" + std::to_string(h) + " " + describe(polys);
     if (st != RTE_OK) {
         t.call_failed(name, st);
         return;
@@ -143,11 +148,13 @@ void check_mask(oracle::Tally &t, const std::string &what, int w, int h, const s
 
 // The lane-finding tutorial's region: a trapezoid from the bottom corners to
 // two points near the horizon, both as fixed pixels and as fractions.
-void check_lane_trapezoids(oracle::Tally &t, const std::vector<oracle::Input> &files, std::mt19937 &rng)
+void check_lane_trapezoids(oracle::Tally &t, const std::vector<oracle::Input> &files,
+                           std::mt19937 &rng)
 {
-    static const int frac_q16[][2] = {
-        {(int)(0.10 * 65536), (int)(0.95 * 65536)}, {(int)(0.40 * 65536), (int)(0.60 * 65536)},
-        {(int)(0.60 * 65536), (int)(0.60 * 65536)}, {(int)(0.90 * 65536), (int)(0.95 * 65536)}};
+    static const int frac_q16[][2] = {{(int)(0.10 * 65536), (int)(0.95 * 65536)},
+                                      {(int)(0.40 * 65536), (int)(0.60 * 65536)},
+                                      {(int)(0.60 * 65536), (int)(0.60 * 65536)},
+                                      {(int)(0.90 * 65536), (int)(0.95 * 65536)}};
     for (const auto &in : files) {
         if (in.name.find("/lanes/") == std::string::npos)
             continue;
@@ -243,8 +250,12 @@ int main()
     const int polygons = env && *env ? std::atoi(env) : 20000;
     for (int i = 0; i < polygons; i++) {
         int size_kind = uniform(rng, 0, 19);
-        int w = size_kind < 5 ? uniform(rng, 1, 8) : size_kind < 19 ? uniform(rng, 1, 400) : uniform(rng, 1, 1280);
-        int h = size_kind < 5 ? uniform(rng, 1, 8) : size_kind < 19 ? uniform(rng, 1, 300) : uniform(rng, 1, 720);
+        int w = size_kind < 5    ? uniform(rng, 1, 8)
+                : size_kind < 19 ? uniform(rng, 1, 400)
+                                 : uniform(rng, 1, 1280);
+        int h = size_kind < 5    ? uniform(rng, 1, 8)
+                : size_kind < 19 ? uniform(rng, 1, 300)
+                                 : uniform(rng, 1, 720);
         int count = uniform(rng, 0, 4) == 0 ? uniform(rng, 2, 4) : 1;
         std::vector<Poly> polys;
         std::string kind, k;
@@ -292,7 +303,8 @@ int main()
         RtePolygons rp(polys);
         std::vector<uint8_t> storage;
         rte_image_u8 img = oracle::padded_u8(in.gray, storage, rng);
-        rte_status st = rte_polygon_fill_u8(&img, rp.list.data(), rp.count(), value, &rp.scratch.arena);
+        rte_status st =
+            rte_polygon_fill_u8(&img, rp.list.data(), rp.count(), value, &rp.scratch.arena);
         std::string name = in.name + " fill " + std::to_string(value) + " " + describe(polys);
         if (st != RTE_OK)
             t.call_failed(name, st);

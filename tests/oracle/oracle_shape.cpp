@@ -14,7 +14,8 @@ extern "C" {
 #include "rtedge/shape.h"
 }
 
-namespace {
+namespace
+{
 
 struct Checker {
     oracle::Tally &t;
@@ -36,7 +37,8 @@ struct Checker {
             tol_fail++;
             t.differing++;
             if (tol_fail < 20)
-                std::fprintf(stderr, "TOL %s: opencv=%.9g rtedge=%.9g (tol %g)\n", what.c_str(), e, a, tol);
+                std::fprintf(stderr, "TOL %s: opencv=%.9g rtedge=%.9g (tol %g)\n", what.c_str(), e,
+                             a, tol);
         }
     }
 };
@@ -72,17 +74,18 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
     const int n = (int)cv_pts.size();
     const rte_point *pts = reinterpret_cast<const rte_point *>(cv_pts.data());
     oracle::Arena s(rte_shape_hull_scratch_size(n) + rte_shape_approx_scratch_size(n) +
-                    rte_shape_min_area_rect_scratch_size(n) + rte_shape_enclosing_circle_scratch_size(n) + 4096);
+                    rte_shape_min_area_rect_scratch_size(n) +
+                    rte_shape_enclosing_circle_scratch_size(n) + 4096);
 
     // area, perimeter, bounding box
     double area = cv::contourArea(cv_pts, true);
-    c.exact(name + " area2", { (int)std::llround(area * 2) }, { (int)rte_shape_area2(pts, n) });
+    c.exact(name + " area2", {(int)std::llround(area * 2)}, {(int)rte_shape_area2(pts, n)});
     double per = cv::arcLength(cv_pts, true);
     int64_t per_q16 = rte_shape_perimeter_q16(pts, n, 1);
     c.near(name + " perimeter", per, per_q16 / 65536.0, 1e-3 * per + 1e-9);
     cv::Rect br = cv::boundingRect(cv_pts);
     rte_rect rr = rte_shape_bounding_rect(pts, n);
-    c.exact(name + " bounds", { br.x, br.y, br.width, br.height }, { rr.x, rr.y, rr.width, rr.height });
+    c.exact(name + " bounds", {br.x, br.y, br.width, br.height}, {rr.x, rr.y, rr.width, rr.height});
 
     // moments
     cv::Moments m = cv::moments(cv_pts);
@@ -91,35 +94,43 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
         c.t.call_failed(name + " moments", -1);
         return;
     }
-    c.exact(name + " m00", { (int)std::llround(m.m00 * 2) }, { (int)rm.s00 });
-    const double sp[] = { m.m10, m.m01, m.m20, m.m11, m.m02, m.m30, m.m21, m.m12, m.m03 };
-    const double ours[] = { rm.s10 / 6.0, rm.s01 / 6.0, rm.s20 / 12.0, rm.s11 / 24.0, rm.s02 / 12.0,
-                            rm.s30 / 20.0, rm.s21 / 60.0, rm.s12 / 60.0, rm.s03 / 20.0 };
+    c.exact(name + " m00", {(int)std::llround(m.m00 * 2)}, {(int)rm.s00});
+    const double sp[] = {m.m10, m.m01, m.m20, m.m11, m.m02, m.m30, m.m21, m.m12, m.m03};
+    const double ours[] = {rm.s10 / 6.0,  rm.s01 / 6.0,  rm.s20 / 12.0,
+                           rm.s11 / 24.0, rm.s02 / 12.0, rm.s30 / 20.0,
+                           rm.s21 / 60.0, rm.s12 / 60.0, rm.s03 / 20.0};
     for (int k = 0; k < 9; k++)
         c.near(name + " m" + std::to_string(k), sp[k], ours[k], 1e-12 * std::fabs(sp[k]) + 1e-9);
     if (m.m00 > 0) {
         c.near(name + " cx", m.m10 / m.m00, rm.cx_q16 / 65536.0, 1.0 / 65536);
         c.near(name + " cy", m.m01 / m.m00, rm.cy_q16 / 65536.0, 1.0 / 65536);
-        const double mu[] = { m.mu20, m.mu11, m.mu02, m.mu30, m.mu21, m.mu12, m.mu03 };
-        const int64_t rmu[] = { rm.mu20_q8, rm.mu11_q8, rm.mu02_q8, rm.mu30_q8, rm.mu21_q8, rm.mu12_q8, rm.mu03_q8 };
+        const double mu[] = {m.mu20, m.mu11, m.mu02, m.mu30, m.mu21, m.mu12, m.mu03};
+        const int64_t rmu[] = {rm.mu20_q8, rm.mu11_q8, rm.mu02_q8, rm.mu30_q8,
+                               rm.mu21_q8, rm.mu12_q8, rm.mu03_q8};
         for (int k = 0; k < 7; k++)
-            c.near(name + " mu" + std::to_string(k), mu[k], rmu[k] / 256.0, 1e-9 * std::fabs(mu[k]) + 1.0 / 256);
+            c.near(name + " mu" + std::to_string(k), mu[k], rmu[k] / 256.0,
+                   1e-9 * std::fabs(mu[k]) + 1.0 / 256);
         // OpenCV's third-order central moments cancel large raw moments in
         // double: for small contours far from the origin its own error is
         // about 1e-16 of the raw moments' scale (ours are exact).
-        const double cond = 1e-15 * (std::fabs(m.m30) + std::fabs(m.m21) + std::fabs(m.m12) + std::fabs(m.m03)) /
-                            std::pow(m.m00, 2.5);
-        const double nu[] = { m.nu20, m.nu11, m.nu02, m.nu30, m.nu21, m.nu12, m.nu03 };
-        const int64_t rnu[] = { rm.nu20_q32, rm.nu11_q32, rm.nu02_q32, rm.nu30_q32, rm.nu21_q32, rm.nu12_q32, rm.nu03_q32 };
+        const double cond =
+            1e-15 * (std::fabs(m.m30) + std::fabs(m.m21) + std::fabs(m.m12) + std::fabs(m.m03)) /
+            std::pow(m.m00, 2.5);
+        const double nu[] = {m.nu20, m.nu11, m.nu02, m.nu30, m.nu21, m.nu12, m.nu03};
+        const int64_t rnu[] = {rm.nu20_q32, rm.nu11_q32, rm.nu02_q32, rm.nu30_q32,
+                               rm.nu21_q32, rm.nu12_q32, rm.nu03_q32};
         for (int k = 0; k < 7; k++)
-            c.near(name + " nu" + std::to_string(k), nu[k], rnu[k] / 4294967296.0, 1e-6 * std::fabs(nu[k]) + 1e-6 + (k >= 3 ? cond : 0));
+            c.near(name + " nu" + std::to_string(k), nu[k], rnu[k] / 4294967296.0,
+                   1e-6 * std::fabs(nu[k]) + 1e-6 + (k >= 3 ? cond : 0));
         // Hu invariants multiply third-order terms: scale the allowance by them
-        const double s3 = std::fabs(m.nu30) + std::fabs(m.nu21) + std::fabs(m.nu12) + std::fabs(m.nu03);
+        const double s3 =
+            std::fabs(m.nu30) + std::fabs(m.nu21) + std::fabs(m.nu12) + std::fabs(m.nu03);
         const double hu_cond = 10 * cond * (1 + s3) * (1 + s3) * (1 + s3);
         double hu[7];
         cv::HuMoments(m, hu);
         for (int k = 0; k < 7; k++)
-            c.near(name + " hu" + std::to_string(k), hu[k], rm.hu_q32[k] / 4294967296.0, 1e-5 * std::fabs(hu[k]) + 1e-6 + hu_cond);
+            c.near(name + " hu" + std::to_string(k), hu[k], rm.hu_q32[k] / 4294967296.0,
+                   1e-5 * std::fabs(hu[k]) + 1e-6 + hu_cond);
     }
 
     // convex hull, both ways
@@ -149,13 +160,13 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
         std::vector<rte_defect> rd((size_t)nh);
         int32_t nd = 0;
         int st = rte_shape_convexity_defects(pts, n, ridx.data(), nh, rd.data(), &nd);
-        c.exact(name + " defects accepted", { cv_ok ? 0 : 1 }, { st == RTE_OK ? 0 : 1 });
+        c.exact(name + " defects accepted", {cv_ok ? 0 : 1}, {st == RTE_OK ? 0 : 1});
         if (cv_ok && st == RTE_OK) {
             std::vector<int> e, a;
             for (auto &d : defects)
-                e.insert(e.end(), { d[0], d[1], d[2] });
+                e.insert(e.end(), {d[0], d[1], d[2]});
             for (int i = 0; i < nd; i++)
-                a.insert(a.end(), { rd[i].start, rd[i].end, rd[i].farthest });
+                a.insert(a.end(), {rd[i].start, rd[i].end, rd[i].farthest});
             c.exact(name + " defects", e, a);
             for (size_t i = 0; i < defects.size() && (int)i < nd; i++)
                 c.near(name + " defect depth", defects[i][3], rd[i].depth_q8, 1.0);
@@ -164,7 +175,7 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
 
     // approxPolyDP with the tutorial's epsilon, given to OpenCV as the exact
     // double our fixed-point epsilon stands for
-    for (int pct : { 1, 2, 5 }) {
+    for (int pct : {1, 2, 5}) {
         uint32_t eps_q16 = (uint32_t)((per_q16 * pct + 50) / 100);
         if (eps_q16 >= (1u << 26))
             continue;
@@ -193,7 +204,8 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
             for (auto &p : corners) {
                 double best = 1e30;
                 for (int k = 0; k < 4; k++)
-                    best = std::min(best, std::hypot(p.x - rb.corners_q8[k][0] / 256.0, p.y - rb.corners_q8[k][1] / 256.0));
+                    best = std::min(best, std::hypot(p.x - rb.corners_q8[k][0] / 256.0,
+                                                     p.y - rb.corners_q8[k][1] / 256.0));
                 worst = std::max(worst, best);
             }
             // a tie (two minimal rectangles, e.g. small triangles) passes when
@@ -210,30 +222,35 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
             }
             // ours may be a different minimal rectangle (a tie) or smaller
             // than OpenCV's float calipers found; it must hold every point
-            const double area_tol = (rb.length_q8 + rb.width_q8) / 256.0 / 256.0 + 1e-3 * area_cv + 0.02;
+            const double area_tol =
+                (rb.length_q8 + rb.width_q8) / 256.0 / 256.0 + 1e-3 * area_cv + 0.02;
             c.near(name + " rect holds points", 1, holds ? 1 : 0, 0);
             c.near(name + " rect not larger", 0, std::max(0.0, area_ours - area_cv), area_tol);
             bool alternative = holds && area_ours <= area_cv + area_tol;
             c.near(name + " rect corners", 0, alternative ? 0 : worst, 0.5);
             if (worst > 0.5)
                 return;
-            double len = std::max(box.size.width, box.size.height), wid = std::min(box.size.width, box.size.height);
+            double len = std::max(box.size.width, box.size.height),
+                   wid = std::min(box.size.width, box.size.height);
             c.near(name + " rect length", len, rb.length_q8 / 256.0, 0.5);
             c.near(name + " rect width", wid, rb.width_q8 / 256.0, 0.5);
             if (len - wid > 1.0 && wid > 1.0) {
                 // OpenCV 4.6: angle of `width` in [0, 90]; convert to the long side
                 double a = box.size.width >= box.size.height ? box.angle : box.angle - 90.0;
-                c.near(name + " rect angle", 0, angle_diff_mod(a, rb.angle_q16 / 65536.0, 180.0), 0.5);
+                c.near(name + " rect angle", 0, angle_diff_mod(a, rb.angle_q16 / 65536.0, 180.0),
+                       0.5);
             }
             // ours: the documented boxPoints order of (length, width, angle)
             cv::RotatedRect mine(cv::Point2f(rb.cx_q8 / 256.f, rb.cy_q8 / 256.f),
-                                 cv::Size2f(rb.length_q8 / 256.f, rb.width_q8 / 256.f), rb.angle_q16 / 65536.f);
+                                 cv::Size2f(rb.length_q8 / 256.f, rb.width_q8 / 256.f),
+                                 rb.angle_q16 / 65536.f);
             cv::Point2f mc[4];
             mine.points(mc);
             double worst_order = 0;
             for (int k = 0; k < 4; k++)
-                worst_order = std::max(worst_order, (double)std::hypot(mc[k].x - rb.corners_q8[k][0] / 256.0,
-                                                                       mc[k].y - rb.corners_q8[k][1] / 256.0));
+                worst_order = std::max(worst_order,
+                                       (double)std::hypot(mc[k].x - rb.corners_q8[k][0] / 256.0,
+                                                          mc[k].y - rb.corners_q8[k][1] / 256.0));
             c.near(name + " rect corner order", 0, worst_order, 0.05);
         }
     }
@@ -248,20 +265,22 @@ void check_contour(Checker &c, const std::string &name, const std::vector<cv::Po
             c.t.call_failed(name + " circle", -1);
         } else {
             c.near(name + " circle r", r, rc.r_q8 / 256.0, 0.5);
-            c.near(name + " circle c", 0, std::hypot(cc.x - rc.cx_q8 / 256.0, cc.y - rc.cy_q8 / 256.0), 0.5);
+            c.near(name + " circle c", 0,
+                   std::hypot(cc.x - rc.cx_q8 / 256.0, cc.y - rc.cy_q8 / 256.0), 0.5);
         }
     }
 }
 
 void check_image(Checker &c, const std::string &name, const cv::Mat &bin, size_t max_contours)
 {
-    for (int method : { cv::CHAIN_APPROX_NONE, cv::CHAIN_APPROX_SIMPLE }) {
+    for (int method : {cv::CHAIN_APPROX_NONE, cv::CHAIN_APPROX_SIMPLE}) {
         std::vector<std::vector<cv::Point>> cs;
         cv::findContours(bin, cs, cv::RETR_LIST, method);
         // the largest contours plus a stride through the rest keeps the time bounded
         size_t step = cs.size() > max_contours ? cs.size() / max_contours : 1;
         for (size_t i = 0; i < cs.size(); i += step)
-            check_contour(c, name + " m" + std::to_string(method) + " #" + std::to_string(i), cs[i]);
+            check_contour(c, name + " m" + std::to_string(method) + " #" + std::to_string(i),
+                          cs[i]);
     }
 }
 
@@ -284,7 +303,7 @@ cv::Mat random_scene(std::mt19937 &rng)
             std::vector<cv::Point> poly;
             for (int j = U(3, 9); j > 0; j--)
                 poly.push_back(c + cv::Point(U(-r, r), U(-r, r)));
-            cv::fillPoly(m, std::vector<std::vector<cv::Point>>{ poly }, v);
+            cv::fillPoly(m, std::vector<std::vector<cv::Point>>{poly}, v);
         }
         }
     }
@@ -302,23 +321,28 @@ cv::Mat synthetic_shape(std::mt19937 &rng, int kind)
     cv::Mat img(W, W, CV_8UC1, cv::Scalar(0));
     cv::Point2d c(W / 2.0 + U(rng) * 4 - 2, W / 2.0 + U(rng) * 4 - 2);
     if (kind == RTE_SHAPE_CIRCLE) {
-        cv::circle(img, cv::Point((int)(c.x * 16), (int)(c.y * 16)), (int)(size / 2 * 16), 255, cv::FILLED, cv::LINE_8, 4);
+        cv::circle(img, cv::Point((int)(c.x * 16), (int)(c.y * 16)), (int)(size / 2 * 16), 255,
+                   cv::FILLED, cv::LINE_8, 4);
     } else {
         std::vector<cv::Point2d> p;
         if (kind == RTE_SHAPE_RECTANGLE) {
             double ar = 1.4 + U(rng) * 1.6, w = size, h = size / ar;
-            p = { { -w / 2, -h / 2 }, { w / 2, -h / 2 }, { w / 2, h / 2 }, { -w / 2, h / 2 } };
+            p = {{-w / 2, -h / 2}, {w / 2, -h / 2}, {w / 2, h / 2}, {-w / 2, h / 2}};
         } else {
-            int k = kind == RTE_SHAPE_TRIANGLE ? 3 : kind == RTE_SHAPE_SQUARE ? 4 : kind == RTE_SHAPE_PENTAGON ? 5 : 6;
+            int k = kind == RTE_SHAPE_TRIANGLE   ? 3
+                    : kind == RTE_SHAPE_SQUARE   ? 4
+                    : kind == RTE_SHAPE_PENTAGON ? 5
+                                                 : 6;
             double R = k == 4 ? size / 2 * std::sqrt(2.0) : size / 2;
             for (int i = 0; i < k; i++)
-                p.push_back({ R * std::cos(2 * CV_PI * i / k), R * std::sin(2 * CV_PI * i / k) });
+                p.push_back({R * std::cos(2 * CV_PI * i / k), R * std::sin(2 * CV_PI * i / k)});
         }
         std::vector<cv::Point> q;
         for (auto &v : p)
-            q.push_back(cv::Point((int)std::lround((c.x + v.x * std::cos(rot) - v.y * std::sin(rot)) * 16),
-                                  (int)std::lround((c.y + v.x * std::sin(rot) + v.y * std::cos(rot)) * 16)));
-        cv::fillPoly(img, std::vector<std::vector<cv::Point>>{ q }, 255, cv::LINE_8, 4);
+            q.push_back(cv::Point(
+                (int)std::lround((c.x + v.x * std::cos(rot) - v.y * std::sin(rot)) * 16),
+                (int)std::lround((c.y + v.x * std::sin(rot) + v.y * std::cos(rot)) * 16)));
+        cv::fillPoly(img, std::vector<std::vector<cv::Point>>{q}, 255, cv::LINE_8, 4);
     }
     if (rng() & 1) {
         cv::Mat edges;
@@ -333,7 +357,8 @@ cv::Mat synthetic_shape(std::mt19937 &rng, int kind)
 
 void check_classes(oracle::Tally &t, std::mt19937 &rng, int per_class)
 {
-    static const char *names[] = { "other", "triangle", "square", "rectangle", "pentagon", "hexagon", "circle" };
+    static const char *names[] = {"other",    "triangle", "square", "rectangle",
+                                  "pentagon", "hexagon",  "circle"};
     oracle::Arena scratch(1 << 22);
     long wrong = 0, total = 0;
     for (int kind = RTE_SHAPE_TRIANGLE; kind <= RTE_SHAPE_CIRCLE; kind++) {
@@ -346,13 +371,18 @@ void check_classes(oracle::Tally &t, std::mt19937 &rng, int per_class)
                 if (cv::contourArea(cs[k]) > cv::contourArea(cs[big]))
                     big = k;
             rte_shape_info info;
-            int st = rte_shape_classify(reinterpret_cast<const rte_point *>(cs[big].data()), (int)cs[big].size(), &info, &scratch.arena);
+            int st = rte_shape_classify(reinterpret_cast<const rte_point *>(cs[big].data()),
+                                        (int)cs[big].size(), &info, &scratch.arena);
             total++;
             if (st != RTE_OK || (int)info.shape != kind) {
                 wrong++;
-                std::fprintf(stderr, "CLASS %s #%d: got %s (v %d, hull circ %.3f, aspect %.3f, solidity %.3f, %d px, r %.2f)\n", names[kind], i,
-                             names[st == RTE_OK ? info.shape : 0], info.vertices, info.hull_circularity_q16 / 65536.0,
-                             info.aspect_q16 / 65536.0, info.solidity_q16 / 65536.0, info.bounds.width, info.circle.r_q8 / 256.0);
+                std::fprintf(stderr,
+                             "CLASS %s #%d: got %s (v %d, hull circ %.3f, aspect %.3f, solidity "
+                             "%.3f, %d px, r %.2f)\n",
+                             names[kind], i, names[st == RTE_OK ? info.shape : 0], info.vertices,
+                             info.hull_circularity_q16 / 65536.0, info.aspect_q16 / 65536.0,
+                             info.solidity_q16 / 65536.0, info.bounds.width,
+                             info.circle.r_q8 / 256.0);
             }
         }
     }
@@ -369,13 +399,14 @@ int main()
     Checker c(t);
     std::mt19937 rng = oracle::make_rng();
     for (const auto &in : oracle::file_inputs()) {
-        for (int thr : { 100, 200 })
+        for (int thr : {100, 200})
             check_image(c, in.name + " >" + std::to_string(thr), in.gray > thr, 60);
     }
     int n = oracle::random_count();
     for (int i = 0; i < n; i++)
         check_image(c, "random#" + std::to_string(i), random_scene(rng), 40);
     check_classes(t, rng, 200);
-    std::printf("oracle shape: %ld tolerance checks, %ld outside tolerance\n", c.tol_cases, c.tol_fail);
+    std::printf("oracle shape: %ld tolerance checks, %ld outside tolerance\n", c.tol_cases,
+                c.tol_fail);
     return t.finish();
 }

@@ -22,8 +22,8 @@ static cv::Mat scalar_mat(int v)
 }
 
 // One cv::threshold call against rte_threshold_u8: pixels and returned threshold.
-static void check_threshold(oracle::Tally &t, const std::string &name, const cv::Mat &gray, double thresh,
-                            double maxval, int type, bool otsu, std::mt19937 &rng)
+static void check_threshold(oracle::Tally &t, const std::string &name, const cv::Mat &gray,
+                            double thresh, double maxval, int type, bool otsu, std::mt19937 &rng)
 {
     std::string what = name + " type " + std::to_string(type) + (otsu ? "|OTSU" : "") + " thresh " +
                        std::to_string(thresh) + " maxval " + std::to_string(maxval);
@@ -150,8 +150,8 @@ static std::vector<uint32_t> adversarial_histogram(int kind, std::mt19937 &rng)
     return h;
 }
 
-static void check_otsu_histogram(oracle::Tally &t, const std::string &what, const std::vector<uint32_t> &h,
-                                 std::mt19937 &rng)
+static void check_otsu_histogram(oracle::Tally &t, const std::string &what,
+                                 const std::vector<uint32_t> &h, std::mt19937 &rng)
 {
     cv::Mat img = image_from_histogram(h, rng), dst;
     double ret = cv::threshold(img, dst, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
@@ -179,7 +179,8 @@ static double numpy_median(const cv::Mat &gray)
     return (lo + hi) / 2.0;
 }
 
-static void check_auto(oracle::Tally &t, const std::string &name, const cv::Mat &gray, std::mt19937 &rng)
+static void check_auto(oracle::Tally &t, const std::string &name, const cv::Mat &gray,
+                       std::mt19937 &rng)
 {
     std::vector<uint8_t> sbuf, mbuf;
     rte_image_u8 src = oracle::padded_u8(gray, sbuf, rng);
@@ -196,7 +197,8 @@ static void check_auto(oracle::Tally &t, const std::string &name, const cv::Mat 
     rte_image_u8 rmask = oracle::padded_u8(mask, mbuf, rng);
     uint32_t hist[256];
     for (bool masked : {true, false}) {
-        int st = masked ? rte_histogram_masked_u8(&src, &rmask, hist) : rte_histogram_u8(&src, hist);
+        int st =
+            masked ? rte_histogram_masked_u8(&src, &rmask, hist) : rte_histogram_u8(&src, hist);
         if (st != RTE_OK) {
             t.call_failed(name + (masked ? " masked histogram" : " histogram"), st);
             return;
@@ -256,8 +258,8 @@ int main()
 {
     oracle::Tally t("threshold");
     std::mt19937 rng = oracle::make_rng();
-    const double threshes[] = {0, 1, 64, 127, 127.5, 128.49, 200, 254, 254.9, 255, 256, 300,
-                               -0.0001, -0.5, -1, -300};
+    const double threshes[] = {0,     1,   64,  127, 127.5,   128.49, 200, 254,
+                               254.9, 255, 256, 300, -0.0001, -0.5,   -1,  -300};
     const double maxvals[] = {255, 0, 1, 127.5, 128.5, 200.2, 254.5, 255.5, 300, -3};
 
     for (const auto &in : oracle::file_inputs()) {
@@ -286,8 +288,9 @@ int main()
     // single-pixel bins fall under FLT_EPSILON).
     for (int i = 0; i < 24000; i++) {
         int kind = i % 8;
-        check_otsu_histogram(t, "otsu histogram #" + std::to_string(i) + " kind " + std::to_string(kind),
-                             adversarial_histogram(kind, rng), rng);
+        check_otsu_histogram(
+            t, "otsu histogram #" + std::to_string(i) + " kind " + std::to_string(kind),
+            adversarial_histogram(kind, rng), rng);
     }
     for (int i = 0; i < 4; i++) {
         std::vector<uint32_t> h(256, 0);

@@ -70,10 +70,10 @@ static void assert_blur_matches_reference(const rte_image_u8 *src, const blur_ca
 
 static void kernel_sigma0_uses_opencv_tables(void **state)
 {
-    static const uint16_t k3[] = { 64, 128, 64 };
-    static const uint16_t k9[] = { 4, 13, 30, 51, 60, 51, 30, 13, 4 };
-    static const uint16_t k11[] = { 2, 7, 17, 31, 45, 52, 45, 31, 17, 7, 2 };
-    static const uint16_t k15[] = { 1, 3, 6, 12, 20, 30, 36, 40, 36, 30, 20, 12, 6, 3, 1 };
+    static const uint16_t k3[] = {64, 128, 64};
+    static const uint16_t k9[] = {4, 13, 30, 51, 60, 51, 30, 13, 4};
+    static const uint16_t k11[] = {2, 7, 17, 31, 45, 52, 45, 31, 17, 7, 2};
+    static const uint16_t k15[] = {1, 3, 6, 12, 20, 30, 36, 40, 36, 30, 20, 12, 6, 3, 1};
     rte_gaussian_kernel k;
     assert_int_equal(rte_gaussian_kernel_init(&k, 3, 9, 0, 0), RTE_OK);
     assert_int_equal(k.ksize_x, 3);
@@ -89,9 +89,9 @@ static void kernel_sigma0_uses_opencv_tables(void **state)
 
 static void kernel_from_sigma_and_size_from_sigma(void **state)
 {
-    static const uint16_t s05[] = { 27, 202, 27 };
-    static const uint16_t s10[] = { 14, 62, 104, 62, 14 };
-    static const uint16_t s20[] = { 7, 17, 32, 46, 52, 46, 32, 17, 7 };
+    static const uint16_t s05[] = {27, 202, 27};
+    static const uint16_t s10[] = {14, 62, 104, 62, 14};
+    static const uint16_t s20[] = {7, 17, 32, 46, 52, 46, 32, 17, 7};
     rte_gaussian_kernel k;
     assert_int_equal(rte_gaussian_kernel_init(&k, 3, 5, 0.5, 1.0), RTE_OK);
     assert_taps(k.taps_x, s05, 3);
@@ -146,7 +146,8 @@ static int32_t reflect101(int32_t i, int32_t n)
 }
 
 /* OpenCV's fixed-point Gaussian, computed directly per pixel. */
-static void reference_gaussian(const rte_image_u8 *src, rte_image_u8 *dst, const rte_gaussian_kernel *k)
+static void reference_gaussian(const rte_image_u8 *src, rte_image_u8 *dst,
+                               const rte_gaussian_kernel *k)
 {
     int32_t rx = k->ksize_x / 2, ry = k->ksize_y / 2;
     for (int32_t y = 0; y < src->height; y++) {
@@ -166,8 +167,8 @@ static void reference_gaussian(const rte_image_u8 *src, rte_image_u8 *dst, const
 
 static void gaussian_hand_checked_row(void **state)
 {
-    uint8_t in[5] = { 0, 0, 255, 0, 0 }, out[5];
-    static const uint8_t expected[5] = { 0, 64, 128, 64, 0 };
+    uint8_t in[5] = {0, 0, 255, 0, 0}, out[5];
+    static const uint8_t expected[5] = {0, 64, 128, 64, 0};
     rte_image_u8 src = rte_image_u8_view(in, 5, 1, 0), dst = rte_image_u8_view(out, 5, 1, 0);
     rte_gaussian_kernel k;
     rte_arena a = make_arena();
@@ -175,7 +176,8 @@ static void gaussian_hand_checked_row(void **state)
     assert_int_equal(rte_gaussian_blur_u8(&src, &dst, &k, &a), RTE_OK);
     assert_memory_equal(out, expected, 5);
     /* the same as a column; the edge reflects (101): pixel 0 sees 0,0,0 */
-    rte_image_u8 col_src = rte_image_u8_view(in, 1, 5, 1), col_dst = rte_image_u8_view(out, 1, 5, 1);
+    rte_image_u8 col_src = rte_image_u8_view(in, 1, 5, 1),
+                 col_dst = rte_image_u8_view(out, 1, 5, 1);
     assert_int_equal(rte_gaussian_blur_u8(&col_src, &col_dst, &k, &a), RTE_OK);
     assert_memory_equal(out, expected, 5);
     assert_int_equal(a.used, 0);
@@ -195,8 +197,8 @@ static void gaussian_reference(const rte_image_u8 *src, rte_image_u8 *dst, const
 static void gaussian_matches_direct_reference(void **state)
 {
     uint32_t seed = 12345;
-    static const int32_t sizes[][2] = { { 3, 3 }, { 5, 5 }, { 15, 15 }, { 1, 7 }, { 9, 1 },
-                                        { 13, 3 }, { 7, 11 }, { 1, 1 } };
+    static const int32_t sizes[][2] = {{3, 3}, {5, 5},  {15, 15}, {1, 7},
+                                       {9, 1}, {13, 3}, {7, 11},  {1, 1}};
     for (int32_t w = 1; w <= 67; w += (w < 20 ? 1 : 7)) {
         int32_t h = 1 + (int32_t)(unit_rand(&seed) % 24);
         rte_image_u8 src = unit_image_u8(w, h, (int32_t)(unit_rand(&seed) % 5), 0);
@@ -204,8 +206,9 @@ static void gaussian_matches_direct_reference(void **state)
         for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
             rte_gaussian_kernel k;
             double sigma = (s & 1) ? 0.0 : 0.4 + (s * 0.7);
-            assert_int_equal(rte_gaussian_kernel_init(&k, sizes[s][0], sizes[s][1], sigma, 0), RTE_OK);
-            blur_case c = { run_gaussian, gaussian_reference, &k };
+            assert_int_equal(rte_gaussian_kernel_init(&k, sizes[s][0], sizes[s][1], sigma, 0),
+                             RTE_OK);
+            blur_case c = {run_gaussian, gaussian_reference, &k};
             assert_blur_matches_reference(&src, &c);
         }
         test_free(src.buf);
@@ -214,7 +217,7 @@ static void gaussian_matches_direct_reference(void **state)
 
 static void gaussian_keeps_constants_and_works_in_place(void **state)
 {
-    static const uint8_t levels[] = { 0, 255, 77 };
+    static const uint8_t levels[] = {0, 255, 77};
     rte_gaussian_kernel k;
     assert_int_equal(rte_gaussian_kernel_init(&k, 15, 7, 3.0, 0.9), RTE_OK);
     for (size_t i = 0; i < sizeof levels; i++) {
@@ -255,7 +258,8 @@ static void gaussian_scratch_size_is_enough_and_checked(void **state)
         rte_arena_init(&a, arena_memory + offset, need);
         assert_int_equal(rte_gaussian_blur_u8(&src, &dst, &k, &a), RTE_OK);
         assert_int_equal(a.used, 0);
-        assert_int_equal(rte_gaussian_blur_u8(&dst, &dst, &k, &a), RTE_OK); /* in place needs most */
+        assert_int_equal(rte_gaussian_blur_u8(&dst, &dst, &k, &a),
+                         RTE_OK); /* in place needs most */
         assert_int_equal(a.used, 0);
         assert_true(a.high_water <= need);
     }
@@ -307,7 +311,7 @@ static void reference_median(const rte_image_u8 *src, rte_image_u8 *dst, int32_t
     int32_t r = ksize / 2;
     for (int32_t y = 0; y < src->height; y++) {
         for (int32_t x = 0; x < src->width; x++) {
-            uint32_t hist[256] = { 0 };
+            uint32_t hist[256] = {0};
             for (int32_t j = -r; j <= r; j++)
                 for (int32_t i = -r; i <= r; i++)
                     hist[rte_u8_row(src, clamp(y + j, src->height))[clamp(x + i, src->width)]]++;
@@ -338,7 +342,7 @@ static void median_matches_direct_reference(void **state)
         rte_image_u8 src = unit_image_u8(w, h, (int32_t)(unit_rand(&seed) % 4), 0);
         fill_random(&src, &seed, (w & 1) ? 256 : 3);
         for (int32_t ksize = 1; ksize <= 5; ksize += 2) {
-            blur_case c = { run_median, median_reference, &ksize };
+            blur_case c = {run_median, median_reference, &ksize};
             assert_blur_matches_reference(&src, &c);
         }
         test_free(src.buf);
@@ -402,12 +406,12 @@ static void median5_network_proven_on_all_binary_windows(void **state)
 static void median_small_and_thin_images(void **state)
 {
     uint32_t seed = 4242;
-    static const int32_t dims[][2] = { { 1, 1 }, { 1, 9 }, { 9, 1 }, { 2, 2 }, { 4, 3 }, { 33, 17 } };
+    static const int32_t dims[][2] = {{1, 1}, {1, 9}, {9, 1}, {2, 2}, {4, 3}, {33, 17}};
     for (size_t d = 0; d < sizeof dims / sizeof dims[0]; d++) {
         rte_image_u8 src = unit_image_u8(dims[d][0], dims[d][1], 3, 0);
         fill_random(&src, &seed, 256);
         for (int32_t ksize = 3; ksize <= 5; ksize += 2) {
-            blur_case c = { run_median, median_reference, &ksize };
+            blur_case c = {run_median, median_reference, &ksize};
             assert_blur_matches_reference(&src, &c);
         }
         test_free(src.buf);

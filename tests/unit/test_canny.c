@@ -29,7 +29,7 @@ static void params_convert_thresholds(void **state)
     assert_int_equal(p.low, 20);
     assert_int_equal(p.high, 60);
     assert_int_equal(rte_canny_params_init(&p, 10.5, 40000, 3, true), RTE_OK);
-    assert_int_equal(p.low, 110);           /* floor(10.5^2) */
+    assert_int_equal(p.low, 110);            /* floor(10.5^2) */
     assert_int_equal(p.high, 32767 * 32767); /* clamped, then squared */
     assert_int_equal(rte_canny_params_init(&p, -5.5, 0, 3, true), RTE_OK);
     assert_int_equal(p.low, -6); /* negative: not squared */
@@ -42,7 +42,7 @@ static void params_convert_thresholds(void **state)
     assert_int_equal(rte_canny_params_init(&p, 1, 2, 9, false), RTE_ERR_ARGUMENT);
     /* Aperture 7: thresholds divided by 16 first (OpenCV scales that Sobel by 1/16). */
     assert_int_equal(rte_canny_params_init(&p, 160, 50, 7, true), RTE_OK);
-    assert_int_equal(p.low, 9);   /* floor((50/16)^2) = floor(9.77) */
+    assert_int_equal(p.low, 9);    /* floor((50/16)^2) = floor(9.77) */
     assert_int_equal(p.high, 100); /* (160/16)^2 */
     assert_int_equal(rte_canny_params_init(&p, NAN, 2, 3, false), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_canny_params_init(NULL, 1, 2, 3, false), RTE_ERR_ARGUMENT);
@@ -69,8 +69,8 @@ static void step_edge_is_one_pixel_wide(void **state)
         rte_canny_params p;
         assert_int_equal(rte_canny_params_init(&p, 100, 200, ap, ap == 5), RTE_OK);
         assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
-        static const char *const want[8] = { "....#.....", "....#.....", "....#.....", "....#.....",
-                                             "....#.....", "....#.....", "....#.....", "....#....." };
+        static const char *const want[8] = {"....#.....", "....#.....", "....#.....", "....#.....",
+                                            "....#.....", "....#.....", "....#.....", "....#....."};
         assert_edges(&dst, want);
         assert_int_equal(rte_arena_mark(&a), 0);
         test_free(src.buf);
@@ -90,14 +90,14 @@ static void hysteresis_follows_weak_edges_from_seeds(void **state)
     rte_canny_params p;
     assert_int_equal(rte_canny_params_init(&p, 100, 200, 3, false), RTE_OK);
     assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
-    static const char *const none[8] = { "..........", "..........", "..........", "..........",
-                                         "..........", "..........", "..........", ".........." };
+    static const char *const none[8] = {"..........", "..........", "..........", "..........",
+                                        "..........", "..........", "..........", ".........."};
     assert_edges(&dst, none);
 
     memset(src.buf + 5, 60, 5);
     assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
-    static const char *const chain[8] = { ".....#....", ".....#....", "....#.....", "....#.....",
-                                          "....#.....", "....#.....", "....#.....", "....#....." };
+    static const char *const chain[8] = {".....#....", ".....#....", "....#.....", "....#.....",
+                                         "....#.....", "....#.....", "....#.....", "....#....."};
     assert_edges(&dst, chain);
     test_free(src.buf);
     test_free(dst.buf);
@@ -109,12 +109,12 @@ static void thin_images(void **state)
     rte_canny_params p;
     assert_int_equal(rte_canny_params_init(&p, 100, 200, 3, false), RTE_OK);
     /* 1x6 row: |dx| = 800 at x = 2 and 3, dy = 0; x = 2 wins. */
-    static const uint8_t row[6] = { 0, 0, 0, 200, 200, 200 };
+    static const uint8_t row[6] = {0, 0, 0, 200, 200, 200};
     rte_image_u8 src = unit_image_u8(6, 1, 4, 0);
     memcpy(src.buf, row, 6);
     rte_image_u8 dst = unit_image_u8(6, 1, 4, 0);
     assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
-    static const char *const want_row[1] = { "..#..." };
+    static const char *const want_row[1] = {"..#..."};
     assert_edges(&dst, want_row);
     test_free(src.buf);
     test_free(dst.buf);
@@ -125,14 +125,14 @@ static void thin_images(void **state)
     for (int y = 0; y < 6; y++)
         src.buf[y * src.stride] = row[y];
     assert_int_equal(rte_canny_u8(&src, &dst, &p, &a), RTE_OK);
-    static const char *const want_col[6] = { ".", ".", "#", ".", ".", "." };
+    static const char *const want_col[6] = {".", ".", "#", ".", ".", "."};
     assert_edges(&dst, want_col);
     test_free(src.buf);
     test_free(dst.buf);
 
     /* 1x1 and flat images: no gradient, no edges, even with thresholds 0. */
     assert_int_equal(rte_canny_params_init(&p, 0, 0, 5, true), RTE_OK);
-    static const uint8_t levels[3] = { 0, 255, 90 };
+    static const uint8_t levels[3] = {0, 255, 90};
     for (int l = 0; l < 3; l++)
         for (int w = 1; w <= 67; w += 11) {
             src = unit_image_u8(w, w / 3 + 1, 5, levels[l]);
@@ -166,12 +166,12 @@ static void from_gradient(void **state)
     rte_canny_params p;
     assert_int_equal(rte_canny_params_init(&p, 50, 200, 3, false), RTE_OK);
     assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &dst, &p, &a), RTE_OK);
-    static const char *const want[5] = { "...#...", "...#...", "...#...", "...#...", "...#..." };
+    static const char *const want[5] = {"...#...", "...#...", "...#...", "...#...", "...#..."};
     assert_edges(&dst, want);
     /* Raise low above 60: only the seed remains. */
     assert_int_equal(rte_canny_params_init(&p, 61, 200, 3, false), RTE_OK);
     assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &dst, &p, &a), RTE_OK);
-    static const char *const seed[5] = { ".......", ".......", "...#...", ".......", "......." };
+    static const char *const seed[5] = {".......", ".......", "...#...", ".......", "......."};
     assert_edges(&dst, seed);
     /* L2 with the same thresholds: 60^2 > 50^2, 300^2 > 200^2. */
     assert_int_equal(rte_canny_params_init(&p, 50, 200, 3, true), RTE_OK);
@@ -247,15 +247,15 @@ static void blurred_equals_blur_then_canny(void **state)
     rte_arena a;
     rte_arena_init(&a, mem, sizeof mem);
     uint32_t rng = 4242;
-    static const int32_t ks[][2] = { { 5, 5 }, { 3, 3 }, { 1, 1 }, { 9, 3 }, { 1, 7 }, { 15, 15 } };
+    static const int32_t ks[][2] = {{5, 5}, {3, 3}, {1, 1}, {9, 3}, {1, 7}, {15, 15}};
     for (int32_t w = 1; w <= 67; w++) {
         const int32_t h = w % 9 == 0 ? 30 + w % 17 : 1 + w % 9;
         const int32_t pad = 1 + 2 * (w % 4);
         rte_image_u8 src = unit_image_u8(w, h, pad, 0);
         for (int32_t y = 0; y < h; y++)
             for (int32_t x = 0; x < w; x++)
-                src.buf[y * src.stride + x] = (uint8_t)(w % 5 == 0 ? (unit_rand(&rng) & 1) * 255
-                                                                    : unit_rand(&rng));
+                src.buf[y * src.stride + x] =
+                    (uint8_t)(w % 5 == 0 ? (unit_rand(&rng) & 1) * 255 : unit_rand(&rng));
         const int32_t ap = 3 + 2 * (w % 3);
         const bool l2 = (w / 3) % 2;
         rte_gaussian_kernel k;

@@ -20,8 +20,8 @@ static uint8_t *random_bytes(size_t n, uint32_t *seed)
 static void primaries_give_hand_computed_grey(void **state)
 {
     /* B, G, R, white, black as BGR bytes */
-    uint8_t px[15] = { 255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255, 0, 0, 0 };
-    rte_image_u8c3 src = { 5, 1, 15, px };
+    uint8_t px[15] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255, 0, 0, 0};
+    rte_image_u8c3 src = {5, 1, 15, px};
     rte_image_u8 dst = unit_image_u8(5, 1, 3, 0);
     assert_int_equal(rte_color_bgr_to_gray(&src, &dst), RTE_OK);
     /* 3735*255/32768 = 29.07, 19235*255/32768 = 149.7, 9798*255/32768 = 76.2 */
@@ -44,13 +44,13 @@ static void bgr_and_rgb_rows_of_every_width(void **state)
     for (int32_t w = 1; w <= 67; w++) {
         int32_t h = 1 + w % 5, stride = 3 * w + (int32_t)(unit_rand(&seed) % 9);
         uint8_t *buf = random_bytes((size_t)stride * h, &seed);
-        rte_image_u8c3 src = { w, h, stride, buf };
+        rte_image_u8c3 src = {w, h, stride, buf};
         rte_image_u8 bgr = unit_image_u8(w, h, 1 + w % 7, 0);
         rte_image_u8 rgb = unit_image_u8(w, h, 2, 0);
         rte_image_u8 fr = unit_image_u8(w, h, 5, 0);
         assert_int_equal(rte_color_bgr_to_gray(&src, &bgr), RTE_OK);
         assert_int_equal(rte_color_rgb_to_gray(&src, &rgb), RTE_OK);
-        rte_frame f = { RTE_PIXEL_RGB24, w, h, { buf, NULL }, { stride, 0 } };
+        rte_frame f = {RTE_PIXEL_RGB24, w, h, {buf, NULL}, {stride, 0}};
         assert_int_equal(rte_frame_to_gray(&f, &fr), RTE_OK);
         for (int32_t y = 0; y < h; y++)
             for (int32_t x = 0; x < w; x++) {
@@ -75,7 +75,7 @@ static void grey_colours_stay_grey(void **state)
     uint8_t px[3 * 256];
     for (int v = 0; v < 256; v++)
         px[3 * v] = px[3 * v + 1] = px[3 * v + 2] = (uint8_t)v;
-    rte_image_u8c3 src = { 256, 1, sizeof px, px };
+    rte_image_u8c3 src = {256, 1, sizeof px, px};
     rte_image_u8 dst = unit_image_u8(256, 1, 4, 0);
     assert_int_equal(rte_color_bgr_to_gray(&src, &dst), RTE_OK);
     for (int v = 0; v < 256; v++)
@@ -87,22 +87,22 @@ static void grey_colours_stay_grey(void **state)
 static void packed_422_takes_the_y_samples(void **state)
 {
     /* width 3 (odd): Y0 U Y1 V | Y2 U' */
-    uint8_t row[2][8] = { { 10, 20, 30, 40, 50, 60, 0xEE, 0xEE },
-                          { 11, 21, 31, 41, 51, 61, 0xEE, 0xEE } };
+    uint8_t row[2][8] = {{10, 20, 30, 40, 50, 60, 0xEE, 0xEE},
+                         {11, 21, 31, 41, 51, 61, 0xEE, 0xEE}};
     rte_image_u8 dst = unit_image_u8(3, 2, 2, 0);
     assert_int_equal(rte_color_yuyv_to_gray(&row[0][0], 8, &dst), RTE_OK);
-    assert_memory_equal(dst.buf, ((uint8_t[]){ 10, 30, 50 }), 3);
-    assert_memory_equal(dst.buf + dst.stride, ((uint8_t[]){ 11, 31, 51 }), 3);
+    assert_memory_equal(dst.buf, ((uint8_t[]){10, 30, 50}), 3);
+    assert_memory_equal(dst.buf + dst.stride, ((uint8_t[]){11, 31, 51}), 3);
     assert_int_equal(rte_color_uyvy_to_gray(&row[0][0], 8, &dst), RTE_OK);
-    assert_memory_equal(dst.buf, ((uint8_t[]){ 20, 40, 60 }), 3);
-    assert_memory_equal(dst.buf + dst.stride, ((uint8_t[]){ 21, 41, 61 }), 3);
+    assert_memory_equal(dst.buf, ((uint8_t[]){20, 40, 60}), 3);
+    assert_memory_equal(dst.buf + dst.stride, ((uint8_t[]){21, 41, 61}), 3);
 
-    rte_frame f = { RTE_PIXEL_YUYV, 3, 2, { &row[0][0], NULL }, { 8, 0 } };
+    rte_frame f = {RTE_PIXEL_YUYV, 3, 2, {&row[0][0], NULL}, {8, 0}};
     assert_int_equal(rte_frame_to_gray(&f, &dst), RTE_OK);
-    assert_memory_equal(dst.buf + dst.stride, ((uint8_t[]){ 11, 31, 51 }), 3);
+    assert_memory_equal(dst.buf + dst.stride, ((uint8_t[]){11, 31, 51}), 3);
     f.format = RTE_PIXEL_UYVY;
     assert_int_equal(rte_frame_to_gray(&f, &dst), RTE_OK);
-    assert_memory_equal(dst.buf, ((uint8_t[]){ 20, 40, 60 }), 3);
+    assert_memory_equal(dst.buf, ((uint8_t[]){20, 40, 60}), 3);
     unit_assert_padding_u8(&dst);
 
     /* a stride shorter than 2 * width */
@@ -167,7 +167,7 @@ static void nv12_and_grey_give_their_y_plane(void **state)
     memset(dst.buf, 0, 5);
     assert_int_equal(rte_frame_to_gray(&f, &dst), RTE_OK);
     assert_memory_equal(dst.buf, buf, 5);
-    rte_image_u8 self = { 5, 3, 5, buf };
+    rte_image_u8 self = {5, 3, 5, buf};
     uint8_t before[15];
     memcpy(before, buf, 15);
     assert_int_equal(rte_frame_to_gray(&f, &self), RTE_OK);
@@ -182,13 +182,16 @@ static void nv12_and_grey_give_their_y_plane(void **state)
 
 static void one_pixel_frames(void **state)
 {
-    uint8_t px[6] = { 1, 2, 3, 4, 5, 6 };
+    uint8_t px[6] = {1, 2, 3, 4, 5, 6};
     rte_image_u8 dst = unit_image_u8(1, 1, 2, 0);
     static const struct {
         rte_pixel_format format;
         uint8_t expected;
     } cases[] = {
-        { RTE_PIXEL_GREY, 1 }, { RTE_PIXEL_YUYV, 1 }, { RTE_PIXEL_UYVY, 2 }, { RTE_PIXEL_NV12, 1 },
+        {RTE_PIXEL_GREY, 1},
+        {RTE_PIXEL_YUYV, 1},
+        {RTE_PIXEL_UYVY, 2},
+        {RTE_PIXEL_NV12, 1},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         rte_frame f;
@@ -206,9 +209,9 @@ static void one_pixel_frames(void **state)
 
 static void constant_frames_of_all_formats(void **state)
 {
-    static const rte_pixel_format formats[] = { RTE_PIXEL_GREY, RTE_PIXEL_BGR24, RTE_PIXEL_RGB24,
-                                                RTE_PIXEL_YUYV, RTE_PIXEL_UYVY,  RTE_PIXEL_NV12 };
-    static const uint8_t values[] = { 0, 255, 77 };
+    static const rte_pixel_format formats[] = {RTE_PIXEL_GREY, RTE_PIXEL_BGR24, RTE_PIXEL_RGB24,
+                                               RTE_PIXEL_YUYV, RTE_PIXEL_UYVY,  RTE_PIXEL_NV12};
+    static const uint8_t values[] = {0, 255, 77};
     for (size_t v = 0; v < sizeof values; v++)
         for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++) {
             int32_t w = 37, h = 1 + (int32_t)i;
@@ -231,7 +234,7 @@ static void constant_frames_of_all_formats(void **state)
 static void frame_checks_reject_bad_frames(void **state)
 {
     uint8_t px[64];
-    rte_frame ok = { RTE_PIXEL_YUYV, 4, 2, { px, NULL }, { 8, 0 } };
+    rte_frame ok = {RTE_PIXEL_YUYV, 4, 2, {px, NULL}, {8, 0}};
     assert_int_equal(rte_frame_check(&ok), RTE_OK);
     assert_int_equal(rte_frame_check(NULL), RTE_ERR_ARGUMENT);
 
@@ -253,14 +256,14 @@ static void frame_checks_reject_bad_frames(void **state)
     bad.height = RTE_MAX_SIDE + 1;
     assert_int_equal(rte_frame_check(&bad), RTE_ERR_SIZE);
 
-    rte_frame nv = { RTE_PIXEL_NV12, 5, 2, { px, NULL }, { 5, 6 } };
+    rte_frame nv = {RTE_PIXEL_NV12, 5, 2, {px, NULL}, {5, 6}};
     assert_int_equal(rte_frame_check(&nv), RTE_ERR_ARGUMENT); /* no UV plane */
     nv.plane[1] = px + 10;
     assert_int_equal(rte_frame_check(&nv), RTE_OK);
     nv.stride[1] = 5; /* 3 pairs need 6 bytes */
     assert_int_equal(rte_frame_check(&nv), RTE_ERR_SIZE);
 
-    rte_frame bgr = { RTE_PIXEL_BGR24, 4, 2, { px, NULL }, { 11, 0 } };
+    rte_frame bgr = {RTE_PIXEL_BGR24, 4, 2, {px, NULL}, {11, 0}};
     assert_int_equal(rte_frame_check(&bgr), RTE_ERR_SIZE);
 
     /* conversions check their arguments */
@@ -271,7 +274,7 @@ static void frame_checks_reject_bad_frames(void **state)
     rte_image_u8 small = dst;
     small.width = 3;
     assert_int_equal(rte_frame_to_gray(&ok, &small), RTE_ERR_SIZE);
-    rte_image_u8c3 c3 = { 4, 2, 12, px };
+    rte_image_u8c3 c3 = {4, 2, 12, px};
     assert_int_equal(rte_color_bgr_to_gray(&c3, &small), RTE_ERR_SIZE);
     assert_int_equal(rte_color_rgb_to_gray(NULL, &dst), RTE_ERR_ARGUMENT);
     c3.stride = 11;
@@ -291,8 +294,8 @@ static void frame_checks_reject_bad_frames(void **state)
 
 static void format_names_round_trip(void **state)
 {
-    static const rte_pixel_format formats[] = { RTE_PIXEL_GREY, RTE_PIXEL_BGR24, RTE_PIXEL_RGB24,
-                                                RTE_PIXEL_YUYV, RTE_PIXEL_UYVY,  RTE_PIXEL_NV12 };
+    static const rte_pixel_format formats[] = {RTE_PIXEL_GREY, RTE_PIXEL_BGR24, RTE_PIXEL_RGB24,
+                                               RTE_PIXEL_YUYV, RTE_PIXEL_UYVY,  RTE_PIXEL_NV12};
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++)
         assert_int_equal(rte_pixel_format_parse(rte_pixel_format_name(formats[i])), formats[i]);
     assert_string_equal(rte_pixel_format_name(RTE_PIXEL_YUYV), "yuyv");

@@ -35,7 +35,8 @@ static void fx_free(fixture *f)
     test_free(f);
 }
 
-static void find_ok(fixture *f, const rte_image_u8 *img, rte_contour_mode mode, rte_contour_method method)
+static void find_ok(fixture *f, const rte_image_u8 *img, rte_contour_mode mode,
+                    rte_contour_method method)
 {
     assert_int_equal(rte_contours_find(img, mode, method, &f->r, &f->arena), RTE_OK);
 }
@@ -73,7 +74,7 @@ static void filled_rectangle_is_traced_downward_first(void **state)
     fixture *f = fx_new(9, 8);
     find_ok(f, &img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_SIMPLE);
     assert_int_equal(f->r.n_contours, 1);
-    static const int simple[] = { 2, 2, 2, 5, 6, 5, 6, 2 };
+    static const int simple[] = {2, 2, 2, 5, 6, 5, 6, 2};
     assert_points(&f->r, 0, simple, 4);
     assert_hier(&f->r, 0, -1, -1, -1, -1);
     assert_int_equal(f->r.truncated, 0);
@@ -86,7 +87,8 @@ static void filled_rectangle_is_traced_downward_first(void **state)
     /* the input is unchanged and its padding untouched */
     for (int y = 0; y < 8; y++)
         for (int x = 0; x < 9; x++)
-            assert_int_equal(img.buf[y * img.stride + x], (x >= 2 && x <= 6 && y >= 2 && y <= 5) ? 200 : 0);
+            assert_int_equal(img.buf[y * img.stride + x],
+                             (x >= 2 && x <= 6 && y >= 2 && y <= 5) ? 200 : 0);
     unit_assert_padding_u8(&img);
     fx_free(f);
     test_free(img.buf);
@@ -102,11 +104,11 @@ static void ring_with_island_builds_the_tree(void **state)
     fixture *f = fx_new(9, 9);
     find_ok(f, &img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_SIMPLE);
     assert_int_equal(f->r.n_contours, 3);
-    static const int outer[] = { 0, 0, 0, 8, 8, 8, 8, 0 };
+    static const int outer[] = {0, 0, 0, 8, 8, 8, 8, 0};
     /* the hole is traced from the pixel left of its first 0, clockwise on
      * screen, through the object pixels around it (checked with OpenCV) */
-    static const int hole[] = { 1, 2, 2, 1, 6, 1, 7, 2, 7, 6, 6, 7, 2, 7, 1, 6 };
-    static const int island[] = { 4, 4 };
+    static const int hole[] = {1, 2, 2, 1, 6, 1, 7, 2, 7, 6, 6, 7, 2, 7, 1, 6};
+    static const int island[] = {4, 4};
     assert_points(&f->r, 0, outer, 4);
     assert_hier(&f->r, 0, -1, -1, 1, -1);
     assert_int_equal(f->r.contours[1].is_hole, 1);
@@ -141,9 +143,9 @@ static void list_puts_the_bottom_blob_first(void **state)
     fixture *f = fx_new(5, 9);
     find_ok(f, &img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE);
     assert_int_equal(f->r.n_contours, 3);
-    static const int bottom[] = { 3, 8, 4, 8 };
-    static const int middle[] = { 2, 4 };
-    static const int top[] = { 1, 0 };
+    static const int bottom[] = {3, 8, 4, 8};
+    static const int middle[] = {2, 4};
+    static const int top[] = {1, 0};
     assert_points(&f->r, 0, bottom, 2);
     assert_points(&f->r, 1, middle, 1);
     assert_points(&f->r, 2, top, 1);
@@ -199,8 +201,10 @@ static void checkerboard_truncates_within_bounds(void **state)
         rte_contour *cs = test_malloc((maxc + GUARD) * sizeof *cs);
         memset(pts, 0xEE, (maxp + GUARD) * sizeof *pts);
         memset(cs, 0xEE, (maxc + GUARD) * sizeof *cs);
-        rte_contours r = { pts, cs, maxp, maxc, 0, 0, 0, 0, 0 };
-        assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_NONE, &r, &arena), RTE_OK);
+        rte_contours r = {pts, cs, maxp, maxc, 0, 0, 0, 0, 0};
+        assert_int_equal(
+            rte_contours_find(&img, RTE_CONTOURS_TREE, RTE_CONTOURS_APPROX_NONE, &r, &arena),
+            RTE_OK);
         assert_int_equal(r.truncated, 1);
         assert_true(r.n_contours <= maxc);
         assert_true(r.n_points <= maxp);
@@ -230,21 +234,37 @@ static void bad_arguments_are_rejected(void **state)
 {
     rte_image_u8 img = unit_image_u8(4, 4, 0, 1);
     fixture *f = fx_new(4, 4);
-    assert_int_equal(rte_contours_find(NULL, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, &f->arena), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_contours_find(&img, (rte_contour_mode)4, RTE_CONTOURS_APPROX_NONE, &f->r, &f->arena), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_LIST, (rte_contour_method)0, &f->r, &f->arena), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, NULL, &f->arena), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, NULL), RTE_ERR_ARGUMENT);
+    assert_int_equal(
+        rte_contours_find(NULL, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, &f->arena),
+        RTE_ERR_ARGUMENT);
+    assert_int_equal(
+        rte_contours_find(&img, (rte_contour_mode)4, RTE_CONTOURS_APPROX_NONE, &f->r, &f->arena),
+        RTE_ERR_ARGUMENT);
+    assert_int_equal(
+        rte_contours_find(&img, RTE_CONTOURS_LIST, (rte_contour_method)0, &f->r, &f->arena),
+        RTE_ERR_ARGUMENT);
+    assert_int_equal(
+        rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, NULL, &f->arena),
+        RTE_ERR_ARGUMENT);
+    assert_int_equal(
+        rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, NULL),
+        RTE_ERR_ARGUMENT);
     rte_contours bad = f->r;
     bad.points = NULL;
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &bad, &f->arena), RTE_ERR_ARGUMENT);
+    assert_int_equal(
+        rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &bad, &f->arena),
+        RTE_ERR_ARGUMENT);
     uint8_t small_mem[64];
     rte_arena small;
     rte_arena_init(&small, small_mem, sizeof small_mem);
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, &small), RTE_ERR_NO_MEMORY);
+    assert_int_equal(
+        rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, &small),
+        RTE_ERR_NO_MEMORY);
     assert_int_equal(small.used, 0);
     img.stride = 3;
-    assert_int_equal(rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, &f->arena), RTE_ERR_SIZE);
+    assert_int_equal(
+        rte_contours_find(&img, RTE_CONTOURS_LIST, RTE_CONTOURS_APPROX_NONE, &f->r, &f->arena),
+        RTE_ERR_SIZE);
     assert_int_equal(rte_contours_scratch_size(0, 5, 1), 0);
     fx_free(f);
     test_free(img.buf);

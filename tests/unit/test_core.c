@@ -30,7 +30,7 @@ static void image_checks_reject_bad_views(void **state)
     assert_int_equal(rte_image_u8_check_pair(&ok, &other), RTE_ERR_SIZE);
     assert_int_equal(rte_image_u8_check_pair(&ok, &ok), RTE_OK);
 
-    rte_image_u8c3 c3 = { 2, 2, 5, px };
+    rte_image_u8c3 c3 = {2, 2, 5, px};
     assert_int_equal(rte_image_u8c3_check(&c3), RTE_ERR_SIZE);
     c3.stride = 6;
     assert_int_equal(rte_image_u8c3_check(&c3), RTE_OK);

@@ -65,7 +65,8 @@ static void lines(void **state)
         assert_true(lit(&c, x, 1));
     const int before = count(&c);
     assert_int_equal(rte_draw_line(&c.img, -50, -5, 100, -9, col, 2), RTE_OK);
-    assert_int_equal(rte_draw_line(&c.img, INT32_MIN, INT32_MIN, INT32_MAX, INT32_MIN, col, 1), RTE_OK);
+    assert_int_equal(rte_draw_line(&c.img, INT32_MIN, INT32_MIN, INT32_MAX, INT32_MIN, col, 1),
+                     RTE_OK);
     assert_int_equal(count(&c), before);
     assert_int_equal(rte_draw_line(&c.img, 0, 0, 1, 1, col, 0), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_draw_line(NULL, 0, 0, 1, 1, col, 1), RTE_ERR_ARGUMENT);
@@ -86,7 +87,8 @@ static void polylines_circles_dots(void **state)
 
     c = new_canvas();
     assert_int_equal(rte_draw_circle(&c.img, 11, 8, 5, col, 1), RTE_OK);
-    assert_true(lit(&c, 16, 8) && lit(&c, 6, 8) && lit(&c, 11, 3) && lit(&c, 11, 13) && !lit(&c, 11, 8));
+    assert_true(lit(&c, 16, 8) && lit(&c, 6, 8) && lit(&c, 11, 3) && lit(&c, 11, 13) &&
+                !lit(&c, 11, 8));
     /* symmetric about the centre */
     for (int32_t y = 3; y <= 13; y++)
         for (int32_t x = 6; x <= 16; x++)
@@ -118,7 +120,8 @@ static void text(void **state)
     rte_draw_text(&d.img, 6, 0, "A", col, 1);
     for (int32_t y = 0; y < H; y++)
         for (int32_t x = 0; x < W; x++)
-            assert_int_equal(lit(&c, x, y) || (x < 6 && lit(&c, x, y)), lit(&d, x, y) || (x < 6 && lit(&c, x, y)));
+            assert_int_equal(lit(&c, x, y) || (x < 6 && lit(&c, x, y)),
+                             lit(&d, x, y) || (x < 6 && lit(&c, x, y)));
     test_free(d.mem);
     d = new_canvas();
     rte_draw_text(&d.img, 0, 0, "\x01~", col, 1);

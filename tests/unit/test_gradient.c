@@ -16,10 +16,10 @@ static rte_arena make_arena(void)
 
 /* Sobel taps written out by hand: [ksize index][order]. */
 static const int sobel_taps[4][3][7] = {
-    { { 1 } },                                                                          /* ksize 1 */
-    { { 1, 2, 1 }, { -1, 0, 1 }, { 1, -2, 1 } },                                        /* ksize 3 */
-    { { 1, 4, 6, 4, 1 }, { -1, -2, 0, 2, 1 }, { 1, 0, -2, 0, 1 } },                     /* ksize 5 */
-    { { 1, 6, 15, 20, 15, 6, 1 }, { -1, -4, -5, 0, 5, 4, 1 }, { 1, 2, -1, -4, -1, 2, 1 } }, /* 7 */
+    {{1}},                                                                          /* ksize 1 */
+    {{1, 2, 1}, {-1, 0, 1}, {1, -2, 1}},                                            /* ksize 3 */
+    {{1, 4, 6, 4, 1}, {-1, -2, 0, 2, 1}, {1, 0, -2, 0, 1}},                         /* ksize 5 */
+    {{1, 6, 15, 20, 15, 6, 1}, {-1, -4, -5, 0, 5, 4, 1}, {1, 2, -1, -4, -1, 2, 1}}, /* 7 */
 };
 
 /* Reflect-101 is periodic with period 2 * (len - 1). */
@@ -70,9 +70,9 @@ static void fill_random(rte_image_u8 *img, uint32_t *rng)
     int kind = (int)(unit_rand(rng) % 3);
     for (int y = 0; y < img->height; y++)
         for (int x = 0; x < img->width; x++)
-            img->buf[y * img->stride + x] =
-                (uint8_t)(kind == 0 ? unit_rand(rng) : kind == 1 ? (unit_rand(rng) & 1) * 255
-                                                                 : (x * 37 + y * 11) & 255);
+            img->buf[y * img->stride + x] = (uint8_t)(kind == 0   ? unit_rand(rng)
+                                                      : kind == 1 ? (unit_rand(rng) & 1) * 255
+                                                                  : (x * 37 + y * 11) & 255);
 }
 
 static void assert_matches(const rte_image_s16 *dst, const int16_t *expected)
@@ -93,7 +93,7 @@ static void sobel_dx3_of_ramp(void **state)
     rte_image_s16 dst = unit_image_s16(5, 4, 2);
     assert_int_equal(rte_sobel_s16(&src, &dst, 1, 0, 3, &a), RTE_OK);
     /* Inside: (s[x+1] - s[x-1]) * (1+2+1) = 80; the mirrored edges give 0. */
-    static const int16_t row[5] = { 0, 80, 80, 80, 0 };
+    static const int16_t row[5] = {0, 80, 80, 80, 0};
     for (int y = 0; y < 4; y++)
         for (int x = 0; x < 5; x++)
             assert_int_equal(dst.buf[y * dst.stride + x], row[x]);
@@ -119,7 +119,7 @@ static void sobel_impulse_response_is_the_kernel(void **state)
     src.buf[7 * src.stride + 7] = 3;
     rte_image_s16 dst = unit_image_s16(15, 15, 5);
     assert_int_equal(rte_sobel_s16(&src, &dst, 1, 0, 5, &a), RTE_OK);
-    static const int kx[5] = { -1, -2, 0, 2, 1 }, ky[5] = { 1, 4, 6, 4, 1 };
+    static const int kx[5] = {-1, -2, 0, 2, 1}, ky[5] = {1, 4, 6, 4, 1};
     for (int y = 0; y < 15; y++)
         for (int x = 0; x < 15; x++) {
             int i = 7 - x + 2, j = 7 - y + 2;
@@ -193,10 +193,10 @@ static void all_kernels_match_reference(void **state)
                     assert_int_equal(rte_sobel_s16(&src, &dst, dx, dy, ks, &a), RTE_OK);
                     assert_matches(&dst, expected);
                 }
-        static const int scharr_x[9] = { -3, 0, 3, -10, 0, 10, -3, 0, 3 };
-        static const int scharr_y[9] = { -3, -10, -3, 0, 0, 0, 3, 10, 3 };
-        static const int lap1[9] = { 0, 1, 0, 1, -4, 1, 0, 1, 0 };
-        static const int lap3[9] = { 2, 0, 2, 0, -8, 0, 2, 0, 2 };
+        static const int scharr_x[9] = {-3, 0, 3, -10, 0, 10, -3, 0, 3};
+        static const int scharr_y[9] = {-3, -10, -3, 0, 0, 0, 3, 10, 3};
+        static const int lap1[9] = {0, 1, 0, 1, -4, 1, 0, 1, 0};
+        static const int lap3[9] = {2, 0, 2, 0, -8, 0, 2, 0, 2};
         reference(&src, scharr_x, 3, expected);
         assert_int_equal(rte_scharr_s16(&src, &dst, 1, 0, &a), RTE_OK);
         assert_matches(&dst, expected);
@@ -217,7 +217,7 @@ static void all_kernels_match_reference(void **state)
 
 static void flat_images_have_no_gradient(void **state)
 {
-    static const uint8_t levels[3] = { 0, 255, 77 };
+    static const uint8_t levels[3] = {0, 255, 77};
     rte_arena a = make_arena();
     for (int l = 0; l < 3; l++) {
         rte_image_u8 src = unit_image_u8(9, 6, 3, levels[l]);
@@ -254,8 +254,8 @@ static void one_pixel_image(void **state)
 
 static void abs_saturates(void **state)
 {
-    static const int16_t in[6] = { -32768, -5, 0, 7, 255, 300 };
-    static const uint8_t want[6] = { 255, 5, 0, 7, 255, 255 };
+    static const int16_t in[6] = {-32768, -5, 0, 7, 255, 300};
+    static const uint8_t want[6] = {255, 5, 0, 7, 255, 255};
     rte_image_s16 src = unit_image_s16(6, 2, 3);
     for (int y = 0; y < 2; y++)
         memcpy(src.buf + y * src.stride, in, sizeof in);

@@ -13,8 +13,8 @@
 
 typedef struct truth {
     rte_shape_class shape;
-    double cx, cy;    /* centroid of the shape as drawn */
-    double angle;     /* closing direction (rectangles), degrees in (-90, 90] */
+    double cx, cy; /* centroid of the shape as drawn */
+    double angle;  /* closing direction (rectangles), degrees in (-90, 90] */
     int has_angle;
 } truth;
 
@@ -75,8 +75,8 @@ static void rect_vertices(double cx, double cy, double hl, double hw, double th,
 }
 
 /* One object of the given class centred near (cx, cy) in a cell of `cell` px. */
-static void draw_object(scene *sc, rte_shape_class shape, double cx, double cy, int cell, uint8_t value,
-                        uint32_t *rng)
+static void draw_object(scene *sc, rte_shape_class shape, double cx, double cy, int cell,
+                        uint8_t value, uint32_t *rng)
 {
     truth *t = &sc->t[sc->n++];
     t->shape = shape;
@@ -107,7 +107,8 @@ static void draw_object(scene *sc, rte_shape_class shape, double cx, double cy, 
         }
         fill_polygon(&sc->img, v, 3, value, t);
     } else {
-        fill_disc(&sc->img, (int)lround(cx), (int)lround(cy), (int)lround(rnd(rng, 0.16, 0.3) * cell), value, t);
+        fill_disc(&sc->img, (int)lround(cx), (int)lround(cy),
+                  (int)lround(rnd(rng, 0.16, 0.3) * cell), value, t);
     }
 }
 
@@ -117,8 +118,8 @@ static scene make_scene(uint32_t seed, int32_t w, int32_t h, int pad, uint8_t ta
     scene sc = {.img = unit_image_u8(w, h, pad, table)};
     uint32_t rng = seed;
     const int cell = 150, cols = w / cell, rows = h / cell;
-    static const rte_shape_class classes[4] = {RTE_SHAPE_RECTANGLE, RTE_SHAPE_SQUARE, RTE_SHAPE_TRIANGLE,
-                                               RTE_SHAPE_CIRCLE};
+    static const rte_shape_class classes[4] = {RTE_SHAPE_RECTANGLE, RTE_SHAPE_SQUARE,
+                                               RTE_SHAPE_TRIANGLE, RTE_SHAPE_CIRCLE};
     for (int r = 0; r < rows; r++)
         for (int c = 0; c < cols && sc.n < MAX_TRUTH; c++) {
             if (unit_rand(&rng) % 5 == 0)
@@ -175,7 +176,8 @@ static void check_scene(const scene *sc, const rte_grasp_result *r, double tol_p
         int best = -1;
         double bd = 1e9;
         for (int k = 0; k < r->n_objects; k++) {
-            const double dx = r->objects[k].x_q8 / 256.0 - t->cx, dy = r->objects[k].y_q8 / 256.0 - t->cy;
+            const double dx = r->objects[k].x_q8 / 256.0 - t->cx,
+                         dy = r->objects[k].y_q8 / 256.0 - t->cy;
             const double d = sqrt(dx * dx + dy * dy);
             if (!used[k] && d < bd) {
                 bd = d;
@@ -184,17 +186,19 @@ static void check_scene(const scene *sc, const rte_grasp_result *r, double tol_p
         }
         assert_true(best >= 0);
         if (bd > tol_px)
-            fail_msg("object %d (class %d) at %.2f,%.2f: nearest result %.2f px away", i, t->shape, t->cx, t->cy, bd);
+            fail_msg("object %d (class %d) at %.2f,%.2f: nearest result %.2f px away", i, t->shape,
+                     t->cx, t->cy, bd);
         used[best] = 1;
         worst_px = bd > worst_px ? bd : worst_px;
         const rte_grasp_object *o = &r->objects[best];
         if (check_class && o->info.shape != t->shape)
-            fail_msg("object %d at %.1f,%.1f: class %d, expected %d", i, t->cx, t->cy, o->info.shape, t->shape);
+            fail_msg("object %d at %.1f,%.1f: class %d, expected %d", i, t->cx, t->cy,
+                     o->info.shape, t->shape);
         if (t->has_angle && angle_diff(o->angle_q16 / 65536.0, t->angle) > worst_deg)
             worst_deg = angle_diff(o->angle_q16 / 65536.0, t->angle);
         if (t->has_angle && angle_diff(o->angle_q16 / 65536.0, t->angle) > 2.0)
-            fail_msg("rectangle at %.1f,%.1f: angle %.2f, expected %.2f", t->cx, t->cy, o->angle_q16 / 65536.0,
-                     t->angle);
+            fail_msg("rectangle at %.1f,%.1f: angle %.2f, expected %.2f", t->cx, t->cy,
+                     o->angle_q16 / 65536.0, t->angle);
     }
     for (int k = 1; k < r->n_objects; k++) /* sorted by area */
         assert_true(r->objects[k - 1].info.area2 >= r->objects[k].info.area2);
@@ -210,7 +214,8 @@ static void synthetic_scenes(void **state)
     for (uint32_t seed = 1; seed <= 24; seed++) {
         /* dark objects on a light table, then bright ones on a dark table */
         const int dark = seed & 1;
-        scene sc = make_scene(seed * 2654435761u, w, h, (int)(seed % 3) * 7, dark ? 190 : 60, dark ? 50 : 200);
+        scene sc = make_scene(seed * 2654435761u, w, h, (int)(seed % 3) * 7, dark ? 190 : 60,
+                              dark ? 50 : 200);
         rte_grasp_result r;
         assert_int_equal(rte_grasp_process(ctx, &sc.img, &r), RTE_OK);
         assert_int_equal(r.polarity, dark ? RTE_GRASP_DARK : RTE_GRASP_BRIGHT);
@@ -220,8 +225,8 @@ static void synthetic_scenes(void **state)
         test_free(sc.img.buf);
     }
     assert_true(objects > 150);
-    print_message("otsu: %d objects, largest centroid error %.3f px, angle error %.3f deg\n", objects, worst_px,
-                  worst_deg);
+    print_message("otsu: %d objects, largest centroid error %.3f px, angle error %.3f deg\n",
+                  objects, worst_px, worst_deg);
     rte_grasp_destroy(ctx);
 }
 
@@ -240,7 +245,8 @@ static void canny_close_scenes(void **state)
         check_scene(&sc, &r, 1.0, 1);
         test_free(sc.img.buf);
     }
-    print_message("canny-close: largest centroid error %.3f px, angle error %.3f deg\n", worst_px, worst_deg);
+    print_message("canny-close: largest centroid error %.3f px, angle error %.3f deg\n", worst_px,
+                  worst_deg);
     rte_grasp_destroy(ctx);
 }
 
@@ -274,8 +280,9 @@ static void border_and_area_filters(void **state)
     (void)state;
     rte_image_u8 img = unit_image_u8(160, 100, 0, 210);
     truth t;
-    const rte_vertex edge[4] = {{0, 10}, {29, 10}, {29, 49}, {0, 49}};   /* 30 x 40, on the left border */
-    const rte_vertex mid[4] = {{70, 30}, {119, 30}, {119, 69}, {70, 69}}; /* 50 x 40 */
+    const rte_vertex edge[4] = {
+        {0, 10}, {29, 10}, {29, 49}, {0, 49}}; /* 30 x 40, on the left border */
+    const rte_vertex mid[4] = {{70, 30}, {119, 30}, {119, 69}, {70, 69}};    /* 50 x 40 */
     const rte_vertex tiny[4] = {{140, 80}, {145, 80}, {145, 85}, {140, 85}}; /* 6 x 6 */
     fill_polygon(&img, edge, 4, 30, &t);
     fill_polygon(&img, mid, 4, 30, &t);
@@ -328,7 +335,8 @@ static void object_bound(void **state)
     truth t;
     for (int i = 0; i < 10; i++) {
         const int s = 10 + 2 * i; /* sizes 10..28 */
-        const rte_vertex v[4] = {{5 + 38 * i, 5}, {5 + 38 * i + s, 5}, {5 + 38 * i + s, 5 + s}, {5 + 38 * i, 5 + s}};
+        const rte_vertex v[4] = {
+            {5 + 38 * i, 5}, {5 + 38 * i + s, 5}, {5 + 38 * i + s, 5 + s}, {5 + 38 * i, 5 + s}};
         fill_polygon(&img, v, 4, 20, &t);
     }
     rte_grasp_ctx *ctx = new_ctx(400, 60, RTE_GRASP_OTSU);
@@ -473,14 +481,10 @@ static void caller_memory(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(synthetic_scenes),
-        cmocka_unit_test(canny_close_scenes),
-        cmocka_unit_test(touching_objects_merge),
-        cmocka_unit_test(border_and_area_filters),
-        cmocka_unit_test(object_bound),
-        cmocka_unit_test(sizes_and_errors),
-        cmocka_unit_test(contour_bound),
-        cmocka_unit_test(caller_memory),
+        cmocka_unit_test(synthetic_scenes),       cmocka_unit_test(canny_close_scenes),
+        cmocka_unit_test(touching_objects_merge), cmocka_unit_test(border_and_area_filters),
+        cmocka_unit_test(object_bound),           cmocka_unit_test(sizes_and_errors),
+        cmocka_unit_test(contour_bound),          cmocka_unit_test(caller_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -77,7 +77,8 @@ static void test_sizes_and_truncation(void **state)
     for (int32_t w = 1; w <= 67; w += 11) {
         for (int32_t h = 1; h <= 9; h += 4) {
             rte_hough_config cfg = config_of(w, h);
-            rte_arena a = arena_of(rte_hough_lines_scratch_size(&cfg, 2) + rte_hough_segments_scratch_size(&cfg));
+            rte_arena a = arena_of(rte_hough_lines_scratch_size(&cfg, 2) +
+                                   rte_hough_segments_scratch_size(&cfg));
             for (int fill = 0; fill <= 255; fill += 255) {
                 rte_image_u8 e = unit_image_u8(w, h, 3, (uint8_t)fill);
                 rte_hough_line l[2];
@@ -89,15 +90,15 @@ static void test_sizes_and_truncation(void **state)
                 if (!fill)
                     assert_int_equal(n, 0);
                 assert_int_equal(a.used, 0);
-                rte_hough_segments_params p = { 1, 0, 0, 0 };
+                rte_hough_segments_params p = {1, 0, 0, 0};
                 assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 1, &n, &tr), RTE_OK);
                 assert_int_equal(a.used, 0);
                 assert_int_equal(n, fill ? 1 : 0);
                 if (fill && (w > 1 && h > 2))
                     assert_true(tr); /* more than one segment in a filled map */
                 for (int32_t i = 0; i < n; i++)
-                    assert_true(s[i].x0 >= 0 && s[i].x0 < w && s[i].x1 >= 0 && s[i].x1 < w && s[i].y0 >= 0 &&
-                                s[i].y0 < h && s[i].y1 >= 0 && s[i].y1 < h);
+                    assert_true(s[i].x0 >= 0 && s[i].x0 < w && s[i].x1 >= 0 && s[i].x1 < w &&
+                                s[i].y0 >= 0 && s[i].y0 < h && s[i].y1 >= 0 && s[i].y1 < h);
                 unit_assert_padding_u8(&e);
                 test_free(e.buf);
             }
@@ -120,7 +121,7 @@ static void test_segments_gap_and_length(void **state)
     rte_hough_segment s[8];
     int32_t n = -1;
     bool tr = true;
-    rte_hough_segments_params p = { 10, 30, 4, 0 };
+    rte_hough_segments_params p = {10, 30, 4, 0};
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
     assert_int_equal(n, 1);
     assert_false(tr);
@@ -137,7 +138,7 @@ static void test_segments_gap_and_length(void **state)
      * and a threshold above the bound finds nothing without running */
     for (int32_t y = 0; y < 64; y++)
         memset(e.buf + (size_t)y * e.stride, 255, 64);
-    p = (rte_hough_segments_params){ 64, 30, 4, 0 };
+    p = (rte_hough_segments_params){64, 30, 4, 0};
     assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s, 8, &n, &tr), RTE_OK);
     assert_true(n >= 1);
     p.threshold = 192;
@@ -174,9 +175,9 @@ static void test_segments_seed(void **state)
     rte_hough_segment s[4][CAP];
     int32_t n[4];
     bool tr;
-    const uint32_t seeds[4] = { 0, RTE_HOUGH_SEGMENTS_SEED, 0, 12345 };
+    const uint32_t seeds[4] = {0, RTE_HOUGH_SEGMENTS_SEED, 0, 12345};
     for (int k = 0; k < 4; k++) {
-        rte_hough_segments_params p = { 10, 10, 1, seeds[k] };
+        rte_hough_segments_params p = {10, 10, 1, seeds[k]};
         memset(s[k], 0, sizeof s[k]);
         assert_int_equal(rte_hough_segments(&cfg, &e, &p, &a, s[k], CAP, &n[k], &tr), RTE_OK);
         assert_false(tr);
@@ -194,8 +195,8 @@ static void test_segments_seed(void **state)
 
 /* Edge map and 3x3 Sobel derivatives (BORDER_REPLICATE) of a disc of
  * radius r at (cx, cy) on a w x h image, as cv::HoughCircles makes them. */
-static void disc_inputs(int32_t w, int32_t h, int32_t cx, int32_t cy, int32_t r, rte_image_u8 *e, rte_image_s16 *gx,
-                        rte_image_s16 *gy)
+static void disc_inputs(int32_t w, int32_t h, int32_t cx, int32_t cy, int32_t r, rte_image_u8 *e,
+                        rte_image_s16 *gx, rte_image_s16 *gy)
 {
     static uint8_t img[64][64];
     assert_true(w <= 64 && h <= 64);
@@ -207,9 +208,12 @@ static void disc_inputs(int32_t w, int32_t h, int32_t cx, int32_t cy, int32_t r,
     *gy = unit_image_s16(w, h, 2);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++) {
-            int32_t xm = x > 0 ? x - 1 : 0, xp = x < w - 1 ? x + 1 : x, ym = y > 0 ? y - 1 : 0, yp = y < h - 1 ? y + 1 : y;
-            int32_t sx = img[ym][xp] + 2 * img[y][xp] + img[yp][xp] - img[ym][xm] - 2 * img[y][xm] - img[yp][xm];
-            int32_t sy = img[yp][xm] + 2 * img[yp][x] + img[yp][xp] - img[ym][xm] - 2 * img[ym][x] - img[ym][xp];
+            int32_t xm = x > 0 ? x - 1 : 0, xp = x < w - 1 ? x + 1 : x, ym = y > 0 ? y - 1 : 0,
+                    yp = y < h - 1 ? y + 1 : y;
+            int32_t sx = img[ym][xp] + 2 * img[y][xp] + img[yp][xp] - img[ym][xm] - 2 * img[y][xm] -
+                         img[yp][xm];
+            int32_t sy = img[yp][xm] + 2 * img[yp][x] + img[yp][xp] - img[ym][xm] - 2 * img[ym][x] -
+                         img[ym][xp];
             gx->buf[(size_t)y * gx->stride + x] = (int16_t)sx;
             gy->buf[(size_t)y * gy->stride + x] = (int16_t)sy;
             /* pixels with a neighbour of the other side */
@@ -222,7 +226,8 @@ static void disc_inputs(int32_t w, int32_t h, int32_t cx, int32_t cy, int32_t r,
 /* Runs rte_hough_circles in an arena of its scratch size; checks the
  * status and that the arena is back at its mark. Returns the count. */
 static int32_t circles_of(const rte_image_u8 *e, const rte_image_s16 *gx, const rte_image_s16 *gy,
-                          const rte_hough_circles_params *p, rte_hough_circle *c, int32_t cap, bool *tr)
+                          const rte_hough_circles_params *p, rte_hough_circle *c, int32_t cap,
+                          bool *tr)
 {
     rte_arena a = arena_of(rte_hough_circles_scratch_size(e->width, e->height, p));
     int32_t n = -1;
@@ -240,7 +245,7 @@ static void test_circle_disc(void **state)
     rte_image_u8 e;
     rte_image_s16 gx, gy;
     disc_inputs(w, h, cx, cy, r, &e, &gx, &gy);
-    rte_hough_circles_params p = { 256, 10, 8, 5, 30 };
+    rte_hough_circles_params p = {256, 10, 8, 5, 30};
     rte_hough_circle c[4];
     bool tr = true;
     assert_int_equal(circles_of(&e, &gx, &gy, &p, c, 4, &tr), 1);
@@ -277,17 +282,18 @@ static void test_circle_on_border(void **state)
 {
     (void)state;
     const int32_t w = 48, h = 40, r = 10;
-    const int32_t centres[2][2] = { { 0, 20 }, { 24, 0 } };
+    const int32_t centres[2][2] = {{0, 20}, {24, 0}};
     for (int k = 0; k < 2; k++) {
         rte_image_u8 e;
         rte_image_s16 gx, gy;
         disc_inputs(w, h, centres[k][0], centres[k][1], r, &e, &gx, &gy);
-        rte_hough_circles_params p = { 256, 10, 6, 5, 20 };
+        rte_hough_circles_params p = {256, 10, 6, 5, 20};
         rte_hough_circle c[4];
         bool tr = true;
         assert_true(circles_of(&e, &gx, &gy, &p, c, 4, &tr) >= 1);
         /* within 1.5 px: only half of the edge is there to fit */
-        assert_true(abs(c[0].x_q4 - centres[k][0] * 16) <= 24 && abs(c[0].y_q4 - centres[k][1] * 16) <= 24);
+        assert_true(abs(c[0].x_q4 - centres[k][0] * 16) <= 24 &&
+                    abs(c[0].y_q4 - centres[k][1] * 16) <= 24);
         assert_true(abs(c[0].r_q4 - r * 16) <= 16);
         test_free(e.buf);
         test_free(gx.buf);
@@ -323,14 +329,14 @@ static void test_maximum_size_all_255(void **state)
     bytes = rte_hough_segments_scratch_size(&cfg);
     rte_arena_init(&a, test_malloc(bytes), bytes);
     rte_hough_segment sg[4];
-    rte_hough_segments_params sp = { 50, 30, 10, 0 };
+    rte_hough_segments_params sp = {50, 30, 10, 0};
     assert_int_equal(rte_hough_segments(&cfg, &e, &sp, &a, sg, 4, &n, &tr), RTE_OK);
     assert_int_equal(n, 4);
     assert_true(tr);
     assert_int_equal(a.used, 0);
     for (int32_t i = 0; i < n; i++)
-        assert_true(sg[i].x0 >= 0 && sg[i].x0 < w && sg[i].x1 >= 0 && sg[i].x1 < w && sg[i].y0 >= 0 &&
-                    sg[i].y0 < h && sg[i].y1 >= 0 && sg[i].y1 < h);
+        assert_true(sg[i].x0 >= 0 && sg[i].x0 < w && sg[i].x1 >= 0 && sg[i].x1 < w &&
+                    sg[i].y0 >= 0 && sg[i].y0 < h && sg[i].y1 >= 0 && sg[i].y1 < h);
     test_free(a.base);
 
     rte_image_s16 gx = unit_image_s16(w, h, 1), gy = unit_image_s16(w, h, 1);
@@ -340,7 +346,7 @@ static void test_maximum_size_all_255(void **state)
             gx.buf[(size_t)y * gx.stride + x] = (int16_t)(vx ? vx * 16 : 1);
             gy.buf[(size_t)y * gy.stride + x] = (int16_t)(vy * 16);
         }
-    rte_hough_circles_params cp = { 256, 20, 150, 35, 40 };
+    rte_hough_circles_params cp = {256, 20, 150, 35, 40};
     bytes = rte_hough_circles_scratch_size(w, h, &cp);
     rte_arena_init(&a, test_malloc(bytes), bytes);
     rte_hough_circle c[4];
@@ -359,14 +365,15 @@ static void test_argument_errors(void **state)
 {
     (void)state;
     rte_hough_config cfg = config_of(16, 16);
-    rte_arena a = arena_of(rte_hough_lines_scratch_size(&cfg, 4) + rte_hough_segments_scratch_size(&cfg));
+    rte_arena a =
+        arena_of(rte_hough_lines_scratch_size(&cfg, 4) + rte_hough_segments_scratch_size(&cfg));
     rte_image_u8 e = unit_image_u8(16, 16, 1, 0);
     rte_image_u8 big = unit_image_u8(17, 16, 1, 0);
     rte_hough_line l[4];
     rte_hough_segment s[4];
     int32_t n;
     bool tr;
-    rte_hough_segments_params p = { 5, 5, 2, 0 };
+    rte_hough_segments_params p = {5, 5, 2, 0};
     assert_int_equal(rte_hough_lines(NULL, &e, 1, &a, l, 4, &n, &tr), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_hough_lines(&cfg, &e, -1, &a, l, 4, &n, &tr), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_hough_lines(&cfg, &e, 1, &a, NULL, 4, &n, &tr), RTE_ERR_ARGUMENT);
@@ -407,14 +414,10 @@ static void test_argument_errors(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_config_errors),
-        cmocka_unit_test(test_lines_row_and_column),
-        cmocka_unit_test(test_sizes_and_truncation),
-        cmocka_unit_test(test_segments_gap_and_length),
-        cmocka_unit_test(test_segments_seed),
-        cmocka_unit_test(test_circle_disc),
-        cmocka_unit_test(test_circle_on_border),
-        cmocka_unit_test(test_maximum_size_all_255),
+        cmocka_unit_test(test_config_errors),        cmocka_unit_test(test_lines_row_and_column),
+        cmocka_unit_test(test_sizes_and_truncation), cmocka_unit_test(test_segments_gap_and_length),
+        cmocka_unit_test(test_segments_seed),        cmocka_unit_test(test_circle_disc),
+        cmocka_unit_test(test_circle_on_border),     cmocka_unit_test(test_maximum_size_all_255),
         cmocka_unit_test(test_argument_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

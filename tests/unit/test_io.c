@@ -17,10 +17,7 @@ static int setup_dir(void **state)
     return mkdtemp(tmp_dir) ? 0 : -1;
 }
 
-static int remove_dir(void **state)
-{
-    return rmdir(tmp_dir);
-}
+static int remove_dir(void **state) { return rmdir(tmp_dir); }
 
 static const char *tmp_path(const char *name)
 {
@@ -57,7 +54,7 @@ static rte_image_u8c3 unit_image_u8c3(int32_t w, int32_t h, int32_t pad)
     int32_t stride = 3 * w + pad;
     uint8_t *buf = test_malloc((size_t)stride * h);
     memset(buf, 0xEE, (size_t)stride * h);
-    rte_image_u8c3 img = { w, h, stride, buf };
+    rte_image_u8c3 img = {w, h, stride, buf};
     return img;
 }
 
@@ -68,14 +65,15 @@ static void assert_padding_u8c3(const rte_image_u8c3 *img)
             assert_int_equal(img->buf[(size_t)y * img->stride + x], 0xEE);
 }
 
-static const int32_t sizes[][2] = { { 1, 1 }, { 1, 7 }, { 7, 1 }, { 2, 2 }, { 3, 5 }, { 17, 3 }, { 67, 9 }, { 31, 40 } };
+static const int32_t sizes[][2] = {{1, 1}, {1, 7},  {7, 1},  {2, 2},
+                                   {3, 5}, {17, 3}, {67, 9}, {31, 40}};
 
 static void gray_round_trips(void **state)
 {
     uint32_t seed = 12345;
     rte_image_reader *r = rte_image_reader_create(80, 80);
     assert_non_null(r);
-    const char *exts[] = { "g.pgm", "g.png", "G.PNG" };
+    const char *exts[] = {"g.pgm", "g.png", "G.PNG"};
     for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
         int32_t w = sizes[s][0], h = sizes[s][1];
         rte_image_u8 src = unit_image_u8(w, h, (int32_t)(s % 5), 0);
@@ -104,11 +102,13 @@ static void gray_round_trips(void **state)
             for (int32_t y = 0; y < h; y++)
                 for (int32_t x = 0; x < w; x++)
                     for (int c = 0; c < 3; c++)
-                        assert_int_equal(bgr.buf[(size_t)y * bgr.stride + 3 * x + c], rte_u8_row(&src, y)[x]);
+                        assert_int_equal(bgr.buf[(size_t)y * bgr.stride + 3 * x + c],
+                                         rte_u8_row(&src, y)[x]);
             assert_padding_u8c3(&bgr);
 
             uint8_t packed[80 * 80];
-            assert_int_equal(rte_image_read(r, path, packed, (size_t)w * h, &info, msg, sizeof msg), RTE_OK);
+            assert_int_equal(rte_image_read(r, path, packed, (size_t)w * h, &info, msg, sizeof msg),
+                             RTE_OK);
             for (int32_t y = 0; y < h; y++)
                 assert_memory_equal(packed + (size_t)y * w, rte_u8_row(&src, y), (size_t)w);
             assert_int_equal(remove(path), 0);
@@ -125,7 +125,7 @@ static void bgr_round_trips(void **state)
     uint32_t seed = 777;
     rte_image_reader *r = rte_image_reader_create(67, 40);
     assert_non_null(r);
-    const char *exts[] = { "c.ppm", "c.png", "c.PPM" };
+    const char *exts[] = {"c.ppm", "c.png", "c.PPM"};
     for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
         int32_t w = sizes[s][0], h = sizes[s][1];
         rte_image_u8c3 src = unit_image_u8c3(w, h, (int32_t)(s % 4));
@@ -142,20 +142,23 @@ static void bgr_round_trips(void **state)
             rte_image_u8c3 back = unit_image_u8c3(w, h, 7);
             assert_int_equal(rte_image_read_bgr(r, path, &back, msg, sizeof msg), RTE_OK);
             for (int32_t y = 0; y < h; y++)
-                assert_memory_equal(back.buf + (size_t)y * back.stride, src.buf + (size_t)y * src.stride,
-                                    (size_t)w * 3);
+                assert_memory_equal(back.buf + (size_t)y * back.stride,
+                                    src.buf + (size_t)y * src.stride, (size_t)w * 3);
             assert_padding_u8c3(&back);
 
             /* A colour file is not read as grey: that is rte_bgr_to_gray's job. */
             rte_image_u8 gray = unit_image_u8(w, h, 0, 0);
-            assert_int_equal(rte_image_read_gray(r, path, &gray, msg, sizeof msg), RTE_ERR_UNSUPPORTED);
+            assert_int_equal(rte_image_read_gray(r, path, &gray, msg, sizeof msg),
+                             RTE_ERR_UNSUPPORTED);
             assert_non_null(strstr(msg, path));
             test_free(gray.buf);
 
             uint8_t packed[67 * 40 * 3];
-            assert_int_equal(rte_image_read(r, path, packed, sizeof packed, &info, msg, sizeof msg), RTE_OK);
+            assert_int_equal(rte_image_read(r, path, packed, sizeof packed, &info, msg, sizeof msg),
+                             RTE_OK);
             for (int32_t y = 0; y < h; y++)
-                assert_memory_equal(packed + (size_t)y * w * 3, src.buf + (size_t)y * src.stride, (size_t)w * 3);
+                assert_memory_equal(packed + (size_t)y * w * 3, src.buf + (size_t)y * src.stride,
+                                    (size_t)w * 3);
             assert_int_equal(remove(path), 0);
             test_free(back.buf);
         }
@@ -190,7 +193,8 @@ static void npy_layout(void **state)
     const char *path = tmp_path("a.npy");
     assert_int_equal(rte_image_write_s16(path, &s16, msg, sizeof msg), RTE_OK);
     size_t n = read_bytes(path, file, sizeof file);
-    size_t off = check_npy_header(file, n, "{'descr': '<i2', 'fortran_order': False, 'shape': (3, 5), }");
+    size_t off =
+        check_npy_header(file, n, "{'descr': '<i2', 'fortran_order': False, 'shape': (3, 5), }");
     assert_int_equal(n, off + 3 * 5 * 2);
     for (int32_t i = 0; i < 15; i++) {
         int16_t v = (int16_t)(file[off + 2 * i] | file[off + 2 * i + 1] << 8);
@@ -212,7 +216,8 @@ static void npy_layout(void **state)
     memcpy(c3.buf, "\x01\x02\x03\x04\x05\x06", 6);
     assert_int_equal(rte_image_write_bgr(path, &c3, msg, sizeof msg), RTE_OK);
     n = read_bytes(path, file, sizeof file);
-    off = check_npy_header(file, n, "{'descr': '|u1', 'fortran_order': False, 'shape': (1, 2, 3), }");
+    off =
+        check_npy_header(file, n, "{'descr': '|u1', 'fortran_order': False, 'shape': (1, 2, 3), }");
     assert_int_equal(n, off + 6);
     assert_memory_equal(file + off, "\x01\x02\x03\x04\x05\x06", 6);
     test_free(c3.buf);
@@ -240,7 +245,7 @@ static void pnm_header_parsing(void **state)
     assert_int_equal(info.width, 3);
     assert_int_equal(info.height, 2);
     /* v * 255 / 4, values above maxval clamp to it */
-    static const uint8_t want_text[6] = { 0, 63, 127, 191, 255, 255 };
+    static const uint8_t want_text[6] = {0, 63, 127, 191, 255, 255};
     assert_memory_equal(out, want_text, 6);
 
     static const char bin[] = "P5 2 2 15\n\x00\x07\x0f\x14";
@@ -268,7 +273,8 @@ static void pnm_header_parsing(void **state)
 
     static const char bad_end[] = "P5 2 1 255#\n\x01\x02";
     write_bytes(path, bad_end, sizeof bad_end - 1);
-    assert_int_equal(rte_image_read(r, path, out, sizeof out, &info, msg, sizeof msg), RTE_ERR_FORMAT);
+    assert_int_equal(rte_image_read(r, path, out, sizeof out, &info, msg, sizeof msg),
+                     RTE_ERR_FORMAT);
     assert_non_null(strstr(msg, "whitespace"));
 
     static const char p16[] = "P5 1 1 65535\n\x01\x02";
@@ -288,15 +294,17 @@ static void argument_errors(void **state)
     assert_null(rte_image_reader_create(4, RTE_MAX_SIDE + 1));
     assert_true(rte_image_reader_max_file_bytes(r) > 4 * 4 * 3);
 
-    uint8_t px[64] = { 0 };
+    uint8_t px[64] = {0};
     rte_image_u8 g = rte_image_u8_view(px, 4, 4, 0);
     char path[128];
     snprintf(path, sizeof path, "%s", tmp_path("e.pgm"));
     assert_int_equal(rte_image_write_gray(path, &g, msg, sizeof msg), RTE_OK);
 
     rte_image_info info;
-    assert_int_equal(rte_image_read(NULL, path, px, sizeof px, &info, msg, sizeof msg), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_image_read(r, NULL, px, sizeof px, &info, msg, sizeof msg), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_image_read(NULL, path, px, sizeof px, &info, msg, sizeof msg),
+                     RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_image_read(r, NULL, px, sizeof px, &info, msg, sizeof msg),
+                     RTE_ERR_ARGUMENT);
     assert_int_equal(rte_image_read(r, path, px, 15, &info, msg, sizeof msg), RTE_ERR_NO_MEMORY);
     assert_non_null(strstr(msg, "e.pgm: 4x4x1 image needs 16 bytes, the buffer holds 15"));
     rte_image_u8 small = rte_image_u8_view(px, 3, 4, 0);
@@ -310,22 +318,26 @@ static void argument_errors(void **state)
 
     /* The reader's maximum is enforced before decoding. */
     rte_image_reader *tiny = rte_image_reader_create(3, 4);
-    assert_int_equal(rte_image_read(tiny, path, px, sizeof px, &info, msg, sizeof msg), RTE_ERR_TOO_LARGE);
+    assert_int_equal(rte_image_read(tiny, path, px, sizeof px, &info, msg, sizeof msg),
+                     RTE_ERR_TOO_LARGE);
     assert_non_null(strstr(msg, "reader holds at most 3x4"));
     rte_image_reader_destroy(tiny);
 
     /* Writers: extensions, views; a NULL message buffer is allowed. */
-    assert_int_equal(rte_image_write_gray(tmp_path("x.jpg"), &g, msg, sizeof msg), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_image_write_gray(tmp_path("x.jpg"), &g, msg, sizeof msg),
+                     RTE_ERR_ARGUMENT);
     assert_non_null(strstr(msg, "x.jpg: unknown extension"));
     assert_int_equal(rte_image_write_gray(path, &bad, NULL, 0), RTE_ERR_SIZE);
     rte_image_s16 s = rte_image_s16_view(px, 2, 2, 0);
     assert_int_equal(rte_image_write_s16(tmp_path("s.pgm"), &s, msg, sizeof msg), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_image_write_gray("/nonexistent-dir/a.pgm", &g, msg, sizeof msg), RTE_ERR_IO);
+    assert_int_equal(rte_image_write_gray("/nonexistent-dir/a.pgm", &g, msg, sizeof msg),
+                     RTE_ERR_IO);
     assert_non_null(strstr(msg, "/nonexistent-dir/a.pgm: cannot create"));
 
     /* A short message buffer is cut, still terminated. */
     char shortmsg[8];
-    assert_int_equal(rte_image_read(r, path, px, 1, &info, shortmsg, sizeof shortmsg), RTE_ERR_NO_MEMORY);
+    assert_int_equal(rte_image_read(r, path, px, 1, &info, shortmsg, sizeof shortmsg),
+                     RTE_ERR_NO_MEMORY);
     assert_int_equal(strlen(shortmsg), 7);
 
     assert_int_equal(remove(path), 0);
@@ -362,12 +374,9 @@ static void fixtures_agree(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(gray_round_trips),
-        cmocka_unit_test(bgr_round_trips),
-        cmocka_unit_test(npy_layout),
-        cmocka_unit_test(pnm_header_parsing),
-        cmocka_unit_test(argument_errors),
-        cmocka_unit_test(fixtures_agree),
+        cmocka_unit_test(gray_round_trips), cmocka_unit_test(bgr_round_trips),
+        cmocka_unit_test(npy_layout),       cmocka_unit_test(pnm_header_parsing),
+        cmocka_unit_test(argument_errors),  cmocka_unit_test(fixtures_agree),
     };
     return cmocka_run_group_tests(tests, setup_dir, remove_dir);
 }

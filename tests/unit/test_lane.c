@@ -29,8 +29,8 @@ typedef struct drawn_lane {
     bool present;
 } drawn_lane;
 
-static void draw_road(rte_image_u8 *img, uint8_t road, uint8_t paint, int32_t yt, const drawn_lane *l,
-                      int32_t nl)
+static void draw_road(rte_image_u8 *img, uint8_t road, uint8_t paint, int32_t yt,
+                      const drawn_lane *l, int32_t nl)
 {
     const int32_t h = img->height;
     for (int32_t y = 0; y < h; y++) {
@@ -134,7 +134,8 @@ static void test_tiny_frames(void **state)
 {
     (void)state;
     rte_lane_context *ctx = make_ctx(67, 67, NULL);
-    const int32_t sizes[][2] = {{1, 1}, {1, 9}, {9, 1}, {2, 2}, {3, 3}, {67, 1}, {1, 67}, {5, 67}, {67, 5}};
+    const int32_t sizes[][2] = {{1, 1},  {1, 9},  {9, 1},  {2, 2}, {3, 3},
+                                {67, 1}, {1, 67}, {5, 67}, {67, 5}};
     for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
         rte_image_u8 g = unit_image_u8(sizes[i][0], sizes[i][1], 5, 255);
         rte_lane_result r;
@@ -267,7 +268,9 @@ static void test_color_cue(void **state)
     uint8_t *bgr = test_malloc((size_t)w * h * 3), *rgb = test_malloc((size_t)w * h * 3);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++) {
-            const uint8_t *c = rte_u8_row(&mark, y)[x] ? yellow : rte_u8_row(&mark_r, y)[x] ? white : road;
+            const uint8_t *c = rte_u8_row(&mark, y)[x]     ? yellow
+                               : rte_u8_row(&mark_r, y)[x] ? white
+                                                           : road;
             uint8_t *d = bgr + ((size_t)y * w + x) * 3, *e = rgb + ((size_t)y * w + x) * 3;
             d[0] = c[0], d[1] = c[1], d[2] = c[2];
             e[0] = c[2], e[1] = c[1], e[2] = c[0];
@@ -380,7 +383,8 @@ static void test_runtime_params(void **state)
     p.canny_low = 40;
     p.canny_high = 120;
     const int32_t one = RTE_POLYGON_FRACTION_ONE;
-    const rte_vertex roi[4] = {{0, one}, {one * 4 / 10, one / 2}, {one * 6 / 10, one / 2}, {one, one}};
+    const rte_vertex roi[4] = {
+        {0, one}, {one * 4 / 10, one / 2}, {one * 6 / 10, one / 2}, {one, one}};
     memcpy(p.roi, roi, sizeof roi);
     assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
     rte_lane_result r;
@@ -457,9 +461,9 @@ static void test_y4m(void **state)
     assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_ERR_TRUNCATED);
     rte_y4m_close(rd);
 
-    const char *bad[] = {"YUV4MPEG W3 H2\n", "YUV4MPEG2 W3\n", "YUV4MPEG2 W3 H2 It\n",
+    const char *bad[] = {"YUV4MPEG W3 H2\n",          "YUV4MPEG2 W3\n",    "YUV4MPEG2 W3 H2 It\n",
                          "YUV4MPEG2 W3 H2 C420p10\n", "YUV4MPEG2 W0 H2\n", "YUV4MPEG2 W3 H2"};
-    const rte_status expect[] = {RTE_ERR_FORMAT, RTE_ERR_FORMAT, RTE_ERR_UNSUPPORTED,
+    const rte_status expect[] = {RTE_ERR_FORMAT,      RTE_ERR_FORMAT, RTE_ERR_UNSUPPORTED,
                                  RTE_ERR_UNSUPPORTED, RTE_ERR_FORMAT, RTE_ERR_FORMAT};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         write_file(path, bad[i], strlen(bad[i]));
@@ -525,22 +529,25 @@ static void check_road(const char *name, uint32_t seed, int *total_good, int *to
     double worst_b = 0, worst_t = 0;
     truth_row t;
     int k;
-    while (fscanf(csv, "%d,%lf,%lf,%lf,%lf,%d,%d", &k, &t.lb, &t.lt, &t.rb, &t.rt, &t.lv, &t.rv) == 7) {
+    while (fscanf(csv, "%d,%lf,%lf,%lf,%lf,%d,%d", &k, &t.lb, &t.lt, &t.rb, &t.rt, &t.lv, &t.rv) ==
+           7) {
         assert_int_equal(rte_y4m_read_gray(rd, &g, msg, sizeof msg), RTE_OK);
         rte_lane_result r;
         assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, (int64_t)k * 33333333, &r), RTE_OK);
         frames++;
         const rte_lane *L = &r.lane[0], *R = &r.lane[1];
-        const double eb[2] = {fabs(L->x_bottom_q8 / 256.0 - t.lb), fabs(R->x_bottom_q8 / 256.0 - t.rb)};
+        const double eb[2] = {fabs(L->x_bottom_q8 / 256.0 - t.lb),
+                              fabs(R->x_bottom_q8 / 256.0 - t.rb)};
         const double et[2] = {fabs(L->x_top_q8 / 256.0 - t.lt), fabs(R->x_top_q8 / 256.0 - t.rt)};
         if (t.lv && t.rv) {
             measured++;
-            const bool ok = L->found && R->found && eb[0] <= 5 && eb[1] <= 5 && et[0] <= 10 && et[1] <= 10;
+            const bool ok =
+                L->found && R->found && eb[0] <= 5 && eb[1] <= 5 && et[0] <= 10 && et[1] <= 10;
             good += ok;
             if (!ok)
-                printf("  %s seed %#x frame %d: left %s %.1f/%.1f, right %s %.1f/%.1f px off\n", name, seed, k,
-                       L->found ? "found" : "MISSING", eb[0], et[0], R->found ? "found" : "MISSING",
-                       eb[1], et[1]);
+                printf("  %s seed %#x frame %d: left %s %.1f/%.1f, right %s %.1f/%.1f px off\n",
+                       name, seed, k, L->found ? "found" : "MISSING", eb[0], et[0],
+                       R->found ? "found" : "MISSING", eb[1], et[1]);
             worst_b = fmax(worst_b, fmax(eb[0], eb[1]));
             worst_t = fmax(worst_t, fmax(et[0], et[1]));
         } else {
@@ -550,7 +557,8 @@ static void check_road(const char *name, uint32_t seed, int *total_good, int *to
             held++;
             held_ok += l->found && l->predicted && eb[side] <= 10 && et[side] <= 10;
             if (!(l->found && l->predicted))
-                printf("  %s seed %#x frame %d: worn %s lane not held\n", name, seed, k, side ? "right" : "left");
+                printf("  %s seed %#x frame %d: worn %s lane not held\n", name, seed, k,
+                       side ? "right" : "left");
         }
         if (r.centre_valid) {
             /* offset sign: lane centre vs image centre from the truth */
@@ -560,7 +568,8 @@ static void check_road(const char *name, uint32_t seed, int *total_good, int *to
         }
     }
     assert_int_equal(rte_y4m_read_gray(rd, &g, msg, sizeof msg), RTE_ERR_END);
-    printf("lane road %s, seed %#x: %d frames, both lanes within 5/10 px in %d of %d measured, worst %.1f/%.1f px; "
+    printf("lane road %s, seed %#x: %d frames, both lanes within 5/10 px in %d of %d measured, "
+           "worst %.1f/%.1f px; "
            "worn marking held in %d of %d; offset sign right in %d of %d\n",
            name, seed, frames, good, measured, worst_b, worst_t, held_ok, held, sign_ok, sign_n);
     assert_true(frames >= 30);
@@ -587,8 +596,8 @@ static void test_synthetic_roads(void **state)
         int good = 0, measured = 0;
         check_road("straight", hough_seeds[i], &good, &measured);
         check_road("bend", hough_seeds[i], &good, &measured);
-        printf("lane roads, seed %#x: both lanes right in %d of %d frames (%.1f%%)\n", hough_seeds[i], good,
-               measured, 100.0 * good / measured);
+        printf("lane roads, seed %#x: both lanes right in %d of %d frames (%.1f%%)\n",
+               hough_seeds[i], good, measured, 100.0 * good / measured);
         assert_true(good * 100 >= measured * 98);
     }
 }
@@ -642,7 +651,8 @@ static void test_real_photos(void **state)
         assert_non_null(reader);
         uint8_t *mem = test_malloc((size_t)info.width * info.height * 4);
         rte_image_u8c3 bgr = {info.width, info.height, info.width * 3, mem};
-        rte_image_u8 g = {info.width, info.height, info.width, mem + (size_t)info.width * info.height * 3};
+        rte_image_u8 g = {info.width, info.height, info.width,
+                          mem + (size_t)info.width * info.height * 3};
         assert_int_equal(rte_image_read_bgr(reader, path, &bgr, msg, sizeof msg), RTE_OK);
         assert_int_equal(rte_color_bgr_to_gray(&bgr, &g), RTE_OK);
         for (size_t k = 0; k < HOUGH_SEEDS; k++) {
@@ -654,14 +664,16 @@ static void test_real_photos(void **state)
             const double el = L->found ? fabs(L->x_bottom_q8 / 256.0 - c->left_x) : 1e9;
             const double er = R->found ? fabs(R->x_bottom_q8 / 256.0 - c->right_x) : 1e9;
             /* slope signs: the left lane rises to the right (x grows going up) */
-            const bool signs =
-                L->found && R->found && L->x_top_q8 > L->x_bottom_q8 && R->x_top_q8 < R->x_bottom_q8;
+            const bool signs = L->found && R->found && L->x_top_q8 > L->x_bottom_q8 &&
+                               R->x_top_q8 < R->x_bottom_q8;
             const bool ok = signs && el <= tol && er <= tol;
             if (k == 0 || !ok) /* the table for the default order, failures for the others */
-                printf("lane photo %-24s left %7.1f (eye %4d, %4.1f%%)  right %7.1f (eye %4d, %4.1f%%)  %s%s%s",
+                printf("lane photo %-24s left %7.1f (eye %4d, %4.1f%%)  right %7.1f (eye %4d, "
+                       "%4.1f%%)  %s%s%s",
                        c->name, L->x_bottom_q8 / 256.0, c->left_x, el * 100 / info.width,
-                       R->x_bottom_q8 / 256.0, c->right_x, er * 100 / info.width, ok ? "ok" : "FAIL",
-                       c->known_failure ? " (known failure: " : "", c->known_failure ? c->known_failure : "");
+                       R->x_bottom_q8 / 256.0, c->right_x, er * 100 / info.width,
+                       ok ? "ok" : "FAIL", c->known_failure ? " (known failure: " : "",
+                       c->known_failure ? c->known_failure : "");
             if (k == 0 || !ok)
                 printf(k ? "  (seed %#x)\n" : "\n", hough_seeds[k]);
             if (c->known_failure && (k == 0 || !ok))
@@ -673,7 +685,8 @@ static void test_real_photos(void **state)
         rte_image_reader_destroy(reader);
         test_free(mem);
     }
-    printf("lane photos: %d of %zu right (bottom-row x within 4%% of the width, slope signs) over %zu point "
+    printf("lane photos: %d of %zu right (bottom-row x within 4%% of the width, slope signs) over "
+           "%zu point "
            "orders of the Hough search\n",
            passed, HOUGH_SEEDS * (sizeof photos / sizeof photos[0]), HOUGH_SEEDS);
     assert_int_equal(unexpected, 0);
@@ -722,12 +735,12 @@ int main(int argc, char **argv)
     if (argc > 1)
         g_roads_dir = argv[1];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_arguments),     cmocka_unit_test(test_tiny_frames),
-        cmocka_unit_test(test_drawn_lanes),   cmocka_unit_test(test_slope_filter),
-        cmocka_unit_test(test_color_cue),     cmocka_unit_test(test_tracking),
-        cmocka_unit_test(test_runtime_params), cmocka_unit_test(test_y4m),
-        cmocka_unit_test(test_synthetic_roads),
-        cmocka_unit_test(test_real_photos),   cmocka_unit_test(test_real_clip),
+        cmocka_unit_test(test_arguments),       cmocka_unit_test(test_tiny_frames),
+        cmocka_unit_test(test_drawn_lanes),     cmocka_unit_test(test_slope_filter),
+        cmocka_unit_test(test_color_cue),       cmocka_unit_test(test_tracking),
+        cmocka_unit_test(test_runtime_params),  cmocka_unit_test(test_y4m),
+        cmocka_unit_test(test_synthetic_roads), cmocka_unit_test(test_real_photos),
+        cmocka_unit_test(test_real_clip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

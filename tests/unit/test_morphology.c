@@ -18,23 +18,26 @@ static rte_morph_element element(rte_morph_shape shape, int32_t w, int32_t h)
 static void elements_match_hand_drawn_masks(void **state)
 {
     rte_morph_element e = element(RTE_MORPH_CROSS, 3, 3);
-    const uint8_t cross[9] = { 0, 1, 0, 1, 1, 1, 0, 1, 0 };
+    const uint8_t cross[9] = {0, 1, 0, 1, 1, 1, 0, 1, 0};
     assert_memory_equal(e.mask, cross, 9);
     assert_false(e.full);
     assert_int_equal(e.run_count, 3);
 
     e = element(RTE_MORPH_ELLIPSE, 5, 5);
-    const uint8_t ellipse5[25] = { 0, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 1, 0, 0 };
+    const uint8_t ellipse5[25] = {0, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1,
+                                  1, 1, 1, 1, 1, 1, 1, 0, 0, 1, 0, 0};
     assert_memory_equal(e.mask, ellipse5, 25);
 
     e = element(RTE_MORPH_ELLIPSE, 4, 6); /* OpenCV's lopsided even ellipse */
-    const uint8_t ellipse46[24] = { 0, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1 };
+    const uint8_t ellipse46[24] = {0, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1,
+                                   1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1};
     assert_memory_equal(e.mask, ellipse46, 24);
 
     e = element(RTE_MORPH_CROSS, 4, 6);
     assert_int_equal(e.anchor_x, 2);
     assert_int_equal(e.anchor_y, 3);
-    const uint8_t cross46[24] = { 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 1, 1, 0, 0, 1, 0, 0, 0, 1, 0 };
+    const uint8_t cross46[24] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0,
+                                 1, 1, 1, 1, 0, 0, 1, 0, 0, 0, 1, 0};
     assert_memory_equal(e.mask, cross46, 24);
 
     e = element(RTE_MORPH_RECT, 7, 2);
@@ -49,7 +52,7 @@ static void elements_match_hand_drawn_masks(void **state)
     assert_int_equal(rte_morphology_element_init(&e, RTE_MORPH_RECT, 3, RTE_MORPH_MAX_KSIZE + 1),
                      RTE_ERR_ARGUMENT);
     assert_int_equal(rte_morphology_element_init(&e, (rte_morph_shape)3, 3, 3), RTE_ERR_ARGUMENT);
-    const uint8_t empty[4] = { 0 };
+    const uint8_t empty[4] = {0};
     assert_int_equal(rte_morphology_element_from_mask(&e, empty, 2, 2, -1, -1), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_morphology_element_from_mask(&e, cross, 3, 3, 3, 0), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_morphology_element_from_mask(&e, cross, 3, 3, -1, -1), RTE_OK);
@@ -90,8 +93,8 @@ static void reference(const uint8_t *in, uint8_t *out, int32_t w, int32_t h, rte
     test_free(tmp);
 }
 
-static void run_case(const rte_morph_element *e, rte_morph_op op, int32_t iterations, int32_t w, int32_t h,
-                     uint32_t *rng, int in_place)
+static void run_case(const rte_morph_element *e, rte_morph_op op, int32_t iterations, int32_t w,
+                     int32_t h, uint32_t *rng, int in_place)
 {
     rte_image_u8 src = unit_image_u8(w, h, (int32_t)(unit_rand(rng) % 7), 0);
     rte_image_u8 dst = in_place ? src : unit_image_u8(w, h, (int32_t)(unit_rand(rng) % 7), 0);
@@ -136,7 +139,8 @@ static void single_bright_pixel_grows_and_vanishes(void **state)
     assert_int_equal(rte_morphology_dilate_u8(&img, &out, &e, 1, &arena), RTE_OK);
     for (int32_t y = 0; y < 5; y++)
         for (int32_t x = 0; x < 5; x++)
-            assert_int_equal(out.buf[y * out.stride + x], (x >= 1 && x <= 3 && y >= 1 && y <= 3) ? 200 : 0);
+            assert_int_equal(out.buf[y * out.stride + x],
+                             (x >= 1 && x <= 3 && y >= 1 && y <= 3) ? 200 : 0);
     assert_int_equal(rte_morphology_erode_u8(&img, &out, &e, 1, &arena), RTE_OK);
     for (int32_t y = 0; y < 5; y++)
         for (int32_t x = 0; x < 5; x++)
@@ -156,14 +160,15 @@ static void single_bright_pixel_grows_and_vanishes(void **state)
 static void every_shape_size_op_and_iteration_against_the_definition(void **state)
 {
     uint32_t rng = 2026;
-    const int32_t sizes[][2] = { { 1, 1 }, { 3, 3 }, { 2, 2 }, { 5, 5 }, { 4, 6 }, { 7, 3 }, { 1, 5 },
-                                 { 6, 1 }, { 9, 9 }, { 15, 15 } };
+    const int32_t sizes[][2] = {{1, 1}, {3, 3}, {2, 2}, {5, 5}, {4, 6},
+                                {7, 3}, {1, 5}, {6, 1}, {9, 9}, {15, 15}};
     for (int shape = 0; shape <= 2; shape++)
         for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
             rte_morph_element e = element((rte_morph_shape)shape, sizes[s][0], sizes[s][1]);
             for (int op = 0; op <= 3; op++)
                 for (int32_t it = 1; it <= 3; it++) {
-                    int32_t w = 1 + (int32_t)(unit_rand(&rng) % 40), h = 1 + (int32_t)(unit_rand(&rng) % 20);
+                    int32_t w = 1 + (int32_t)(unit_rand(&rng) % 40),
+                            h = 1 + (int32_t)(unit_rand(&rng) % 20);
                     run_case(&e, (rte_morph_op)op, it, w, h, &rng, (int)(unit_rand(&rng) % 3 == 0));
                 }
         }
@@ -192,7 +197,8 @@ static void custom_masks_with_anchors(void **state)
             mask[i] = (uint8_t)(unit_rand(&rng) % 3 == 0);
         mask[unit_rand(&rng) % (uint32_t)(kw * kh)] = 7; /* any non-zero is set */
         rte_morph_element e;
-        assert_int_equal(rte_morphology_element_from_mask(&e, mask, kw, kh, (int32_t)(unit_rand(&rng) % kw),
+        assert_int_equal(rte_morphology_element_from_mask(&e, mask, kw, kh,
+                                                          (int32_t)(unit_rand(&rng) % kw),
                                                           (int32_t)(unit_rand(&rng) % kh)),
                          RTE_OK);
         run_case(&e, (rte_morph_op)(n % 4), 1 + n % 3, 1 + (int32_t)(unit_rand(&rng) % 30),
@@ -202,14 +208,16 @@ static void custom_masks_with_anchors(void **state)
 
 static void constant_images_stay_constant(void **state)
 {
-    const uint8_t levels[3] = { 0, 255, 93 };
+    const uint8_t levels[3] = {0, 255, 93};
     rte_morph_element e = element(RTE_MORPH_ELLIPSE, 7, 7), r = element(RTE_MORPH_RECT, 4, 4);
     rte_arena arena;
     rte_arena_init(&arena, arena_memory, sizeof arena_memory);
     for (int l = 0; l < 3; l++)
         for (int op = 0; op <= 3; op++) {
             rte_image_u8 img = unit_image_u8(9, 6, 3, levels[l]), out = unit_image_u8(9, 6, 1, 1);
-            assert_int_equal(rte_morphology_u8(&img, &out, (rte_morph_op)op, op % 2 ? &e : &r, 2, &arena), RTE_OK);
+            assert_int_equal(
+                rte_morphology_u8(&img, &out, (rte_morph_op)op, op % 2 ? &e : &r, 2, &arena),
+                RTE_OK);
             for (int32_t y = 0; y < 6; y++)
                 for (int32_t x = 0; x < 9; x++)
                     assert_int_equal(out.buf[y * out.stride + x], levels[l]);
@@ -223,7 +231,7 @@ static void constant_images_stay_constant(void **state)
  * the border value itself (255 for erode, 0 for dilate). */
 static void element_reaching_only_outside_gives_the_neutral_value(void **state)
 {
-    const uint8_t mask[7] = { 1, 0, 0, 0, 0, 0, 0 };
+    const uint8_t mask[7] = {1, 0, 0, 0, 0, 0, 0};
     rte_morph_element e;
     assert_int_equal(rte_morphology_element_from_mask(&e, mask, 1, 7, 0, 6), RTE_OK);
     rte_image_u8 img = unit_image_u8(2, 3, 1, 50), out = unit_image_u8(2, 3, 2, 1);
@@ -247,7 +255,8 @@ static void arena_and_argument_errors(void **state)
     rte_arena arena;
     size_t need = rte_morphology_scratch_size(40, 30, &e, 1);
     assert_true(need > 0);
-    assert_true(rte_morphology_scratch_size(40, 30, &r, 3) > rte_morphology_scratch_size(40, 30, &r, 1));
+    assert_true(rte_morphology_scratch_size(40, 30, &r, 3) >
+                rte_morphology_scratch_size(40, 30, &r, 1));
     /* Every arena smaller than the bound either holds the pieces (the
      * bound allows for the worst alignment) or fails whole: the mark is
      * back where it was, also when the first piece fitted and a later one

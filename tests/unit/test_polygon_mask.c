@@ -24,7 +24,7 @@ static rte_image_u8 mask_of(int32_t w, int32_t h, const rte_vertex *v, int32_t n
 {
     rte_arena arena = make_arena();
     rte_image_u8 mask = unit_image_u8(w, h, 3, 0x11);
-    rte_polygon poly = { v, n };
+    rte_polygon poly = {v, n};
     assert_int_equal(rte_polygon_mask_build(&mask, &poly, 1, &arena), RTE_OK);
     assert_int_equal(arena.used, 0);
     unit_assert_padding_u8(&mask);
@@ -44,7 +44,7 @@ static void assert_rectangle(const rte_image_u8 *mask, int32_t x0, int32_t y0, i
 
 static void square_fills_its_closed_area(void **state)
 {
-    rte_vertex v[] = { { 1, 1 }, { 3, 1 }, { 3, 3 }, { 1, 3 } };
+    rte_vertex v[] = {{1, 1}, {3, 1}, {3, 3}, {1, 3}};
     rte_image_u8 mask = mask_of(5, 5, v, 4);
     assert_rectangle(&mask, 1, 1, 3, 3);
     test_free(mask.buf);
@@ -54,7 +54,7 @@ static void triangle_by_hand(void **state)
 {
     /* Right triangle (0,0), (4,0), (0,4) on 6x6: the hypotenuse is the
      * diagonal x + y = 4 and everything on or below-left of it is set. */
-    rte_vertex v[] = { { 0, 0 }, { 4, 0 }, { 0, 4 } };
+    rte_vertex v[] = {{0, 0}, {4, 0}, {0, 4}};
     rte_image_u8 mask = mask_of(6, 6, v, 3);
     for (int32_t y = 0; y < 6; y++)
         for (int32_t x = 0; x < 6; x++)
@@ -65,23 +65,23 @@ static void triangle_by_hand(void **state)
 static void degenerate_polygons_draw_their_outline(void **state)
 {
     /* one point: one pixel */
-    rte_vertex one[] = { { 2, 1 } };
+    rte_vertex one[] = {{2, 1}};
     rte_image_u8 mask = mask_of(4, 3, one, 1);
     assert_rectangle(&mask, 2, 1, 2, 1);
     test_free(mask.buf);
 
     /* two points, and collinear points: the segment */
-    rte_vertex two[] = { { 1, 2 }, { 5, 2 } };
+    rte_vertex two[] = {{1, 2}, {5, 2}};
     mask = mask_of(7, 4, two, 2);
     assert_rectangle(&mask, 1, 2, 5, 2);
     test_free(mask.buf);
-    rte_vertex line[] = { { 2, 0 }, { 2, 5 }, { 2, 3 } };
+    rte_vertex line[] = {{2, 0}, {2, 5}, {2, 3}};
     mask = mask_of(4, 7, line, 3);
     assert_rectangle(&mask, 2, 0, 2, 5);
     test_free(mask.buf);
 
     /* repeated points change nothing */
-    rte_vertex rep[] = { { 1, 1 }, { 1, 1 }, { 3, 1 }, { 3, 3 }, { 3, 3 }, { 1, 3 } };
+    rte_vertex rep[] = {{1, 1}, {1, 1}, {3, 1}, {3, 3}, {3, 3}, {1, 3}};
     mask = mask_of(5, 5, rep, 6);
     assert_rectangle(&mask, 1, 1, 3, 3);
     test_free(mask.buf);
@@ -91,7 +91,7 @@ static void bow_tie_fills_both_halves(void **state)
 {
     /* (0,0) -> (4,4) -> (4,0) -> (0,4): a left and a right triangle meeting
      * at (2,2) */
-    rte_vertex v[] = { { 0, 0 }, { 4, 4 }, { 4, 0 }, { 0, 4 } };
+    rte_vertex v[] = {{0, 0}, {4, 4}, {4, 0}, {0, 4}};
     rte_image_u8 mask = mask_of(5, 5, v, 4);
     for (int32_t y = 0; y < 5; y++)
         for (int32_t x = 0; x < 5; x++) {
@@ -105,8 +105,8 @@ static void overlapping_polygons_cancel_inside(void **state)
 {
     /* The same square twice: the even-odd rule leaves its inside empty,
      * only the drawn outline remains. */
-    rte_vertex v[] = { { 1, 1 }, { 6, 1 }, { 6, 5 }, { 1, 5 } };
-    rte_polygon polys[2] = { { v, 4 }, { v, 4 } };
+    rte_vertex v[] = {{1, 1}, {6, 1}, {6, 5}, {1, 5}};
+    rte_polygon polys[2] = {{v, 4}, {v, 4}};
     rte_arena arena = make_arena();
     rte_image_u8 mask = unit_image_u8(8, 7, 2, 0x33);
     assert_int_equal(rte_polygon_mask_build(&mask, polys, 2, &arena), RTE_OK);
@@ -135,7 +135,7 @@ static void rectangles_of_every_width_clip_to_the_image(void **state)
                 xa = -100000;
                 xb = 100000;
             }
-            rte_vertex v[] = { { xa, ya }, { xb, ya }, { xb, yb }, { xa, yb } };
+            rte_vertex v[] = {{xa, ya}, {xb, ya}, {xb, yb}, {xa, yb}};
             rte_image_u8 mask = mask_of(w, h, v, 4);
             int32_t x0 = xa < xb ? xa : xb, x1 = xa < xb ? xb : xa;
             int32_t y0 = ya < yb ? ya : yb, y1 = ya < yb ? yb : ya;
@@ -148,8 +148,8 @@ static void fill_keeps_other_pixels_and_uses_the_value(void **state)
 {
     rte_arena arena = make_arena();
     rte_image_u8 img = unit_image_u8(6, 4, 5, 200);
-    rte_vertex v[] = { { 2, 1 }, { 4, 1 }, { 4, 2 }, { 2, 2 } };
-    rte_polygon poly = { v, 4 };
+    rte_vertex v[] = {{2, 1}, {4, 1}, {4, 2}, {2, 2}};
+    rte_polygon poly = {v, 4};
     assert_int_equal(rte_polygon_fill_u8(&img, &poly, 1, 7, &arena), RTE_OK);
     for (int32_t y = 0; y < 4; y++)
         for (int32_t x = 0; x < 6; x++)
@@ -157,14 +157,14 @@ static void fill_keeps_other_pixels_and_uses_the_value(void **state)
     unit_assert_padding_u8(&img);
 
     /* wholly outside, 1x1 and Nx1 images */
-    rte_vertex far[] = { { 50, 50 }, { 60, 50 }, { 55, 70 } };
+    rte_vertex far[] = {{50, 50}, {60, 50}, {55, 70}};
     poly.vertex = far;
     poly.count = 3;
     assert_int_equal(rte_polygon_fill_u8(&img, &poly, 1, 0, &arena), RTE_OK);
     assert_int_equal(px(&img, 0, 0), 200);
     test_free(img.buf);
 
-    rte_vertex cover[] = { { -5, -5 }, { 5, -5 }, { 0, 9 } };
+    rte_vertex cover[] = {{-5, -5}, {5, -5}, {0, 9}};
     poly.vertex = cover;
     rte_image_u8 one = unit_image_u8(1, 1, 2, 0);
     assert_int_equal(rte_polygon_fill_u8(&one, &poly, 1, 255, &arena), RTE_OK);
@@ -185,8 +185,8 @@ static void fill_keeps_other_pixels_and_uses_the_value(void **state)
 
 static void arena_and_argument_errors(void **state)
 {
-    rte_vertex v[] = { { 0, 0 }, { 3, 0 }, { 3, 3 }, { 0, 3 } };
-    rte_polygon poly = { v, 4 };
+    rte_vertex v[] = {{0, 0}, {3, 0}, {3, 3}, {0, 3}};
+    rte_polygon poly = {v, 4};
     rte_image_u8 img = unit_image_u8(4, 4, 0, 9);
 
     /* 64 bytes cannot hold 4 edges; scratch_size(4) can, even from a
@@ -212,16 +212,16 @@ static void arena_and_argument_errors(void **state)
     assert_int_equal(rte_polygon_fill_u8(&img, &poly, -1, 1, &arena), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_polygon_fill_u8(NULL, &poly, 1, 1, &arena), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_polygon_fill_u8(&img, NULL, 0, 1, &arena), RTE_OK);
-    rte_polygon bad = { NULL, 3 };
+    rte_polygon bad = {NULL, 3};
     assert_int_equal(rte_polygon_fill_u8(&img, &bad, 1, 1, &arena), RTE_ERR_ARGUMENT);
     bad.count = -1;
     assert_int_equal(rte_polygon_mask_build(&img, &bad, 1, &arena), RTE_ERR_ARGUMENT);
-    rte_vertex huge[] = { { 0, 0 }, { RTE_POLYGON_MAX_COORD + 1, 0 }, { 0, 3 } };
-    rte_polygon hp = { huge, 3 };
+    rte_vertex huge[] = {{0, 0}, {RTE_POLYGON_MAX_COORD + 1, 0}, {0, 3}};
+    rte_polygon hp = {huge, 3};
     assert_int_equal(rte_polygon_fill_u8(&img, &hp, 1, 1, &arena), RTE_ERR_ARGUMENT);
     huge[1].x = -RTE_POLYGON_MAX_COORD;
     assert_int_equal(rte_polygon_fill_u8(&img, &hp, 1, 1, &arena), RTE_OK);
-    rte_polygon empty = { NULL, 0 };
+    rte_polygon empty = {NULL, 0};
     assert_int_equal(rte_polygon_mask_build(&img, &empty, 1, &arena), RTE_OK);
     for (int i = 0; i < 16; i++)
         assert_int_equal(img.buf[i], 0);
@@ -260,10 +260,10 @@ static void apply_keeps_pixels_where_the_mask_is_set(void **state)
         test_free(dst.buf);
     }
 
-    uint8_t s[3] = { 10, 20, 30 }, m[3] = { 0, 255, 1 }, d[3];
-    rte_image_u8 si = { 3, 1, 3, s }, mi = { 3, 1, 3, m }, di = { 3, 1, 3, d };
+    uint8_t s[3] = {10, 20, 30}, m[3] = {0, 255, 1}, d[3];
+    rte_image_u8 si = {3, 1, 3, s}, mi = {3, 1, 3, m}, di = {3, 1, 3, d};
     assert_int_equal(rte_polygon_mask_apply(&si, &mi, &di), RTE_OK);
-    assert_memory_equal(d, ((uint8_t[]){ 0, 20, 30 }), 3);
+    assert_memory_equal(d, ((uint8_t[]){0, 20, 30}), 3);
     mi.width = 2;
     assert_int_equal(rte_polygon_mask_apply(&si, &mi, &di), RTE_ERR_SIZE);
     assert_int_equal(rte_polygon_mask_apply(&si, NULL, &di), RTE_ERR_ARGUMENT);
@@ -272,11 +272,11 @@ static void apply_keeps_pixels_where_the_mask_is_set(void **state)
 static void fractions_round_to_the_nearest_pixel(void **state)
 {
     rte_vertex frac[] = {
-        { 0, 0 },
-        { RTE_POLYGON_FRACTION_ONE, RTE_POLYGON_FRACTION_ONE },
-        { RTE_POLYGON_FRACTION_ONE / 2, RTE_POLYGON_FRACTION_ONE / 4 },
-        { -RTE_POLYGON_FRACTION_ONE / 2, 2 * RTE_POLYGON_FRACTION_ONE },
-        { 1, 65535 },
+        {0, 0},
+        {RTE_POLYGON_FRACTION_ONE, RTE_POLYGON_FRACTION_ONE},
+        {RTE_POLYGON_FRACTION_ONE / 2, RTE_POLYGON_FRACTION_ONE / 4},
+        {-RTE_POLYGON_FRACTION_ONE / 2, 2 * RTE_POLYGON_FRACTION_ONE},
+        {1, 65535},
     };
     rte_vertex out[5];
     assert_int_equal(rte_polygon_from_fractions(frac, 5, 960, 540, out), RTE_OK);
@@ -292,14 +292,14 @@ static void fractions_round_to_the_nearest_pixel(void **state)
     assert_int_equal(out[4].y, 540); /* 539.99 */
 
     /* halves round up, also below zero: 0.5 -> 1, -0.5 -> 0, -1.5 -> -1 */
-    rte_vertex half[] = { { RTE_POLYGON_FRACTION_ONE / 2, -RTE_POLYGON_FRACTION_ONE / 2 },
-                          { -3 * RTE_POLYGON_FRACTION_ONE / 2, 0 } };
+    rte_vertex half[] = {{RTE_POLYGON_FRACTION_ONE / 2, -RTE_POLYGON_FRACTION_ONE / 2},
+                         {-3 * RTE_POLYGON_FRACTION_ONE / 2, 0}};
     assert_int_equal(rte_polygon_from_fractions(half, 2, 1, 1, half), RTE_OK); /* in place */
     assert_int_equal(half[0].x, 1);
     assert_int_equal(half[0].y, 0);
     assert_int_equal(half[1].x, -1);
 
-    rte_vertex far[] = { { RTE_POLYGON_MAX_FRACTION + 1, 0 } };
+    rte_vertex far[] = {{RTE_POLYGON_MAX_FRACTION + 1, 0}};
     assert_int_equal(rte_polygon_from_fractions(far, 1, 10, 10, out), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_polygon_from_fractions(frac, 1, 0, 10, out), RTE_ERR_SIZE);
     assert_int_equal(rte_polygon_from_fractions(NULL, 1, 10, 10, out), RTE_ERR_ARGUMENT);

@@ -273,8 +273,7 @@ static void test_y4m_mono_and_420(void **state)
             assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_OK);
             check_y4m_frame(&f, cases[c].w, cases[c].h, cases[c].mono, k);
             assert_int_equal(f.sequence, (uint64_t)k);
-            assert_int_equal(f.recorded_ns,
-                             k * cases[c].fps_den * 1000000000 / cases[c].fps_num);
+            assert_int_equal(f.recorded_ns, k * cases[c].fps_den * 1000000000 / cases[c].fps_num);
         }
         assert_int_equal(rte_source_next(&src, &f, 0, msg, sizeof msg), RTE_ERR_END);
         assert_int_equal(rte_recorded_source_rewind(&src), RTE_OK);
@@ -495,8 +494,8 @@ static void test_lcm_log_images(void **state)
     uint8_t pixels[20 * 10];
     for (size_t i = 0; i < sizeof pixels; i++)
         pixels[i] = (uint8_t)(i * 7);
-    rtedge_image_t img = {1000, 9, 10, 20, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, 20 * 10, pixels, 0,
-                          NULL};
+    rtedge_image_t img = {1000,    9,      10, 20,  RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY,
+                          20 * 10, pixels, 0,  NULL};
     rtedge_status_t status = {0};
     status.source_id = (char *)"x";
     for (int k = 0; k < 5; k++) {
@@ -702,7 +701,8 @@ static void test_pacer_recorded(void **state)
     assert_int_equal(rte_pacer_init(&p, &c), RTE_OK);
     assert_int_equal(rte_pacer_decide(&p, 0, 0, &wait), RTE_PACE_PROCESS);
     assert_int_equal(rte_pacer_decide(&p, 33 * MS, 33 * MS, &wait), RTE_PACE_PROCESS);
-    assert_int_equal(rte_pacer_decide(&p, 9000 * MS, 40 * MS, &wait), RTE_PACE_WAIT); /* 9 s: waited */
+    assert_int_equal(rte_pacer_decide(&p, 9000 * MS, 40 * MS, &wait),
+                     RTE_PACE_WAIT); /* 9 s: waited */
     assert_int_equal(rte_pacer_decide(&p, 9000 * MS, 9000 * MS, &wait), RTE_PACE_PROCESS);
     const int64_t forged = 946080000000000000LL;
     assert_int_equal(rte_pacer_decide(&p, forged, 9010 * MS, &wait), RTE_PACE_PROCESS);
@@ -757,7 +757,8 @@ static void test_pacer_fps_and_fast(void **state)
         assert_int_equal(wait, 0);
     }
 
-    rte_pacer_config bad[] = {{RTE_PACE_FPS, 0, 0, 1, 0, 0}, {RTE_PACE_FPS, 0, 30, -1, 0, 0},
+    rte_pacer_config bad[] = {{RTE_PACE_FPS, 0, 0, 1, 0, 0},
+                              {RTE_PACE_FPS, 0, 30, -1, 0, 0},
                               {RTE_PACE_RECORDED, -5, 0, 0, 0, 0},
                               {(rte_pace_mode)7, 0, 0, 0, 0, 0}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)

@@ -40,15 +40,15 @@ typedef struct feature_mask {
 } feature_mask;
 
 static const feature_mask feature_masks[] = {
-    { "none", 0 },
+    {"none", 0},
 #ifdef RTE_SIMD_X86
-    { "sse2", RTE_CPU_X86_SSE2 },
-    { "ssse3", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 },
-    { "sse41", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41 },
-    { "avx2", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41 | RTE_CPU_X86_AVX2 },
+    {"sse2", RTE_CPU_X86_SSE2},
+    {"ssse3", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3},
+    {"sse41", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41},
+    {"avx2", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41 | RTE_CPU_X86_AVX2},
 #endif
 #ifdef RTE_SIMD_NEON
-    { "neon", RTE_CPU_ARM_NEON },
+    {"neon", RTE_CPU_ARM_NEON},
 #endif
 };
 
@@ -56,14 +56,15 @@ static const feature_mask feature_masks[] = {
 static const char *feature_names(uint32_t bits, char *buf, size_t size)
 {
     static const feature_mask names[] = {
-        { "sse2", RTE_CPU_X86_SSE2 }, { "ssse3", RTE_CPU_X86_SSSE3 }, { "sse41", RTE_CPU_X86_SSE41 },
-        { "avx2", RTE_CPU_X86_AVX2 }, { "neon", RTE_CPU_ARM_NEON },
+        {"sse2", RTE_CPU_X86_SSE2}, {"ssse3", RTE_CPU_X86_SSSE3}, {"sse41", RTE_CPU_X86_SSE41},
+        {"avx2", RTE_CPU_X86_AVX2}, {"neon", RTE_CPU_ARM_NEON},
     };
     size_t used = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < COUNT_OF(names) && used < size; i++)
         if (bits & names[i].bits)
-            used += (size_t)snprintf(buf + used, size - used, "%s%s", used ? " " : "", names[i].name);
+            used +=
+                (size_t)snprintf(buf + used, size - used, "%s%s", used ? " " : "", names[i].name);
     return used ? buf : "none";
 }
 
@@ -76,16 +77,16 @@ typedef struct variant_head {
 /* NAME_pick(features): the index in TABLE (of TYPE) of the variant that
  * SELECT, the family's own choice for `features`, gives as `p` (SAME
  * tells whether the table's `v` is it), or -1 if it is not in the table. */
-#define DEFINE_PICK(NAME, TABLE, TYPE, PICKED_TYPE, SELECT, SAME)                                 \
-    static int NAME##_pick(uint32_t features)                                                     \
-    {                                                                                             \
-        const PICKED_TYPE p = SELECT;                                                             \
-        for (size_t i = 0; i < COUNT_OF(TABLE); i++) {                                            \
-            const TYPE *v = &TABLE[i];                                                            \
-            if (SAME)                                                                             \
-                return (int)i;                                                                    \
-        }                                                                                         \
-        return -1;                                                                                \
+#define DEFINE_PICK(NAME, TABLE, TYPE, PICKED_TYPE, SELECT, SAME) \
+    static int NAME##_pick(uint32_t features)                     \
+    {                                                             \
+        const PICKED_TYPE p = SELECT;                             \
+        for (size_t i = 0; i < COUNT_OF(TABLE); i++) {            \
+            const TYPE *v = &TABLE[i];                            \
+            if (SAME)                                             \
+                return (int)i;                                    \
+        }                                                         \
+        return -1;                                                \
     }
 
 /* BGR and RGB rows to grey; the reference against itself (the "none"
@@ -97,24 +98,24 @@ typedef struct c3_variant {
 
 static const c3_variant bgr_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "bgr_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_bgr_to_gray_ssse3, rte_row_bgr_to_gray_c },
-    { { "bgr_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_bgr_to_gray_avx2, rte_row_bgr_to_gray_c },
+    {{"bgr_to_gray_ssse3", RTE_CPU_X86_SSSE3}, rte_row_bgr_to_gray_ssse3, rte_row_bgr_to_gray_c},
+    {{"bgr_to_gray_avx2", RTE_CPU_X86_AVX2}, rte_row_bgr_to_gray_avx2, rte_row_bgr_to_gray_c},
 #endif
 #ifdef RTE_SIMD_NEON
-    { { "bgr_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_bgr_to_gray_neon, rte_row_bgr_to_gray_c },
+    {{"bgr_to_gray_neon", RTE_CPU_ARM_NEON}, rte_row_bgr_to_gray_neon, rte_row_bgr_to_gray_c},
 #endif
-    { { "bgr_to_gray_c", 0 }, rte_row_bgr_to_gray_c, rte_row_bgr_to_gray_c },
+    {{"bgr_to_gray_c", 0}, rte_row_bgr_to_gray_c, rte_row_bgr_to_gray_c},
 };
 
 static const c3_variant rgb_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3 }, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c },
-    { { "rgb_to_gray_avx2", RTE_CPU_X86_AVX2 }, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c },
+    {{"rgb_to_gray_ssse3", RTE_CPU_X86_SSSE3}, rte_row_rgb_to_gray_ssse3, rte_row_rgb_to_gray_c},
+    {{"rgb_to_gray_avx2", RTE_CPU_X86_AVX2}, rte_row_rgb_to_gray_avx2, rte_row_rgb_to_gray_c},
 #endif
 #ifdef RTE_SIMD_NEON
-    { { "rgb_to_gray_neon", RTE_CPU_ARM_NEON }, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c },
+    {{"rgb_to_gray_neon", RTE_CPU_ARM_NEON}, rte_row_rgb_to_gray_neon, rte_row_rgb_to_gray_c},
 #endif
-    { { "rgb_to_gray_c", 0 }, rte_row_rgb_to_gray_c, rte_row_rgb_to_gray_c },
+    {{"rgb_to_gray_c", 0}, rte_row_rgb_to_gray_c, rte_row_rgb_to_gray_c},
 };
 
 DEFINE_PICK(bgr, bgr_variants, c3_variant, rte_row_c3_to_gray_fn,
@@ -175,9 +176,11 @@ typedef struct gaussian_variant {
 
 static const gaussian_variant gaussian_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "gaussian_avx2", RTE_CPU_X86_AVX2 }, rte_gaussian_column_pass_avx2, rte_gaussian_row_pass_avx2 },
+    {{"gaussian_avx2", RTE_CPU_X86_AVX2},
+     rte_gaussian_column_pass_avx2,
+     rte_gaussian_row_pass_avx2},
 #endif
-    { { "gaussian_c", 0 }, rte_gaussian_column_pass_c, rte_gaussian_row_pass_c },
+    {{"gaussian_c", 0}, rte_gaussian_column_pass_c, rte_gaussian_row_pass_c},
 };
 
 /* Symmetric random taps summing to 256, as rte_gaussian_kernel holds (the
@@ -254,8 +257,7 @@ static void gaussian_passes(const void *variant, uint32_t *seed)
             for (int32_t w = 1; w <= 80; w++)
                 check_gaussian(v, w, ksize, split, seed);
             for (int k = 0; k < 4; k++)
-                check_gaussian(v, 81 + (int32_t)(unit_rand(seed) % 2000), ksize, split,
-                               seed);
+                check_gaussian(v, 81 + (int32_t)(unit_rand(seed) % 2000), ksize, split, seed);
         }
 }
 
@@ -271,9 +273,9 @@ typedef struct morph_variant {
 
 static const morph_variant morph_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "morph_avx2", RTE_CPU_X86_AVX2 }, rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2 },
+    {{"morph_avx2", RTE_CPU_X86_AVX2}, rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2},
 #endif
-    { { "morph_c", 0 }, rte_morph_row_op2_c, rte_morph_reduce_rows_c },
+    {{"morph_c", 0}, rte_morph_row_op2_c, rte_morph_reduce_rows_c},
 };
 
 enum { MORPH_MAX_ROWS = 64 };
@@ -318,13 +320,12 @@ static void morph_rows(const void *variant, uint32_t *seed)
             bool accumulate = m & 1, is_max = m & 2;
             for (int32_t w = 1; w <= 70; w++)
                 check_morph(v, w, count, accumulate, is_max, seed);
-            check_morph(v, 71 + (int32_t)(unit_rand(seed) % 2000), count, accumulate,
-                        is_max, seed);
+            check_morph(v, 71 + (int32_t)(unit_rand(seed) % 2000), count, accumulate, is_max, seed);
         }
 }
 
-DEFINE_PICK(morph, morph_variants, morph_variant, rte_morph_rows,
-            rte_morph_rows_select(features), v->op2 == p.op2 && v->reduce == p.reduce)
+DEFINE_PICK(morph, morph_variants, morph_variant, rte_morph_rows, rte_morph_rows_select(features),
+            v->op2 == p.op2 && v->reduce == p.reduce)
 
 /* Canny rows (aperture 3, L1): each variant against the C reference. */
 typedef struct canny_variant {
@@ -335,12 +336,12 @@ typedef struct canny_variant {
 
 static const canny_variant canny_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "canny_avx2", RTE_CPU_X86_AVX2 }, rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2 },
+    {{"canny_avx2", RTE_CPU_X86_AVX2}, rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2},
 #endif
 #ifdef RTE_SIMD_NEON
-    { { "canny_neon", RTE_CPU_ARM_NEON }, rte_canny_sobel_row_neon, rte_canny_nms_row_neon },
+    {{"canny_neon", RTE_CPU_ARM_NEON}, rte_canny_sobel_row_neon, rte_canny_nms_row_neon},
 #endif
-    { { "canny_c", 0 }, rte_canny_sobel_row_c, rte_canny_nms_row_c },
+    {{"canny_c", 0}, rte_canny_sobel_row_c, rte_canny_nms_row_c},
 };
 
 /* A random int16 in [-range, range]. */
@@ -366,7 +367,10 @@ static void check_canny_sobel(const canny_variant *v, int32_t width, uint32_t *s
     for (size_t i = 0; i < 3 * n; i++)
         if (want[i] != got[i])
             fail_msg("%s sobel width %d: %s[%zu] is %d, reference %d", v->head.name, (int)width,
-                     i < n ? "dx" : i < 2 * n ? "dy" : "mag", i % n, got[i], want[i]);
+                     i < n       ? "dx"
+                     : i < 2 * n ? "dy"
+                                 : "mag",
+                     i % n, got[i], want[i]);
     test_free(src);
     test_free(want);
     test_free(got);
@@ -411,7 +415,7 @@ static void check_canny_nms(const canny_variant *v, int32_t width, int32_t range
 static void canny_rows(const void *variant, uint32_t *seed)
 {
     const canny_variant *v = variant;
-    static const int32_t ranges[] = { 1, 3, 40, 1020 };
+    static const int32_t ranges[] = {1, 3, 40, 1020};
     for (int32_t w = 1; w <= 67; w++)
         for (int k = 0; k < 8; k++) {
             check_canny_sobel(v, w, seed);
@@ -424,8 +428,8 @@ static void canny_rows(const void *variant, uint32_t *seed)
     }
 }
 
-DEFINE_PICK(canny, canny_variants, canny_variant, rte_canny_rows,
-            rte_canny_rows_select(features), v->sobel == p.sobel && v->nms == p.nms)
+DEFINE_PICK(canny, canny_variants, canny_variant, rte_canny_rows, rte_canny_rows_select(features),
+            v->sobel == p.sobel && v->nms == p.nms)
 
 /* Threshold rows: each variant against the C reference, every type, also
  * in place. */
@@ -436,12 +440,12 @@ typedef struct threshold_variant {
 
 static const threshold_variant threshold_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "threshold_avx2", RTE_CPU_X86_AVX2 }, rte_threshold_row_avx2 },
+    {{"threshold_avx2", RTE_CPU_X86_AVX2}, rte_threshold_row_avx2},
 #endif
 #ifdef RTE_SIMD_NEON
-    { { "threshold_neon", RTE_CPU_ARM_NEON }, rte_threshold_row_neon },
+    {{"threshold_neon", RTE_CPU_ARM_NEON}, rte_threshold_row_neon},
 #endif
-    { { "threshold_c", 0 }, rte_threshold_row_c },
+    {{"threshold_c", 0}, rte_threshold_row_c},
 };
 
 static void check_threshold(const threshold_variant *v, int32_t width, int type, uint32_t *seed)
@@ -493,16 +497,16 @@ typedef struct grad_variant {
 
 static const grad_variant grad_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "grad_avx2", RTE_CPU_X86_AVX2 }, rte_grad_column_avx2, rte_grad_row_avx2 },
+    {{"grad_avx2", RTE_CPU_X86_AVX2}, rte_grad_column_avx2, rte_grad_row_avx2},
 #endif
-    { { "grad_c", 0 }, rte_grad_column_c, rte_grad_row_c },
+    {{"grad_c", 0}, rte_grad_column_c, rte_grad_row_c},
 };
 
 /* n taps: [1 2 1] or [-1 0 1] for some 3-tap cases, else random with
  * sum |tap| <= `l1`. */
 static void random_grad_taps(int16_t *taps, int32_t n, int32_t l1, uint32_t *seed)
 {
-    static const int16_t sobel[2][3] = { { 1, 2, 1 }, { -1, 0, 1 } };
+    static const int16_t sobel[2][3] = {{1, 2, 1}, {-1, 0, 1}};
     const uint32_t r = unit_rand(seed) % 4;
     if (n == 3 && r < 2) {
         memcpy(taps, sobel[r], sizeof sobel[r]);
@@ -540,8 +544,8 @@ static void check_grad(const grad_variant *v, int32_t width, int32_t n, int mode
     rte_grad_row_c(padded + n / 2, taps, n, want, width, mode);
     v->row(padded + n / 2, taps, n, got, width, mode);
     if (memcmp(want, got, guard * sizeof *want) != 0)
-        fail_msg("%s row pass width %d taps %d mode %d differs", v->head.name, (int)width,
-                 (int)n, mode);
+        fail_msg("%s row pass width %d taps %d mode %d differs", v->head.name, (int)width, (int)n,
+                 mode);
     test_free(src);
     test_free(padded);
     test_free(want);
@@ -572,9 +576,9 @@ typedef struct lane_cue_variant {
 
 static const lane_cue_variant lane_cue_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "lane_cue_avx2", RTE_CPU_X86_AVX2 }, rte_lane_cue_row_avx2 },
+    {{"lane_cue_avx2", RTE_CPU_X86_AVX2}, rte_lane_cue_row_avx2},
 #endif
-    { { "lane_cue_c", 0 }, rte_lane_cue_row_c },
+    {{"lane_cue_c", 0}, rte_lane_cue_row_c},
 };
 
 static void check_lane_cue(const lane_cue_variant *v, int32_t width, uint32_t *seed)
@@ -586,9 +590,12 @@ static void check_lane_cue(const lane_cue_variant *v, int32_t width, uint32_t *s
     fill_random(gray, (size_t)width, seed, 0);
     const uint32_t r = unit_rand(seed);
     const rte_lane_cue cue = {
-        .white_min = (uint8_t)(150 + r % 100), .white_on = (r >> 8) % 4 ? 0xFF : 0,
-        .yellow_min = (uint8_t)(100 + (r >> 10) % 120), .yellow_on = (r >> 17) % 4 ? 0xFF : 0,
-        .yellow_b_margin = (uint8_t)((r >> 19) % 80), .dim_q8 = (uint16_t)((r >> 23) % 257),
+        .white_min = (uint8_t)(150 + r % 100),
+        .white_on = (r >> 8) % 4 ? 0xFF : 0,
+        .yellow_min = (uint8_t)(100 + (r >> 10) % 120),
+        .yellow_on = (r >> 17) % 4 ? 0xFF : 0,
+        .yellow_b_margin = (uint8_t)((r >> 19) % 80),
+        .dim_q8 = (uint16_t)((r >> 23) % 257),
     };
     const bool rgb = (r >> 31) != 0;
     uint8_t *want = test_malloc(n), *got = test_malloc(n);
@@ -632,7 +639,7 @@ static void every_colour_matches_reference(void **state)
                 uint8_t *p = src + (size_t)y * stride + 3 * (size_t)x;
                 p[0] = (uint8_t)x, p[1] = (uint8_t)y, p[2] = (uint8_t)r;
             }
-        rte_image_u8c3 img = { w, h, stride, src };
+        rte_image_u8c3 img = {w, h, stride, src};
         assert_int_equal(rte_color_bgr_to_gray(&img, &got), RTE_OK);
         for (int32_t y = 0; y < h; y++)
             rte_row_bgr_to_gray_c(src + (size_t)y * stride, want.buf + (size_t)y * want.stride, w);
@@ -654,32 +661,42 @@ typedef struct hough_bins_variant {
 
 static const hough_bins_variant hough_bins_variants[] = {
 #ifdef RTE_SIMD_X86
-    { { "hough_bins_avx2", RTE_CPU_X86_AVX2 }, rte_hough_bins_avx2 },
+    {{"hough_bins_avx2", RTE_CPU_X86_AVX2}, rte_hough_bins_avx2},
 #endif
-    { { "hough_bins_c", 0 }, rte_hough_bins_c },
+    {{"hough_bins_c", 0}, rte_hough_bins_c},
 };
 
 static void hough_bins(const void *variant, uint32_t *seed)
 {
     const hough_bins_variant *v = variant;
-    static const double rhos[] = { 1.0, 0.5, 2.5 }, thetas[] = { PI_SIMD / 180, PI_SIMD / 360, PI_SIMD / 1024 };
+    static const double rhos[] = {1.0, 0.5, 2.5},
+                        thetas[] = {PI_SIMD / 180, PI_SIMD / 360, PI_SIMD / 1024};
     static rte_hough_config cfg;
-    int32_t want[RTE_HOUGH_MAX_ANGLES + GUARD], got[RTE_HOUGH_MAX_ANGLES + GUARD], row_base[RTE_HOUGH_MAX_ANGLES];
+    int32_t want[RTE_HOUGH_MAX_ANGLES + GUARD], got[RTE_HOUGH_MAX_ANGLES + GUARD],
+        row_base[RTE_HOUGH_MAX_ANGLES];
     for (int k = 0; k < 60; k++) {
-        const int32_t w = 1 + (int32_t)(unit_rand(seed) % 4000), h = 1 + (int32_t)(unit_rand(seed) % 4000);
-        assert_int_equal(rte_hough_config_init(&cfg, w, h, rhos[k % 3], thetas[(k / 3) % 3], 0.0, PI_SIMD), RTE_OK);
-        const int32_t numrho = rte_hough_rho_bins(&cfg, w, h), bias = rte_hough_rho_bias(&cfg, numrho);
+        const int32_t w = 1 + (int32_t)(unit_rand(seed) % 4000),
+                      h = 1 + (int32_t)(unit_rand(seed) % 4000);
+        assert_int_equal(
+            rte_hough_config_init(&cfg, w, h, rhos[k % 3], thetas[(k / 3) % 3], 0.0, PI_SIMD),
+            RTE_OK);
+        const int32_t numrho = rte_hough_rho_bins(&cfg, w, h),
+                      bias = rte_hough_rho_bias(&cfg, numrho);
         for (int32_t a = 0; a < cfg.num_angles; a++)
             row_base[a] = a * numrho;
         for (int p = 0; p < 20; p++) {
-            const int32_t n = p == 0 ? cfg.num_angles : 1 + (int32_t)(unit_rand(seed) % (uint32_t)cfg.num_angles);
-            const int32_t x = (int32_t)(unit_rand(seed) % (uint32_t)w), y = (int32_t)(unit_rand(seed) % (uint32_t)h);
+            const int32_t n =
+                p == 0 ? cfg.num_angles : 1 + (int32_t)(unit_rand(seed) % (uint32_t)cfg.num_angles);
+            const int32_t x = (int32_t)(unit_rand(seed) % (uint32_t)w),
+                          y = (int32_t)(unit_rand(seed) % (uint32_t)h);
             memset(want, 0xEE, sizeof want);
             memset(got, 0xEE, sizeof got);
-            rte_hough_bins_c(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, row_base, want);
+            rte_hough_bins_c(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, row_base,
+                             want);
             v->bins(cfg.rho_cos, cfg.rho_sin, n, x, y, bias, cfg.trig_shift, row_base, got);
             if (memcmp(want, got, sizeof want) != 0)
-                fail_msg("%s %dx%d point (%d, %d) n %d differs", v->head.name, (int)w, (int)h, (int)x, (int)y, (int)n);
+                fail_msg("%s %dx%d point (%d, %d) n %d differs", v->head.name, (int)w, (int)h,
+                         (int)x, (int)y, (int)n);
             for (int32_t a = 0; a < n; a++)
                 assert_true(got[a] >= a * numrho && got[a] < (a + 1) * numrho);
         }
@@ -701,8 +718,10 @@ typedef struct kernel_family {
     uint32_t seed;
 } kernel_family;
 
-#define FAMILY(NAME, TABLE, CHECK, SEED)                                                          \
-    { #NAME, TABLE, COUNT_OF(TABLE), sizeof TABLE[0], NAME##_pick, CHECK, SEED }
+#define FAMILY(NAME, TABLE, CHECK, SEED)                                         \
+    {                                                                            \
+#NAME, TABLE, COUNT_OF(TABLE), sizeof TABLE[0], NAME##_pick, CHECK, SEED \
+    }
 
 static const kernel_family families[] = {
     FAMILY(bgr, bgr_variants, c3_to_gray_rows, 0x9E3779B9u),
@@ -843,7 +862,7 @@ static void forced_and_dispatched_images_agree(void **state)
     const int32_t w = 333, h = 7, stride = 3 * w + 11;
     uint8_t *src = test_malloc((size_t)stride * h);
     fill_random(src, (size_t)stride * h, &seed, 0);
-    rte_image_u8c3 img = { w, h, stride, src };
+    rte_image_u8c3 img = {w, h, stride, src};
     rte_image_u8 a = unit_image_u8(w, h, 9, 0), b = unit_image_u8(w, h, 9, 0);
     assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
     assert_int_equal(rte_color_rgb_to_gray(&img, &a), RTE_OK);
@@ -921,9 +940,9 @@ int main(void)
     size_t n = 0;
     for (size_t k = 0; k < FAMILY_COUNT; k++)
         for (size_t m = 0; m < MASK_COUNT; m++, n++) {
-            states[n] = (family_mask){ &families[k], &feature_masks[m] };
+            states[n] = (family_mask){&families[k], &feature_masks[m]};
             snprintf(names[n], sizeof names[n], "%s/%s", families[k].name, feature_masks[m].name);
-            tests[n] = (struct CMUnitTest){ names[n], family_under_mask, NULL, NULL, &states[n] };
+            tests[n] = (struct CMUnitTest){names[n], family_under_mask, NULL, NULL, &states[n]};
         }
     memcpy(tests + n, rest, sizeof rest);
     return cmocka_run_group_tests(tests, NULL, NULL);

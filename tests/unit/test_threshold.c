@@ -16,8 +16,8 @@ static rte_threshold_params params(rte_threshold_type type, double thresh, doubl
     return p;
 }
 
-static void apply_row(const uint8_t *in, int n, rte_threshold_type type, double thresh, double maxval,
-                      const uint8_t *want)
+static void apply_row(const uint8_t *in, int n, rte_threshold_type type, double thresh,
+                      double maxval, const uint8_t *want)
 {
     rte_image_u8 src = unit_image_u8(n, 1, 3, 0), dst = unit_image_u8(n, 1, 5, 0);
     memcpy(src.buf, in, (size_t)n);
@@ -34,24 +34,24 @@ static void apply_row(const uint8_t *in, int n, rte_threshold_type type, double 
 
 static void every_type_on_a_hand_checked_row(void **state)
 {
-    const uint8_t in[6] = { 0, 100, 127, 128, 200, 255 };
-    apply_row(in, 6, RTE_THRESH_BINARY, 127, 200, (const uint8_t[]){ 0, 0, 0, 200, 200, 200 });
-    apply_row(in, 6, RTE_THRESH_BINARY_INV, 127, 200, (const uint8_t[]){ 200, 200, 200, 0, 0, 0 });
-    apply_row(in, 6, RTE_THRESH_TRUNC, 127, 200, (const uint8_t[]){ 0, 100, 127, 127, 127, 127 });
-    apply_row(in, 6, RTE_THRESH_TOZERO, 127, 200, (const uint8_t[]){ 0, 0, 0, 128, 200, 255 });
-    apply_row(in, 6, RTE_THRESH_TOZERO_INV, 127, 200, (const uint8_t[]){ 0, 100, 127, 0, 0, 0 });
+    const uint8_t in[6] = {0, 100, 127, 128, 200, 255};
+    apply_row(in, 6, RTE_THRESH_BINARY, 127, 200, (const uint8_t[]){0, 0, 0, 200, 200, 200});
+    apply_row(in, 6, RTE_THRESH_BINARY_INV, 127, 200, (const uint8_t[]){200, 200, 200, 0, 0, 0});
+    apply_row(in, 6, RTE_THRESH_TRUNC, 127, 200, (const uint8_t[]){0, 100, 127, 127, 127, 127});
+    apply_row(in, 6, RTE_THRESH_TOZERO, 127, 200, (const uint8_t[]){0, 0, 0, 128, 200, 255});
+    apply_row(in, 6, RTE_THRESH_TOZERO_INV, 127, 200, (const uint8_t[]){0, 100, 127, 0, 0, 0});
     /* fractional threshold floors, fractional maxval rounds half to even */
-    apply_row(in, 6, RTE_THRESH_BINARY, 127.9, 127.5, (const uint8_t[]){ 0, 0, 0, 128, 128, 128 });
-    apply_row(in, 6, RTE_THRESH_BINARY, 99.5, 128.5, (const uint8_t[]){ 0, 128, 128, 128, 128, 128 });
-    apply_row(in, 6, RTE_THRESH_BINARY, 0, 300, (const uint8_t[]){ 0, 255, 255, 255, 255, 255 });
-    apply_row(in, 6, RTE_THRESH_BINARY, 254, -3, (const uint8_t[]){ 0, 0, 0, 0, 0, 0 });
-    apply_row(in, 6, RTE_THRESH_BINARY, 254, 77, (const uint8_t[]){ 0, 0, 0, 0, 0, 77 });
+    apply_row(in, 6, RTE_THRESH_BINARY, 127.9, 127.5, (const uint8_t[]){0, 0, 0, 128, 128, 128});
+    apply_row(in, 6, RTE_THRESH_BINARY, 99.5, 128.5, (const uint8_t[]){0, 128, 128, 128, 128, 128});
+    apply_row(in, 6, RTE_THRESH_BINARY, 0, 300, (const uint8_t[]){0, 255, 255, 255, 255, 255});
+    apply_row(in, 6, RTE_THRESH_BINARY, 254, -3, (const uint8_t[]){0, 0, 0, 0, 0, 0});
+    apply_row(in, 6, RTE_THRESH_BINARY, 254, 77, (const uint8_t[]){0, 0, 0, 0, 0, 77});
 }
 
 static void out_of_range_thresholds_fill_or_copy(void **state)
 {
-    const uint8_t in[4] = { 0, 1, 254, 255 };
-    const uint8_t zero[4] = { 0 }, full[4] = { 9, 9, 9, 9 };
+    const uint8_t in[4] = {0, 1, 254, 255};
+    const uint8_t zero[4] = {0}, full[4] = {9, 9, 9, 9};
     /* below 0: every pixel is above */
     apply_row(in, 4, RTE_THRESH_BINARY, -0.5, 9, full);
     apply_row(in, 4, RTE_THRESH_BINARY_INV, -1, 9, zero);
@@ -81,11 +81,16 @@ static void params_follow_opencv_rounding(void **state)
     p = params(RTE_THRESH_BINARY, 2.5, -2.5, false);
     assert_int_equal(p.maxval, -2);
 
-    assert_int_equal(rte_threshold_params_init(&p, RTE_THRESH_BINARY, NAN, 1, false), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_threshold_params_init(&p, RTE_THRESH_BINARY, 1, NAN, false), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_threshold_params_init(&p, RTE_THRESH_BINARY, 1e12, 1, false), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_threshold_params_init(&p, (rte_threshold_type)5, 1, 1, false), RTE_ERR_ARGUMENT);
-    assert_int_equal(rte_threshold_params_init(NULL, RTE_THRESH_BINARY, 1, 1, false), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_threshold_params_init(&p, RTE_THRESH_BINARY, NAN, 1, false),
+                     RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_threshold_params_init(&p, RTE_THRESH_BINARY, 1, NAN, false),
+                     RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_threshold_params_init(&p, RTE_THRESH_BINARY, 1e12, 1, false),
+                     RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_threshold_params_init(&p, (rte_threshold_type)5, 1, 1, false),
+                     RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_threshold_params_init(NULL, RTE_THRESH_BINARY, 1, 1, false),
+                     RTE_ERR_ARGUMENT);
 }
 
 static uint8_t reference_pixel(uint8_t v, rte_threshold_type type, int32_t t, int32_t maxval)
@@ -120,8 +125,9 @@ static void random_images_all_widths_and_in_place(void **state)
             assert_int_equal(rte_threshold_u8(&src, &dst, &p, NULL), RTE_OK);
             for (int32_t y = 0; y < h; y++)
                 for (int32_t x = 0; x < w; x++)
-                    assert_int_equal(dst.buf[y * dst.stride + x],
-                                     reference_pixel(src.buf[y * src.stride + x], p.type, p.thresh, p.maxval));
+                    assert_int_equal(
+                        dst.buf[y * dst.stride + x],
+                        reference_pixel(src.buf[y * src.stride + x], p.type, p.thresh, p.maxval));
             unit_assert_padding_u8(&dst);
             /* in place gives the same */
             rte_image_u8 copy = unit_image_u8(w, h, 2, 0);
@@ -129,7 +135,8 @@ static void random_images_all_widths_and_in_place(void **state)
                 memcpy(copy.buf + y * copy.stride, src.buf + y * src.stride, (size_t)w);
             assert_int_equal(rte_threshold_u8(&copy, &copy, &p, NULL), RTE_OK);
             for (int32_t y = 0; y < h; y++)
-                assert_memory_equal(copy.buf + y * copy.stride, dst.buf + y * dst.stride, (size_t)w);
+                assert_memory_equal(copy.buf + y * copy.stride, dst.buf + y * dst.stride,
+                                    (size_t)w);
             unit_assert_padding_u8(&copy);
             test_free(copy.buf);
         }
@@ -144,7 +151,7 @@ static void histogram_counts_every_pixel(void **state)
     for (int32_t w = 1; w <= 67; w += 3) {
         int32_t h = 1 + w % 7;
         rte_image_u8 img = unit_image_u8(w, h, 4, 0);
-        uint32_t want[256] = { 0 };
+        uint32_t want[256] = {0};
         for (int32_t y = 0; y < h; y++)
             for (int32_t x = 0; x < w; x++) {
                 uint8_t v = (uint8_t)(unit_rand(&rng) % (w < 20 ? 3 : 256));
@@ -174,7 +181,7 @@ static void masked_histogram_counts_pixels_under_the_mask(void **state)
         const int32_t h = 1 + w % 5;
         rte_image_u8 img = unit_image_u8(w, h, 1 + 2 * (w % 3), 0);
         rte_image_u8 mask = unit_image_u8(w, h, 2 + w % 4, 0);
-        uint32_t want[256] = { 0 };
+        uint32_t want[256] = {0};
         for (int32_t y = 0; y < h; y++)
             for (int32_t x = 0; x < w; x++) {
                 const uint8_t v = (uint8_t)(unit_rand(&rng) % (w < 20 ? 3 : 256));
@@ -237,25 +244,33 @@ static void otsu_matches_double_replay_on_adversarial_histograms(void **state)
 {
     uint32_t rng = 99;
     for (int n = 0; n < 40000; n++) {
-        uint32_t hist[256] = { 0 };
-        int kind = n % 7, bins = kind == 0 ? 2 : kind == 1 ? 3 : kind == 2 ? 1 : kind == 3 ? 6 : 256;
+        uint32_t hist[256] = {0};
+        int kind = n % 7, bins = kind == 0   ? 2
+                                 : kind == 1 ? 3
+                                 : kind == 2 ? 1
+                                 : kind == 3 ? 6
+                                             : 256;
         if (kind >= 5) {
             /* two or three bumps, 10^3 to 2^23 pixels in all */
             const uint32_t scale = 1u << (unit_rand(&rng) % 14);
             for (int bump = 0; bump < 2 + kind % 2; bump++) {
-                const int32_t centre = (int32_t)(unit_rand(&rng) % 256), width = 2 + (int32_t)(unit_rand(&rng) % 40);
+                const int32_t centre = (int32_t)(unit_rand(&rng) % 256),
+                              width = 2 + (int32_t)(unit_rand(&rng) % 40);
                 const uint32_t height = 1 + unit_rand(&rng) % 1000;
                 for (int32_t v = centre - 3 * width; v <= centre + 3 * width; v++)
                     if (v >= 0 && v < 256) {
                         const int32_t dv = v - centre, dist = dv < 0 ? -dv : dv;
-                        hist[v] += height * scale * (uint32_t)(3 * width - dist) / (uint32_t)(3 * width) +
-                                   unit_rand(&rng) % 8;
+                        hist[v] +=
+                            height * scale * (uint32_t)(3 * width - dist) / (uint32_t)(3 * width) +
+                            unit_rand(&rng) % 8;
                     }
             }
             hist[unit_rand(&rng) % 256] += 1;
         } else {
             for (int b = 0; b < bins; b++) {
-                uint32_t v = kind == 0 && b == 0 && n % 3 ? 0 : kind == 0 && n % 3 ? 255 : unit_rand(&rng) % 256;
+                uint32_t v = kind == 0 && b == 0 && n % 3 ? 0
+                             : kind == 0 && n % 3         ? 255
+                                                          : unit_rand(&rng) % 256;
                 hist[v] += 1 + unit_rand(&rng) % (1u << (unit_rand(&rng) % 21));
             }
         }
@@ -267,7 +282,7 @@ static void otsu_matches_double_replay_on_adversarial_histograms(void **state)
 
 static void otsu_hand_checked_and_errors(void **state)
 {
-    uint32_t hist[256] = { 0 };
+    uint32_t hist[256] = {0};
     int32_t t = -1;
     assert_int_equal(rte_threshold_otsu_histogram(hist, &t), RTE_ERR_ARGUMENT); /* empty */
     hist[77] = 1000;
@@ -332,8 +347,8 @@ static void binary64_emulation_matches_the_fpu(void **state)
         double x = from_bits(a), y = from_bits(b);
         if (isnan(x) || isnan(y) || isinf(x) || isinf(y))
             continue;
-        double r[4] = { x + y, x - y, x * y, x / y };
-        rte_f64 e[4] = { rte_f64_add(a, b), rte_f64_sub(a, b), rte_f64_mul(a, b), rte_f64_div(a, b) };
+        double r[4] = {x + y, x - y, x * y, x / y};
+        rte_f64 e[4] = {rte_f64_add(a, b), rte_f64_sub(a, b), rte_f64_mul(a, b), rte_f64_div(a, b)};
         for (int k = 0; k < 4; k++)
             if (!isinf(r[k]) && !isnan(r[k]))
                 assert_int_equal(e[k], bits(r[k]));
@@ -347,7 +362,7 @@ static void binary64_emulation_matches_the_fpu(void **state)
 
 static void auto_canny_median_rule(void **state)
 {
-    uint32_t hist[256] = { 0 };
+    uint32_t hist[256] = {0};
     int32_t lo = -1, hi = -1;
     hist[10] = hist[20] = hist[30] = hist[40] = 1; /* median 25 */
     assert_int_equal(rte_threshold_auto_canny_median(hist, 330, &lo, &hi), RTE_OK);
@@ -377,7 +392,7 @@ static void auto_canny_median_rule(void **state)
 
 static void auto_canny_otsu_rule(void **state)
 {
-    uint32_t hist[256] = { 0 };
+    uint32_t hist[256] = {0};
     hist[20] = 50;
     hist[181] = 50;
     int32_t lo = -1, hi = -1, t = -1;

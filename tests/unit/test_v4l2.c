@@ -18,7 +18,7 @@
 
 /* ---- the fake driver ---- */
 
-#define FAKE_NODES 2          /* /dev/video0: metadata only; /dev/video1: the camera */
+#define FAKE_NODES 2 /* /dev/video0: metadata only; /dev/video1: the camera */
 #define FAKE_BUFS 8
 #define FAKE_BUF_BYTES (64 * 1024)
 #define FAKE_MAX_FORMATS 4
@@ -33,16 +33,16 @@ typedef struct fake_control {
 
 typedef struct fake {
     /* What the driver is. */
-    int present;                   /* the camera node exists */
+    int present; /* the camera node exists */
     uint32_t formats[FAKE_MAX_FORMATS];
     int n_formats;
-    uint32_t max_w, max_h;         /* S_FMT clamps to these, width rounded down to even */
-    uint32_t force_w, force_h;     /* when set, S_FMT always gives this size */
-    uint32_t line_pad;             /* bytesperline = width * bpp + line_pad */
-    uint32_t grant_max;            /* REQBUFS grants at most this many */
-    int timeperframe;              /* supports S_PARM */
-    uint32_t fps_allowed;          /* S_PARM always settles on this */
-    uint32_t ts_flag;              /* timestamp type in the buffer flags */
+    uint32_t max_w, max_h;     /* S_FMT clamps to these, width rounded down to even */
+    uint32_t force_w, force_h; /* when set, S_FMT always gives this size */
+    uint32_t line_pad;         /* bytesperline = width * bpp + line_pad */
+    uint32_t grant_max;        /* REQBUFS grants at most this many */
+    int timeperframe;          /* supports S_PARM */
+    uint32_t fps_allowed;      /* S_PARM always settles on this */
+    uint32_t ts_flag;          /* timestamp type in the buffer flags */
     fake_control controls[FAKE_MAX_CONTROLS];
     int n_controls;
 
@@ -67,7 +67,7 @@ typedef struct fake {
     struct v4l2_buffer done[FAKE_BUFS]; /* what DQBUF returns for each */
     uint32_t next_seq;
     int mapped;
-    int owner_fd;                       /* the handle that requested the buffers */
+    int owner_fd; /* the handle that requested the buffers */
 
     /* Counters. */
     int opens, closes, streamons, qbufs, sleeps;
@@ -121,17 +121,11 @@ static int fake_complete(fake *f, uint32_t seq, uint32_t flags, uint32_t bytesus
     return (int)index;
 }
 
-static int fake_frame(fake *f)
-{
-    return fake_complete(f, f->next_seq, 0, 0);
-}
+static int fake_frame(fake *f) { return fake_complete(f, f->next_seq, 0, 0); }
 
 /* Each open gets its own fd (10 + node + 100 * open count), as the kernel
  * gives each open its own file handle. */
-static int node_of(int fd)
-{
-    return (fd - 10) % 100;
-}
+static int node_of(int fd) { return (fd - 10) % 100; }
 
 static int fake_open(void *ctx, const char *path, int flags)
 {
@@ -214,9 +208,12 @@ static int fake_ioctl(void *ctx, int fd, unsigned long request, void *arg)
         }
         p->field = V4L2_FIELD_NONE;
         p->bytesperline = p->pixelformat == V4L2_PIX_FMT_MJPEG
-                              ? 0 : p->width * (uint32_t)bpp(p->pixelformat) + f->line_pad;
-        p->sizeimage = p->pixelformat == V4L2_PIX_FMT_MJPEG ? FAKE_BUF_BYTES / 2
-                       : p->bytesperline * p->height * (p->pixelformat == V4L2_PIX_FMT_NV12 ? 3 : 2) / 2;
+                              ? 0
+                              : p->width * (uint32_t)bpp(p->pixelformat) + f->line_pad;
+        p->sizeimage =
+            p->pixelformat == V4L2_PIX_FMT_MJPEG
+                ? FAKE_BUF_BYTES / 2
+                : p->bytesperline * p->height * (p->pixelformat == V4L2_PIX_FMT_NV12 ? 3 : 2) / 2;
         if (p->pixelformat == V4L2_PIX_FMT_NV12)
             p->sizeimage = p->bytesperline * (p->height + (p->height + 1) / 2);
         else if (p->pixelformat != V4L2_PIX_FMT_MJPEG)
@@ -371,8 +368,7 @@ static int fake_ioctl(void *ctx, int fd, unsigned long request, void *arg)
         iv->discrete.denominator = iv->index ? 25 : 30;
         return 0;
     }
-    default:
-        return fail_with(ENOTTY);
+    default: return fail_with(ENOTTY);
     }
 }
 
@@ -428,10 +424,7 @@ static int fake_munmap(void *ctx, void *addr, size_t length)
     return 0;
 }
 
-static int64_t fake_now(void *ctx)
-{
-    return ((fake *)ctx)->now;
-}
+static int64_t fake_now(void *ctx) { return ((fake *)ctx)->now; }
 
 /* ---- fixtures ---- */
 
@@ -457,17 +450,35 @@ static int setup(void **state)
     F->ts_flag = V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC;
     F->period_ns = 33000000;
     F->now = 1000000000;
-    F->controls[0] = (fake_control){ V4L2_CID_BRIGHTNESS, V4L2_CTRL_TYPE_INTEGER, 0,
-                                     "Brightness", 0, 255, 128, 0 };
-    F->controls[1] = (fake_control){ V4L2_CID_AUTO_WHITE_BALANCE, V4L2_CTRL_TYPE_BOOLEAN, 0,
-                                     "White Balance, Automatic", 0, 1, 1, 0 };
-    F->controls[2] = (fake_control){ V4L2_CID_EXPOSURE_ABSOLUTE, V4L2_CTRL_TYPE_INTEGER, 0,
-                                     "Exposure Time, Absolute", 1, 5000, 100, 0 };
-    F->controls[3] = (fake_control){ V4L2_CID_EXPOSURE_ABSOLUTE + 1, V4L2_CTRL_TYPE_INTEGER,
-                                     V4L2_CTRL_FLAG_READ_ONLY, "Temperature", 0, 100, 40, 0 };
+    F->controls[0] = (fake_control){
+        V4L2_CID_BRIGHTNESS, V4L2_CTRL_TYPE_INTEGER, 0, "Brightness", 0, 255, 128, 0};
+    F->controls[1] = (fake_control){V4L2_CID_AUTO_WHITE_BALANCE,
+                                    V4L2_CTRL_TYPE_BOOLEAN,
+                                    0,
+                                    "White Balance, Automatic",
+                                    0,
+                                    1,
+                                    1,
+                                    0};
+    F->controls[2] = (fake_control){V4L2_CID_EXPOSURE_ABSOLUTE,
+                                    V4L2_CTRL_TYPE_INTEGER,
+                                    0,
+                                    "Exposure Time, Absolute",
+                                    1,
+                                    5000,
+                                    100,
+                                    0};
+    F->controls[3] = (fake_control){V4L2_CID_EXPOSURE_ABSOLUTE + 1,
+                                    V4L2_CTRL_TYPE_INTEGER,
+                                    V4L2_CTRL_FLAG_READ_ONLY,
+                                    "Temperature",
+                                    0,
+                                    100,
+                                    40,
+                                    0};
     F->n_controls = 4;
-    OPS = (rte_v4l2_ops){ fake_open, fake_close, fake_ioctl, fake_poll,
-                          fake_mmap, fake_munmap, fake_now, F };
+    OPS = (rte_v4l2_ops){fake_open, fake_close,  fake_ioctl, fake_poll,
+                         fake_mmap, fake_munmap, fake_now,   F};
     return 0;
 }
 
@@ -515,10 +526,7 @@ static rte_source_stats stats_of(const rte_source *src)
     return s;
 }
 
-static uint32_t queued_count(void)
-{
-    return F->n_fifo;
-}
+static uint32_t queued_count(void) { return F->n_fifo; }
 
 /* ---- negotiation ---- */
 
@@ -670,7 +678,7 @@ static void test_open_errors(void **state)
 static void test_open_by_name(void **state)
 {
     (void)state;
-    const char *names[] = { "fake camera 1", "FAKE_CAMERA_1", "usb-0000:00:14.0-1" };
+    const char *names[] = {"fake camera 1", "FAKE_CAMERA_1", "usb-0000:00:14.0-1"};
     for (int i = 0; i < 3; i++) {
         rte_v4l2_config c = config(V4L2_PIX_FMT_GREY);
         c.device = names[i];
@@ -712,8 +720,9 @@ static void test_controls(void **state)
     assert_int_equal(rte_v4l2_source_set_control(&src, "brightness", 256, msg, sizeof(msg)),
                      RTE_ERR_ARGUMENT);
     assert_string_equal(msg, "control \"Brightness\": 256 is outside 0..255");
-    assert_int_equal(rte_v4l2_source_set_control(&src, "whitebalance automatic", 1, msg,
-                                                 sizeof(msg)), RTE_ERR_ARGUMENT);
+    assert_int_equal(
+        rte_v4l2_source_set_control(&src, "whitebalance automatic", 1, msg, sizeof(msg)),
+        RTE_ERR_ARGUMENT);
     assert_string_equal(msg, "/dev/video1 has no control \"whitebalance automatic\"");
     assert_int_equal(rte_v4l2_source_set_control(&src, "temperature", 1, msg, sizeof(msg)),
                      RTE_ERR_ARGUMENT);
@@ -742,17 +751,21 @@ static void test_device_control(void **state)
     open_ok(&src, &c, NULL);
     int opens = F->opens, closes = F->closes;
     char msg[RTE_SOURCE_MESSAGE_SIZE];
-    assert_int_equal(rte_v4l2_set_device_control("/dev/video1", "brightness", 42, &OPS, msg,
-                                                 sizeof(msg)), RTE_OK);
+    assert_int_equal(
+        rte_v4l2_set_device_control("/dev/video1", "brightness", 42, &OPS, msg, sizeof(msg)),
+        RTE_OK);
     assert_int_equal(F->controls[0].value, 42);
-    assert_int_equal(rte_v4l2_set_device_control("fake camera 1", "Brightness", 43, &OPS, msg,
-                                                 sizeof(msg)), RTE_OK);
+    assert_int_equal(
+        rte_v4l2_set_device_control("fake camera 1", "Brightness", 43, &OPS, msg, sizeof(msg)),
+        RTE_OK);
     assert_int_equal(F->controls[0].value, 43);
-    assert_int_equal(rte_v4l2_set_device_control("/dev/video1", "brightness", 300, &OPS, msg,
-                                                 sizeof(msg)), RTE_ERR_ARGUMENT);
+    assert_int_equal(
+        rte_v4l2_set_device_control("/dev/video1", "brightness", 300, &OPS, msg, sizeof(msg)),
+        RTE_ERR_ARGUMENT);
     assert_string_equal(msg, "control \"Brightness\": 300 is outside 0..255");
-    assert_int_equal(rte_v4l2_set_device_control("/dev/video7", "brightness", 1, &OPS, msg,
-                                                 sizeof(msg)), RTE_ERR_DEVICE);
+    assert_int_equal(
+        rte_v4l2_set_device_control("/dev/video7", "brightness", 1, &OPS, msg, sizeof(msg)),
+        RTE_ERR_DEVICE);
     assert_int_equal(rte_v4l2_set_device_control(NULL, "brightness", 1, &OPS, msg, sizeof(msg)),
                      RTE_ERR_ARGUMENT);
     /* Every handle it opened is closed; the source's is untouched. */
@@ -948,7 +961,8 @@ static unsigned char *make_jpeg(int w, int h, unsigned long *size, uint8_t *bgr)
     tjhandle tj = tjInitCompress();
     assert_non_null(tj);
     unsigned char *jpeg = NULL;
-    assert_int_equal(tjCompress2(tj, bgr, w, w * 3, h, TJPF_BGR, &jpeg, size, TJSAMP_444, 95, 0), 0);
+    assert_int_equal(tjCompress2(tj, bgr, w, w * 3, h, TJPF_BGR, &jpeg, size, TJSAMP_444, 95, 0),
+                     0);
     tjDestroy(tj);
     return jpeg;
 }
@@ -964,8 +978,10 @@ static void test_mjpeg(void **state)
     /* What libturbojpeg itself makes of it, as the reference. */
     tjhandle tj = tjInitDecompress();
     static uint8_t ref_bgr[64 * 48 * 3], ref_grey[64 * 48];
-    assert_int_equal(tjDecompress2(tj, jpeg, size, ref_bgr, 64, 64 * 3, 48, TJPF_BGR, TJFLAG_FASTDCT), 0);
-    assert_int_equal(tjDecompress2(tj, jpeg, size, ref_grey, 64, 64, 48, TJPF_GRAY, TJFLAG_FASTDCT), 0);
+    assert_int_equal(
+        tjDecompress2(tj, jpeg, size, ref_bgr, 64, 64 * 3, 48, TJPF_BGR, TJFLAG_FASTDCT), 0);
+    assert_int_equal(tjDecompress2(tj, jpeg, size, ref_grey, 64, 64, 48, TJPF_GRAY, TJFLAG_FASTDCT),
+                     0);
     tjDestroy(tj);
 
     for (int as_bgr = 0; as_bgr < 2; as_bgr++) {
@@ -994,7 +1010,7 @@ static void test_mjpeg(void **state)
         assert_int_equal(stats_of(&src).skipped, 1);
 
         /* Garbage is skipped and counted. */
-        static const uint8_t junk[64] = { 0xff, 0xd8, 0x01, 0x02 };
+        static const uint8_t junk[64] = {0xff, 0xd8, 0x01, 0x02};
         F->payload = junk;
         F->payload_size = sizeof(junk);
         fake_frame(F);
@@ -1058,7 +1074,7 @@ static void test_reconnect_backoff(void **state)
 
     /* Attempts at +100, then +200, +400, +500, +500 ms. */
     int64_t lost = F->now;
-    const int64_t expect_ms[] = { 100, 300, 700, 1200, 1700 };
+    const int64_t expect_ms[] = {100, 300, 700, 1200, 1700};
     for (int i = 0; i < 5; i++) {
         int opens = F->opens;
         assert_int_equal(rte_source_next(&src, &fr, 1000, msg, sizeof(msg)), RTE_ERR_DEVICE);

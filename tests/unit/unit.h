@@ -22,7 +22,7 @@ static inline rte_image_u8 unit_image_u8(int32_t w, int32_t h, int32_t pad, uint
     memset(buf, 0xEE, (size_t)stride * h);
     for (int32_t y = 0; y < h; y++)
         memset(buf + (size_t)y * stride, fill, (size_t)w);
-    rte_image_u8 img = { w, h, stride, buf };
+    rte_image_u8 img = {w, h, stride, buf};
     return img;
 }
 
@@ -32,7 +32,7 @@ static inline rte_image_s16 unit_image_s16(int32_t w, int32_t h, int32_t pad)
     int16_t *buf = (int16_t *)test_malloc((size_t)stride * h * sizeof(int16_t));
     for (size_t i = 0; i < (size_t)stride * h; i++)
         buf[i] = (int16_t)0x7EEE;
-    rte_image_s16 img = { w, h, stride, buf };
+    rte_image_s16 img = {w, h, stride, buf};
     return img;
 }
 

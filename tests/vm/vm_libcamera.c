@@ -49,18 +49,21 @@ int main(void)
         }
         if (f.capture_ns > now || now - f.capture_ns > 2000000000 ||
             (n > 0 && (f.capture_ns <= prev_ns || f.sequence <= prev_seq))) {
-            snprintf(why, sizeof(why), "frame %d: time %lld (now %lld, previous %lld), sequence %llu after %llu",
-                     n, (long long)f.capture_ns, (long long)now, (long long)prev_ns,
+            snprintf(why, sizeof(why),
+                     "frame %d: time %lld (now %lld, previous %lld), sequence %llu after %llu", n,
+                     (long long)f.capture_ns, (long long)now, (long long)prev_ns,
                      (unsigned long long)f.sequence, (unsigned long long)prev_seq);
             break;
         }
         /* What the daemon does next: the frame to grey. */
         static uint8_t grey_buf[1920 * 1080];
-        rte_image_u8 grey = { f.frame.width, f.frame.height, f.frame.width, grey_buf };
+        rte_image_u8 grey = {f.frame.width, f.frame.height, f.frame.width, grey_buf};
         st = (size_t)f.frame.width * (size_t)f.frame.height > sizeof(grey_buf)
-                 ? RTE_ERR_TOO_LARGE : rte_frame_to_gray(&f.frame, &grey);
+                 ? RTE_ERR_TOO_LARGE
+                 : rte_frame_to_gray(&f.frame, &grey);
         if (st != RTE_OK) {
-            snprintf(why, sizeof(why), "frame %d: rte_frame_to_gray: %s", n, rte_status_message(st));
+            snprintf(why, sizeof(why), "frame %d: rte_frame_to_gray: %s", n,
+                     rte_status_message(st));
             break;
         }
         const uint8_t *row = grey_buf + (size_t)grey.stride * (size_t)(grey.height / 2);
@@ -90,7 +93,7 @@ int main(void)
     printf("RTE-VM %s libcamera-vimc: %s %dx%d stride %d, adjusted %d; %d frames in %lld ms, "
            "driver drops %llu, skipped %llu, varied %d, reopened %d; %s\n",
            ok ? "PASS" : "FAIL", info.id, info.width, info.height, info.stride, info.adjusted, n,
-           (long long)ms, (unsigned long long)stats.driver_drops,
-           (unsigned long long)stats.skipped, varied, reopened, why);
+           (long long)ms, (unsigned long long)stats.driver_drops, (unsigned long long)stats.skipped,
+           varied, reopened, why);
     return ok ? 0 : 1;
 }

@@ -78,7 +78,7 @@ static int capture(rte_source *src, int n, char *why, size_t why_size)
         }
         /* What the daemon does next: the frame to grey. */
         static uint8_t grey_buf[640 * 480];
-        rte_image_u8 grey = { 640, 480, 640, grey_buf };
+        rte_image_u8 grey = {640, 480, 640, grey_buf};
         st = rte_frame_to_gray(&f.frame, &grey);
         if (st != RTE_OK) {
             snprintf(why, why_size, "frame %d: rte_frame_to_gray: %s", i, rte_status_message(st));
@@ -174,9 +174,10 @@ static void test_drops(const char *device)
         }
         rte_source_stats stats;
         rte_source_get_stats(&src, &stats);
-        snprintf(detail, sizeof(detail), "%d frames, driver drops %llu, skipped %llu, gaps seen %llu",
-                 frames, (unsigned long long)stats.driver_drops,
-                 (unsigned long long)stats.skipped, (unsigned long long)gaps);
+        snprintf(detail, sizeof(detail),
+                 "%d frames, driver drops %llu, skipped %llu, gaps seen %llu", frames,
+                 (unsigned long long)stats.driver_drops, (unsigned long long)stats.skipped,
+                 (unsigned long long)gaps);
         /* Gaps before the first delivered frame are not in any frame's
          * `dropped`, hence only > 0. */
         result(frames == 30 && stats.driver_drops > 0 && gaps > 0, name, detail);
@@ -255,10 +256,11 @@ static void test_fatal(const char *device, int streamon_too)
         rte_source_get_stats(&src, &stats);
         int ok = calls > 0 && stats.reconnects == 1 && stats.state == RTE_SOURCE_STREAMING &&
                  errors >= (streamon_too ? 2 : 1) && capture(&src, 10, why, sizeof(why));
-        snprintf(detail, sizeof(detail),
-                 "back after %d calls, %d device errors, reconnects %llu, errors %llu; last: %s; %s",
-                 calls, errors, (unsigned long long)stats.reconnects,
-                 (unsigned long long)stats.errors, last, why);
+        snprintf(
+            detail, sizeof(detail),
+            "back after %d calls, %d device errors, reconnects %llu, errors %llu; last: %s; %s",
+            calls, errors, (unsigned long long)stats.reconnects, (unsigned long long)stats.errors,
+            last, why);
         result(ok, name, detail);
     }
     rte_source_close(&src);
@@ -301,7 +303,7 @@ static void test_reload(const char *unload, const char *load)
     if (!open_source(&src, "platform:vivid-000", name))
         return;
     char msg[RTE_SOURCE_MESSAGE_SIZE], detail[1536], last[RTE_SOURCE_MESSAGE_SIZE] = "",
-        why[512] = "";
+                                                     why[512] = "";
     if (press(&src, "Disconnect", 0, name)) {
         rte_source_frame f;
         rte_status first = rte_source_next(&src, &f, 1000, msg, sizeof(msg));
@@ -321,10 +323,9 @@ static void test_reload(const char *unload, const char *load)
         rte_source_stats stats;
         rte_source_get_stats(&src, &stats);
         int ok = first == RTE_ERR_DEVICE && unload_status == 0 &&
-                 gone.state == RTE_SOURCE_RECONNECTING && errors >= 3 &&
-                 frames_while_gone == 0 && load_status == 0 && calls > 0 &&
-                 stats.reconnects == 1 && stats.state == RTE_SOURCE_STREAMING &&
-                 capture(&src, 10, why, sizeof(why));
+                 gone.state == RTE_SOURCE_RECONNECTING && errors >= 3 && frames_while_gone == 0 &&
+                 load_status == 0 && calls > 0 && stats.reconnects == 1 &&
+                 stats.state == RTE_SOURCE_STREAMING && capture(&src, 10, why, sizeof(why));
         snprintf(detail, sizeof(detail),
                  "first: %s; unload %d; while gone: state %d, %d device errors, last: %s; "
                  "load %d; back after %d calls, reconnects %llu; %s",

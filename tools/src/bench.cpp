@@ -35,7 +35,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace bench {
+namespace bench
+{
 
 std::vector<Case> &registry()
 {
@@ -43,26 +44,30 @@ std::vector<Case> &registry()
     return cases;
 }
 
-Register::Register(std::string group, std::string name, std::function<Runners(const Frame &)> prepare)
+Register::Register(std::string group, std::string name,
+                   std::function<Runners(const Frame &)> prepare)
 {
     registry().push_back(Case{std::move(group), std::move(name), std::move(prepare)});
 }
 
 } // namespace bench
 
-namespace {
+namespace
+{
 
 using bench::Frame;
 
 const char *const kEndToEnd = "pipeline: end to end (lane + grasp)";
 // The README's generated sections: times, and instruction counts.
 const char *const kReadmeTimes = "<!-- bench table: tools/bench --readme README.md -->";
-const char *const kReadmeInstructions = "<!-- bench table: tools/bench --instructions --readme README.md -->";
+const char *const kReadmeInstructions =
+    "<!-- bench table: tools/bench --instructions --readme README.md -->";
 const char *const kReadmeEnd = "<!-- end of bench table -->";
 
 double now_us()
 {
-    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch())
+    return std::chrono::duration<double, std::micro>(
+               std::chrono::steady_clock::now().time_since_epoch())
         .count();
 }
 
@@ -122,7 +127,10 @@ std::vector<cv::Size> parse_sizes(const char *text)
     return sizes;
 }
 
-std::string size_text(const cv::Size &s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+std::string size_text(const cv::Size &s)
+{
+    return std::to_string(s.width) + "x" + std::to_string(s.height);
+}
 
 std::vector<Frame> load_frames(const std::vector<std::string> &paths, const cv::Size &size)
 {
@@ -152,9 +160,9 @@ struct Options {
 
 bool selected(const Options &o, const std::string &label)
 {
-    return o.filters.empty() || std::any_of(o.filters.begin(), o.filters.end(), [&](const std::string &f) {
-               return label.find(f) != std::string::npos;
-           });
+    return o.filters.empty() ||
+           std::any_of(o.filters.begin(), o.filters.end(),
+                       [&](const std::string &f) { return label.find(f) != std::string::npos; });
 }
 
 // One table row.
@@ -172,11 +180,13 @@ std::string table(const std::vector<Row> &rows, bool instructions)
              "|---|---|---:|---:|---:|\n";
         for (const Row &r : rows) {
             std::snprintf(line, sizeof line, "| %s | %s | %.0f | %.0f | %.2f |\n", r.label.c_str(),
-                          r.size.c_str(), r.rte_p50, r.cv_p50, r.cv_p50 > 0 ? r.rte_p50 / r.cv_p50 : 0.0);
+                          r.size.c_str(), r.rte_p50, r.cv_p50,
+                          r.cv_p50 > 0 ? r.rte_p50 / r.cv_p50 : 0.0);
             t << line;
         }
     } else {
-        t << "| stage | size | rtedge p50 (us) | OpenCV p50 (us) | ratio | rtedge p99 (us) | OpenCV p99 (us) |\n"
+        t << "| stage | size | rtedge p50 (us) | OpenCV p50 (us) | ratio | rtedge p99 (us) | "
+             "OpenCV p99 (us) |\n"
              "|---|---|---:|---:|---:|---:|---:|\n";
         for (const Row &r : rows) {
             std::snprintf(line, sizeof line, "| %s | %s | %.1f | %.1f | %.2f | %.1f | %.1f |\n",
@@ -190,7 +200,8 @@ std::string table(const std::vector<Row> &rows, bool instructions)
 
 // Times every selected case: per frame, rtedge and OpenCV alternately,
 // `rounds` times, after one warm-up pass.
-Row time_case(const bench::Case &c, const std::vector<Frame> &frames, int rounds, const std::string &size)
+Row time_case(const bench::Case &c, const std::vector<Frame> &frames, int rounds,
+              const std::string &size)
 {
     std::vector<bench::Runners> runners;
     for (const Frame &f : frames)
@@ -216,13 +227,15 @@ Row time_case(const bench::Case &c, const std::vector<Frame> &frames, int rounds
             }
         }
     }
-    return Row{c.group + ": " + c.name, size, quantile(t_rte, 0.5), quantile(t_cv, 0.5),
-               quantile(t_rte, 0.99), quantile(t_cv, 0.99)};
+    return Row{c.group + ": " + c.name, size,
+               quantile(t_rte, 0.5),    quantile(t_cv, 0.5),
+               quantile(t_rte, 0.99),   quantile(t_cv, 0.99)};
 }
 
 // Under callgrind: each side of each case runs once over all frames between
 // a zeroing and a dump named "rtedge-bench N rte|cv"; stdout says what N is.
-void count_case(const bench::Case &c, const std::vector<Frame> &frames, int index, const std::string &size)
+void count_case(const bench::Case &c, const std::vector<Frame> &frames, int index,
+                const std::string &size)
 {
     std::vector<bench::Runners> runners;
     for (const Frame &f : frames)
@@ -285,11 +298,13 @@ std::vector<Row> instructions_under_callgrind(const Options &o, char *self)
         int index = 0;
         size_t frames = 0;
         char size[32], label[400];
-        if (std::sscanf(line.c_str(), "case %d\t%zu\t%31[^\t]\t%399[^\n]", &index, &frames, size, label) != 4 ||
+        if (std::sscanf(line.c_str(), "case %d\t%zu\t%31[^\t]\t%399[^\n]", &index, &frames, size,
+                        label) != 4 ||
             frames == 0)
             continue;
         std::string name = "rtedge-bench " + std::to_string(index);
-        double rte = totals[name + " rte"] / (double)frames, cv = totals[name + " cv"] / (double)frames;
+        double rte = totals[name + " rte"] / (double)frames,
+               cv = totals[name + " cv"] / (double)frames;
         rows.push_back(Row{label, size, rte, cv, rte, cv});
     }
     std::filesystem::remove_all(dir);
@@ -305,7 +320,8 @@ void update_readme(const std::string &path, const char *begin_marker, const std:
     std::string doc = buf.str();
     size_t b = doc.find(begin_marker), e = b == std::string::npos ? b : doc.find(kReadmeEnd, b);
     if (e == std::string::npos) {
-        std::fprintf(stderr, "bench: %s has no '%s' ... '%s' section\n", path.c_str(), begin_marker, kReadmeEnd);
+        std::fprintf(stderr, "bench: %s has no '%s' ... '%s' section\n", path.c_str(), begin_marker,
+                     kReadmeEnd);
         std::exit(1);
     }
     b += std::strlen(begin_marker);
@@ -352,13 +368,16 @@ Options parse(int argc, char **argv)
                 std::printf("%s: %s\n", c.group.c_str(), c.name.c_str());
             std::exit(0);
         } else {
-            std::fprintf(stderr, "usage: rtedge-bench [--rounds N] [--sizes WxH,...] [--filter TEXT]... "
-                                 "[--images DIR]... [--max-images N] [--readme FILE] [--instructions] [--list]\n");
+            std::fprintf(
+                stderr,
+                "usage: rtedge-bench [--rounds N] [--sizes WxH,...] [--filter TEXT]... "
+                "[--images DIR]... [--max-images N] [--readme FILE] [--instructions] [--list]\n");
             std::exit(2);
         }
     }
     if ((o.instructions || o.instructions_child) && !BENCH_HAVE_CALLGRIND) {
-        std::fprintf(stderr, "bench: built without valgrind's callgrind.h: --instructions needs valgrind\n");
+        std::fprintf(
+            stderr, "bench: built without valgrind's callgrind.h: --instructions needs valgrind\n");
         std::exit(2);
     }
     if (o.dirs.empty()) {
@@ -394,15 +413,18 @@ int main(int argc, char **argv)
     std::string intro;
     std::vector<Row> rows;
     if (o.instructions) {
-        intro = "OpenCV " + std::string(CV_VERSION) + ", single thread; instructions per frame counted by "
-                "valgrind's callgrind over " + std::to_string(paths.size()) + " photos (one run: the counts "
+        intro = "OpenCV " + std::string(CV_VERSION) +
+                ", single thread; instructions per frame counted by "
+                "valgrind's callgrind over " +
+                std::to_string(paths.size()) +
+                " photos (one run: the counts "
                 "do not depend on machine load).\n\n";
         std::printf("%s", intro.c_str());
         rows = instructions_under_callgrind(o, argv[0]);
         std::printf("%s", table(rows, true).c_str());
     } else {
-        intro = "OpenCV " + std::string(CV_VERSION) + ", single thread; " + std::to_string(o.rounds) +
-                " interleaved rounds x " + std::to_string(paths.size()) +
+        intro = "OpenCV " + std::string(CV_VERSION) + ", single thread; " +
+                std::to_string(o.rounds) + " interleaved rounds x " + std::to_string(paths.size()) +
                 " photos per figure; times per frame (median and 99th percentile).\n\n";
         std::printf("%s%s", intro.c_str(), table({}, false).c_str());
         for (const cv::Size &size : o.sizes) {
@@ -411,7 +433,8 @@ int main(int argc, char **argv)
                 if (!selected(o, c.group + ": " + c.name))
                     continue;
                 rows.push_back(time_case(c, frames, o.rounds, size_text(size)));
-                std::printf("%s", table({rows.back()}, false).substr(table({}, false).size()).c_str());
+                std::printf("%s",
+                            table({rows.back()}, false).substr(table({}, false).size()).c_str());
                 std::fflush(stdout);
             }
         }
@@ -420,12 +443,13 @@ int main(int argc, char **argv)
     for (const Row &r : rows)
         if (r.label == kEndToEnd && r.size == "1280x720" && r.cv_p50 > 0) {
             char line[128];
-            std::snprintf(line, sizeof line, "end-to-end %sratio %.2f\n", o.instructions ? "instruction " : "",
-                          r.rte_p50 / r.cv_p50);
+            std::snprintf(line, sizeof line, "end-to-end %sratio %.2f\n",
+                          o.instructions ? "instruction " : "", r.rte_p50 / r.cv_p50);
             verdict = line;
         }
     std::printf("\n%s", verdict.c_str());
     if (!o.readme.empty())
-        update_readme(o.readme, o.instructions ? kReadmeInstructions : kReadmeTimes, intro + table(rows, o.instructions) + "\n" + verdict);
+        update_readme(o.readme, o.instructions ? kReadmeInstructions : kReadmeTimes,
+                      intro + table(rows, o.instructions) + "\n" + verdict);
     return 0;
 }

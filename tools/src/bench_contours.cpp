@@ -13,7 +13,8 @@ extern "C" {
 #include "rtedge/threshold.h"
 }
 
-namespace {
+namespace
+{
 
 using bench::Frame;
 using bench::Register;
@@ -85,13 +86,17 @@ struct Buffers {
             rte_shape_convex_hull(p, n, hull_idx.data(), nullptr, &nh, &arena);
             if (n > 3 && nh > 2)
                 rte_shape_convexity_defects(p, n, hull_idx.data(), nh, defects.data(), &nd);
-            rte_shape_approx_poly(p, n, (uint32_t)std::min<int64_t>((per * 2 + 50) / 100, (1 << 26) - 1),
+            rte_shape_approx_poly(p, n,
+                                  (uint32_t)std::min<int64_t>((per * 2 + 50) / 100, (1 << 26) - 1),
                                   approx.data(), &na, &arena);
             sink += (double)(area2 + per + m.s00 + b.width + r.width_q8 + c.r_q8 + nh + nd + na);
         }
     }
 
-    void cv_find() { cv::findContours(bin, cv_contours, cv_hierarchy, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE); }
+    void cv_find()
+    {
+        cv::findContours(bin, cv_contours, cv_hierarchy, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE);
+    }
 
     void cv_features()
     {

@@ -16,14 +16,14 @@ extern "C" {
 #include "rtedge/hough.h"
 }
 
-namespace {
+namespace
+{
 
 using bench::Frame;
 using bench::Register;
 using bench::Runners;
 using bench::s16;
 using bench::u8;
-
 
 struct HoughBuffers {
     cv::Mat gray, edges, dx, dy, cedges;
@@ -38,7 +38,8 @@ struct HoughBuffers {
     std::vector<cv::Vec3f> cv_circles;
     HoughBuffers(const Frame &f, size_t scratch_bytes)
         : gray(f.gray.clone()), dx(f.gray.size(), CV_16SC1), dy(f.gray.size(), CV_16SC1),
-          cedges(f.gray.size(), CV_8UC1), scratch(scratch_bytes + 1), lines(4096), segments(4096), circles(256)
+          cedges(f.gray.size(), CV_8UC1), scratch(scratch_bytes + 1), lines(4096), segments(4096),
+          circles(256)
     {
         cv::Canny(gray, edges, 50, 150);
         rte_arena_init(&arena, scratch.data(), scratch_bytes);
@@ -55,7 +56,8 @@ std::shared_ptr<HoughBuffers> make(const Frame &f, size_t (*scratch)(const rte_h
 }
 
 Register lines("hough", "lines (Canny 50/150, threshold 100)", [](const Frame &f) {
-    auto b = make(f, [](const rte_hough_config &c) { return rte_hough_lines_scratch_size(&c, 4096); });
+    auto b =
+        make(f, [](const rte_hough_config &c) { return rte_hough_lines_scratch_size(&c, 4096); });
     return Runners{[b] {
                        rte_image_u8 e = u8(b->edges);
                        int32_t n;
@@ -72,31 +74,38 @@ Register segments("hough", "segments (threshold 50, length 30, gap 10)", [](cons
                        rte_hough_segments_params p = {50, 30, 10, 0};
                        int32_t n;
                        bool t;
-                       rte_hough_segments(&b->cfg, &e, &p, &b->arena, b->segments.data(), 4096, &n, &t);
+                       rte_hough_segments(&b->cfg, &e, &p, &b->arena, b->segments.data(), 4096, &n,
+                                          &t);
                    },
                    [b] { cv::HoughLinesP(b->edges, b->cv_segments, 1, CV_PI / 180, 50, 30, 10); }};
 });
 
 const rte_hough_circles_params circle_params = {256, 20, 30, 10, 40};
 
-Register circles("hough", "circles (Sobel + Canny 50/100 + transform, r 10..40)", [](const Frame &f) {
-    size_t scratch = std::max(rte_hough_circles_scratch_size(f.gray.cols, f.gray.rows, &circle_params),
-                              std::max(rte_sobel_scratch_size(f.gray.cols, f.gray.rows, 3),
-                                       rte_canny_scratch_size(f.gray.cols, f.gray.rows, 3)));
-    auto b = std::make_shared<HoughBuffers>(f, scratch);
-    return Runners{[b] {
-                       rte_image_u8 g = u8(b->gray), e = u8(b->cedges);
-                       rte_image_s16 gx = s16(b->dx), gy = s16(b->dy);
-                       rte_canny_params cp;
-                       rte_canny_params_init(&cp, 50, 100, 3, false);
-                       rte_sobel_s16(&g, &gx, 1, 0, 3, &b->arena);
-                       rte_sobel_s16(&g, &gy, 0, 1, 3, &b->arena);
-                       rte_canny_u8(&g, &e, &cp, &b->arena);
-                       int32_t n;
-                       bool t;
-                       rte_hough_circles(&e, &gx, &gy, &circle_params, &b->arena, b->circles.data(), 256, &n, &t);
-                   },
-                   [b] { cv::HoughCircles(b->gray, b->cv_circles, cv::HOUGH_GRADIENT, 1, 20, 100, 30, 10, 40); }};
-});
+Register circles("hough", "circles (Sobel + Canny 50/100 + transform, r 10..40)",
+                 [](const Frame &f) {
+                     size_t scratch = std::max(
+                         rte_hough_circles_scratch_size(f.gray.cols, f.gray.rows, &circle_params),
+                         std::max(rte_sobel_scratch_size(f.gray.cols, f.gray.rows, 3),
+                                  rte_canny_scratch_size(f.gray.cols, f.gray.rows, 3)));
+                     auto b = std::make_shared<HoughBuffers>(f, scratch);
+                     return Runners{[b] {
+                                        rte_image_u8 g = u8(b->gray), e = u8(b->cedges);
+                                        rte_image_s16 gx = s16(b->dx), gy = s16(b->dy);
+                                        rte_canny_params cp;
+                                        rte_canny_params_init(&cp, 50, 100, 3, false);
+                                        rte_sobel_s16(&g, &gx, 1, 0, 3, &b->arena);
+                                        rte_sobel_s16(&g, &gy, 0, 1, 3, &b->arena);
+                                        rte_canny_u8(&g, &e, &cp, &b->arena);
+                                        int32_t n;
+                                        bool t;
+                                        rte_hough_circles(&e, &gx, &gy, &circle_params, &b->arena,
+                                                          b->circles.data(), 256, &n, &t);
+                                    },
+                                    [b] {
+                                        cv::HoughCircles(b->gray, b->cv_circles, cv::HOUGH_GRADIENT,
+                                                         1, 20, 100, 30, 10, 40);
+                                    }};
+                 });
 
 } // namespace

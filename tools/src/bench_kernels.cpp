@@ -17,7 +17,8 @@ extern "C" {
 #include "rtedge/threshold.h"
 }
 
-namespace {
+namespace
+{
 
 using bench::Frame;
 using bench::Register;
@@ -32,40 +33,46 @@ struct Buffers {
     rte_arena arena;
     explicit Buffers(const Frame &f, size_t scratch_bytes)
         : src(f.gray.clone()), out(f.gray.size(), CV_8UC1), out2(f.gray.size(), CV_8UC1),
-          s16a(f.gray.size(), CV_16SC1), s16b(f.gray.size(), CV_16SC1), mask(f.gray.size(), CV_8UC1),
-          scratch(scratch_bytes + 1)
+          s16a(f.gray.size(), CV_16SC1), s16b(f.gray.size(), CV_16SC1),
+          mask(f.gray.size(), CV_8UC1), scratch(scratch_bytes + 1)
     {
         rte_arena_init(&arena, scratch.data(), scratch_bytes);
     }
 };
 
-std::shared_ptr<Buffers> buffers(const Frame &f, size_t scratch) { return std::make_shared<Buffers>(f, scratch); }
+std::shared_ptr<Buffers> buffers(const Frame &f, size_t scratch)
+{
+    return std::make_shared<Buffers>(f, scratch);
+}
 
 Register gray("kernels", "bgr to grey", [](const Frame &f) {
     auto b = buffers(f, 0);
     auto bgr = std::make_shared<cv::Mat>(f.bgr.clone());
-    return Runners{[b, bgr] {
-                       rte_image_u8c3 in{bgr->cols, bgr->rows, (int32_t)bgr->step, bgr->ptr<uint8_t>()};
-                       rte_image_u8 out = u8(b->out);
-                       rte_color_bgr_to_gray(&in, &out);
-                   },
-                   [b, bgr] { cv::cvtColor(*bgr, b->out2, cv::COLOR_BGR2GRAY); }};
+    return Runners{
+        [b, bgr] {
+            rte_image_u8c3 in{bgr->cols, bgr->rows, (int32_t)bgr->step, bgr->ptr<uint8_t>()};
+            rte_image_u8 out = u8(b->out);
+            rte_color_bgr_to_gray(&in, &out);
+        },
+        [b, bgr] { cv::cvtColor(*bgr, b->out2, cv::COLOR_BGR2GRAY); }};
 });
 
 void register_gaussian(int ksize)
 {
     static std::vector<Register> regs;
-    regs.emplace_back("kernels", "gaussian " + std::to_string(ksize) + "x" + std::to_string(ksize),
-                      [ksize](const Frame &f) {
-                          rte_gaussian_kernel k;
-                          rte_gaussian_kernel_init(&k, ksize, ksize, 0, 0);
-                          auto b = buffers(f, rte_gaussian_blur_u8_scratch_size(f.gray.cols, f.gray.rows, &k));
-                          return Runners{[b, k] {
-                                             rte_image_u8 in = u8(b->src), out = u8(b->out);
-                                             rte_gaussian_blur_u8(&in, &out, &k, &b->arena);
-                                         },
-                                         [b, ksize] { cv::GaussianBlur(b->src, b->out2, cv::Size(ksize, ksize), 0); }};
-                      });
+    regs.emplace_back(
+        "kernels", "gaussian " + std::to_string(ksize) + "x" + std::to_string(ksize),
+        [ksize](const Frame &f) {
+            rte_gaussian_kernel k;
+            rte_gaussian_kernel_init(&k, ksize, ksize, 0, 0);
+            auto b = buffers(f, rte_gaussian_blur_u8_scratch_size(f.gray.cols, f.gray.rows, &k));
+            return Runners{
+                [b, k] {
+                    rte_image_u8 in = u8(b->src), out = u8(b->out);
+                    rte_gaussian_blur_u8(&in, &out, &k, &b->arena);
+                },
+                [b, ksize] { cv::GaussianBlur(b->src, b->out2, cv::Size(ksize, ksize), 0); }};
+        });
 }
 
 struct GaussianCases {
@@ -111,28 +118,30 @@ Register threshold_otsu("kernels", "threshold otsu", [](const Frame &f) {
     rte_threshold_params p;
     rte_threshold_params_init(&p, RTE_THRESH_BINARY, 0, 255, true);
     auto b = buffers(f, 0);
-    return Runners{[b, p] {
-                       rte_image_u8 in = u8(b->src), out = u8(b->out);
-                       int32_t t;
-                       rte_threshold_u8(&in, &out, &p, &t);
-                   },
-                   [b] { cv::threshold(b->src, b->out2, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU); }};
+    return Runners{
+        [b, p] {
+            rte_image_u8 in = u8(b->src), out = u8(b->out);
+            int32_t t;
+            rte_threshold_u8(&in, &out, &p, &t);
+        },
+        [b] { cv::threshold(b->src, b->out2, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU); }};
 });
 
 void register_morphology(rte_morph_shape shape, int cv_shape, const char *name)
 {
     static std::vector<Register> regs;
-    regs.emplace_back("kernels", std::string("dilate 5x5 ") + name, [shape, cv_shape](const Frame &f) {
-        rte_morph_element e;
-        rte_morphology_element_init(&e, shape, 5, 5);
-        auto b = buffers(f, rte_morphology_scratch_size(f.gray.cols, f.gray.rows, &e, 1));
-        cv::Mat k = cv::getStructuringElement(cv_shape, cv::Size(5, 5));
-        return Runners{[b, e] {
-                           rte_image_u8 in = u8(b->src), out = u8(b->out);
-                           rte_morphology_dilate_u8(&in, &out, &e, 1, &b->arena);
-                       },
-                       [b, k] { cv::dilate(b->src, b->out2, k); }};
-    });
+    regs.emplace_back(
+        "kernels", std::string("dilate 5x5 ") + name, [shape, cv_shape](const Frame &f) {
+            rte_morph_element e;
+            rte_morphology_element_init(&e, shape, 5, 5);
+            auto b = buffers(f, rte_morphology_scratch_size(f.gray.cols, f.gray.rows, &e, 1));
+            cv::Mat k = cv::getStructuringElement(cv_shape, cv::Size(5, 5));
+            return Runners{[b, e] {
+                               rte_image_u8 in = u8(b->src), out = u8(b->out);
+                               rte_morphology_dilate_u8(&in, &out, &e, 1, &b->arena);
+                           },
+                           [b, k] { cv::dilate(b->src, b->out2, k); }};
+        });
 }
 
 struct MorphologyCases {

@@ -23,7 +23,8 @@ extern "C" {
 #include "rtedge/lane.h"
 }
 
-namespace {
+namespace
+{
 
 using bench::Frame;
 using bench::Register;
@@ -101,7 +102,8 @@ struct CvPipeline {
     void run(const cv::Mat &bgr)
     {
         in.run(bgr);
-        cv::HoughLinesP(in.masked, lines, 1, CV_PI / 180, p.hough_threshold, p.min_length, p.max_gap);
+        cv::HoughLinesP(in.masked, lines, 1, CV_PI / 180, p.hough_threshold, p.min_length,
+                        p.max_gap);
         left.clear();
         right.clear();
         const int w = bgr.cols;
@@ -145,8 +147,11 @@ bench::Runners bench::lane_path_runners(const Frame &f)
     auto cv_side = std::make_shared<CvPipeline>(f, cfg);
     auto bgr = std::make_shared<cv::Mat>(f.bgr.clone());
     return Runners{[r] {
-                       rte_frame fr{RTE_PIXEL_BGR24, r->bgr.cols, r->bgr.rows,
-                                    {r->bgr.ptr<uint8_t>(), nullptr}, {(int32_t)r->bgr.step, 0}};
+                       rte_frame fr{RTE_PIXEL_BGR24,
+                                    r->bgr.cols,
+                                    r->bgr.rows,
+                                    {r->bgr.ptr<uint8_t>(), nullptr},
+                                    {(int32_t)r->bgr.step, 0}};
                        rte_lane_reset(r->ctx); // every frame judged on its own, as the OpenCV side
                        rte_lane_process(r->ctx, &fr, 0, &r->result);
                    },
@@ -156,7 +161,8 @@ bench::Runners bench::lane_path_runners(const Frame &f)
 static Register lane_path("pipeline", "lane path (rte_lane_process vs OpenCV lane tutorial)",
                           bench::lane_path_runners);
 
-namespace {
+namespace
+{
 
 // The Hough stage alone, as the lane path runs it: the tutorial's edge map
 // (made before timing), the lane parameters for the frame height (threshold,
@@ -177,7 +183,8 @@ struct LaneSegments {
     LaneSegments(const Frame &f, const rte_lane_config &c) : cfg(c), in(f, c.params), segments(4096)
     {
         in.run(f.bgr);
-        if (rte_hough_config_init(&hough, f.bgr.cols, f.bgr.rows, 1.0, CV_PI / 180, 0.0, CV_PI) != RTE_OK)
+        if (rte_hough_config_init(&hough, f.bgr.cols, f.bgr.rows, 1.0, CV_PI / 180, 0.0, CV_PI) !=
+            RTE_OK)
             throw std::runtime_error("rte_hough_config_init failed");
         scratch.resize(rte_hough_segments_scratch_size(&hough));
         rte_arena_init(&arena, scratch.data(), scratch.size());
@@ -188,25 +195,28 @@ struct LaneSegments {
     rte_status run_rtedge()
     {
         const rte_lane_params &p = cfg.params;
-        const rte_hough_segments_params hp = {p.hough_threshold, p.min_length, p.max_gap, p.hough_seed};
+        const rte_hough_segments_params hp = {p.hough_threshold, p.min_length, p.max_gap,
+                                              p.hough_seed};
         rte_image_u8 e = bench::u8(in.masked);
         int32_t n;
-        return rte_hough_segments(&hough, &e, &hp, &arena, segments.data(), (int32_t)segments.size(), &n,
-                                  &truncated);
+        return rte_hough_segments(&hough, &e, &hp, &arena, segments.data(),
+                                  (int32_t)segments.size(), &n, &truncated);
     }
 
     void run_opencv()
     {
         const rte_lane_params &p = cfg.params;
-        cv::HoughLinesP(in.masked, cv_segments, 1, CV_PI / 180, p.hough_threshold, p.min_length, p.max_gap);
+        cv::HoughLinesP(in.masked, cv_segments, 1, CV_PI / 180, p.hough_threshold, p.min_length,
+                        p.max_gap);
     }
 };
 
-Register lane_segments("hough", "segments, lane path (tutorial's ROI edges, lane parameters)", [](const Frame &f) {
-    rte_lane_config cfg;
-    rte_lane_config_default(&cfg, f.bgr.cols, f.bgr.rows);
-    auto b = std::make_shared<LaneSegments>(f, cfg);
-    return Runners{[b] { b->run_rtedge(); }, [b] { b->run_opencv(); }};
-});
+Register lane_segments("hough", "segments, lane path (tutorial's ROI edges, lane parameters)",
+                       [](const Frame &f) {
+                           rte_lane_config cfg;
+                           rte_lane_config_default(&cfg, f.bgr.cols, f.bgr.rows);
+                           auto b = std::make_shared<LaneSegments>(f, cfg);
+                           return Runners{[b] { b->run_rtedge(); }, [b] { b->run_opencv(); }};
+                       });
 
 } // namespace

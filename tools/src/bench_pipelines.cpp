@@ -12,7 +12,8 @@ extern "C" {
 #include "rtedge/grasp.h"
 }
 
-namespace {
+namespace
+{
 
 using bench::Frame;
 using bench::Register;
@@ -56,7 +57,8 @@ struct GraspBench {
         double t = cv::threshold(blurred, bin, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
         // objects are on the side of the threshold the border is not
         cv::Scalar border = (cv::mean(blurred.row(0)) + cv::mean(blurred.row(blurred.rows - 1)) +
-                             cv::mean(blurred.col(0)) + cv::mean(blurred.col(blurred.cols - 1))) / 4;
+                             cv::mean(blurred.col(0)) + cv::mean(blurred.col(blurred.cols - 1))) /
+                            4;
         if (border[0] > t)
             cv::threshold(blurred, bin, t, 255, cv::THRESH_BINARY_INV);
         cv::findContours(bin, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
@@ -77,11 +79,16 @@ struct GraspBench {
             float r;
             cv::minEnclosingCircle(c, cc, r);
             cv::Rect b = cv::boundingRect(c);
-            Object o{area, {m.m10 / m.m00, m.m01 / m.m00}, cv::minAreaRect(c),
-                     hull_area > 0 ? area / hull_area + 0 * (hull_per + r + b.width) : 0, v, (int)approx.size()};
+            Object o{area,
+                     {m.m10 / m.m00, m.m01 / m.m00},
+                     cv::minAreaRect(c),
+                     hull_area > 0 ? area / hull_area + 0 * (hull_per + r + b.width) : 0,
+                     v,
+                     (int)approx.size()};
             objects.push_back(o);
         }
-        std::sort(objects.begin(), objects.end(), [](const Object &a, const Object &b) { return a.area > b.area; });
+        std::sort(objects.begin(), objects.end(),
+                  [](const Object &a, const Object &b) { return a.area > b.area; });
         if (objects.size() > 64)
             objects.resize(64);
     }

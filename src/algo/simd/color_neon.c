@@ -26,8 +26,8 @@ static inline uint8x8_t gray8_neon(uint8x8_t c0, uint8x8_t c1, uint8x8_t c2, uin
     return vmovn_u16(vcombine_u16(lo, hi));
 }
 
-static inline void c3_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width,
-                                   uint16_t w0, uint16_t w2, rte_row_c3_to_gray_fn tail)
+static inline void c3_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width, uint16_t w0,
+                                   uint16_t w2, rte_row_c3_to_gray_fn tail)
 {
     int32_t x = 0;
     for (; x + 16 <= width; x += 16) {

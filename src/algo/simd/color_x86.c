@@ -17,10 +17,10 @@
 
 /* The shuffles for 4 pixels starting at byte `o` of a 16-byte load
  * (o = 0, or 4 for the last group of a block, so no load passes its end). */
-#define PAIR_SHUFFLE(o)                                                                  \
-    (o) + 0, -1, (o) + 1, -1, (o) + 3, -1, (o) + 4, -1, (o) + 6, -1, (o) + 7, -1, (o) + 9, \
-        -1, (o) + 10, -1
-#define THIRD_SHUFFLE(o)                                                                      \
+#define PAIR_SHUFFLE(o)                                                                        \
+    (o) + 0, -1, (o) + 1, -1, (o) + 3, -1, (o) + 4, -1, (o) + 6, -1, (o) + 7, -1, (o) + 9, -1, \
+        (o) + 10, -1
+#define THIRD_SHUFFLE(o) \
     (o) + 2, -1, -1, -1, (o) + 5, -1, -1, -1, (o) + 8, -1, -1, -1, (o) + 11, -1, -1, -1
 
 static inline int32_t pair_weights(int32_t lo, int32_t hi) { return lo | hi << 16; }
@@ -35,9 +35,8 @@ TARGET_SSSE3 static inline __m128i gray4_ssse3(__m128i v, __m128i sh_pair, __m12
 }
 
 /* w0, w2: weights of the first and third byte of a pixel. */
-TARGET_SSSE3 static inline void c3_to_gray_ssse3(const uint8_t *src, uint8_t *dst,
-                                                 int32_t width, int32_t w0, int32_t w2,
-                                                 rte_row_c3_to_gray_fn tail)
+TARGET_SSSE3 static inline void c3_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width,
+                                                 int32_t w0, int32_t w2, rte_row_c3_to_gray_fn tail)
 {
     const __m128i sh_pair = _mm_setr_epi8(PAIR_SHUFFLE(0));
     const __m128i sh_third = _mm_setr_epi8(THIRD_SHUFFLE(0));
@@ -49,14 +48,14 @@ TARGET_SSSE3 static inline void c3_to_gray_ssse3(const uint8_t *src, uint8_t *ds
     int32_t x = 0;
     for (; x + 16 <= width; x += 16) {
         const uint8_t *s = src + 3 * x;
-        __m128i a = gray4_ssse3(_mm_loadu_si128((const __m128i *)s), sh_pair, sh_third, w01,
+        __m128i a =
+            gray4_ssse3(_mm_loadu_si128((const __m128i *)s), sh_pair, sh_third, w01, w2r, one_hi);
+        __m128i b = gray4_ssse3(_mm_loadu_si128((const __m128i *)(s + 12)), sh_pair, sh_third, w01,
                                 w2r, one_hi);
-        __m128i b = gray4_ssse3(_mm_loadu_si128((const __m128i *)(s + 12)), sh_pair, sh_third,
+        __m128i c = gray4_ssse3(_mm_loadu_si128((const __m128i *)(s + 24)), sh_pair, sh_third, w01,
+                                w2r, one_hi);
+        __m128i d = gray4_ssse3(_mm_loadu_si128((const __m128i *)(s + 32)), sh_pair4, sh_third4,
                                 w01, w2r, one_hi);
-        __m128i c = gray4_ssse3(_mm_loadu_si128((const __m128i *)(s + 24)), sh_pair, sh_third,
-                                w01, w2r, one_hi);
-        __m128i d = gray4_ssse3(_mm_loadu_si128((const __m128i *)(s + 32)), sh_pair4,
-                                sh_third4, w01, w2r, one_hi);
         __m128i g = _mm_packus_epi16(_mm_packs_epi32(a, b), _mm_packs_epi32(c, d));
         _mm_storeu_si128((__m128i *)(dst + x), g);
     }
@@ -94,8 +93,7 @@ TARGET_AVX2 static inline __m256i gray8_avx2(__m256i v, __m256i sh_pair, __m256i
 /* 32 pixels (96 bytes) a step. Lanes hold groups (0,4), (1,5), (2,6),
  * (3,7) of 4 pixels, so the lane-wise packs put all 32 in order. */
 TARGET_AVX2 static inline void c3_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width,
-                                               int32_t w0, int32_t w2,
-                                               rte_row_c3_to_gray_fn rest)
+                                               int32_t w0, int32_t w2, rte_row_c3_to_gray_fn rest)
 {
     const __m256i sh_pair = _mm256_setr_epi8(PAIR_SHUFFLE(0), PAIR_SHUFFLE(0));
     const __m256i sh_third = _mm256_setr_epi8(THIRD_SHUFFLE(0), THIRD_SHUFFLE(0));
@@ -110,8 +108,8 @@ TARGET_AVX2 static inline void c3_to_gray_avx2(const uint8_t *src, uint8_t *dst,
         __m256i a = gray8_avx2(load_lanes(s, s + 48), sh_pair, sh_third, w01, w2r, one_hi);
         __m256i b = gray8_avx2(load_lanes(s + 12, s + 60), sh_pair, sh_third, w01, w2r, one_hi);
         __m256i c = gray8_avx2(load_lanes(s + 24, s + 72), sh_pair, sh_third, w01, w2r, one_hi);
-        __m256i d = gray8_avx2(load_lanes(s + 36, s + 80), sh_pair_last, sh_third_last, w01,
-                               w2r, one_hi);
+        __m256i d =
+            gray8_avx2(load_lanes(s + 36, s + 80), sh_pair_last, sh_third_last, w01, w2r, one_hi);
         __m256i g = _mm256_packus_epi16(_mm256_packs_epi32(a, b), _mm256_packs_epi32(c, d));
         _mm256_storeu_si256((__m256i *)(dst + x), g);
     }

@@ -18,8 +18,8 @@ void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uin
     gaussian_column_pass(rows, hi, lo, width, taps, ksize, split);
 }
 
-void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
-                                int32_t width, const uint16_t *taps, int32_t ksize, int split)
+void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
+                                const uint16_t *taps, int32_t ksize, int split)
 {
     gaussian_row_pass(hi, lo, dst, width, taps, ksize, split);
 }

@@ -13,14 +13,13 @@
 #ifdef RTE_SIMD_X86
 #include "algo/morphology_rows.h"
 
-void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
-                            bool is_max)
+void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max)
 {
     row_op2(d, a, b, n, is_max);
 }
 
-void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count,
-                                bool accumulate, int32_t n, bool is_max)
+void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate,
+                                int32_t n, bool is_max)
 {
     reduce_rows(d, r, count, accumulate, n, is_max);
 }

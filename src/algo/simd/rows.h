@@ -33,9 +33,9 @@
  * variant that does not exist). Only the current CPU family's argument is
  * compiled, so the others may name functions built for other CPUs. */
 #if defined(RTE_SIMD_X86)
-#define RTE_SIMD_PICK(features, c, avx2, neon) (((features) & RTE_CPU_X86_AVX2) ? (avx2) : (c))
+#define RTE_SIMD_PICK(features, c, avx2, neon) (((features)&RTE_CPU_X86_AVX2) ? (avx2) : (c))
 #elif defined(RTE_SIMD_NEON)
-#define RTE_SIMD_PICK(features, c, avx2, neon) (((features) & RTE_CPU_ARM_NEON) ? (neon) : (c))
+#define RTE_SIMD_PICK(features, c, avx2, neon) (((features)&RTE_CPU_ARM_NEON) ? (neon) : (c))
 #else
 #define RTE_SIMD_PICK(features, c, avx2, neon) ((void)(features), (c))
 #endif
@@ -95,27 +95,27 @@ rte_morph_rows rte_morph_rows_select(uint32_t features);
 typedef void (*rte_canny_sobel_fn)(const uint8_t *up, const uint8_t *mid, const uint8_t *down,
                                    int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);
 typedef void (*rte_canny_nms_fn)(const int16_t *up, const int16_t *cur, const int16_t *down,
-                                 const int16_t *dx, const int16_t *dy, uint8_t *map,
-                                 int32_t width, int16_t low, int16_t high);
+                                 const int16_t *dx, const int16_t *dy, uint8_t *map, int32_t width,
+                                 int16_t low, int16_t high);
 typedef struct rte_canny_rows {
     rte_canny_sobel_fn sobel;
     rte_canny_nms_fn nms;
 } rte_canny_rows;
 
 /* rte_canny_sobel_row_<isa> and rte_canny_nms_row_<isa>, of the types above. */
-#define RTE_CANNY_ROWS_DECLARE(isa)                                                              \
-    void rte_canny_sobel_row_##isa(const uint8_t *up, const uint8_t *mid, const uint8_t *down,   \
-                                   int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);       \
-    void rte_canny_nms_row_##isa(const int16_t *up, const int16_t *cur, const int16_t *down,     \
-                                 const int16_t *dx, const int16_t *dy, uint8_t *map,             \
+#define RTE_CANNY_ROWS_DECLARE(isa)                                                            \
+    void rte_canny_sobel_row_##isa(const uint8_t *up, const uint8_t *mid, const uint8_t *down, \
+                                   int16_t *dx, int16_t *dy, int16_t *mag, int32_t width);     \
+    void rte_canny_nms_row_##isa(const int16_t *up, const int16_t *cur, const int16_t *down,   \
+                                 const int16_t *dx, const int16_t *dy, uint8_t *map,           \
                                  int32_t width, int16_t low, int16_t high);
 RTE_CANNY_ROWS_DECLARE(c)
 rte_canny_rows rte_canny_rows_select(uint32_t features);
 
 /* Fixed-level threshold of a row (src/algo/threshold.c, threshold_rows.h),
  * `type` an rte_threshold_type, 0 <= t < 255; s == d (in place) allowed. */
-typedef void (*rte_threshold_row_fn)(const uint8_t *s, uint8_t *d, int32_t n, int type,
-                                     uint8_t t, uint8_t maxval);
+typedef void (*rte_threshold_row_fn)(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                                     uint8_t maxval);
 void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
                          uint8_t maxval);
 rte_threshold_row_fn rte_threshold_row_select(uint32_t features);
@@ -134,10 +134,10 @@ typedef struct rte_grad_rows {
 } rte_grad_rows;
 
 /* rte_grad_column_<isa> and rte_grad_row_<isa>, of the types above. */
-#define RTE_GRAD_ROWS_DECLARE(isa)                                                               \
-    void rte_grad_column_##isa(const uint8_t *const *rows, int32_t width, const int16_t *ky,     \
-                               int32_t ny, int16_t *out);                                        \
-    void rte_grad_row_##isa(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,       \
+#define RTE_GRAD_ROWS_DECLARE(isa)                                                           \
+    void rte_grad_column_##isa(const uint8_t *const *rows, int32_t width, const int16_t *ky, \
+                               int32_t ny, int16_t *out);                                    \
+    void rte_grad_row_##isa(const int16_t *v, const int16_t *kx, int32_t nx, int16_t *out,   \
                             int32_t width, int mode);
 RTE_GRAD_ROWS_DECLARE(c)
 rte_grad_rows rte_grad_rows_select(uint32_t features);
@@ -159,10 +159,12 @@ rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features);
  * accumulator index of the point (x, y) at each of n angles,
  * idx[a] = row_base[a] + ((x * rho_cos[a] + y * rho_sin[a] + bias) >> shift),
  * the sum in [0, 2^31); row_base[a] places the rho bins of angle a. */
-typedef void (*rte_hough_bins_fn)(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x,
-                                  int32_t y, int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx);
-void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
-                      int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx);
+typedef void (*rte_hough_bins_fn)(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n,
+                                  int32_t x, int32_t y, int32_t bias, int32_t shift,
+                                  const int32_t *row_base, int32_t *idx);
+void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x,
+                      int32_t y, int32_t bias, int32_t shift, const int32_t *row_base,
+                      int32_t *idx);
 rte_hough_bins_fn rte_hough_bins_select(uint32_t features);
 
 #ifdef RTE_SIMD_X86
@@ -172,20 +174,20 @@ void rte_lane_cue_row_avx2(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst
                            const rte_lane_cue *cue, bool rgb);
 void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
                             uint8_t maxval);
-void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
-                            bool is_max);
-void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count,
-                                bool accumulate, int32_t n, bool is_max);
+void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max);
+void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate,
+                                int32_t n, bool is_max);
 void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
                                    int32_t width, const uint16_t *taps, int32_t ksize, int split);
-void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
-                                int32_t width, const uint16_t *taps, int32_t ksize, int split);
+void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
+                                const uint16_t *taps, int32_t ksize, int split);
 void rte_row_bgr_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_bgr_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
-void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x, int32_t y,
-                         int32_t bias, int32_t shift, const int32_t *row_base, int32_t *idx);
+void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x,
+                         int32_t y, int32_t bias, int32_t shift, const int32_t *row_base,
+                         int32_t *idx);
 #endif
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
