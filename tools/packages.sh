@@ -8,17 +8,17 @@ RTE_BUILD_PACKAGES=(meson ninja-build gcc g++ pkg-config binutils
 RTE_BENCH_PACKAGES=(valgrind)  # tools/bench --instructions (callgrind)
 RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}"
     libcmocka-dev libopencv-dev python3-opencv python3-numpy  # unit and oracle suites
+    clang-format                           # the build suite's format check
     liblcm-java default-jdk-headless iproute2 util-linux ffmpeg  # LCM: Java types, udpm in a netns, Y4M
     libcamera-tools v4l-utils qemu-system-x86 busybox-static make xz-utils)  # the camera VM suite
 # The fuzz stage of tools/test and tools/fuzz: Debian's clang and its
 # runtime (libFuzzer, ASan, UBSan), and how build/fuzz is configured
 # (CC=clang CXX=clang++): every library instrumented, the fuzz targets
-# linked with libFuzzer, no other tests. -Wno-unknown-pragmas: clang
-# ignores the GCC target pragmas of the compiler-vectorised x86 rows.
+# linked with libFuzzer, no other tests.
 RTE_FUZZ_PACKAGES=(clang libclang-rt-14-dev)
 RTE_FUZZ_SETUP=(-Dfuzz=true -Dtests=false -Doracle=disabled -Dlibcamera=disabled -Dlcm=enabled
     -Dwerror=true --buildtype=debugoptimized -Db_sanitize=address,undefined -Db_lundef=false
-    "-Dc_args=-fno-sanitize-recover=all -Wno-unknown-pragmas")
+    "-Dc_args=-fno-sanitize-recover=all")
 # The aarch64 stage of tools/test: Debian's cross compiler, qemu-user, and
 # the target's libraries as arm64 multi-arch packages (rte_install_aarch64
 # adds the arm64 architecture to dpkg first). LCM has no multi-arch
