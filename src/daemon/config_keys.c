@@ -309,6 +309,12 @@ bool rted_config_store(rted_config *c, const rted_key *k, const char *value, cha
             rted_msgf(why, why_size, "longer than %zu characters", k->size - 1);
             return false;
         }
+        if (value[0] == '#' || strstr(value, " #") || strstr(value, "\t#")) {
+            /* the file would read it back as a comment (config_file.c) */
+            rted_msgf(why, why_size, "'%s': a '#' at the start or after a blank begins a comment",
+                      value);
+            return false;
+        }
         memcpy(field, value, strlen(value) + 1);
         return true;
     case K_ENUM:

@@ -24,6 +24,9 @@ printf '[grasp] # objects\nthreshold = 3\t# inline\n[lane]\nroi = 0,1;0.4,0.6;0.
 "$RTEDGED" --config "$TMP/inline.conf" --check-config >"$TMP/eff" || fail "inline comments refused"
 grep -qx 'threshold = 3' "$TMP/eff" && grep -qx 'roi = 0,1;0.4,0.6;0.6,0.6;1,1' "$TMP/eff" ||
     fail "inline comments: $(grep -e '^threshold' -e '^roi' "$TMP/eff")"
+# A text value the file could not hold (it would read back as a comment) is refused.
+"$RTEDGED" --set 'source.path=run #3.y4m' --check-config 2>"$TMP/err" >/dev/null
+[ $? -eq 2 ] && grep -q "begins a comment" "$TMP/err" || fail "'#' in a value: $(cat "$TMP/err")"
 echo "ok: inline comments"
 
 # Bad configurations: exit 2 and the file:line in the message.
