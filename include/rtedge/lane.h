@@ -75,6 +75,9 @@ typedef struct rte_lane_params {
     int32_t yellow_rg_min;   /* yellow: R and G >= yellow_rg_min ... */
     int32_t yellow_b_margin; /* ... and B <= min(R, G) - yellow_b_margin */
     int32_t dim_q8;          /* 256 = leave non-marking pixels as they are */
+    /* Curves: follow the markings up the image in windows and report a
+     * bow when they bend (false: straight lanes only). */
+    bool curves;
     /* Segments (cv::HoughLinesP parameters) */
     int32_t hough_threshold, min_length, max_gap;
     uint32_t hough_seed; /* the search's point order; 0: RTE_HOUGH_SEGMENTS_SEED */
@@ -143,9 +146,19 @@ typedef struct rte_lane {
     bool predicted;      /* not seen in this frame: held from the tracker's prediction */
     int32_t lost_frames; /* frames since it was last seen */
     /* The lane from (x_bottom, y_bottom) on the bottom row to (x_top, y_top)
-     * on the ROI's top row; x in 1/256 pixel. */
+     * on the ROI's top row; x in 1/256 pixel. This is the chord; a curved
+     * lane lies bow_q8 beside it at mid-height (positive: right of it, the
+     * road bending left; 0: straight). Its shape is a flat road's bend in
+     * perspective, x = a d + b + c / d with d the rows below y_horizon
+     * (where the two lanes' straight fits meet, or an eighth of the lane
+     * above y_top): rte_lane_x_q8 gives x at any row. */
     int32_t x_bottom_q8, x_top_q8;
     int32_t y_bottom, y_top;
+    int32_t bow_q8;
+    int32_t y_horizon; /* the curve's horizon row (above y_top) */
+    /* The highest row the marking was seen on this frame (y_bottom when
+     * the lane is predicted or nothing above the bottom window was seen). */
+    int32_t y_supported;
     int32_t confidence_permille; /* supporting segment length / lane length, capped at 1000 */
     int32_t support_px;          /* supporting segment length this frame */
 } rte_lane;
@@ -183,6 +196,9 @@ typedef struct rte_lane_result {
     int64_t t_ns;
     int64_t stage_ns[RTE_LANE_STAGES]; /* CLOCK_MONOTONIC time spent per stage */
 } rte_lane_result;
+
+/* x of a found lane at row y (its curve), in 1/256 pixel. */
+int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
 
 /* One frame. `frame` may be any rte_frame format up to the configured
  * size; BGR24 and RGB24 frames give the colour cue, the others are used as

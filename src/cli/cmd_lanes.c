@@ -3,6 +3,7 @@
  * .y4m file), printing JSON. The overlay is drawn here with a minimal
  * integer line routine (no drawing module in librtedge yet). */
 #include <dirent.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,13 +25,16 @@ typedef struct lanes_options {
     int canny_low, canny_high;
     int auto_canny;
     int fit;
-    bool no_color;
+    bool no_color, no_curves;
     int hough_threshold, min_length, max_gap;
     int hold, gate, blur;
     int alpha, beta;
     int max_segments;
     int hough_seed;
 } lanes_options;
+
+/* Rows between the points of a reported lane. */
+#define LANE_POINT_STEP 10
 
 static const char *const auto_choices[] = {"none", "median", "otsu", NULL};
 static const char *const fit_choices[] = {"lsq", "theil-sen", NULL};
@@ -80,6 +84,7 @@ static int lanes_config(const char *name, const lanes_options *o, int32_t w, int
     p->canny_mode = (rte_lane_canny_mode)o->auto_canny;
     p->fit = (rte_lane_fit)o->fit;
     p->use_color = !o->no_color;
+    p->curves = !o->no_curves;
     if (o->hough_threshold > 0)
         p->hough_threshold = o->hough_threshold;
     if (o->min_length >= 0)
@@ -110,13 +115,44 @@ static int lanes_create(const char *name, const rte_lane_config *cfg, rte_lane_c
     return st == RTE_ERR_NO_MEMORY ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
 }
 
+/* The highest row the reported polyline reaches: where the marking was
+ * seen, the ROI's top for a predicted lane or one seen only by its
+ * segments. */
+static int32_t lane_end_row(const rte_lane *l)
+{
+    return l->predicted || l->y_supported >= l->y_bottom - LANE_POINT_STEP ? l->y_top
+                                                                           : l->y_supported;
+}
+
+/* Curvature of the lane's image curve at the bottom row, 1/px, positive
+ * when it bends right going up the image. */
+static double lane_curvature(const rte_lane *l)
+{
+    const double span = l->y_bottom - l->y_top;
+    if (span <= 0)
+        return 0;
+    const double slope = ((l->x_top_q8 - l->x_bottom_q8) / 256.0 + 4 * l->bow_q8 / 256.0) / span;
+    const double second = -8 * (l->bow_q8 / 256.0) / (span * span);
+    return second / pow(1 + slope * slope, 1.5);
+}
+
 static void print_lane(const char *key, const rte_lane *l)
 {
     printf("\"%s\":{\"found\":%s", key, l->found ? "true" : "false");
-    if (l->found)
+    if (l->found) {
         printf(",\"predicted\":%s,\"x1\":%.2f,\"y1\":%d,\"x2\":%.2f,\"y2\":%d,\"confidence\":%.3f",
                l->predicted ? "true" : "false", l->x_bottom_q8 / 256.0, l->y_bottom,
                l->x_top_q8 / 256.0, l->y_top, l->confidence_permille / 1000.0);
+        printf(",\"curvature\":%.6f,\"points\":[", lane_curvature(l));
+        const int32_t end = lane_end_row(l);
+        for (int32_t y = l->y_bottom;; y -= LANE_POINT_STEP) {
+            y = y < end ? end : y;
+            printf("%s[%.2f,%d]", y == l->y_bottom ? "" : ",", rte_lane_x_q8(l, y) / 256.0, y);
+            if (y == end)
+                break;
+        }
+        printf("]");
+    }
     printf("}");
 }
 
@@ -207,9 +243,15 @@ static int write_overlay(const char *name, const char *path, const cli_image *in
     }
     for (int side = 0; side < 2; side++) {
         const rte_lane *l = &r->lane[side];
-        if (l->found)
-            draw_line(&img, (l->x_bottom_q8 + 128) >> 8, l->y_bottom, (l->x_top_q8 + 128) >> 8,
-                      l->y_top, side == RTE_LANE_LEFT ? blue : red, l->predicted ? 1 : 3);
+        if (!l->found)
+            continue;
+        const int32_t end = lane_end_row(l);
+        for (int32_t y = l->y_bottom; y > end;) {
+            const int32_t y1 = y - LANE_POINT_STEP < end ? end : y - LANE_POINT_STEP;
+            draw_line(&img, (rte_lane_x_q8(l, y) + 128) >> 8, y, (rte_lane_x_q8(l, y1) + 128) >> 8,
+                      y1, side == RTE_LANE_LEFT ? blue : red, l->predicted ? 1 : 3);
+            y = y1;
+        }
     }
     char msg[RTE_IO_MESSAGE_SIZE];
     rte_status st = rte_image_write_bgr(path, &img, msg, sizeof msg);
@@ -342,8 +384,18 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
 
 int cmd_lanes(const cli_entry *self, int argc, char **argv)
 {
-    lanes_options o = {NULL, NULL, NULL, -1, -1, 1,  0,  false, -1,
-                       -1,   -1,   -1,   -1, 5,  -1, -1, 512,   0};
+    lanes_options o = {.canny_low = -1,
+                       .canny_high = -1,
+                       .auto_canny = 1,
+                       .hough_threshold = -1,
+                       .min_length = -1,
+                       .max_gap = -1,
+                       .hold = -1,
+                       .gate = -1,
+                       .blur = 5,
+                       .alpha = -1,
+                       .beta = -1,
+                       .max_segments = 512};
     cli_option options[] = {
         {"overlay", CLI_STRING, &o.overlay, 0, 0, NULL,
          "write IN with the lanes drawn (left blue, right red)", NULL},
@@ -358,6 +410,8 @@ int cmd_lanes(const cli_entry *self, int argc, char **argv)
          "thresholds from the ROI histogram (none: --canny-low/high)", NULL},
         {"fit", CLI_CHOICE, &o.fit, 0, 0, fit_choices, "per-side line fit", NULL},
         {"no-color", CLI_FLAG, &o.no_color, 0, 0, NULL, "ignore colour (grey edges only)", NULL},
+        {"no-curves", CLI_FLAG, &o.no_curves, 0, 0, NULL, "straight lanes only (no curve model)",
+         NULL},
         {"hough-threshold", CLI_INT, &o.hough_threshold, -1, 100000, NULL,
          "segment votes, -1 = by height", NULL},
         {"min-length", CLI_INT, &o.min_length, -1, 100000, NULL, "shortest segment, -1 = by height",
@@ -387,7 +441,9 @@ int cmd_lanes(const cli_entry *self, int argc, char **argv)
         "IN | --sequence DIR_OR_Y4M",
         self->summary,
         "Prints the lanes as JSON: (x1, y1) on the bottom row, (x2, y2) on the ROI's\n"
-        "top row; offset_px = lane centre minus image centre on the bottom row.\n"
+        "top row (the chord), points [[x, y], ...] every 10 rows up the lane and its\n"
+        "curvature at the bottom row (1/px, > 0: bends right going up);\n"
+        "offset_px = lane centre minus image centre on the bottom row.\n"
         "With --sequence, one JSON line per frame, tracked.",
         options,
         positionals};

@@ -51,6 +51,7 @@ typedef struct rted_config {
     int32_t lane_hough_threshold, lane_min_length, lane_max_gap, lane_hough_seed;
     int32_t lane_hold_frames, lane_gate_px;
     bool lane_use_color;
+    bool lane_curves;
     char lane_roi[RTED_TEXT];
     /* [grasp] */
     bool grasp_enabled;

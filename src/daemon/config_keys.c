@@ -138,6 +138,8 @@ static const key_def keys[] = {
          "the frame's width + height"),
     BOOL("lane", "use_color", lane_use_color, true, "true",
          "colour frames: white/yellow paint cue"),
+    BOOL("lane", "curves", lane_curves, true, "true",
+         "follow bends: a curve model per lane beside the straight fit (docs/lanes.md)"),
     TEXT("lane", "roi", lane_roi, true, "0,1;0.45,0.6;0.55,0.6;1,1",
          "ROI polygon, 3..8 'x,y' fractions of width and height, ';'-separated"),
 

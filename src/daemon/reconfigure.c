@@ -39,6 +39,7 @@ bool rted_lane_params(const rted_daemon *d, const rted_config *c, rte_lane_param
     if (c->lane_gate_px >= 0)
         p->gate_px = c->lane_gate_px;
     p->use_color = c->lane_use_color;
+    p->curves = c->lane_curves;
     return true;
 }
 

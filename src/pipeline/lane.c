@@ -193,23 +193,43 @@ static rte_status lane_stage_hough(rte_lane_context *ctx, const rte_image_u8 *ed
     return RTE_OK;
 }
 
-/* One side of the fit stage: its segments members[0..n) fitted, the line
- * refined on the edge pixels, the tracker moved, the lane filled in. */
-static void lane_fit_one_side(rte_lane_context *ctx, const rte_image_u8 *edges,
-                              const rte_image_u8 *mask, int side, int32_t *members, int32_t n,
-                              rte_lane *lane)
+/* One side of the fit stage: its segments members[0..n) fitted and the
+ * line refined on the edge pixels. Returns the supporting length. */
+static int64_t lane_fit_one_side(rte_lane_context *ctx, const rte_image_u8 *edges,
+                                 const rte_image_u8 *mask, int side, int32_t *members, int32_t n,
+                                 const rte_lane *lane, lane_line *line)
 {
     const rte_lane_params *p = &ctx->params;
-    lane_line line = {0, 0, (lane->y_bottom + lane->y_top) / 2};
+    *line = (lane_line){0, 0, (lane->y_bottom + lane->y_top) / 2};
     const lane_fit_hint hint = rte_lane_track_hint(&ctx->track[side], lane->y_top, lane->y_bottom);
     const int64_t support =
-        rte_lane_fit_side(ctx, members, n, &hint, &line,
+        rte_lane_fit_side(ctx, members, n, &hint, line,
                           side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
     if (support > 0 && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
         rte_lane_refine_on_edges(edges, mask, ctx->crop_x0, ctx->crop_y0, &hint,
-                                 (int64_t)p->outlier_px, &line);
-    const bool seen = support > 0 && support >= p->min_support_px;
-    rte_lane_track_update(ctx, side, seen, &line, support, lane);
+                                 (int64_t)p->outlier_px, line);
+    return support;
+}
+
+int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y)
+{
+    const int64_t span = lane->y_bottom - lane->y_top, v = lane->y_bottom - y;
+    if (span <= 0)
+        return lane->x_bottom_q8;
+    const int64_t chord =
+        lane->x_bottom_q8 + ((int64_t)lane->x_top_q8 - lane->x_bottom_q8) * v / span;
+    if (lane->bow_q8 == 0)
+        return lane_clamp32(chord, INT32_MIN, INT32_MAX);
+    /* q = d_top / d, d the rows below the horizon (lane_horizon_row) */
+    const lane_fit_hint h = {lane->y_top, lane->y_bottom, 0, 0, lane->y_horizon, true};
+    const int64_t y_h = lane_horizon_row(&h), d_top = lane->y_top - y_h;
+    const int64_t d = y - y_h > 1 ? y - y_h : 1, dm = lane->y_bottom - span / 2 - y_h;
+    const int64_t qb = (d_top << 16) / (lane->y_bottom - y_h);
+    const int64_t sag = (d_top << 16) / d - (qb + (65536 - qb) * v / span);
+    const int64_t sag_mid = (d_top << 16) / dm - (qb + 65536) / 2;
+    if (sag_mid >= 0)
+        return lane_clamp32(chord, INT32_MIN, INT32_MAX);
+    return lane_clamp32(chord + lane->bow_q8 * sag / sag_mid, INT32_MIN, INT32_MAX);
 }
 
 /* atan(t) in milliradians for t in 1/65536 (error below 2 mrad). */
@@ -266,12 +286,26 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *edges, int
     int32_t n[2] = {0, 0};
     rte_lane_classify(ctx, count, w, y_bottom, y_top, members, n);
     const rte_image_u8 mask = lane_view(&ctx->mask, 0, 0, edges->width, edges->height);
+    lane_line line[2];
+    int64_t support[2];
+    bool seen[2];
     for (int side = 0; side < 2; side++) {
         rte_lane *lane = &out->lane[side];
         lane->y_bottom = y_bottom;
         lane->y_top = y_top;
-        lane_fit_one_side(ctx, edges, &mask, side, members[side], n[side], lane);
+        support[side] =
+            lane_fit_one_side(ctx, edges, &mask, side, members[side], n[side], lane, &line[side]);
+        seen[side] = support[side] > 0 && support[side] >= p->min_support_px;
     }
+    lane_curve curve[2] = {{0, y_bottom, 0, false}, {0, y_bottom, 0, false}};
+    if (p->curves && p->fit == RTE_LANE_FIT_LEAST_SQUARES) {
+        const lane_fit_hint hint = {y_top, y_bottom, 0, 0, 0, false};
+        rte_lane_curves_fit(edges, &mask, ctx->crop_x0, ctx->crop_y0, &hint, (int64_t)p->outlier_px,
+                            seen, line, curve);
+    }
+    for (int side = 0; side < 2; side++)
+        rte_lane_track_update(ctx, side, seen[side], &line[side], &curve[side], support[side],
+                              &out->lane[side]);
     lane_centre(out, w, y_bottom, y_top);
 }
 

@@ -25,6 +25,7 @@ void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height
     p->canny_high = 150;
     p->auto_sigma_permille = RTE_AUTO_CANNY_SIGMA_PERMILLE;
     p->use_color = true;
+    p->curves = true;
     p->white_min = 200;
     p->yellow_rg_min = 120;
     p->yellow_b_margin = 50;

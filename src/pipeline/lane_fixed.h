@@ -39,6 +39,16 @@ static inline int64_t lane_rows_below_top(const lane_fit_hint *h, int64_t y)
     return d < 0 || span <= 0 ? 0 : d > span ? span : d;
 }
 
+/* The horizon row of the curve model: the hint's when it has one, else an
+ * eighth of the lane above the ROI's top row (where the default
+ * trapezoid's sides meet). */
+static inline int64_t lane_horizon_row(const lane_fit_hint *h)
+{
+    if (h->has_horizon && h->y_horizon < h->y_top)
+        return h->y_horizon;
+    return h->y_top - ((h->y_bottom - h->y_top) / 8 + 1);
+}
+
 /* A segment's weight by its row, /256: the inverse variance of a pixel's
  * lateral position on the road, which grows as (distance from the horizon)^2
  * in perspective (the horizon taken an eighth of the lane above the ROI

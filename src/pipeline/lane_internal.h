@@ -3,7 +3,8 @@
  * lane.c (parameters, the ROI, the stages in order, the centre),
  * lane_cue.c (colour cue, automatic Canny thresholds), lane_fit.c (the
  * robust fit of the segments), lane_refine.c (the refit on the edge
- * pixels) and lane_track.c (sides, gate, the trackers). */
+ * pixels), lane_curve.c (the curve model) and lane_track.c (sides, gate,
+ * the trackers). */
 #ifndef RTEDGE_LANE_INTERNAL_H
 #define RTEDGE_LANE_INTERNAL_H
 
@@ -20,6 +21,8 @@ typedef struct lane_track {
     int32_t lost;
     int32_t x_bottom_q8, x_top_q8;
     int32_t v_bottom_q8, v_top_q8;
+    int32_t bow_q8;    /* the curve's bow (lane_curve), smoothed */
+    int32_t y_horizon; /* and its horizon row */
 } lane_track;
 
 /* One fitted line x = x_mid + slope * (y - y_mid), slope in 1/65536. */
@@ -28,6 +31,16 @@ typedef struct lane_line {
     int64_t slope_q16;
     int32_t y_mid;
 } lane_line;
+
+/* What lane_curve.c found beyond the line: the bow (the lane's middle
+ * beside its chord, 1/256 px, positive to the right; 0 when straight) and
+ * the highest row the windows saw paint on. */
+typedef struct lane_curve {
+    int64_t bow_q8;
+    int32_t y_supported;
+    int32_t y_horizon;
+    bool curved;
+} lane_curve;
 
 /* What the least-squares fit knows besides the segments: the rows the lane
  * spans, and a slope to lean on (the tracked lane's, as predicted for this
@@ -39,6 +52,8 @@ typedef struct lane_fit_hint {
     int32_t y_top, y_bottom;
     int64_t slope_q16;
     int64_t weight;
+    int32_t y_horizon; /* the curve model's horizon row when has_horizon */
+    bool has_horizon;
 } lane_fit_hint;
 
 struct rte_lane_context {
@@ -87,7 +102,7 @@ lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_
 /* Moves the side's tracker by this frame's line (seen) or holds it, and
  * fills the lane of the result from it (out->y_bottom and y_top set). */
 void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
-                           int64_t support, rte_lane *out);
+                           const lane_curve *curve, int64_t support, rte_lane *out);
 
 /* lane_fit.c: the robust fit of one side over the segments members[0..n)
  * (reordered; the inliers are marked `use`). Returns the supporting
@@ -95,10 +110,31 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
 int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n,
                           const lane_fit_hint *hint, lane_line *line, rte_lane_segment_use use);
 
+/* The edge pixels of columns xa..xb of one row that run along a line. */
+typedef struct band_pixels {
+    int64_t n, sum_x;    /* how many, and the sum of their x */
+    int64_t first, last; /* the outermost */
+} band_pixels;
+
+/* lane_refine.c: the half-width of the band searched around a lane at row
+ * y (tol on the bottom row, narrowing in perspective), and the edge pixels
+ * of columns xa..xb of row y of `edges` that run along slope_q16 (x per
+ * row; edges crossing it do not count). */
+int64_t rte_lane_band_px(const lane_fit_hint *h, int64_t tol, int32_t y);
+band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb,
+                              int64_t slope_q16);
+
 /* lane_refine.c: the segment fit refined on the edge pixels along it
  * (`edges` and the ROI mask `roi` are the crop at (cx0, cy0); `tol` the
  * band's half-width on the bottom row). */
 void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
                               int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line);
+
+/* lane_curve.c: the curves of both lanes, whose straight fits are line[]
+ * (seen[side]: the side was fitted this frame), with one bend shared by
+ * the two (see lane_curve.c); a curved side's line becomes its chord. */
+void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                         int32_t cy0, const lane_fit_hint *hint, int64_t tol, const bool seen[2],
+                         lane_line line[2], lane_curve curve[2]);
 
 #endif

@@ -10,18 +10,12 @@
  * are only tens of pixels apart), at least 5 px so both edges of a narrow
  * far marking stay in, and at most LANE_BAND_MAX. */
 #define LANE_BAND_MAX 64
-static int64_t band_px(const lane_fit_hint *h, int64_t tol, int32_t y)
+int64_t rte_lane_band_px(const lane_fit_hint *h, int64_t tol, int32_t y)
 {
     const int64_t span = h->y_bottom - h->y_top, q = 3 * (span / 8 + 1);
     const int64_t b = span > 0 ? tol * (lane_rows_below_top(h, y) + q) / (span + q) : tol;
     return b < 5 ? 5 : b > LANE_BAND_MAX ? LANE_BAND_MAX : b;
 }
-
-/* The edge pixels of columns xa..xb of one row that run along a line. */
-typedef struct band_pixels {
-    int64_t n, sum_x;    /* how many, and the sum of their x */
-    int64_t first, last; /* the outermost */
-} band_pixels;
 
 /* Eight bytes, the first in the lowest bits whatever the byte order. */
 static inline uint64_t load_le64(const uint8_t *p)
@@ -47,8 +41,8 @@ static inline void band_add(band_pixels *px, int64_t x)
  * in the row above or below at one of the two columns the slope reaches
  * there, so edges crossing the line (shadows, patch borders, car bumpers)
  * do not count. Eight pixels at a time away from the map's borders. */
-static band_pixels band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb,
-                            int64_t slope_q16)
+band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb,
+                              int64_t slope_q16)
 {
     band_pixels px = {0, 0, INT64_MAX, INT64_MIN};
     const uint8_t *row = rte_u8_row(edges, y);
@@ -117,7 +111,7 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
          * with the mean below, under 2^63. */
         int64_t sw = 0, sy = 0, sr = 0, syy = 0, syr = 0;
         for (int32_t y = y0; y <= y1; y++) {
-            const int64_t band = band_px(hint, tol, y);
+            const int64_t band = rte_lane_band_px(hint, tol, y);
             const int64_t lx = lane_line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0,
                           xb = xa + 2 * band;
             /* Only rows where the whole band is inside the ROI: where the
@@ -128,7 +122,7 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
             const uint8_t *inside = rte_u8_row(roi, y - cy0);
             if (!inside[xa] || !inside[xb])
                 continue;
-            const band_pixels px = band_row(edges, y - cy0, xa, xb, line->slope_q16);
+            const band_pixels px = rte_lane_band_row(edges, y - cy0, xa, xb, line->slope_q16);
             /* Both edges of the marking, one either side of the line: a row
              * where one of them is missing (worn paint, a shadow's border on
              * it, the end of a dash) would pull the line to the other. */

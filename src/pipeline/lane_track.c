@@ -4,13 +4,16 @@
 #include "algo/geom_fixed.h"
 #include "lane_fixed.h"
 
-/* Tracked lane x at row y (1/256 px), from its bottom and top points. */
+/* Tracked lane x at row y (1/256 px): its curve (chord and bow). */
 static int64_t track_x_q8(const lane_track *t, int32_t y_bottom, int32_t y_top, int32_t y)
 {
-    const int32_t span = y_bottom - y_top;
-    if (span <= 0)
-        return t->x_bottom_q8;
-    return t->x_bottom_q8 + (int64_t)(t->x_top_q8 - t->x_bottom_q8) * (y_bottom - y) / span;
+    rte_lane l = {.x_bottom_q8 = t->x_bottom_q8,
+                  .x_top_q8 = t->x_top_q8,
+                  .y_bottom = y_bottom,
+                  .y_top = y_top,
+                  .bow_q8 = t->bow_q8,
+                  .y_horizon = t->y_horizon};
+    return rte_lane_x_q8(&l, y);
 }
 
 /* Sorts the Hough segments into sides by slope, position and the gate;
@@ -53,7 +56,7 @@ void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int3
 
 lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_bottom)
 {
-    lane_fit_hint hint = {y_top, y_bottom, 0, 0};
+    lane_fit_hint hint = {y_top, y_bottom, 0, 0, 0, false};
     if (t->valid && y_bottom > y_top) {
         const int64_t dx =
             ((int64_t)t->x_top_q8 + t->v_top_q8) - ((int64_t)t->x_bottom_q8 + t->v_bottom_q8);
@@ -65,7 +68,7 @@ lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_
 }
 
 void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
-                           int64_t support, rte_lane *out)
+                           const lane_curve *curve, int64_t support, rte_lane *out)
 {
     const rte_lane_params *p = &ctx->params;
     lane_track *t = &ctx->track[side];
@@ -77,6 +80,8 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
         t->x_bottom_q8 = lane_clamp32(mb, -lim, lim);
         t->x_top_q8 = lane_clamp32(mt, -lim, lim);
         t->v_bottom_q8 = t->v_top_q8 = 0;
+        t->bow_q8 = lane_clamp32(curve->bow_q8, -lim, lim);
+        t->y_horizon = curve->y_horizon;
         t->lost = 0;
     } else if (t->valid) {
         const int64_t pb = (int64_t)t->x_bottom_q8 + t->v_bottom_q8;
@@ -87,7 +92,7 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
              * support, a quarter at least. */
             const int64_t dxl = (mt - mb) / 256, dyl = out->y_bottom - out->y_top;
             const int64_t len = (int64_t)rte_isqrt64((uint64_t)(dxl * dxl + dyl * dyl)) + 1;
-            const int64_t share = lane_clamp32(support * 256 / len, 32, 256); /* /256 */
+            const int64_t share = lane_clamp32(support * 256 / len, 128, 256); /* /256 */
             const int64_t alpha = (int64_t)p->alpha_q8 * share >> 8;
             const int64_t step = (int64_t)p->max_step_px * 256;
             const int64_t rb = lane_clamp32(mb - pb, -step, step),
@@ -96,6 +101,9 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
             t->x_top_q8 = lane_clamp32(pt + ((rt * alpha) >> 8), -lim, lim);
             t->v_bottom_q8 = lane_clamp32(t->v_bottom_q8 + ((rb * p->beta_q8) >> 8), -step, step);
             t->v_top_q8 = lane_clamp32(t->v_top_q8 + ((rt * p->beta_q8) >> 8), -step, step);
+            const int64_t rbow = lane_clamp32(curve->bow_q8 - t->bow_q8, -step, step);
+            t->bow_q8 = lane_clamp32(t->bow_q8 + ((rbow * alpha) >> 8), -lim, lim);
+            t->y_horizon = curve->y_horizon;
             t->lost = 0;
         } else if (++t->lost > p->hold_frames) {
             t->valid = false;
@@ -106,12 +114,16 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
             t->x_top_q8 = lane_clamp32(pt, -lim, lim);
             t->v_bottom_q8 -= t->v_bottom_q8 / 8;
             t->v_top_q8 -= t->v_top_q8 / 8;
+            t->bow_q8 -= t->bow_q8 / 8;
         }
     }
     out->found = t->valid;
     out->predicted = t->valid && t->lost > 0;
     out->lost_frames = t->valid ? t->lost : 0;
     out->support_px = (int32_t)(support > INT32_MAX ? INT32_MAX : support);
+    out->bow_q8 = t->valid ? t->bow_q8 : 0;
+    out->y_horizon = t->valid ? t->y_horizon : curve->y_horizon;
+    out->y_supported = seen ? curve->y_supported : out->y_bottom;
     if (t->valid) {
         out->x_bottom_q8 = t->x_bottom_q8;
         out->x_top_q8 = t->x_top_q8;

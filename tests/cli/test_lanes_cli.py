@@ -36,6 +36,13 @@ with tempfile.TemporaryDirectory() as tmp:
     check(d["left"]["x2"] > d["left"]["x1"] and d["right"]["x2"] < d["right"]["x1"], "slope signs")
     check(abs(d["left"]["x1"] - 153) < 38 and abs(d["right"]["x1"] - 852) < 38, "bottom-row x near the eye's")
     check(isinstance(d["offset_px"], float) and d["segments"] and len(d["segments"][0]) == 5, "offset and segments")
+    for side in ("left", "right"):
+        pts = d[side]["points"]
+        check(len(pts) >= 2 and pts[0] == [d[side]["x1"], 539] and
+              all(b[1] < a[1] and a[1] - b[1] <= 10 for a, b in zip(pts, pts[1:])),
+              side + " points: from the bottom row up, at most 10 rows apart")
+        check(isinstance(d[side]["curvature"], float) and abs(d[side]["curvature"]) < 0.01,
+              side + " curvature: a number, small on a straight road")
     img = cv2.imread(overlay)
     check(img is not None and img.shape == (540, 960, 3), "overlay written at the photo's size")
     if img is not None:

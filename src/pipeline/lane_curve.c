@@ -1,0 +1,381 @@
+/* The curve model of a lane, per frame (integer only; see
+ * include/rtedge/lane.h and docs/lanes.md, "Curves").
+ *
+ * On a flat road a marking at lateral offset X0, with the road's heading
+ * psi and curvature kappa, lies at X(z) = X0 + psi z + kappa z^2 / 2 at
+ * distance z; a camera at height h and focal length f sees it at
+ * x = a d + b + c / d, d = y - y_horizon (rows below the horizon), with
+ * a = X0 / h, b = x_centre + f psi and c = f^2 h kappa / 2. The straight
+ * fit (segments, then the refit on the edge pixels) gives a line; windows
+ * of rows then follow the marking up the image from the bottom row, each
+ * searched around the model fitted to the windows below it (around the
+ * line moved by their last residual while there are fewer than three),
+ * so the search follows a bend the straight line leaves. A weighted
+ * least-squares fit of the windows' residuals to 1, d and 1/d gives the
+ * curve when the windows reach the lane's upper half and its bow (the
+ * middle's distance from the chord) is more than 3/4 pixel; otherwise the
+ * lane stays straight. The horizon is the one the fit's row weights
+ * assume: an eighth of the lane above the ROI's top row. */
+#include "lane_fixed.h"
+
+#include "algo/geom_fixed.h"
+
+#define CURVE_WINDOWS 12
+/* A bow below this (1/256 px) is no curve: the straight fit stands. */
+#define CURVE_MIN_BOW_Q8 192 /* 3/4 px */
+
+typedef struct curve_window {
+    int64_t r_q8;   /* mean residual to the line, 1/256 px */
+    int64_t y;      /* mean row */
+    int64_t weight; /* edge pixels */
+} curve_window;
+
+/* The model's basis at a row: u = (y_bottom - y) / span and
+ * q = d_top / d (1 on the top row), both in 1/65536. */
+typedef struct curve_basis {
+    int64_t u_q16, q_q16;
+} curve_basis;
+
+typedef struct curve_walk {
+    int64_t o_q8;  /* residual at row y of the last window that saw paint */
+    int64_t d_q16; /* its change per row upwards, 1/65536 px */
+    int64_t y;
+    bool fitted;  /* p holds a fit of the windows so far */
+    int64_t p[3]; /* residual = p0 + p1 u + p2 q, 1/256 px */
+} curve_walk;
+
+static curve_basis basis_at(const lane_fit_hint *h, int64_t y)
+{
+    const int64_t span = h->y_bottom - h->y_top, y_h = lane_horizon_row(h);
+    const int64_t d = y - y_h > 1 ? y - y_h : 1;
+    return (curve_basis){((h->y_bottom - y) << 16) / span, ((h->y_top - y_h) << 16) / d};
+}
+
+/* The walk's expected residual at row y. */
+static int64_t walk_residual(const lane_fit_hint *h, const curve_walk *walk, int64_t y)
+{
+    if (walk->fitted) {
+        const curve_basis b = basis_at(h, y);
+        return walk->p[0] + ((walk->p[1] * b.u_q16 + walk->p[2] * b.q_q16) >> 16);
+    }
+    return walk->o_q8 + ((walk->d_q16 * (walk->y - y)) >> 8);
+}
+
+/* The rows y_hi down to y_lo searched around the line plus the walk's
+ * expected residual; false when too few rows hold paint. */
+static bool search_window(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                          int32_t cy0, const lane_fit_hint *hint, int64_t tol,
+                          const lane_line *line, const curve_walk *walk, int32_t y_hi, int32_t y_lo,
+                          curve_window *out)
+{
+    int64_t sum_r = 0, sum_y = 0, n = 0, rows = 0;
+    for (int32_t y = y_hi; y >= y_lo; y--) {
+        if (y < cy0 + 1 || y > cy0 + edges->height - 1)
+            continue;
+        const int64_t lx = lane_line_x_q8(line, y), ex = lx + walk_residual(hint, walk, y);
+        const int64_t band = rte_lane_band_px(hint, tol, y);
+        const int64_t xa = ((ex + 128) >> 8) - band - cx0, xb = xa + 2 * band;
+        if (xa < 0 || xb > edges->width - 1)
+            continue;
+        const uint8_t *inside = rte_u8_row(roi, y - cy0);
+        if (!inside[xa] || !inside[xb])
+            continue;
+        /* the expected marking's direction here, x per row downwards */
+        const int64_t slope =
+            line->slope_q16 +
+            ((walk_residual(hint, walk, y) - walk_residual(hint, walk, y - 1)) << 8);
+        const band_pixels px = rte_lane_band_row(edges, y - cy0, xa, xb, slope);
+        if (px.n < 2 || px.last == px.first)
+            continue; /* one edge alone would pull the window to it */
+        sum_r += (px.sum_x + px.n * cx0) * 256 - px.n * lx;
+        sum_y += px.n * y;
+        n += px.n;
+        rows++;
+    }
+    const int64_t need = (y_hi - y_lo + 1) / 3;
+    if (n == 0 || rows < (need > 2 ? need : 2))
+        return false;
+    out->r_q8 = sum_r / n;
+    out->y = sum_y / n;
+    out->weight = n;
+    return true;
+}
+
+/* 3x3 determinant of rows a, b, c. */
+static rte_i128 det3(const rte_i128 a[3], const rte_i128 b[3], const rte_i128 c[3])
+{
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+           a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+/* Weighted least squares r = p0 + p1 u + p2 q over the windows (u, q in
+ * 1/65536, r and p in 1/256 px); false when ill-posed. The moments are
+ * means (weights normalised), so every product stays far inside 128
+ * bits. */
+static bool fit_model(const curve_window *win, const curve_basis *bs, int32_t n, int64_t p[3])
+{
+    rte_i128 m[3][3] = {{0}}, v[3] = {0}, w = 0;
+    for (int32_t i = 0; i < n; i++) {
+        const rte_i128 f[3] = {65536, bs[i].u_q16, bs[i].q_q16};
+        for (int j = 0; j < 3; j++) {
+            for (int k = 0; k < 3; k++)
+                m[j][k] += (f[j] * f[k] >> 16) * win[i].weight;
+            v[j] += f[j] * win[i].weight * win[i].r_q8;
+        }
+        w += win[i].weight;
+    }
+    if (w <= 0)
+        return false;
+    for (int j = 0; j < 3; j++) {
+        for (int k = 0; k < 3; k++)
+            m[j][k] /= w;
+        v[j] /= w;
+    }
+    const rte_i128 det = det3(m[0], m[1], m[2]);
+    /* windows bunched too closely to tell a bend from a slope */
+    if (det < ((rte_i128)1 << 24))
+        return false;
+    for (int j = 0; j < 3; j++) {
+        rte_i128 c[3][3];
+        for (int r = 0; r < 3; r++)
+            for (int k = 0; k < 3; k++)
+                c[r][k] = k == j ? v[r] : m[r][k];
+        const rte_i128 q = det3(c[0], c[1], c[2]) / det;
+        if (q > ((rte_i128)1 << 40) || q < -((rte_i128)1 << 40))
+            return false;
+        p[j] = (int64_t)q;
+    }
+    return true;
+}
+
+/* The windows of one side, up from the bottom row. */
+typedef struct curve_side {
+    curve_window win[CURVE_WINDOWS];
+    curve_basis bs[CURVE_WINDOWS];
+    int32_t n;
+    int32_t y_supported;
+} curve_side;
+
+static void walk_side(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
+                      const lane_fit_hint *hint, int64_t tol, const lane_line *line, curve_side *cs)
+{
+    const int32_t span = hint->y_bottom - hint->y_top;
+    const int32_t rows = (span + CURVE_WINDOWS) / CURVE_WINDOWS;
+    curve_walk walk = {0, 0, hint->y_bottom, false, {0, 0, 0}};
+    cs->n = 0;
+    cs->y_supported = hint->y_bottom;
+    for (int32_t j = 0; j < CURVE_WINDOWS; j++) {
+        const int32_t y_hi = hint->y_bottom - j * rows;
+        const int32_t y_lo = y_hi - rows + 1 > hint->y_top ? y_hi - rows + 1 : hint->y_top;
+        if (y_hi < hint->y_top)
+            break;
+        curve_window w;
+        if (!search_window(edges, roi, cx0, cy0, hint, tol, line, &walk, y_hi, y_lo, &w))
+            continue;
+        if (walk.y > w.y)
+            walk.d_q16 =
+                lane_clamp32(((w.r_q8 - walk.o_q8) << 8) / (walk.y - w.y), -2 * 65536, 2 * 65536);
+        walk.o_q8 = w.r_q8;
+        walk.y = w.y;
+        cs->y_supported = y_lo;
+        cs->bs[cs->n] = basis_at(hint, w.y);
+        cs->win[cs->n++] = w;
+        if (cs->n >= 3)
+            walk.fitted = fit_model(cs->win, cs->bs, cs->n, walk.p);
+    }
+}
+
+/* The joint model of both sides over their windows, in normalised
+ * variables: x = A_side delta + B + C gamma, delta = d / d_bottom and
+ * gamma = d_top / d (both 1/65536), x in 1/256 px. B (the vanishing
+ * point's x) and C (the bend) are the road's, shared; A is each marking's
+ * lateral offset. A_side is eliminated per side (each side's 1, gamma and
+ * x with their component along delta removed), leaving 2x2 normal
+ * equations for B and C. */
+typedef struct side_sums {
+    rte_i128 sdd, sd1, sdg, sdx; /* sums of w delta f, f = delta, 1, gamma, x */
+} side_sums;
+
+static rte_i128 delta_at(const lane_fit_hint *h, int64_t y)
+{
+    const int64_t y_h = lane_horizon_row(h), d = y - y_h > 1 ? y - y_h : 1;
+    return ((rte_i128)d << 16) / (h->y_bottom - y_h);
+}
+
+static bool joint_fit(const curve_side cs[2], const lane_line line[2], const bool use[2],
+                      const lane_fit_hint *hint, int64_t *b_q8, int64_t *c_q8, side_sums ss[2])
+{
+    rte_i128 m11 = 0, m1g = 0, mgg = 0, v1 = 0, vg = 0;
+    for (int side = 0; side < 2; side++) {
+        side_sums *t = &ss[side];
+        *t = (side_sums){0, 0, 0, 0};
+        if (!use[side])
+            continue;
+        for (int32_t i = 0; i < cs[side].n; i++) {
+            const curve_window *w = &cs[side].win[i];
+            const rte_i128 dl = delta_at(hint, w->y), g = cs[side].bs[i].q_q16;
+            const rte_i128 x = lane_line_x_q8(&line[side], w->y) + w->r_q8;
+            t->sdd += w->weight * (dl * dl >> 16);
+            t->sd1 += w->weight * dl;
+            t->sdg += w->weight * (dl * g >> 16);
+            t->sdx += w->weight * (dl * x >> 16);
+        }
+        if (t->sdd <= 0)
+            continue;
+        /* components along delta: f~ = f - delta * sum(w delta f) / sdd */
+        for (int32_t i = 0; i < cs[side].n; i++) {
+            const curve_window *w = &cs[side].win[i];
+            const rte_i128 dl = delta_at(hint, w->y), g = cs[side].bs[i].q_q16;
+            const rte_i128 x = lane_line_x_q8(&line[side], w->y) + w->r_q8;
+            const rte_i128 o = 65536 - dl * t->sd1 / t->sdd; /* 1~, 1/65536 */
+            const rte_i128 gt = g - dl * t->sdg / t->sdd;    /* gamma~ */
+            const rte_i128 xt = x - dl * t->sdx / t->sdd;    /* x~, 1/256 px */
+            m11 += w->weight * (o * o >> 16);
+            m1g += w->weight * (o * gt >> 16);
+            mgg += w->weight * (gt * gt >> 16);
+            v1 += w->weight * o * xt;
+            vg += w->weight * gt * xt;
+        }
+    }
+    const rte_i128 det = m11 * mgg - m1g * m1g;
+    if (det <= 0)
+        return false;
+    /* B, C in 1/256 px: (v 2^16 / m) with m in 1/65536 */
+    const rte_i128 b = (v1 * mgg - vg * m1g) / det, c = (vg * m11 - v1 * m1g) / det;
+    if (b > ((rte_i128)1 << 40) || b < -((rte_i128)1 << 40) || c > ((rte_i128)1 << 40) ||
+        c < -((rte_i128)1 << 40))
+        return false;
+    *b_q8 = (int64_t)b;
+    *c_q8 = (int64_t)c;
+    return true;
+}
+
+/* The row where the two straight lines meet (the vanishing point's), when
+ * it lies between a lane's length above the ROI top and its top row. */
+static bool vanishing_row(const lane_line line[2], const lane_fit_hint *h, int32_t *row)
+{
+    const int64_t ds = line[0].slope_q16 - line[1].slope_q16; /* x per row, 1/65536 */
+    if (ds <= 0)                                              /* left leans right going up */
+        return false;
+    const int64_t y = h->y_bottom, gap = lane_line_x_q8(&line[1], y) - lane_line_x_q8(&line[0], y);
+    const int64_t up = (gap << 8) / ds; /* rows above the bottom row */
+    const int64_t v = y - up, span = h->y_bottom - h->y_top;
+    if (v > h->y_top - 2 || v < h->y_top - span)
+        return false;
+    *row = (int32_t)v;
+    return true;
+}
+
+/* The weighted squared residuals (1/65536 px^2) of side's windows to
+ * the straight line through them (least squares on 1 and u). */
+static rte_i128 straight_sse(const curve_side *cs, const lane_line *line)
+{
+    rte_i128 w = 0, su = 0, suu = 0, sx = 0, sux = 0;
+    for (int32_t i = 0; i < cs->n; i++) {
+        const rte_i128 wi = cs->win[i].weight, u = cs->bs[i].u_q16;
+        const rte_i128 x = lane_line_x_q8(line, cs->win[i].y) + cs->win[i].r_q8;
+        w += wi, su += wi * u, suu += wi * (u * u >> 16), sx += wi * x, sux += wi * (u * x >> 16);
+    }
+    const rte_i128 det = w * suu - (su * su >> 16);
+    if (cs->n < 3 || det <= 0)
+        return 0;
+    const rte_i128 b1 = (w * sux - su * sx / 65536) * 65536 / det; /* x per unit u, 1/256 px */
+    const rte_i128 b0 = (sx - (b1 * su >> 16)) / w;
+    rte_i128 sse = 0;
+    for (int32_t i = 0; i < cs->n; i++) {
+        const rte_i128 x = lane_line_x_q8(line, cs->win[i].y) + cs->win[i].r_q8;
+        const rte_i128 e = x - b0 - (b1 * cs->bs[i].u_q16 >> 16);
+        sse += cs->win[i].weight * e * e;
+    }
+    return sse;
+}
+
+/* Whether the bend explains the windows: on the sides with three windows
+ * or more, the curves' squared residuals at most half the straight
+ * lines', and the straight lines off by more than a pixel (RMS). Paint
+ * that a straight line fits stays straight. */
+static bool bend_pays(const curve_side cs[2], const lane_line line[2], const bool use[2],
+                      const lane_fit_hint *hint, int64_t b, int64_t c, const side_sums ss[2])
+{
+    rte_i128 sse_line = 0, sse_curve = 0, w = 0;
+    for (int side = 0; side < 2; side++) {
+        if (!use[side] || cs[side].n < 3 || ss[side].sdd <= 0)
+            continue;
+        const rte_i128 a =
+            ((((rte_i128)ss[side].sdx << 16) - b * ss[side].sd1 - c * ss[side].sdg) / ss[side].sdd);
+        sse_line += straight_sse(&cs[side], &line[side]);
+        for (int32_t i = 0; i < cs[side].n; i++) {
+            const curve_window *wi = &cs[side].win[i];
+            const rte_i128 x = lane_line_x_q8(&line[side], wi->y) + wi->r_q8;
+            const rte_i128 e =
+                x - (a * delta_at(hint, wi->y) >> 16) - b - (c * cs[side].bs[i].q_q16 >> 16);
+            sse_curve += wi->weight * e * e;
+            w += wi->weight;
+        }
+    }
+    return w > 0 && 3 * sse_curve <= sse_line && sse_line > w * 147456;
+}
+
+void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                         int32_t cy0, const lane_fit_hint *base, int64_t tol, const bool seen[2],
+                         lane_line line[2], lane_curve curve[2])
+{
+    lane_fit_hint h = *base;
+    h.has_horizon = seen[0] && seen[1] && vanishing_row(line, base, &h.y_horizon);
+    const lane_fit_hint *hint = &h;
+    const int32_t span = hint->y_bottom - hint->y_top;
+    const int32_t y_horizon = (int32_t)lane_horizon_row(hint);
+    curve_side cs[2];
+    side_sums ss[2];
+    bool use[2] = {false, false}, supports = false;
+    for (int side = 0; side < 2; side++) {
+        curve[side] = (lane_curve){0, hint->y_bottom, y_horizon, false};
+        cs[side].n = 0;
+        if (!seen[side] || span < 2 * CURVE_WINDOWS)
+            continue;
+        walk_side(edges, roi, cx0, cy0, hint, tol, &line[side], &cs[side]);
+        use[side] = cs[side].n >= 1;
+        /* A curve needs one side's windows up to the lane's upper half. */
+        supports |= cs[side].n >= 4 && cs[side].bs[cs[side].n - 1].u_q16 >= 32768;
+    }
+    int64_t b, c;
+    if (!supports || !joint_fit(cs, line, use, hint, &b, &c, ss))
+        return;
+    const curve_basis bottom = basis_at(hint, hint->y_bottom);
+    const curve_basis mid = basis_at(hint, hint->y_bottom - span / 2);
+    /* the 1/d term's distance from its chord at mid-height */
+    const int64_t sag_q16 = mid.q_q16 - (bottom.q_q16 + 65536) / 2;
+    const int64_t bow = c * sag_q16 >> 16;
+    if (lane_abs64(bow) < CURVE_MIN_BOW_Q8 || lane_abs64(bow) > (int64_t)span * 256)
+        return;
+    if (!bend_pays(cs, line, use, hint, b, c, ss))
+        return;
+    /* The shared bend carries a dashed side up to where the other is seen. */
+    int32_t y_supported = hint->y_bottom;
+    for (int side = 0; side < 2; side++)
+        if (use[side] && cs[side].y_supported < y_supported)
+            y_supported = cs[side].y_supported;
+    const int64_t delta_top = (int64_t)delta_at(hint, hint->y_top);
+    for (int side = 0; side < 2; side++) {
+        if (!seen[side])
+            continue;
+        /* A_side: from its windows, else where its straight line is. */
+        int64_t a;
+        if (ss[side].sdd > 0) {
+            a = (int64_t)((((rte_i128)ss[side].sdx << 16) - b * ss[side].sd1 - c * ss[side].sdg) /
+                          ss[side].sdd);
+        } else {
+            const int32_t y = line[side].y_mid;
+            const int64_t dl = (int64_t)delta_at(hint, y), g = basis_at(hint, y).q_q16;
+            a = ((lane_line_x_q8(&line[side], y) - b - (c * g >> 16)) << 16) / dl;
+        }
+        const int64_t xb = a + b + (c * bottom.q_q16 >> 16);
+        const int64_t xt = (a * delta_top >> 16) + b + c;
+        line[side].y_mid = hint->y_bottom;
+        line[side].x_mid_q8 = xb;
+        line[side].slope_q16 = ((xt - xb) << 8) / -span;
+        curve[side].bow_q8 = bow;
+        curve[side].y_supported = y_supported;
+        curve[side].curved = true;
+    }
+}

@@ -1,0 +1,41 @@
+#!/bin/sh
+# rtedge lanes --sequence on the synthetic curved roads of
+# tools/make_curved_roads.py, scored by tools/eval_lanes.py: the share of
+# frames whose both sides are right (every labelled row in the lower 38% of
+# the frame within 2% of the width; hidden markings not reported as seen)
+# must reach each scene's floor, and bends must be reported the right way.
+# The floors are today's results less a frame or two (docs/lanes.md,
+# "Curves"); the scenes run with the ROI's top widened to 0.25..0.75 of
+# the width, since the default trapezoid cuts a tight bend's far part off.
+#   curved_roads.sh RTEDGE EVAL_LANES DIR
+set -u
+RTEDGE=$1 EVAL=$2 DIR=$3
+ROI="0,1;0.25,0.6;0.75,0.6;1,1"
+failed=0
+# scene floor [bend]
+while read -r scene floor bend; do
+    out="$DIR/curve_$scene.jsonl"
+    if ! "$RTEDGE" lanes --sequence "$DIR/curve_$scene" --roi "$ROI" >"$out"; then
+        echo "FAIL: $scene: rtedge lanes exited non-zero"
+        failed=1
+        continue
+    fi
+    if /usr/bin/python3 "$EVAL" "$DIR/curve_$scene.csv" "$out" --require "$floor" \
+        ${bend:+--bend "$bend"}; then
+        echo "ok: $scene (floor $floor${bend:+, bends $bend})"
+    else
+        echo "FAIL: $scene below its floor $floor${bend:+ or not bending $bend}"
+        failed=1
+    fi
+done <<'SCENES'
+tight_bend 0.95 right
+s_bend 0.95
+worn 0.95 left
+left_bend 0.75 left
+right_bend 0.75 right
+shadows 0.80
+seam 0.75 right
+glare 0.80 right
+straight 0.75
+SCENES
+exit $failed
