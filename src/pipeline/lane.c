@@ -224,9 +224,9 @@ int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y)
     const lane_fit_hint h = {lane->y_top, lane->y_bottom, 0, 0, lane->y_horizon, true};
     const int64_t y_h = lane_horizon_row(&h), d_top = lane->y_top - y_h;
     const int64_t d = y - y_h > 1 ? y - y_h : 1, dm = lane->y_bottom - span / 2 - y_h;
-    const int64_t qb = (d_top << 16) / (lane->y_bottom - y_h);
-    const int64_t sag = (d_top << 16) / d - (qb + (65536 - qb) * v / span);
-    const int64_t sag_mid = (d_top << 16) / dm - (qb + 65536) / 2;
+    const int64_t qb = (d_top * 65536) / (lane->y_bottom - y_h);
+    const int64_t sag = (d_top * 65536) / d - (qb + (65536 - qb) * v / span);
+    const int64_t sag_mid = (d_top * 65536) / dm - (qb + 65536) / 2;
     if (sag_mid >= 0)
         return lane_clamp32(chord, INT32_MIN, INT32_MAX);
     return lane_clamp32(chord + lane->bow_q8 * sag / sag_mid, INT32_MIN, INT32_MAX);

@@ -48,7 +48,7 @@ static curve_basis basis_at(const lane_fit_hint *h, int64_t y)
 {
     const int64_t span = h->y_bottom - h->y_top, y_h = lane_horizon_row(h);
     const int64_t d = y - y_h > 1 ? y - y_h : 1;
-    return (curve_basis){((h->y_bottom - y) << 16) / span, ((h->y_top - y_h) << 16) / d};
+    return (curve_basis){(h->y_bottom - y) * 65536 / span, (h->y_top - y_h) * 65536 / d};
 }
 
 /* The walk's expected residual at row y. */
@@ -83,7 +83,7 @@ static bool search_window(const rte_image_u8 *edges, const rte_image_u8 *roi, in
         /* the expected marking's direction here, x per row downwards */
         const int64_t slope =
             line->slope_q16 +
-            ((walk_residual(hint, walk, y) - walk_residual(hint, walk, y - 1)) << 8);
+            ((walk_residual(hint, walk, y) - walk_residual(hint, walk, y - 1)) * 256);
         const band_pixels px = rte_lane_band_row(edges, y - cy0, xa, xb, slope);
         if (px.n < 2 || px.last == px.first)
             continue; /* one edge alone would pull the window to it */
@@ -174,7 +174,7 @@ static void walk_side(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_
             continue;
         if (walk.y > w.y)
             walk.d_q16 =
-                lane_clamp32(((w.r_q8 - walk.o_q8) << 8) / (walk.y - w.y), -2 * 65536, 2 * 65536);
+                lane_clamp32((w.r_q8 - walk.o_q8) * 256 / (walk.y - w.y), -2 * 65536, 2 * 65536);
         walk.o_q8 = w.r_q8;
         walk.y = w.y;
         cs->y_supported = y_lo;
@@ -199,7 +199,7 @@ typedef struct side_sums {
 static rte_i128 delta_at(const lane_fit_hint *h, int64_t y)
 {
     const int64_t y_h = lane_horizon_row(h), d = y - y_h > 1 ? y - y_h : 1;
-    return ((rte_i128)d << 16) / (h->y_bottom - y_h);
+    return (rte_i128)d * 65536 / (h->y_bottom - y_h);
 }
 
 static bool joint_fit(const curve_side cs[2], const lane_line line[2], const bool use[2],
@@ -258,7 +258,7 @@ static bool vanishing_row(const lane_line line[2], const lane_fit_hint *h, int32
     if (ds <= 0)                                              /* left leans right going up */
         return false;
     const int64_t y = h->y_bottom, gap = lane_line_x_q8(&line[1], y) - lane_line_x_q8(&line[0], y);
-    const int64_t up = (gap << 8) / ds; /* rows above the bottom row */
+    const int64_t up = gap * 256 / ds; /* rows above the bottom row */
     const int64_t v = y - up, span = h->y_bottom - h->y_top;
     if (v > h->y_top - 2 || v < h->y_top - span)
         return false;
@@ -302,7 +302,7 @@ static bool bend_pays(const curve_side cs[2], const lane_line line[2], const boo
         if (!use[side] || cs[side].n < 3 || ss[side].sdd <= 0)
             continue;
         const rte_i128 a =
-            ((((rte_i128)ss[side].sdx << 16) - b * ss[side].sd1 - c * ss[side].sdg) / ss[side].sdd);
+            (((rte_i128)ss[side].sdx * 65536 - b * ss[side].sd1 - c * ss[side].sdg) / ss[side].sdd);
         sse_line += straight_sse(&cs[side], &line[side]);
         for (int32_t i = 0; i < cs[side].n; i++) {
             const curve_window *wi = &cs[side].win[i];
@@ -362,18 +362,18 @@ void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int
         /* A_side: from its windows, else where its straight line is. */
         int64_t a;
         if (ss[side].sdd > 0) {
-            a = (int64_t)((((rte_i128)ss[side].sdx << 16) - b * ss[side].sd1 - c * ss[side].sdg) /
+            a = (int64_t)(((rte_i128)ss[side].sdx * 65536 - b * ss[side].sd1 - c * ss[side].sdg) /
                           ss[side].sdd);
         } else {
             const int32_t y = line[side].y_mid;
             const int64_t dl = (int64_t)delta_at(hint, y), g = basis_at(hint, y).q_q16;
-            a = ((lane_line_x_q8(&line[side], y) - b - (c * g >> 16)) << 16) / dl;
+            a = (lane_line_x_q8(&line[side], y) - b - (c * g >> 16)) * 65536 / dl;
         }
         const int64_t xb = a + b + (c * bottom.q_q16 >> 16);
         const int64_t xt = (a * delta_top >> 16) + b + c;
         line[side].y_mid = hint->y_bottom;
         line[side].x_mid_q8 = xb;
-        line[side].slope_q16 = ((xt - xb) << 8) / -span;
+        line[side].slope_q16 = (xt - xb) * 256 / -span;
         curve[side].bow_q8 = bow;
         curve[side].y_supported = y_supported;
         curve[side].curved = true;

@@ -7,6 +7,7 @@
 # The floors are today's results less a frame or two (docs/lanes.md,
 # "Curves"); the scenes run with the ROI's top widened to 0.25..0.75 of
 # the width, since the default trapezoid cuts a tight bend's far part off.
+# In a cross build meson test sets MESON_EXE_WRAPPER (qemu-user).
 #   curved_roads.sh RTEDGE EVAL_LANES DIR
 set -u
 RTEDGE=$1 EVAL=$2 DIR=$3
@@ -15,7 +16,8 @@ failed=0
 # scene floor [bend]
 while read -r scene floor bend; do
     out="$DIR/curve_$scene.jsonl"
-    if ! "$RTEDGE" lanes --sequence "$DIR/curve_$scene" --roi "$ROI" >"$out"; then
+    # shellcheck disable=SC2086 # the cross build's wrapper is a command line
+    if ! ${MESON_EXE_WRAPPER:-} "$RTEDGE" lanes --sequence "$DIR/curve_$scene" --roi "$ROI" >"$out"; then
         echo "FAIL: $scene: rtedge lanes exited non-zero"
         failed=1
         continue
