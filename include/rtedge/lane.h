@@ -200,6 +200,20 @@ typedef struct rte_lane_result {
 /* x of a found lane at row y (its curve), in 1/256 pixel. */
 int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
 
+/* Rows between the points of rte_lane_polyline (more when max_points are
+ * too few for the lane). */
+#define RTE_LANE_POINT_STEP 10
+/* A found lane as points from its bottom row up to the highest row its
+ * markings were seen on (the ROI's top row for a straight or predicted
+ * lane), every RTE_LANE_POINT_STEP rows and at that row: at most
+ * max_points (>= 2) into x_q8[] (1/256 px) and y[]; returns how many (0
+ * for a lane not found). */
+int32_t rte_lane_polyline(const rte_lane *lane, int32_t max_points, int32_t *x_q8, int32_t *y);
+/* Curvature of a found lane's image curve at its bottom row, in 1/px:
+ * positive when it bends right going up the image, 0 when straight.
+ * (Floating point: for reports, not part of the per-frame core.) */
+double rte_lane_curvature(const rte_lane *lane);
+
 /* One frame. `frame` may be any rte_frame format up to the configured
  * size; BGR24 and RGB24 frames give the colour cue, the others are used as
  * grey. t_ns is the frame's time (kept in the result). */

@@ -3,7 +3,6 @@
  * .y4m file), printing JSON. The overlay is drawn here with a minimal
  * integer line routine (no drawing module in librtedge yet). */
 #include <dirent.h>
-#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,8 +32,9 @@ typedef struct lanes_options {
     int hough_seed;
 } lanes_options;
 
-/* Rows between the points of a reported lane. */
-#define LANE_POINT_STEP 10
+/* Points of a reported lane: every RTE_LANE_POINT_STEP rows of the
+ * largest frames (8192 rows). */
+#define LANE_MAX_POINTS (RTE_LANE_MAX_SIDE / RTE_LANE_POINT_STEP + 2)
 
 static const char *const auto_choices[] = {"none", "median", "otsu", NULL};
 static const char *const fit_choices[] = {"lsq", "theil-sen", NULL};
@@ -115,27 +115,6 @@ static int lanes_create(const char *name, const rte_lane_config *cfg, rte_lane_c
     return st == RTE_ERR_NO_MEMORY ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
 }
 
-/* The highest row the reported polyline reaches: where the marking was
- * seen, the ROI's top for a predicted lane or one seen only by its
- * segments. */
-static int32_t lane_end_row(const rte_lane *l)
-{
-    return l->predicted || l->y_supported >= l->y_bottom - LANE_POINT_STEP ? l->y_top
-                                                                           : l->y_supported;
-}
-
-/* Curvature of the lane's image curve at the bottom row, 1/px, positive
- * when it bends right going up the image. */
-static double lane_curvature(const rte_lane *l)
-{
-    const double span = l->y_bottom - l->y_top;
-    if (span <= 0)
-        return 0;
-    const double slope = ((l->x_top_q8 - l->x_bottom_q8) / 256.0 + 4 * l->bow_q8 / 256.0) / span;
-    const double second = -8 * (l->bow_q8 / 256.0) / (span * span);
-    return second / pow(1 + slope * slope, 1.5);
-}
-
 static void print_lane(const char *key, const rte_lane *l)
 {
     printf("\"%s\":{\"found\":%s", key, l->found ? "true" : "false");
@@ -143,14 +122,11 @@ static void print_lane(const char *key, const rte_lane *l)
         printf(",\"predicted\":%s,\"x1\":%.2f,\"y1\":%d,\"x2\":%.2f,\"y2\":%d,\"confidence\":%.3f",
                l->predicted ? "true" : "false", l->x_bottom_q8 / 256.0, l->y_bottom,
                l->x_top_q8 / 256.0, l->y_top, l->confidence_permille / 1000.0);
-        printf(",\"curvature\":%.6f,\"points\":[", lane_curvature(l));
-        const int32_t end = lane_end_row(l);
-        for (int32_t y = l->y_bottom;; y -= LANE_POINT_STEP) {
-            y = y < end ? end : y;
-            printf("%s[%.2f,%d]", y == l->y_bottom ? "" : ",", rte_lane_x_q8(l, y) / 256.0, y);
-            if (y == end)
-                break;
-        }
+        printf(",\"curvature\":%.6f,\"points\":[", rte_lane_curvature(l));
+        int32_t xs[LANE_MAX_POINTS], ys[LANE_MAX_POINTS];
+        const int32_t n = rte_lane_polyline(l, LANE_MAX_POINTS, xs, ys);
+        for (int32_t i = 0; i < n; i++)
+            printf("%s[%.2f,%d]", i ? "," : "", xs[i] / 256.0, ys[i]);
         printf("]");
     }
     printf("}");
@@ -245,13 +221,11 @@ static int write_overlay(const char *name, const char *path, const cli_image *in
         const rte_lane *l = &r->lane[side];
         if (!l->found)
             continue;
-        const int32_t end = lane_end_row(l);
-        for (int32_t y = l->y_bottom; y > end;) {
-            const int32_t y1 = y - LANE_POINT_STEP < end ? end : y - LANE_POINT_STEP;
-            draw_line(&img, (rte_lane_x_q8(l, y) + 128) >> 8, y, (rte_lane_x_q8(l, y1) + 128) >> 8,
-                      y1, side == RTE_LANE_LEFT ? blue : red, l->predicted ? 1 : 3);
-            y = y1;
-        }
+        int32_t xs[LANE_MAX_POINTS], ys[LANE_MAX_POINTS];
+        const int32_t n = rte_lane_polyline(l, LANE_MAX_POINTS, xs, ys);
+        for (int32_t i = 0; i + 1 < n; i++)
+            draw_line(&img, (xs[i] + 128) >> 8, ys[i], (xs[i + 1] + 128) >> 8, ys[i + 1],
+                      side == RTE_LANE_LEFT ? blue : red, l->predicted ? 1 : 3);
     }
     char msg[RTE_IO_MESSAGE_SIZE];
     rte_status st = rte_image_write_bgr(path, &img, msg, sizeof msg);

@@ -53,6 +53,14 @@ static void fill_lane(rtedge_lane_t *m, const rte_lane *l)
     int32_t dy = l->y_top - l->y_bottom;
     m->slope = dy ? (m->x2 - m->x1) / (float)dy : 0.0f;
     m->confidence = (float)l->confidence_permille / 1000.0f;
+    m->curvature = (float)rte_lane_curvature(l);
+    int32_t xs[RTEDGE_LANE_T_MAX_POINTS], ys[RTEDGE_LANE_T_MAX_POINTS];
+    const int32_t n = rte_lane_polyline(l, RTEDGE_LANE_T_MAX_POINTS, xs, ys);
+    m->npoints = (int8_t)n;
+    for (int32_t i = 0; i < RTEDGE_LANE_T_MAX_POINTS; i++) {
+        m->points_x[i] = i < n ? (float)xs[i] / RTE_LANE_ONE : 0.0f;
+        m->points_y[i] = i < n ? (float)ys[i] : 0.0f;
+    }
 }
 
 void rted_publish_lane(rted_daemon *d, const rte_source_frame *f, const rte_lane_result *r)

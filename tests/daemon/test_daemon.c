@@ -100,6 +100,20 @@ static void on_message(const lcm_recv_buf_t *rb, const char *channel, void *user
         assert_true(m.header.latency_us >= 0);
         assert_int_equal(m.header.deadline_met, m.header.latency_us <= m.header.deadline_us);
         assert_int_equal(m.header.roi_npoints, 4);
+        /* a found lane's polyline starts at its bottom endpoint and goes up */
+        const rtedge_lane_t *sides[2] = {&m.left, &m.right};
+        for (int i = 0; i < 2; i++) {
+            const rtedge_lane_t *l = sides[i];
+            assert_true(l->npoints >= 0 && l->npoints <= RTEDGE_LANE_T_MAX_POINTS);
+            if (!l->found) {
+                assert_int_equal(l->npoints, 0);
+                continue;
+            }
+            assert_true(l->npoints >= 2);
+            assert_true(l->points_y[0] == l->y1 && near(l->points_x[0], l->x1, 0.01));
+            for (int k = 1; k < l->npoints; k++)
+                assert_true(l->points_y[k] < l->points_y[k - 1]);
+        }
         check_lane(s, &m);
         rtedge_lane_detection_t_decode_cleanup(&m);
     } else if (!strcmp(channel, "RTEDGE_GRASP")) {

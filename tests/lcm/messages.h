@@ -69,6 +69,12 @@ static inline void sample_lane(rtedge_lane_t *l, uint32_t *r)
     l->y2 = sample_f(r);
     l->slope = sample_f(r);
     l->confidence = 0.75f;
+    l->curvature = -0.001f;
+    l->npoints = 3;
+    for (int i = 0; i < RTEDGE_LANE_T_MAX_POINTS; i++) {
+        l->points_x[i] = i < 3 ? sample_f(r) : 0.0f;
+        l->points_y[i] = i < 3 ? 700.0f - 10.0f * (float)i : 0.0f;
+    }
 }
 
 /* Fills every sample message; arrays point into s. */

@@ -52,6 +52,9 @@ assert lane.header.roi_npoints == 4 and len(lane.header.roi) == 4
 assert lane.nsegments == 7 and lane.segments_truncated
 assert lane.right.predicted and not lane.left.predicted
 assert lane.heading_rad == -0.5 and lane.centre_offset_frac == 0.125
+assert rtedge.lane_t.MAX_POINTS == 32 and len(lane.left.points_x) == 32
+assert lane.left.npoints == 3 and list(lane.left.points_y[:4]) == [700.0, 690.0, 680.0, 0.0]
+assert abs(lane.left.curvature + 0.001) < 1e-9
 grasp = got["GRASP"]
 assert grasp.nobjects == 3
 assert grasp.objects[2].shape == rtedge.grasp_object_t.SHAPE_HEXAGON

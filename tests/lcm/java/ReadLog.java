@@ -34,6 +34,12 @@ public class ReadLog {
                 break;
             }
             LCMEncodable m = decode(ev.channel, ev.data);
+            if (m instanceof rtedge.lane_detection_t) {
+                rtedge.lane_t left = ((rtedge.lane_detection_t) m).left;
+                if (left.npoints != 3 || left.points_x.length != rtedge.lane_t.MAX_POINTS ||
+                    left.points_y[1] != 690.0f)
+                    throw new Exception("LANES: the lane's points are not the sample's");
+            }
             ByteArrayOutputStream bytes = new ByteArrayOutputStream();
             m.encode(new DataOutputStream(bytes));
             if (!Arrays.equals(bytes.toByteArray(), ev.data))
