@@ -203,12 +203,14 @@ static void grow_edges(uint8_t *map, ptrdiff_t ms, int32_t *stack, int32_t top)
     }
 }
 
-static void write_edges(const uint8_t *map, ptrdiff_t ms, rte_image_u8 *dst)
+/* (w and h as values: through dst, each byte stored could change them,
+ * and the loop would neither keep them in registers nor vectorise) */
+static void write_edges(const uint8_t *map, ptrdiff_t ms, rte_image_u8 *dst, int32_t w, int32_t h)
 {
-    for (int32_t y = 0; y < dst->height; y++) {
+    for (int32_t y = 0; y < h; y++) {
         const uint8_t *restrict mrow = map + (ptrdiff_t)(y + 1) * ms + 1;
         uint8_t *restrict d = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < dst->width; x++)
+        for (int32_t x = 0; x < w; x++)
             d[x] = (uint8_t)(mrow[x] == 2 ? 255 : 0);
     }
 }
@@ -337,7 +339,7 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
     }
 
     grow_edges(map, ms, stack, top);
-    write_edges(map, ms, dst);
+    write_edges(map, ms, dst, w, h);
     rte_arena_reset(scratch, mark);
     return RTE_OK;
 }
