@@ -297,7 +297,7 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *edges, int
             lane_fit_one_side(ctx, edges, &mask, side, members[side], n[side], lane, &line[side]);
         seen[side] = support[side] > 0 && support[side] >= p->min_support_px;
     }
-    lane_curve curve[2] = {{0, y_bottom, 0, false}, {0, y_bottom, 0, false}};
+    lane_curve curve[2] = {{0, y_bottom, 0}, {0, y_bottom, 0}};
     if (p->curves && p->fit == RTE_LANE_FIT_LEAST_SQUARES) {
         const lane_fit_hint hint = {y_top, y_bottom, 0, 0, 0, false};
         rte_lane_curves_fit(edges, &mask, ctx->crop_x0, ctx->crop_y0, &hint, (int64_t)p->outlier_px,

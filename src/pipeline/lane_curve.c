@@ -8,14 +8,14 @@
  * a = X0 / h, b = x_centre + f psi and c = f^2 h kappa / 2. The straight
  * fit (segments, then the refit on the edge pixels) gives a line; windows
  * of rows then follow the marking up the image from the bottom row, each
- * searched around the model fitted to the windows below it (around the
- * line moved by their last residual while there are fewer than three),
- * so the search follows a bend the straight line leaves. A weighted
- * least-squares fit of the windows' residuals to 1, d and 1/d gives the
- * curve when the windows reach the lane's upper half and its bow (the
- * middle's distance from the chord) is more than 3/4 pixel; otherwise the
- * lane stays straight. The horizon is the one the fit's row weights
- * assume: an eighth of the lane above the ROI's top row. */
+ * searched around the line moved by the residual the windows below it
+ * show (extrapolated, then through a fit of them once there are three),
+ * so the search follows a bend the straight line leaves. Both sides'
+ * windows are then fitted together, b and c shared and a per side, so a
+ * dashed side takes the solid side's bend. The horizon row is where the
+ * two straight lines meet, else an eighth of the lane above the ROI's top
+ * row (lane_horizon_row). The curve replaces the lines only when it
+ * explains the windows much better than they do (bend_pays). */
 #include "lane_fixed.h"
 
 #include "algo/geom_fixed.h"
@@ -27,13 +27,15 @@
 typedef struct curve_window {
     int64_t r_q8;   /* mean residual to the line, 1/256 px */
     int64_t y;      /* mean row */
+    int64_t x_q8;   /* the line's x there plus r: where the paint is */
     int64_t weight; /* edge pixels */
 } curve_window;
 
-/* The model's basis at a row: u = (y_bottom - y) / span and
- * q = d_top / d (1 on the top row), both in 1/65536. */
+/* The model's basis at a row: u = (y_bottom - y) / span, q = d_top / d
+ * (1 on the top row) and delta = d / d_bottom (1 on the bottom row), all
+ * in 1/65536. */
 typedef struct curve_basis {
-    int64_t u_q16, q_q16;
+    int64_t u_q16, q_q16, delta_q16;
 } curve_basis;
 
 typedef struct curve_walk {
@@ -44,11 +46,18 @@ typedef struct curve_walk {
     int64_t p[3]; /* residual = p0 + p1 u + p2 q, 1/256 px */
 } curve_walk;
 
+static int64_t delta_at(const lane_fit_hint *h, int64_t y)
+{
+    const int64_t y_h = lane_horizon_row(h), d = y - y_h > 1 ? y - y_h : 1;
+    return d * 65536 / (h->y_bottom - y_h);
+}
+
 static curve_basis basis_at(const lane_fit_hint *h, int64_t y)
 {
     const int64_t span = h->y_bottom - h->y_top, y_h = lane_horizon_row(h);
     const int64_t d = y - y_h > 1 ? y - y_h : 1;
-    return (curve_basis){(h->y_bottom - y) * 65536 / span, (h->y_top - y_h) * 65536 / d};
+    return (curve_basis){(h->y_bottom - y) * 65536 / span, (h->y_top - y_h) * 65536 / d,
+                         delta_at(h, y)};
 }
 
 /* The walk's expected residual at row y. */
@@ -97,6 +106,7 @@ static bool search_window(const rte_image_u8 *edges, const rte_image_u8 *roi, in
         return false;
     out->r_q8 = sum_r / n;
     out->y = sum_y / n;
+    out->x_q8 = lane_line_x_q8(line, out->y) + out->r_q8;
     out->weight = n;
     return true;
 }
@@ -196,14 +206,8 @@ typedef struct side_sums {
     rte_i128 sdd, sd1, sdg, sdx; /* sums of w delta f, f = delta, 1, gamma, x */
 } side_sums;
 
-static rte_i128 delta_at(const lane_fit_hint *h, int64_t y)
-{
-    const int64_t y_h = lane_horizon_row(h), d = y - y_h > 1 ? y - y_h : 1;
-    return (rte_i128)d * 65536 / (h->y_bottom - y_h);
-}
-
-static bool joint_fit(const curve_side cs[2], const lane_line line[2], const bool use[2],
-                      const lane_fit_hint *hint, int64_t *b_q8, int64_t *c_q8, side_sums ss[2])
+static bool joint_fit(const curve_side cs[2], const bool use[2], int64_t *b_q8, int64_t *c_q8,
+                      side_sums ss[2])
 {
     rte_i128 m11 = 0, m1g = 0, mgg = 0, v1 = 0, vg = 0;
     for (int side = 0; side < 2; side++) {
@@ -213,8 +217,7 @@ static bool joint_fit(const curve_side cs[2], const lane_line line[2], const boo
             continue;
         for (int32_t i = 0; i < cs[side].n; i++) {
             const curve_window *w = &cs[side].win[i];
-            const rte_i128 dl = delta_at(hint, w->y), g = cs[side].bs[i].q_q16;
-            const rte_i128 x = lane_line_x_q8(&line[side], w->y) + w->r_q8;
+            const rte_i128 dl = cs[side].bs[i].delta_q16, g = cs[side].bs[i].q_q16, x = w->x_q8;
             t->sdd += w->weight * (dl * dl >> 16);
             t->sd1 += w->weight * dl;
             t->sdg += w->weight * (dl * g >> 16);
@@ -225,8 +228,7 @@ static bool joint_fit(const curve_side cs[2], const lane_line line[2], const boo
         /* components along delta: f~ = f - delta * sum(w delta f) / sdd */
         for (int32_t i = 0; i < cs[side].n; i++) {
             const curve_window *w = &cs[side].win[i];
-            const rte_i128 dl = delta_at(hint, w->y), g = cs[side].bs[i].q_q16;
-            const rte_i128 x = lane_line_x_q8(&line[side], w->y) + w->r_q8;
+            const rte_i128 dl = cs[side].bs[i].delta_q16, g = cs[side].bs[i].q_q16, x = w->x_q8;
             const rte_i128 o = 65536 - dl * t->sd1 / t->sdd; /* 1~, 1/65536 */
             const rte_i128 gt = g - dl * t->sdg / t->sdd;    /* gamma~ */
             const rte_i128 xt = x - dl * t->sdx / t->sdd;    /* x~, 1/256 px */
@@ -250,6 +252,13 @@ static bool joint_fit(const curve_side cs[2], const lane_line line[2], const boo
     return true;
 }
 
+/* A side's lateral term A (1/256 px per unit of delta) for the road's B
+ * and C, from its windows' sums (ss->sdd > 0). */
+static int64_t side_offset(const side_sums *ss, int64_t b, int64_t c)
+{
+    return (int64_t)(((rte_i128)ss->sdx * 65536 - b * ss->sd1 - c * ss->sdg) / ss->sdd);
+}
+
 /* The row where the two straight lines meet (the vanishing point's), when
  * it lies between a lane's length above the ROI top and its top row. */
 static bool vanishing_row(const lane_line line[2], const lane_fit_hint *h, int32_t *row)
@@ -268,12 +277,11 @@ static bool vanishing_row(const lane_line line[2], const lane_fit_hint *h, int32
 
 /* The weighted squared residuals (1/65536 px^2) of side's windows to
  * the straight line through them (least squares on 1 and u). */
-static rte_i128 straight_sse(const curve_side *cs, const lane_line *line)
+static rte_i128 straight_sse(const curve_side *cs)
 {
     rte_i128 w = 0, su = 0, suu = 0, sx = 0, sux = 0;
     for (int32_t i = 0; i < cs->n; i++) {
-        const rte_i128 wi = cs->win[i].weight, u = cs->bs[i].u_q16;
-        const rte_i128 x = lane_line_x_q8(line, cs->win[i].y) + cs->win[i].r_q8;
+        const rte_i128 wi = cs->win[i].weight, u = cs->bs[i].u_q16, x = cs->win[i].x_q8;
         w += wi, su += wi * u, suu += wi * (u * u >> 16), sx += wi * x, sux += wi * (u * x >> 16);
     }
     const rte_i128 det = w * suu - (su * su >> 16);
@@ -283,32 +291,29 @@ static rte_i128 straight_sse(const curve_side *cs, const lane_line *line)
     const rte_i128 b0 = (sx - (b1 * su >> 16)) / w;
     rte_i128 sse = 0;
     for (int32_t i = 0; i < cs->n; i++) {
-        const rte_i128 x = lane_line_x_q8(line, cs->win[i].y) + cs->win[i].r_q8;
-        const rte_i128 e = x - b0 - (b1 * cs->bs[i].u_q16 >> 16);
+        const rte_i128 e = cs->win[i].x_q8 - b0 - (b1 * cs->bs[i].u_q16 >> 16);
         sse += cs->win[i].weight * e * e;
     }
     return sse;
 }
 
 /* Whether the bend explains the windows: on the sides with three windows
- * or more, the curves' squared residuals at most half the straight
- * lines', and the straight lines off by more than a pixel (RMS). Paint
+ * or more, the curves' squared residuals at most a third of the straight
+ * lines', and the straight lines off by more than 1.5 px (RMS). Paint
  * that a straight line fits stays straight. */
-static bool bend_pays(const curve_side cs[2], const lane_line line[2], const bool use[2],
-                      const lane_fit_hint *hint, int64_t b, int64_t c, const side_sums ss[2])
+static bool bend_pays(const curve_side cs[2], const bool use[2], int64_t b, int64_t c,
+                      const side_sums ss[2])
 {
     rte_i128 sse_line = 0, sse_curve = 0, w = 0;
     for (int side = 0; side < 2; side++) {
         if (!use[side] || cs[side].n < 3 || ss[side].sdd <= 0)
             continue;
-        const rte_i128 a =
-            (((rte_i128)ss[side].sdx * 65536 - b * ss[side].sd1 - c * ss[side].sdg) / ss[side].sdd);
-        sse_line += straight_sse(&cs[side], &line[side]);
+        const rte_i128 a = side_offset(&ss[side], b, c);
+        sse_line += straight_sse(&cs[side]);
         for (int32_t i = 0; i < cs[side].n; i++) {
             const curve_window *wi = &cs[side].win[i];
-            const rte_i128 x = lane_line_x_q8(&line[side], wi->y) + wi->r_q8;
-            const rte_i128 e =
-                x - (a * delta_at(hint, wi->y) >> 16) - b - (c * cs[side].bs[i].q_q16 >> 16);
+            const rte_i128 e = wi->x_q8 - (a * cs[side].bs[i].delta_q16 >> 16) - b -
+                               (c * cs[side].bs[i].q_q16 >> 16);
             sse_curve += wi->weight * e * e;
             w += wi->weight;
         }
@@ -329,7 +334,7 @@ void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int
     side_sums ss[2];
     bool use[2] = {false, false}, supports = false;
     for (int side = 0; side < 2; side++) {
-        curve[side] = (lane_curve){0, hint->y_bottom, y_horizon, false};
+        curve[side] = (lane_curve){0, hint->y_bottom, y_horizon};
         cs[side].n = 0;
         if (!seen[side] || span < 2 * CURVE_WINDOWS)
             continue;
@@ -339,7 +344,7 @@ void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int
         supports |= cs[side].n >= 4 && cs[side].bs[cs[side].n - 1].u_q16 >= 32768;
     }
     int64_t b, c;
-    if (!supports || !joint_fit(cs, line, use, hint, &b, &c, ss))
+    if (!supports || !joint_fit(cs, use, &b, &c, ss))
         return;
     const curve_basis bottom = basis_at(hint, hint->y_bottom);
     const curve_basis mid = basis_at(hint, hint->y_bottom - span / 2);
@@ -348,26 +353,25 @@ void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int
     const int64_t bow = c * sag_q16 >> 16;
     if (lane_abs64(bow) < CURVE_MIN_BOW_Q8 || lane_abs64(bow) > (int64_t)span * 256)
         return;
-    if (!bend_pays(cs, line, use, hint, b, c, ss))
+    if (!bend_pays(cs, use, b, c, ss))
         return;
     /* The shared bend carries a dashed side up to where the other is seen. */
     int32_t y_supported = hint->y_bottom;
     for (int side = 0; side < 2; side++)
         if (use[side] && cs[side].y_supported < y_supported)
             y_supported = cs[side].y_supported;
-    const int64_t delta_top = (int64_t)delta_at(hint, hint->y_top);
+    const int64_t delta_top = delta_at(hint, hint->y_top);
     for (int side = 0; side < 2; side++) {
         if (!seen[side])
             continue;
         /* A_side: from its windows, else where its straight line is. */
         int64_t a;
         if (ss[side].sdd > 0) {
-            a = (int64_t)(((rte_i128)ss[side].sdx * 65536 - b * ss[side].sd1 - c * ss[side].sdg) /
-                          ss[side].sdd);
+            a = side_offset(&ss[side], b, c);
         } else {
-            const int32_t y = line[side].y_mid;
-            const int64_t dl = (int64_t)delta_at(hint, y), g = basis_at(hint, y).q_q16;
-            a = (lane_line_x_q8(&line[side], y) - b - (c * g >> 16)) * 65536 / dl;
+            const curve_basis at = basis_at(hint, line[side].y_mid);
+            a = (lane_line_x_q8(&line[side], line[side].y_mid) - b - (c * at.q_q16 >> 16)) * 65536 /
+                at.delta_q16;
         }
         const int64_t xb = a + b + (c * bottom.q_q16 >> 16);
         const int64_t xt = (a * delta_top >> 16) + b + c;
@@ -376,6 +380,5 @@ void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int
         line[side].slope_q16 = (xt - xb) * 256 / -span;
         curve[side].bow_q8 = bow;
         curve[side].y_supported = y_supported;
-        curve[side].curved = true;
     }
 }

@@ -33,13 +33,13 @@ typedef struct lane_line {
 } lane_line;
 
 /* What lane_curve.c found beyond the line: the bow (the lane's middle
- * beside its chord, 1/256 px, positive to the right; 0 when straight) and
- * the highest row the windows saw paint on. */
+ * beside its chord, 1/256 px, positive to the right; 0 when straight),
+ * the highest row the windows saw paint on and the horizon row the bow's
+ * shape is drawn from. */
 typedef struct lane_curve {
     int64_t bow_q8;
     int32_t y_supported;
     int32_t y_horizon;
-    bool curved;
 } lane_curve;
 
 /* What the least-squares fit knows besides the segments: the rows the lane
