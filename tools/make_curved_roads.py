@@ -83,7 +83,9 @@ def centre_profile(scene, s0):
 def lane_width(scene, z, k):
     w = scene.get("width", 3.6)
     if scene.get("width_change"):
-        w += 0.8 * math.sin(2 * math.pi * (k * SPEED + z) / 60.0)
+        # +-0.5 m over a 150 m period: at most 1:48, a taper as steep as
+        # road design allows
+        w += 0.5 * math.sin(2 * math.pi * (k * SPEED + z) / 150.0)
     return w
 
 

@@ -194,21 +194,45 @@ static rte_status lane_stage_hough(rte_lane_context *ctx, const rte_image_u8 *ed
 }
 
 /* One side of the fit stage: its segments members[0..n) fitted and the
- * line refined on the edge pixels. Returns the supporting length. */
-static int64_t lane_fit_one_side(rte_lane_context *ctx, const rte_image_u8 *edges,
-                                 const rte_image_u8 *mask, int side, int32_t *members, int32_t n,
-                                 const rte_lane *lane, lane_line *line)
+ * line refined on the edge pixels. A tracked side whose segments are too
+ * few (the gap between two dashes, a dash the Hough search left out) is
+ * searched for along its predicted curve instead and counts as seen when
+ * a marking shows on a sixteenth of the lane's rows: its line is then the
+ * predicted chord moved onto the marking, with the predicted bow in
+ * *bow_q8. Returns the supporting length (segments, else those rows), 0
+ * when not seen. */
+static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, int side,
+                                 int32_t *members, int32_t n, const rte_lane *lane, lane_line *line,
+                                 int64_t *bow_q8)
 {
     const rte_lane_params *p = &ctx->params;
+    const lane_track *t = &ctx->track[side];
     *line = (lane_line){0, 0, (lane->y_bottom + lane->y_top) / 2};
-    const lane_fit_hint hint = rte_lane_track_hint(&ctx->track[side], lane->y_top, lane->y_bottom);
+    *bow_q8 = 0;
+    const lane_fit_hint hint = rte_lane_track_hint(t, lane->y_top, lane->y_bottom);
     const int64_t support =
         rte_lane_fit_side(ctx, members, n, &hint, line,
                           side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
-    if (support > 0 && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
-        rte_lane_refine_on_edges(edges, mask, ctx->crop_x0, ctx->crop_y0, &hint,
-                                 (int64_t)p->outlier_px, line);
-    return support;
+    if (p->fit != RTE_LANE_FIT_LEAST_SQUARES)
+        return support >= p->min_support_px ? support : 0;
+    if (support > 0 && support >= p->min_support_px) {
+        rte_lane_refine_on_edges(maps->edges, maps->roi, maps->cx0, maps->cy0, &hint, maps->tol,
+                                 line);
+        return support;
+    }
+    if (!t->valid)
+        return 0;
+    const rte_lane pred = rte_lane_track_predict(t, lane->y_top, lane->y_bottom);
+    int64_t offset_q8;
+    const int32_t rows = rte_lane_find_marking(maps, &hint, &pred, &offset_q8);
+    if (rows < (lane->y_bottom - lane->y_top) / 16 + 1)
+        return 0;
+    const int64_t span = lane->y_bottom - lane->y_top;
+    *line = (lane_line){(int64_t)pred.x_bottom_q8 + offset_q8,
+                        span > 0 ? ((int64_t)pred.x_top_q8 - pred.x_bottom_q8) * 256 / -span : 0,
+                        lane->y_bottom};
+    *bow_q8 = pred.bow_q8;
+    return rows;
 }
 
 int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y)
@@ -270,8 +294,9 @@ static void lane_centre(rte_lane_result *out, int32_t w, int32_t y_bottom, int32
 
 /* The fit stage: the segments (ctx->segments[0..count)) sorted into sides,
  * both lanes fitted and tracked, then their centre. */
-static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *edges, int32_t w, int32_t h,
-                           int32_t count, rte_lane_result *out)
+static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const rte_image_u8 *gray,
+                           const rte_image_u8 *edges, int32_t w, int32_t h, int32_t count,
+                           rte_lane_result *out)
 {
     const rte_lane_params *p = &ctx->params;
     /* The ROI's top row, clipped, is where the lanes end. */
@@ -286,22 +311,36 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *edges, int
     int32_t n[2] = {0, 0};
     rte_lane_classify(ctx, count, w, y_bottom, y_top, members, n);
     const rte_image_u8 mask = lane_view(&ctx->mask, 0, 0, edges->width, edges->height);
+    const rte_image_u8 gray_crop =
+        lane_view(gray, ctx->crop_x0, ctx->crop_y0, ctx->crop_x1, ctx->crop_y1);
+    const lane_maps maps = {
+        edges, &mask, src, &gray_crop, ctx->crop_x0, ctx->crop_y0, (int64_t)p->outlier_px};
     lane_line line[2];
-    int64_t support[2];
+    int64_t support[2], seeded_bow[2];
     bool seen[2];
     for (int side = 0; side < 2; side++) {
         rte_lane *lane = &out->lane[side];
         lane->y_bottom = y_bottom;
         lane->y_top = y_top;
-        support[side] =
-            lane_fit_one_side(ctx, edges, &mask, side, members[side], n[side], lane, &line[side]);
-        seen[side] = support[side] > 0 && support[side] >= p->min_support_px;
+        support[side] = lane_fit_one_side(ctx, &maps, side, members[side], n[side], lane,
+                                          &line[side], &seeded_bow[side]);
+        seen[side] = support[side] > 0;
     }
     lane_curve curve[2] = {{0, y_bottom, 0}, {0, y_bottom, 0}};
     if (p->curves && p->fit == RTE_LANE_FIT_LEAST_SQUARES) {
         const lane_fit_hint hint = {y_top, y_bottom, 0, 0, 0, false};
-        rte_lane_curves_fit(edges, &mask, ctx->crop_x0, ctx->crop_y0, &hint, (int64_t)p->outlier_px,
-                            seen, line, curve);
+        rte_lane_curves_fit(&maps, &hint, seen, line, curve);
+    }
+    /* A side found along its predicted curve keeps that bend unless the
+     * curve fit gave it one. */
+    for (int side = 0; side < 2; side++)
+        if (seen[side] && seeded_bow[side] != 0 && curve[side].bow_q8 == 0) {
+            curve[side].bow_q8 = seeded_bow[side];
+            curve[side].y_horizon = ctx->track[side].y_horizon;
+        }
+    if (p->fit == RTE_LANE_FIT_LEAST_SQUARES) {
+        const lane_fit_hint hint = {y_top, y_bottom, 0, 0, 0, false};
+        rte_lane_double_centre(&maps, &hint, seen, line, curve);
     }
     for (int side = 0; side < 2; side++)
         rte_lane_track_update(ctx, side, seen[side], &line[side], &curve[side], support[side],
@@ -335,7 +374,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
         return st;
     lane_stage_end(out, RTE_LANE_STAGE_HOUGH, &t0);
 
-    lane_stage_fit(ctx, &edges, w, h, count, out);
+    lane_stage_fit(ctx, &src, gray, &edges, w, h, count, out);
     out->segments = ctx->segments;
     out->segment_count = count;
     out->truncated = truncated;

@@ -72,21 +72,21 @@ static int64_t walk_residual(const lane_fit_hint *h, const curve_walk *walk, int
 
 /* The rows y_hi down to y_lo searched around the line plus the walk's
  * expected residual; false when too few rows hold paint. */
-static bool search_window(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                          int32_t cy0, const lane_fit_hint *hint, int64_t tol,
-                          const lane_line *line, const curve_walk *walk, int32_t y_hi, int32_t y_lo,
-                          curve_window *out)
+static bool search_window(const lane_maps *maps, const lane_fit_hint *hint, const lane_line *line,
+                          const curve_walk *walk, int32_t y_hi, int32_t y_lo, curve_window *out)
 {
+    const rte_image_u8 *edges = maps->edges;
+    const int32_t cx0 = maps->cx0, cy0 = maps->cy0;
     int64_t sum_r = 0, sum_y = 0, n = 0, rows = 0;
     for (int32_t y = y_hi; y >= y_lo; y--) {
         if (y < cy0 + 1 || y > cy0 + edges->height - 1)
             continue;
         const int64_t lx = lane_line_x_q8(line, y), ex = lx + walk_residual(hint, walk, y);
-        const int64_t band = rte_lane_band_px(hint, tol, y);
+        const int64_t band = rte_lane_band_px(hint, maps->tol, y);
         const int64_t xa = ((ex + 128) >> 8) - band - cx0, xb = xa + 2 * band;
         if (xa < 0 || xb > edges->width - 1)
             continue;
-        const uint8_t *inside = rte_u8_row(roi, y - cy0);
+        const uint8_t *inside = rte_u8_row(maps->roi, y - cy0);
         if (!inside[xa] || !inside[xb])
             continue;
         /* the expected marking's direction here, x per row downwards */
@@ -96,6 +96,8 @@ static bool search_window(const rte_image_u8 *edges, const rte_image_u8 *roi, in
         const band_pixels px = rte_lane_band_row(edges, y - cy0, xa, xb, slope);
         if (px.n < 2 || px.last == px.first)
             continue; /* one edge alone would pull the window to it */
+        if (!rte_lane_is_ridge(maps, y - cy0, px.first, px.last))
+            continue;
         sum_r += (px.sum_x + px.n * cx0) * 256 - px.n * lx;
         sum_y += px.n * y;
         n += px.n;
@@ -166,8 +168,8 @@ typedef struct curve_side {
     int32_t y_supported;
 } curve_side;
 
-static void walk_side(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0, int32_t cy0,
-                      const lane_fit_hint *hint, int64_t tol, const lane_line *line, curve_side *cs)
+static void walk_side(const lane_maps *maps, const lane_fit_hint *hint, const lane_line *line,
+                      curve_side *cs)
 {
     const int32_t span = hint->y_bottom - hint->y_top;
     const int32_t rows = (span + CURVE_WINDOWS) / CURVE_WINDOWS;
@@ -180,7 +182,7 @@ static void walk_side(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_
         if (y_hi < hint->y_top)
             break;
         curve_window w;
-        if (!search_window(edges, roi, cx0, cy0, hint, tol, line, &walk, y_hi, y_lo, &w))
+        if (!search_window(maps, hint, line, &walk, y_hi, y_lo, &w))
             continue;
         if (walk.y > w.y)
             walk.d_q16 =
@@ -321,8 +323,7 @@ static bool bend_pays(const curve_side cs[2], const bool use[2], int64_t b, int6
     return w > 0 && 3 * sse_curve <= sse_line && sse_line > w * 147456;
 }
 
-void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                         int32_t cy0, const lane_fit_hint *base, int64_t tol, const bool seen[2],
+void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const bool seen[2],
                          lane_line line[2], lane_curve curve[2])
 {
     lane_fit_hint h = *base;
@@ -338,7 +339,7 @@ void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int
         cs[side].n = 0;
         if (!seen[side] || span < 2 * CURVE_WINDOWS)
             continue;
-        walk_side(edges, roi, cx0, cy0, hint, tol, &line[side], &cs[side]);
+        walk_side(maps, hint, &line[side], &cs[side]);
         use[side] = cs[side].n >= 1;
         /* A curve needs one side's windows up to the lane's upper half. */
         supports |= cs[side].n >= 4 && cs[side].bs[cs[side].n - 1].u_q16 >= 32768;

@@ -3,8 +3,8 @@
  * lane.c (parameters, the ROI, the stages in order, the centre),
  * lane_cue.c (colour cue, automatic Canny thresholds), lane_fit.c (the
  * robust fit of the segments), lane_refine.c (the refit on the edge
- * pixels), lane_curve.c (the curve model) and lane_track.c (sides, gate,
- * the trackers). */
+ * pixels), lane_curve.c (the curve model), lane_double.c (double
+ * markings) and lane_track.c (sides, gate, the trackers). */
 #ifndef RTEDGE_LANE_INTERNAL_H
 #define RTEDGE_LANE_INTERNAL_H
 
@@ -99,6 +99,8 @@ void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int3
 /* The fit's hint for a side: its rows, and the tracked lane's slope as
  * predicted for this frame as the prior (none when not tracked). */
 lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_bottom);
+/* The tracked lane as predicted for this frame (t->valid), its rows set. */
+rte_lane rte_lane_track_predict(const lane_track *t, int32_t y_top, int32_t y_bottom);
 /* Moves the side's tracker by this frame's line (seen) or holds it, and
  * fills the lane of the result from it (out->y_bottom and y_top set). */
 void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
@@ -116,6 +118,16 @@ typedef struct band_pixels {
     int64_t first, last; /* the outermost */
 } band_pixels;
 
+/* The images the pixel searches read: the edge map, the ROI mask, the
+ * image the edges came from (grey or the colour cue) and grey, all the
+ * crop at (cx0, cy0); tol is the search band's half-width on the bottom
+ * row. */
+typedef struct lane_maps {
+    const rte_image_u8 *edges, *roi, *src, *gray;
+    int32_t cx0, cy0;
+    int64_t tol;
+} lane_maps;
+
 /* lane_refine.c: the half-width of the band searched around a lane at row
  * y (tol on the bottom row, narrowing in perspective), and the edge pixels
  * of columns xa..xb of row y of `edges` that run along slope_q16 (x per
@@ -126,15 +138,29 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
 
 /* lane_refine.c: the segment fit refined on the edge pixels along it
  * (`edges` and the ROI mask `roi` are the crop at (cx0, cy0); `tol` the
- * band's half-width on the bottom row). */
-void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                              int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line);
+ * band's half-width on the bottom row). Returns the rows that held both
+ * edges of a marking. */
+int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                                 int32_t cy0, const lane_fit_hint *hint, int64_t tol,
+                                 lane_line *line);
+
+/* lane_refine.c: whether row y of the maps holds paint between the edge
+ * pixels at columns first and last (crop coordinates), and the marking
+ * found along a tracked lane's predicted curve (its mean offset from it;
+ * returns the rows that show it). */
+bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t last);
+int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
+                              const rte_lane *pred, int64_t *offset_q8);
 
 /* lane_curve.c: the curves of both lanes, whose straight fits are line[]
  * (seen[side]: the side was fitted this frame), with one bend shared by
  * the two (see lane_curve.c); a curved side's line becomes its chord. */
-void rte_lane_curves_fit(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                         int32_t cy0, const lane_fit_hint *hint, int64_t tol, const bool seen[2],
+void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *hint, const bool seen[2],
                          lane_line line[2], lane_curve curve[2]);
+
+/* lane_double.c: a side whose marking has a twin beside it (a double
+ * centre line) moved onto the centre between the two (both sides seen). */
+void rte_lane_double_centre(const lane_maps *maps, const lane_fit_hint *hint, const bool seen[2],
+                            lane_line line[2], const lane_curve curve[2]);
 
 #endif

@@ -84,6 +84,71 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
     return px;
 }
 
+/* Paint between the outermost edges: in their middle brighter by
+ * LANE_RIDGE_MIN grey levels than both sides (two pixels outside), so a
+ * car's flank, a shadow's border or a seam, with one bright side only, is
+ * not taken for a marking. Either image may show it: the colour cue (a
+ * yellow line on light concrete) or grey (where glare brightens the road
+ * beside white paint until the cue takes it for paint too). A side
+ * saturated in grey (glare) tells nothing and is left out; one side must
+ * remain, so paint inside glare does not count. */
+#define LANE_RIDGE_MIN 12
+#define LANE_SATURATED 250
+static bool ridge_in(const uint8_t *row, int64_t first, int64_t last, bool skip_a, bool skip_b)
+{
+    const int32_t mid = row[(first + last) / 2], a = row[first - 2], b = row[last + 2];
+    return (skip_a || mid >= a + LANE_RIDGE_MIN) && (skip_b || mid >= b + LANE_RIDGE_MIN);
+}
+
+bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t last)
+{
+    if (first < 2 || last + 2 > maps->src->width - 1)
+        return false;
+    const uint8_t *grey = rte_u8_row(maps->gray, y);
+    const bool glare_a = grey[first - 2] >= LANE_SATURATED,
+               glare_b = grey[last + 2] >= LANE_SATURATED;
+    if (glare_a && glare_b)
+        return false;
+    return ridge_in(rte_u8_row(maps->src, y), first, last, glare_a, glare_b) ||
+           (maps->src->buf != maps->gray->buf && ridge_in(grey, first, last, glare_a, glare_b));
+}
+
+/* Where the marking near a tracked lane's predicted curve `pred` is: the
+ * mean offset from it of the rows (within the band around it) that show a
+ * marking, i.e. two edges with paint between them (rte_lane_is_ridge), in
+ * *offset_q8. Returns those rows. */
+int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
+                              const rte_lane *pred, int64_t *offset_q8)
+{
+    const rte_image_u8 *edges = maps->edges;
+    const int32_t cx0 = maps->cx0, cy0 = maps->cy0;
+    int64_t sum_r = 0, n = 0;
+    int32_t rows = 0;
+    for (int32_t y = hint->y_bottom; y >= hint->y_top; y--) {
+        if (y < cy0 || y > cy0 + edges->height - 1)
+            continue;
+        /* twice the refit's band: the prediction is a frame old */
+        const int64_t band = 2 * rte_lane_band_px(hint, maps->tol, y);
+        const int64_t lx = rte_lane_x_q8(pred, y), xa = ((lx + 128) >> 8) - band - cx0,
+                      xb = xa + 2 * band;
+        if (xa < 0 || xb > edges->width - 1)
+            continue;
+        const uint8_t *inside = rte_u8_row(maps->roi, y - cy0);
+        if (!inside[xa] || !inside[xb])
+            continue;
+        /* the curve's direction here, x per row downwards */
+        const int64_t slope = ((int64_t)rte_lane_x_q8(pred, y + 1) - lx) * 256;
+        const band_pixels px = rte_lane_band_row(edges, y - cy0, xa, xb, slope);
+        if (px.n < 2 || px.last == px.first || !rte_lane_is_ridge(maps, y - cy0, px.first, px.last))
+            continue;
+        sum_r += (px.sum_x + px.n * cx0) * 256 - px.n * lx;
+        n += px.n;
+        rows++;
+    }
+    *offset_q8 = n > 0 ? sum_r / n : 0;
+    return rows;
+}
+
 /* The segment fit refined on the edge pixels themselves: the edge pixels
  * within band_px of the line that run along it (band_row; `edges` and the
  * ROI mask `roi` are the crop at (cx0, cy0)) enter a weighted
@@ -95,14 +160,17 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
  * fail; with three or four, none). Short dashes and paint that the Hough
  * search left without a segment (or split differently) then count by
  * their pixels, so the lane does not depend on which segments the search
- * happened to find, and a marking's two edges put the line on its centre. */
-void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                              int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line)
+ * happened to find, and a marking's two edges put the line on its centre.
+ * Returns the rows of the last pass that held both edges of a marking. */
+int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                                 int32_t cy0, const lane_fit_hint *hint, int64_t tol,
+                                 lane_line *line)
 {
     const int32_t y0 = hint->y_top > cy0 ? hint->y_top : cy0;
     const int32_t y1 =
         hint->y_bottom < cy0 + edges->height - 1 ? hint->y_bottom : cy0 + edges->height - 1;
     const int64_t half_span = (hint->y_bottom - hint->y_top) / 2 + 1;
+    int32_t rows = 0;
     for (int pass = 0; pass < 3; pass++) {
         /* Sums over the pixels of rw, rw Y, rw r, rw Y^2 and rw Y r, with
          * rw the row weight (<= 257, /256), Y = y - y_mid (|Y| <= 4096 px)
@@ -110,6 +178,7 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
          * most 8192 rows of 129 pixels keep every sum, and the products
          * with the mean below, under 2^63. */
         int64_t sw = 0, sy = 0, sr = 0, syy = 0, syr = 0;
+        rows = 0;
         for (int32_t y = y0; y <= y1; y++) {
             const int64_t band = rte_lane_band_px(hint, tol, y);
             const int64_t lx = lane_line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0,
@@ -128,6 +197,7 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
              * it, the end of a dash) would pull the line to the other. */
             if (px.n == 0 || (px.first + cx0) * 256 >= lx || (px.last + cx0) * 256 <= lx)
                 continue;
+            rows++;
             const int64_t rw = lane_row_weight_q8(hint, y), Y = y - line->y_mid;
             const int64_t r = (px.sum_x + px.n * cx0) * 256 - px.n * lx; /* sum of the residuals */
             sw += rw * px.n;
@@ -137,7 +207,7 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
             syr += rw * Y * r;
         }
         if (sw < 256 * 8)
-            return;                          /* hardly any paint near the line: keep it */
+            return rows;                     /* hardly any paint near the line: keep it */
         const int64_t my_q8 = sy * 256 / sw; /* mean Y */
         const int64_t cyy = syy - ((my_q8 * sy) >> 8), cyr = syr - ((my_q8 * sr) >> 8);
         /* The tracked slope as a prior with the weight of a marking along a
@@ -151,12 +221,13 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
             dslope_q16 = lane_div_q16(cyr, cyy * 256);
         const int64_t slope = line->slope_q16 + dslope_q16;
         if (lane_abs64(slope) > 64 * 65536)
-            return;
+            return rows;
         const int64_t dx_mid = sr / sw - ((dslope_q16 * my_q8) >> 16);
         line->x_mid_q8 += dx_mid;
         line->slope_q16 = slope;
         /* settled: both ends moved less than a quarter of a pixel */
         if (lane_abs64(dx_mid) + ((lane_abs64(dslope_q16) * half_span) >> 8) < 64)
-            return;
+            return rows;
     }
+    return rows;
 }

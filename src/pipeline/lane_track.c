@@ -67,6 +67,18 @@ lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_
     return hint;
 }
 
+rte_lane rte_lane_track_predict(const lane_track *t, int32_t y_top, int32_t y_bottom)
+{
+    const int64_t lim = 1 << 28;
+    return (rte_lane){.x_bottom_q8 =
+                          lane_clamp32((int64_t)t->x_bottom_q8 + t->v_bottom_q8, -lim, lim),
+                      .x_top_q8 = lane_clamp32((int64_t)t->x_top_q8 + t->v_top_q8, -lim, lim),
+                      .y_bottom = y_bottom,
+                      .y_top = y_top,
+                      .bow_q8 = t->bow_q8,
+                      .y_horizon = t->y_horizon};
+}
+
 void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
                            const lane_curve *curve, int64_t support, rte_lane *out)
 {
@@ -75,7 +87,9 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
     const int64_t mb = seen ? lane_line_x_q8(line, out->y_bottom) : 0;
     const int64_t mt = seen ? lane_line_x_q8(line, out->y_top) : 0;
     const int64_t lim = 1 << 28; /* keeps far-off extrapolations in range */
-    if (seen && !t->valid) {
+    /* Seen again after being held: the prediction has drifted for
+     * t->lost frames, so the measurement is taken whole. */
+    if (seen && (!t->valid || t->lost > 0)) {
         t->valid = true;
         t->x_bottom_q8 = lane_clamp32(mb, -lim, lim);
         t->x_top_q8 = lane_clamp32(mt, -lim, lim);
@@ -92,7 +106,7 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
              * support, a quarter at least. */
             const int64_t dxl = (mt - mb) / 256, dyl = out->y_bottom - out->y_top;
             const int64_t len = (int64_t)rte_isqrt64((uint64_t)(dxl * dxl + dyl * dyl)) + 1;
-            const int64_t share = lane_clamp32(support * 256 / len, 128, 256); /* /256 */
+            const int64_t share = lane_clamp32(support * 256 / len, 192, 256); /* /256 */
             const int64_t alpha = (int64_t)p->alpha_q8 * share >> 8;
             const int64_t step = (int64_t)p->max_step_px * 256;
             const int64_t rb = lane_clamp32(mb - pb, -step, step),
