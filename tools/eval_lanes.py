@@ -14,7 +14,8 @@ prints them. A side of a frame is right when
   - the marking is hidden and the side is not reported as seen (absent,
     or `predicted`).
 A frame is right when both sides are. Prints one line per sequence
-(frames right, sides right, the worst error on a visible side) and exits 1
+(frames right, sides right, the worst error on a visible side; with
+--calibration the sides seen and right per quarter of confidence) and exits 1
 when the share of frames right is below --require (or, with --bend, when
 fewer than 90% of the sides seen curve that way: "curvature" > 0 bends
 right)."""
@@ -48,6 +49,8 @@ def main():
     ap.add_argument("--bend", choices=("left", "right"),
                     help="also require the reported curvature to bend this way on 90%% of the sides seen")
     ap.add_argument("--verbose", action="store_true")
+    ap.add_argument("--calibration", action="store_true",
+                    help="also print, per confidence bin, the sides seen and the share right")
     a = ap.parse_args()
     with open(a.truth) as f:
         rd = csv.reader(f)
@@ -61,6 +64,7 @@ def main():
     n_frames = max(k for k, _ in truth) + 1
     frames_right = sides_right = 0
     worst = 0.0
+    bins = [[0, 0] for _ in range(4)]  # per confidence quarter: sides seen, right
     for k in range(n_frames):
         ok_frame = True
         lanes = frames[k] if k < len(frames) else {}
@@ -79,6 +83,10 @@ def main():
             if a.verbose and not ok:
                 print("frame %d %s: %s" % (k, side, "hidden but seen" if not visible else
                       "missed" if not seen else "off by %.1f px" % err))
+            if seen:
+                b = bins[min(int(lane.get("confidence", 0) * 4), 3)]
+                b[0] += 1
+                b[1] += ok
             sides_right += ok
             ok_frame &= ok
         frames_right += ok_frame
@@ -93,6 +101,10 @@ def main():
     print("%s: %d/%d frames right (%.0f%%), %d/%d sides, worst error on a seen visible side "
           "%.1f px (tolerance %.1f px)" % (a.lanes, frames_right, n_frames, 100 * share,
                                            sides_right, 2 * n_frames, worst, tol))
+    if a.calibration:
+        for i, (seen, right) in enumerate(bins):
+            print("%s: confidence %.2f..%.2f: %d sides seen, %d right" %
+                  (a.lanes, i / 4, (i + 1) / 4, seen, right))
     sys.exit(0 if share >= a.require and bend_ok else 1)
 
 

@@ -159,8 +159,10 @@ typedef struct rte_lane {
     /* The highest row the marking was seen on this frame (y_bottom when
      * the lane is predicted or nothing above the bottom window was seen). */
     int32_t y_supported;
-    int32_t confidence_permille; /* supporting segment length / lane length, capped at 1000 */
-    int32_t support_px;          /* supporting segment length this frame */
+    /* share of the lane's rows with paint along it, 1000 from two fifths of
+     * them (docs/lanes.md, "Lane line and confidence") */
+    int32_t confidence_permille;
+    int32_t support_px; /* supporting segment length this frame */
 } rte_lane;
 
 typedef enum rte_lane_stage {

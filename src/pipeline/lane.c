@@ -215,17 +215,26 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
                           side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
     if (p->fit != RTE_LANE_FIT_LEAST_SQUARES)
         return support >= p->min_support_px ? support : 0;
+    const int32_t min_rows = (lane->y_bottom - lane->y_top) / 16 + 1;
     if (support > 0 && support >= p->min_support_px) {
         rte_lane_refine_on_edges(maps->edges, maps->roi, maps->cx0, maps->cy0, &hint, maps->tol,
                                  line);
-        return support;
+        /* Segments are edges; a lane needs paint along them too. */
+        const rte_lane fitted = {
+            .x_bottom_q8 = lane_clamp32(lane_line_x_q8(line, lane->y_bottom), -(1 << 28), 1 << 28),
+            .x_top_q8 = lane_clamp32(lane_line_x_q8(line, lane->y_top), -(1 << 28), 1 << 28),
+            .y_bottom = lane->y_bottom,
+            .y_top = lane->y_top};
+        int64_t offset_q8;
+        return rte_lane_find_marking(maps, &hint, &fitted, 2, &offset_q8) >= min_rows ? support : 0;
     }
     if (!t->valid)
         return 0;
     const rte_lane pred = rte_lane_track_predict(t, lane->y_top, lane->y_bottom);
     int64_t offset_q8;
-    const int32_t rows = rte_lane_find_marking(maps, &hint, &pred, &offset_q8);
-    if (rows < (lane->y_bottom - lane->y_top) / 16 + 1)
+    /* twice the refit's band: the prediction is a frame old */
+    const int32_t rows = rte_lane_find_marking(maps, &hint, &pred, 2, &offset_q8);
+    if (rows < min_rows)
         return 0;
     const int64_t span = lane->y_bottom - lane->y_top;
     *line = (lane_line){(int64_t)pred.x_bottom_q8 + offset_q8,
@@ -292,6 +301,23 @@ static void lane_centre(rte_lane_result *out, int32_t w, int32_t y_bottom, int32
     }
 }
 
+/* A lane's confidence: the share of its rows on which paint lies along it
+ * (rte_lane_find_marking in the refit's band), full from two fifths of the
+ * rows (a dashed line's share of paint). See docs/lanes.md, "Confidence". */
+#define LANE_CONFIDENT_ROWS_Q8 102 /* 0.4 */
+static void lane_confidence(const lane_maps *maps, rte_lane *lane)
+{
+    const int32_t span = lane->y_bottom - lane->y_top;
+    lane->confidence_permille = 0;
+    if (!lane->found || span <= 0)
+        return;
+    const lane_fit_hint hint = {lane->y_top, lane->y_bottom, 0, 0, 0, false};
+    int64_t offset_q8;
+    const int64_t rows = rte_lane_find_marking(maps, &hint, lane, 1, &offset_q8);
+    lane->confidence_permille =
+        lane_clamp32(rows * 1000 * 256 / ((int64_t)span * LANE_CONFIDENT_ROWS_Q8), 0, 1000);
+}
+
 /* The fit stage: the segments (ctx->segments[0..count)) sorted into sides,
  * both lanes fitted and tracked, then their centre. */
 static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const rte_image_u8 *gray,
@@ -345,6 +371,8 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
     for (int side = 0; side < 2; side++)
         rte_lane_track_update(ctx, side, seen[side], &line[side], &curve[side], support[side],
                               &out->lane[side]);
+    for (int side = 0; side < 2; side++)
+        lane_confidence(&maps, &out->lane[side]);
     lane_centre(out, w, y_bottom, y_top);
 }
 

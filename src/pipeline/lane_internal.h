@@ -146,11 +146,11 @@ int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *
 
 /* lane_refine.c: whether row y of the maps holds paint between the edge
  * pixels at columns first and last (crop coordinates), and the marking
- * found along a tracked lane's predicted curve (its mean offset from it;
- * returns the rows that show it). */
+ * found along a lane (its mean offset from it, within band_scale times the
+ * refit's band; returns the rows that show it). */
 bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t last);
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
-                              const rte_lane *pred, int64_t *offset_q8);
+                              const rte_lane *pred, int32_t band_scale, int64_t *offset_q8);
 
 /* lane_curve.c: the curves of both lanes, whose straight fits are line[]
  * (seen[side]: the side was fitted this frame), with one bend shared by

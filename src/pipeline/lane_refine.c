@@ -113,12 +113,12 @@ bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t 
            (maps->src->buf != maps->gray->buf && ridge_in(grey, first, last, glare_a, glare_b));
 }
 
-/* Where the marking near a tracked lane's predicted curve `pred` is: the
- * mean offset from it of the rows (within the band around it) that show a
+/* Where the marking near a lane `pred` is: the mean offset from it of the
+ * rows (within band_scale times the refit's band around it) that show a
  * marking, i.e. two edges with paint between them (rte_lane_is_ridge), in
  * *offset_q8. Returns those rows. */
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
-                              const rte_lane *pred, int64_t *offset_q8)
+                              const rte_lane *pred, int32_t band_scale, int64_t *offset_q8)
 {
     const rte_image_u8 *edges = maps->edges;
     const int32_t cx0 = maps->cx0, cy0 = maps->cy0;
@@ -127,8 +127,7 @@ int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
     for (int32_t y = hint->y_bottom; y >= hint->y_top; y--) {
         if (y < cy0 || y > cy0 + edges->height - 1)
             continue;
-        /* twice the refit's band: the prediction is a frame old */
-        const int64_t band = 2 * rte_lane_band_px(hint, maps->tol, y);
+        const int64_t band = band_scale * rte_lane_band_px(hint, maps->tol, y);
         const int64_t lx = rte_lane_x_q8(pred, y), xa = ((lx + 128) >> 8) - band - cx0,
                       xb = xa + 2 * band;
         if (xa < 0 || xb > edges->width - 1)

@@ -141,9 +141,5 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
     if (t->valid) {
         out->x_bottom_q8 = t->x_bottom_q8;
         out->x_top_q8 = t->x_top_q8;
-        const int64_t dx = ((int64_t)t->x_top_q8 - t->x_bottom_q8) / 256;
-        const int64_t dy = out->y_bottom - out->y_top;
-        const int64_t len = rte_isqrt64((uint64_t)(dx * dx + dy * dy));
-        out->confidence_permille = len > 0 ? lane_clamp32(support * 1000 / len, 0, 1000) : 0;
     }
 }

@@ -1095,7 +1095,7 @@ static void test_real_photos(void **state)
     const char *dir = getenv("RTE_SHARED_DATA_DIR");
     if (!dir)
         skip();
-    int passed = 0, unexpected = 0;
+    int passed = 0, unexpected = 0, confident = 0, confident_right = 0;
     for (size_t i = 0; i < sizeof photos / sizeof photos[0]; i++) {
         const photo_case *c = &photos[i];
         char path[1024], msg[RTE_IO_MESSAGE_SIZE];
@@ -1139,6 +1139,14 @@ static void test_real_photos(void **state)
                 printf("%s\n", ok ? "  known failure now passes: remove it from the list" : ")");
             passed += ok;
             unexpected += !ok && !c->known_failure;
+            /* the confidence's calibration: sides found with >= 0.5 */
+            for (int side = 0; side < 2; side++) {
+                const rte_lane *l = &r.lane[side];
+                if (l->found && l->confidence_permille >= 500) {
+                    confident++;
+                    confident_right += (side ? poly_r : poly_l) <= info.width * 0.03;
+                }
+            }
             rte_lane_destroy(ctx);
         }
         rte_image_reader_destroy(reader);
@@ -1147,7 +1155,11 @@ static void test_real_photos(void **state)
     printf("lane photos: %d of %zu right (bottom-row x within 4%% of the width, slope signs, "
            "every polyline point within 3%%) over %zu point orders of the Hough search\n",
            passed, HOUGH_SEEDS * (sizeof photos / sizeof photos[0]), HOUGH_SEEDS);
+    printf("lane photos: %d sides found with confidence >= 0.5, %d of them right (every polyline "
+           "point within 3%%)\n",
+           confident, confident_right);
     assert_int_equal(unexpected, 0);
+    assert_true(confident > 0 && confident_right * 100 >= confident * 95);
 }
 
 /* The real clip (fixtures/solidWhiteRight_clip.y4m, grey): both lanes in
