@@ -323,6 +323,24 @@ static bool bend_pays(const curve_side cs[2], const bool use[2], int64_t b, int6
     return w > 0 && 3 * sse_curve <= sse_line && sse_line > w * 147456;
 }
 
+/* The bend of the sides in use[]: b, c and the bow (the 1/d term's
+ * distance from its chord at mid-height, 1/256 px) when the windows
+ * support one and it pays; false otherwise. */
+static bool fit_bend(const curve_side cs[2], const bool use[2], const lane_fit_hint *hint,
+                     int64_t *b, int64_t *c, int64_t *bow, side_sums ss[2])
+{
+    const int32_t span = hint->y_bottom - hint->y_top;
+    if (!joint_fit(cs, use, b, c, ss))
+        return false;
+    const curve_basis bottom = basis_at(hint, hint->y_bottom);
+    const curve_basis mid = basis_at(hint, hint->y_bottom - span / 2);
+    const int64_t sag_q16 = mid.q_q16 - (bottom.q_q16 + 65536) / 2;
+    *bow = *c * sag_q16 >> 16;
+    if (lane_abs64(*bow) < CURVE_MIN_BOW_Q8 || lane_abs64(*bow) > (int64_t)span * 256)
+        return false;
+    return bend_pays(cs, use, *b, *c, ss);
+}
+
 void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const bool seen[2],
                          lane_line line[2], lane_curve curve[2])
 {
@@ -333,7 +351,8 @@ void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const
     const int32_t y_horizon = (int32_t)lane_horizon_row(hint);
     curve_side cs[2];
     side_sums ss[2];
-    bool use[2] = {false, false}, supports = false;
+    bool use[2] = {false, false}, supports[2] = {false, false};
+    int64_t weight[2] = {0, 0};
     for (int side = 0; side < 2; side++) {
         curve[side] = (lane_curve){0, hint->y_bottom, y_horizon};
         cs[side].n = 0;
@@ -342,28 +361,37 @@ void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const
         walk_side(maps, hint, &line[side], &cs[side]);
         use[side] = cs[side].n >= 1;
         /* A curve needs one side's windows up to the lane's upper half. */
-        supports |= cs[side].n >= 4 && cs[side].bs[cs[side].n - 1].u_q16 >= 32768;
+        supports[side] = cs[side].n >= 4 && cs[side].bs[cs[side].n - 1].u_q16 >= 32768;
+        for (int32_t i = 0; i < cs[side].n; i++)
+            weight[side] += cs[side].win[i].weight;
     }
-    int64_t b, c;
-    if (!supports || !joint_fit(cs, use, &b, &c, ss))
+    if (!supports[0] && !supports[1])
         return;
-    const curve_basis bottom = basis_at(hint, hint->y_bottom);
-    const curve_basis mid = basis_at(hint, hint->y_bottom - span / 2);
-    /* the 1/d term's distance from its chord at mid-height */
-    const int64_t sag_q16 = mid.q_q16 - (bottom.q_q16 + 65536) / 2;
-    const int64_t bow = c * sag_q16 >> 16;
-    if (lane_abs64(bow) < CURVE_MIN_BOW_Q8 || lane_abs64(bow) > (int64_t)span * 256)
-        return;
-    if (!bend_pays(cs, use, b, c, ss))
-        return;
+    /* Both sides' windows together; else, when the other side's windows
+     * disagree with the bend (paint of something else, a worn line), the
+     * better supported side alone, the other one staying straight. */
+    int64_t b, c, bow;
+    bool bent[2] = {seen[0], seen[1]};
+    if (!fit_bend(cs, use, hint, &b, &c, &bow, ss)) {
+        const int best = supports[1] && (!supports[0] || weight[1] > weight[0]) ? 1 : 0;
+        const bool alone[2] = {best == 0, best == 1};
+        /* alone, its windows must start in the lane's lowest quarter: a
+         * line that missed the near paint would otherwise bend to the far */
+        if (!use[0] || !use[1] || cs[best].bs[0].u_q16 > 16384 ||
+            !fit_bend(cs, alone, hint, &b, &c, &bow, ss))
+            return;
+        bent[1 - best] = false;
+        use[1 - best] = false;
+    }
     /* The shared bend carries a dashed side up to where the other is seen. */
     int32_t y_supported = hint->y_bottom;
     for (int side = 0; side < 2; side++)
         if (use[side] && cs[side].y_supported < y_supported)
             y_supported = cs[side].y_supported;
+    const curve_basis bottom = basis_at(hint, hint->y_bottom);
     const int64_t delta_top = delta_at(hint, hint->y_top);
     for (int side = 0; side < 2; side++) {
-        if (!seen[side])
+        if (!bent[side])
             continue;
         /* A_side: from its windows, else where its straight line is. */
         int64_t a;
