@@ -220,11 +220,7 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
         rte_lane_refine_on_edges(maps->edges, maps->roi, maps->cx0, maps->cy0, &hint, maps->tol,
                                  line);
         /* Segments are edges; a lane needs paint along them too. */
-        const rte_lane fitted = {
-            .x_bottom_q8 = lane_clamp32(lane_line_x_q8(line, lane->y_bottom), -(1 << 28), 1 << 28),
-            .x_top_q8 = lane_clamp32(lane_line_x_q8(line, lane->y_top), -(1 << 28), 1 << 28),
-            .y_bottom = lane->y_bottom,
-            .y_top = lane->y_top};
+        const rte_lane fitted = lane_of_line(line, 0, 0, lane->y_top, lane->y_bottom);
         int64_t offset_q8;
         return rte_lane_find_marking(maps, &hint, &fitted, 2, &offset_q8) >= min_rows ? support : 0;
     }
@@ -353,10 +349,9 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
         seen[side] = support[side] > 0;
     }
     lane_curve curve[2] = {{0, y_bottom, 0}, {0, y_bottom, 0}};
-    if (p->curves && p->fit == RTE_LANE_FIT_LEAST_SQUARES) {
-        const lane_fit_hint hint = {y_top, y_bottom, 0, 0, 0, false};
-        rte_lane_curves_fit(&maps, &hint, seen, line, curve);
-    }
+    const lane_fit_hint rows = {y_top, y_bottom, 0, 0, 0, false};
+    if (p->curves && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
+        rte_lane_curves_fit(&maps, &rows, seen, line, curve);
     /* A side found along its predicted curve keeps that bend unless the
      * curve fit gave it one. */
     for (int side = 0; side < 2; side++)
@@ -364,10 +359,8 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
             curve[side].bow_q8 = seeded_bow[side];
             curve[side].y_horizon = ctx->track[side].y_horizon;
         }
-    if (p->fit == RTE_LANE_FIT_LEAST_SQUARES) {
-        const lane_fit_hint hint = {y_top, y_bottom, 0, 0, 0, false};
-        rte_lane_double_centre(&maps, &hint, seen, line, curve);
-    }
+    if (p->fit == RTE_LANE_FIT_LEAST_SQUARES)
+        rte_lane_double_centre(&maps, &rows, seen, line, curve);
     for (int side = 0; side < 2; side++)
         rte_lane_track_update(ctx, side, seen[side], &line[side], &curve[side], support[side],
                               &out->lane[side]);

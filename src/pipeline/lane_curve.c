@@ -83,20 +83,13 @@ static bool search_window(const lane_maps *maps, const lane_fit_hint *hint, cons
             continue;
         const int64_t lx = lane_line_x_q8(line, y), ex = lx + walk_residual(hint, walk, y);
         const int64_t band = rte_lane_band_px(hint, maps->tol, y);
-        const int64_t xa = ((ex + 128) >> 8) - band - cx0, xb = xa + 2 * band;
-        if (xa < 0 || xb > edges->width - 1)
-            continue;
-        const uint8_t *inside = rte_u8_row(maps->roi, y - cy0);
-        if (!inside[xa] || !inside[xb])
-            continue;
+        const int64_t xa = ((ex + 128) >> 8) - band - cx0;
         /* the expected marking's direction here, x per row downwards */
         const int64_t slope =
             line->slope_q16 +
             ((walk_residual(hint, walk, y) - walk_residual(hint, walk, y - 1)) * 256);
-        const band_pixels px = rte_lane_band_row(edges, y - cy0, xa, xb, slope);
-        if (px.n < 2 || px.last == px.first)
-            continue; /* one edge alone would pull the window to it */
-        if (!rte_lane_is_ridge(maps, y - cy0, px.first, px.last))
+        band_pixels px;
+        if (!rte_lane_paint_row(maps, y, xa, xa + 2 * band, slope, &px))
             continue;
         sum_r += (px.sum_x + px.n * cx0) * 256 - px.n * lx;
         sum_y += px.n * y;

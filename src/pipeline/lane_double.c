@@ -21,20 +21,6 @@ typedef struct twin_count {
     int64_t share_q16; /* sum of the twin's distance / W over those rows */
 } twin_count;
 
-/* x (1/256 px) of a side's lane on row y, its line and curve as fitted. */
-static int64_t side_x_q8(const lane_line *line, const lane_curve *curve, int32_t y_top,
-                         int32_t y_bottom, int32_t y)
-{
-    const rte_lane l = {.x_bottom_q8 =
-                            lane_clamp32(lane_line_x_q8(line, y_bottom), -(1 << 28), 1 << 28),
-                        .x_top_q8 = lane_clamp32(lane_line_x_q8(line, y_top), -(1 << 28), 1 << 28),
-                        .y_bottom = y_bottom,
-                        .y_top = y_top,
-                        .bow_q8 = lane_clamp32(curve->bow_q8, -(1 << 28), 1 << 28),
-                        .y_horizon = curve->y_horizon};
-    return rte_lane_x_q8(&l, y);
-}
-
 /* Paint at distances LANE_TWIN_MIN..MAX of the width w (px) from x (1/256
  * px) on row y, towards dir (-1 left, +1 right): adds the row to *t. */
 static void look_beside(const lane_maps *maps, int32_t y, int64_t x_q8, int64_t w, int dir,
@@ -42,17 +28,10 @@ static void look_beside(const lane_maps *maps, int32_t y, int64_t x_q8, int64_t 
 {
     const int64_t near = (w * LANE_TWIN_MIN_Q16) >> 16, far = (w * LANE_TWIN_MAX_Q16) >> 16;
     const int64_t x = (x_q8 + 128) >> 8;
-    int64_t xa = dir > 0 ? x + near : x - far, xb = dir > 0 ? x + far : x - near;
-    xa -= maps->cx0;
-    xb -= maps->cx0;
-    if (far - near < 2 || xa < 0 || xb > maps->edges->width - 1)
-        return;
-    const uint8_t *inside = rte_u8_row(maps->roi, y - maps->cy0);
-    if (!inside[xa] || !inside[xb])
-        return;
-    const band_pixels px = rte_lane_band_row(maps->edges, y - maps->cy0, xa, xb, slope_q16);
-    if (px.n < 2 || px.last == px.first ||
-        !rte_lane_is_ridge(maps, y - maps->cy0, px.first, px.last))
+    const int64_t xa = dir > 0 ? x + near : x - far, xb = dir > 0 ? x + far : x - near;
+    band_pixels px;
+    if (far - near < 2 ||
+        !rte_lane_paint_row(maps, y, xa - maps->cx0, xb - maps->cx0, slope_q16, &px))
         return;
     const int64_t twin_q8 = ((px.first + px.last + 2 * (int64_t)maps->cx0) * 128) - x_q8;
     t->rows++;
@@ -69,19 +48,21 @@ void rte_lane_double_centre(const lane_maps *maps, const lane_fit_hint *hint, co
     const int32_t y1 = y_bottom < maps->cy0 + maps->edges->height - 1
                            ? y_bottom
                            : maps->cy0 + maps->edges->height - 1;
+    const rte_lane lanes[2] = {
+        lane_of_line(&line[0], curve[0].bow_q8, curve[0].y_horizon, y_top, y_bottom),
+        lane_of_line(&line[1], curve[1].bow_q8, curve[1].y_horizon, y_top, y_bottom)};
     int64_t move[2][2] = {{0, 0}, {0, 0}}; /* per side: at the bottom and the top row */
     for (int side = 0; side < 2; side++) {
         twin_count beside[2] = {{0, 0}, {0, 0}}; /* [0] to the left, [1] to the right */
         int32_t rows = 0;
         for (int32_t y = y1; y > y0; y--) {
-            const int64_t xl = side_x_q8(&line[0], &curve[0], y_top, y_bottom, y);
-            const int64_t xr = side_x_q8(&line[1], &curve[1], y_top, y_bottom, y);
+            const int64_t xl = rte_lane_x_q8(&lanes[0], y);
+            const int64_t xr = rte_lane_x_q8(&lanes[1], y);
             const int64_t w = (xr - xl) >> 8;
             if (w < 16)
                 continue;
             const int64_t x = side == RTE_LANE_LEFT ? xl : xr;
-            const int64_t slope =
-                (side_x_q8(&line[side], &curve[side], y_top, y_bottom, y + 1) - x) * 256;
+            const int64_t slope = (rte_lane_x_q8(&lanes[side], y + 1) - x) * 256;
             look_beside(maps, y, x, w, -1, slope, &beside[0]);
             look_beside(maps, y, x, w, +1, slope, &beside[1]);
             rows++;

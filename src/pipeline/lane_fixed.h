@@ -32,6 +32,20 @@ static inline int64_t lane_line_x_q8(const lane_line *l, int64_t y)
     return l->x_mid_q8 + ((l->slope_q16 * (y - l->y_mid)) >> 8);
 }
 
+/* A fitted line with a bow (lane_curve) as a lane over rows y_top..y_bottom
+ * (x clamped so far-off extrapolations stay in range), for rte_lane_x_q8. */
+static inline rte_lane lane_of_line(const lane_line *l, int64_t bow_q8, int32_t y_horizon,
+                                    int32_t y_top, int32_t y_bottom)
+{
+    const int64_t lim = 1 << 28;
+    return (rte_lane){.x_bottom_q8 = lane_clamp32(lane_line_x_q8(l, y_bottom), -lim, lim),
+                      .x_top_q8 = lane_clamp32(lane_line_x_q8(l, y_top), -lim, lim),
+                      .y_bottom = y_bottom,
+                      .y_top = y_top,
+                      .bow_q8 = lane_clamp32(bow_q8, -lim, lim),
+                      .y_horizon = y_horizon};
+}
+
 /* Rows from the ROI's top row down to y, within the lane's span. */
 static inline int64_t lane_rows_below_top(const lane_fit_hint *h, int64_t y)
 {

@@ -138,17 +138,21 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
 
 /* lane_refine.c: the segment fit refined on the edge pixels along it
  * (`edges` and the ROI mask `roi` are the crop at (cx0, cy0); `tol` the
- * band's half-width on the bottom row). Returns the rows that held both
- * edges of a marking. */
-int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                                 int32_t cy0, const lane_fit_hint *hint, int64_t tol,
-                                 lane_line *line);
+ * band's half-width on the bottom row). */
+void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                              int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line);
 
 /* lane_refine.c: whether row y of the maps holds paint between the edge
  * pixels at columns first and last (crop coordinates), and the marking
  * found along a lane (its mean offset from it, within band_scale times the
  * refit's band; returns the rows that show it). */
 bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t last);
+/* lane_refine.c: the edge pixels of columns xa..xb (crop coordinates) of
+ * frame row y that run along slope_q16, when they mark paint: the columns
+ * inside the map and both ends inside the ROI, two edges at least with
+ * paint between them (rte_lane_is_ridge). */
+bool rte_lane_paint_row(const lane_maps *maps, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16,
+                        band_pixels *px);
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
                               const rte_lane *pred, int32_t band_scale, int64_t *offset_q8);
 

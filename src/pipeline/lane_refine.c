@@ -113,6 +113,20 @@ bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t 
            (maps->src->buf != maps->gray->buf && ridge_in(grey, first, last, glare_a, glare_b));
 }
 
+bool rte_lane_paint_row(const lane_maps *maps, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16,
+                        band_pixels *px)
+{
+    if (xa < 0 || xb > maps->edges->width - 1)
+        return false;
+    const uint8_t *inside = rte_u8_row(maps->roi, y - maps->cy0);
+    if (!inside[xa] || !inside[xb])
+        return false;
+    *px = rte_lane_band_row(maps->edges, y - maps->cy0, xa, xb, slope_q16);
+    /* one edge alone would pull the row to it */
+    return px->n >= 2 && px->last != px->first &&
+           rte_lane_is_ridge(maps, y - maps->cy0, px->first, px->last);
+}
+
 /* Where the marking near a lane `pred` is: the mean offset from it of the
  * rows (within band_scale times the refit's band around it) that show a
  * marking, i.e. two edges with paint between them (rte_lane_is_ridge), in
@@ -128,17 +142,11 @@ int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
         if (y < cy0 || y > cy0 + edges->height - 1)
             continue;
         const int64_t band = band_scale * rte_lane_band_px(hint, maps->tol, y);
-        const int64_t lx = rte_lane_x_q8(pred, y), xa = ((lx + 128) >> 8) - band - cx0,
-                      xb = xa + 2 * band;
-        if (xa < 0 || xb > edges->width - 1)
-            continue;
-        const uint8_t *inside = rte_u8_row(maps->roi, y - cy0);
-        if (!inside[xa] || !inside[xb])
-            continue;
+        const int64_t lx = rte_lane_x_q8(pred, y), xa = ((lx + 128) >> 8) - band - cx0;
         /* the curve's direction here, x per row downwards */
         const int64_t slope = ((int64_t)rte_lane_x_q8(pred, y + 1) - lx) * 256;
-        const band_pixels px = rte_lane_band_row(edges, y - cy0, xa, xb, slope);
-        if (px.n < 2 || px.last == px.first || !rte_lane_is_ridge(maps, y - cy0, px.first, px.last))
+        band_pixels px;
+        if (!rte_lane_paint_row(maps, y, xa, xa + 2 * band, slope, &px))
             continue;
         sum_r += (px.sum_x + px.n * cx0) * 256 - px.n * lx;
         n += px.n;
@@ -159,17 +167,14 @@ int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
  * fail; with three or four, none). Short dashes and paint that the Hough
  * search left without a segment (or split differently) then count by
  * their pixels, so the lane does not depend on which segments the search
- * happened to find, and a marking's two edges put the line on its centre.
- * Returns the rows of the last pass that held both edges of a marking. */
-int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                                 int32_t cy0, const lane_fit_hint *hint, int64_t tol,
-                                 lane_line *line)
+ * happened to find, and a marking's two edges put the line on its centre. */
+void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
+                              int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line)
 {
     const int32_t y0 = hint->y_top > cy0 ? hint->y_top : cy0;
     const int32_t y1 =
         hint->y_bottom < cy0 + edges->height - 1 ? hint->y_bottom : cy0 + edges->height - 1;
     const int64_t half_span = (hint->y_bottom - hint->y_top) / 2 + 1;
-    int32_t rows = 0;
     for (int pass = 0; pass < 3; pass++) {
         /* Sums over the pixels of rw, rw Y, rw r, rw Y^2 and rw Y r, with
          * rw the row weight (<= 257, /256), Y = y - y_mid (|Y| <= 4096 px)
@@ -177,7 +182,6 @@ int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *
          * most 8192 rows of 129 pixels keep every sum, and the products
          * with the mean below, under 2^63. */
         int64_t sw = 0, sy = 0, sr = 0, syy = 0, syr = 0;
-        rows = 0;
         for (int32_t y = y0; y <= y1; y++) {
             const int64_t band = rte_lane_band_px(hint, tol, y);
             const int64_t lx = lane_line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0,
@@ -196,7 +200,6 @@ int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *
              * it, the end of a dash) would pull the line to the other. */
             if (px.n == 0 || (px.first + cx0) * 256 >= lx || (px.last + cx0) * 256 <= lx)
                 continue;
-            rows++;
             const int64_t rw = lane_row_weight_q8(hint, y), Y = y - line->y_mid;
             const int64_t r = (px.sum_x + px.n * cx0) * 256 - px.n * lx; /* sum of the residuals */
             sw += rw * px.n;
@@ -206,7 +209,7 @@ int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *
             syr += rw * Y * r;
         }
         if (sw < 256 * 8)
-            return rows;                     /* hardly any paint near the line: keep it */
+            return;                          /* hardly any paint near the line: keep it */
         const int64_t my_q8 = sy * 256 / sw; /* mean Y */
         const int64_t cyy = syy - ((my_q8 * sy) >> 8), cyr = syr - ((my_q8 * sr) >> 8);
         /* The tracked slope as a prior with the weight of a marking along a
@@ -220,13 +223,12 @@ int32_t rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *
             dslope_q16 = lane_div_q16(cyr, cyy * 256);
         const int64_t slope = line->slope_q16 + dslope_q16;
         if (lane_abs64(slope) > 64 * 65536)
-            return rows;
+            return;
         const int64_t dx_mid = sr / sw - ((dslope_q16 * my_q8) >> 16);
         line->x_mid_q8 += dx_mid;
         line->slope_q16 = slope;
         /* settled: both ends moved less than a quarter of a pixel */
         if (lane_abs64(dx_mid) + ((lane_abs64(dslope_q16) * half_span) >> 8) < 64)
-            return rows;
+            return;
     }
-    return rows;
 }
