@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Subscribes to rtedged's messages and prints one line per frame: lanes
-found, centre offset, objects, latency and whether the deadline was met;
+found, centre offset and heading, the bend (curvature), objects, latency
+and whether the deadline was met;
 status_t once a second.
 
 Decodes with lcm-gen's Python types (built in BUILD/src/publish/python).
@@ -19,6 +20,7 @@ and file:// logs are read with a small log reader.
 """
 import argparse
 import json
+import math
 import os
 import socket
 import struct
@@ -161,8 +163,12 @@ class Printer:
             n = int(lane.left.found) + int(lane.right.found)
             parts.append("lanes %d%s%s" % (n, " L" if lane.left.found else "",
                                           " R" if lane.right.found else ""))
-            parts.append("offset %+7.1f px" % lane.centre_offset_px if lane.centre_valid
-                         else "offset    n/a   ")
+            parts.append("offset %+7.1f px heading %+5.1f deg" %
+                         (lane.centre_offset_px, math.degrees(lane.heading_rad))
+                         if lane.centre_valid else "offset    n/a    heading   n/a    ")
+            # the bend: the larger curvature of the sides seen (1/px, > 0 right)
+            bends = [ln.curvature for ln in (lane.left, lane.right) if ln.found]
+            parts.append("curvature %+.5f" % max(bends, key=abs) if bends else "curvature    n/a  ")
         if grasp is not None:
             h = grasp.header
             parts.append("objects %2d" % grasp.nobjects)
