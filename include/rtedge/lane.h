@@ -183,9 +183,9 @@ typedef struct rte_lane_result {
      * lane centre is to the right, i.e. the camera sits left of it). */
     int32_t offset_q8;
     int32_t offset_permille; /* the same as a fraction of the lane width */
-    /* Heading of the lane centre line against the image's vertical,
-     * positive when it leans right going up: tangent in 1/65536 and
-     * milliradians. */
+    /* Heading of the lane centre line against the image's vertical at the
+     * bottom row (the centre curve's tangent there), positive when it
+     * leans right going up: tangent in 1/65536 and milliradians. */
     int32_t heading_tan_q16;
     int32_t heading_mrad;
     int32_t canny_low, canny_high; /* thresholds used this frame */

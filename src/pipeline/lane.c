@@ -49,8 +49,10 @@ rte_status rte_lane_set_params(rte_lane_context *ctx, const rte_lane_params *p)
 
 void rte_lane_reset(rte_lane_context *ctx)
 {
-    if (ctx)
+    if (ctx) {
         memset(ctx->track, 0, sizeof ctx->track);
+        ctx->width_valid = false;
+    }
 }
 
 /* A view of rows y0..y1-1, columns x0..x1-1 of img. */
@@ -133,11 +135,12 @@ static rte_image_u8 lane_stage_gray(rte_lane_context *ctx, const rte_image_u8 *g
     return src;
 }
 
-/* The blur and Canny stages: the edge map of the crop `src` inside the ROI,
- * in *edges. The blur's time is its own stage's only with automatic
- * thresholds; the fused front end counts it in the Canny stage. */
+/* The blur and Canny stages: the edge map of the crop `src` in *edges and
+ * its part inside the ROI polygon in *inside. The blur's time is its own
+ * stage's only with automatic thresholds; the fused front end counts it in
+ * the Canny stage. */
 static rte_status lane_stage_edges(rte_lane_context *ctx, const rte_image_u8 *src, int64_t *t0,
-                                   rte_lane_result *out, rte_image_u8 *edges)
+                                   rte_lane_result *out, rte_image_u8 *edges, rte_image_u8 *inside)
 {
     const rte_lane_params *p = &ctx->params;
     const int32_t cw = ctx->crop_x1 - ctx->crop_x0, ch = ctx->crop_y1 - ctx->crop_y0;
@@ -169,7 +172,8 @@ static rte_status lane_stage_edges(rte_lane_context *ctx, const rte_image_u8 *sr
     }
     out->canny_low = low;
     out->canny_high = high;
-    return rte_polygon_mask_apply(edges, &mask, edges);
+    *inside = lane_view(&ctx->edges_roi, 0, 0, cw, ch);
+    return rte_polygon_mask_apply(edges, &mask, inside);
 }
 
 /* The Hough stage: the segments of the edge map, in frame coordinates. */
@@ -217,8 +221,7 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
         return support >= p->min_support_px ? support : 0;
     const int32_t min_rows = (lane->y_bottom - lane->y_top) / 16 + 1;
     if (support > 0 && support >= p->min_support_px) {
-        rte_lane_refine_on_edges(maps->edges, maps->roi, maps->cx0, maps->cy0, &hint, maps->tol,
-                                 line);
+        rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, &hint, maps->tol, line);
         /* Segments are edges; a lane needs paint along them too. */
         const rte_lane fitted = lane_of_line(line, 0, 0, lane->y_top, lane->y_bottom);
         int64_t offset_q8;
@@ -278,21 +281,23 @@ static int32_t lane_atan_mrad(int64_t t)
 }
 
 /* The centre between the two lanes, when both are found and in order:
- * the offset of the image's centre column from it and its heading over the
- * rows y_bottom..y_top. */
+ * the offset of the image's centre column from it and its heading at the
+ * bottom row: the tangent of the centre curve there (taken over a
+ * sixteenth of the lane's rows), which on a bend is what the vehicle
+ * steers along, where the chord would lean into the bend. */
 static void lane_centre(rte_lane_result *out, int32_t w, int32_t y_bottom, int32_t y_top)
 {
     const rte_lane *l = &out->lane[RTE_LANE_LEFT], *r = &out->lane[RTE_LANE_RIGHT];
     if (l->found && r->found && r->x_bottom_q8 > l->x_bottom_q8) {
         out->centre_valid = true;
         const int64_t cb = ((int64_t)l->x_bottom_q8 + r->x_bottom_q8) / 2;
-        const int64_t ct = ((int64_t)l->x_top_q8 + r->x_top_q8) / 2;
         out->offset_q8 = (int32_t)(cb - (int64_t)(w - 1) * 128);
         out->offset_permille =
             (int32_t)((int64_t)out->offset_q8 * 1000 / (r->x_bottom_q8 - l->x_bottom_q8));
-        const int64_t dy = y_bottom - y_top;
-        out->heading_tan_q16 =
-            dy > 0 ? lane_clamp32((ct - cb) * 256 / dy, -INT32_MAX, INT32_MAX) : 0;
+        const int32_t dy = (y_bottom - y_top) / 16 + 1;
+        const int64_t ct =
+            ((int64_t)rte_lane_x_q8(l, y_bottom - dy) + rte_lane_x_q8(r, y_bottom - dy)) / 2;
+        out->heading_tan_q16 = lane_clamp32((ct - cb) * 256 / dy, -INT32_MAX, INT32_MAX);
         out->heading_mrad = lane_atan_mrad(out->heading_tan_q16);
     }
 }
@@ -331,12 +336,13 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
      * is the medians' work list. */
     int32_t *members[2] = {ctx->order, ctx->order + ctx->cfg.max_segments};
     int32_t n[2] = {0, 0};
-    rte_lane_classify(ctx, count, w, y_bottom, y_top, members, n);
-    const rte_image_u8 mask = lane_view(&ctx->mask, 0, 0, edges->width, edges->height);
     const rte_image_u8 gray_crop =
         lane_view(gray, ctx->crop_x0, ctx->crop_y0, ctx->crop_x1, ctx->crop_y1);
-    const lane_maps maps = {
-        edges, &mask, src, &gray_crop, ctx->crop_x0, ctx->crop_y0, (int64_t)p->outlier_px};
+    const lane_maps maps = {edges,        src,          &gray_crop,
+                            ctx->crop_x0, ctx->crop_y0, (int64_t)p->outlier_px};
+    const lane_fit_hint rows = {y_top, y_bottom, 0, 0, 0, false};
+    rte_lane_paint_weights(ctx, &maps, &rows, count);
+    rte_lane_classify(ctx, count, w, y_bottom, y_top, members, n);
     lane_line line[2];
     int64_t support[2], seeded_bow[2];
     bool seen[2];
@@ -348,8 +354,7 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
                                           &line[side], &seeded_bow[side]);
         seen[side] = support[side] > 0;
     }
-    lane_curve curve[2] = {{0, y_bottom, 0}, {0, y_bottom, 0}};
-    const lane_fit_hint rows = {y_top, y_bottom, 0, 0, 0, false};
+    lane_curve curve[2] = {{0, y_bottom, 0, y_bottom}, {0, y_bottom, 0, y_bottom}};
     if (p->curves && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
         rte_lane_curves_fit(&maps, &rows, seen, line, curve);
     /* A side found along its predicted curve keeps that bend unless the
@@ -361,6 +366,7 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
         }
     if (p->fit == RTE_LANE_FIT_LEAST_SQUARES)
         rte_lane_double_centre(&maps, &rows, seen, line, curve);
+    rte_lane_width_hold(ctx, seen, line, curve, y_top, y_bottom);
     for (int side = 0; side < 2; side++)
         rte_lane_track_update(ctx, side, seen[side], &line[side], &curve[side], support[side],
                               &out->lane[side]);
@@ -384,14 +390,14 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     const rte_image_u8 src = lane_stage_gray(ctx, gray, color, color_stride, rgb);
     lane_stage_end(out, RTE_LANE_STAGE_GRAY, &t0);
 
-    rte_image_u8 edges;
-    if ((st = lane_stage_edges(ctx, &src, &t0, out, &edges)) != RTE_OK)
+    rte_image_u8 edges, edges_inside;
+    if ((st = lane_stage_edges(ctx, &src, &t0, out, &edges, &edges_inside)) != RTE_OK)
         return st;
     lane_stage_end(out, RTE_LANE_STAGE_CANNY, &t0);
 
     int32_t count = 0;
     bool truncated = false;
-    if ((st = lane_stage_hough(ctx, &edges, &count, &truncated)) != RTE_OK)
+    if ((st = lane_stage_hough(ctx, &edges_inside, &count, &truncated)) != RTE_OK)
         return st;
     lane_stage_end(out, RTE_LANE_STAGE_HOUGH, &t0);
 

@@ -97,8 +97,8 @@ rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
     s = rte_polygon_mask_scratch_size(RTE_LANE_MAX_ROI_VERTICES);
     scratch = s > scratch ? s : scratch;
     const size_t lists = (size_t)n * (sizeof(rte_hough_segment) + sizeof(rte_lane_segment) +
-                                      3 * sizeof(int32_t) + 2 * sizeof(int64_t));
-    size_t total = 5 * plane + lists + 64 * 8 + scratch;
+                                      4 * sizeof(int32_t) + 2 * sizeof(int64_t));
+    size_t total = 6 * plane + lists + 64 * 8 + scratch;
     uint8_t *mem = aligned_alloc(64, (total + 63) & ~(size_t)63);
     if (!mem) {
         rte_lane_destroy(ctx);
@@ -110,6 +110,7 @@ rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
     lane_image(&ctx->cue, &cur, w, h);
     lane_image(&ctx->blurred, &cur, w, h);
     lane_image(&ctx->edges, &cur, w, h);
+    lane_image(&ctx->edges_roi, &cur, w, h);
     lane_image(&ctx->mask, &cur, w, h);
     ctx->raw = (rte_hough_segment *)cur;
     cur += ((size_t)n * sizeof(rte_hough_segment) + 63) & ~(size_t)63;
@@ -117,6 +118,8 @@ rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
     cur += ((size_t)n * sizeof(rte_lane_segment) + 63) & ~(size_t)63;
     ctx->order = (int32_t *)cur;
     cur += ((size_t)n * 3 * sizeof(int32_t) + 63) & ~(size_t)63;
+    ctx->weight = (int32_t *)cur;
+    cur += ((size_t)n * sizeof(int32_t) + 63) & ~(size_t)63;
     ctx->keys = (int64_t *)cur;
     cur += ((size_t)n * 2 * sizeof(int64_t) + 63) & ~(size_t)63;
     rte_arena_init(&ctx->arena, cur, total - (size_t)(cur - mem));

@@ -71,9 +71,12 @@ static int64_t walk_residual(const lane_fit_hint *h, const curve_walk *walk, int
 }
 
 /* The rows y_hi down to y_lo searched around the line plus the walk's
- * expected residual; false when too few rows hold paint. */
+ * expected residual; false when too few rows hold paint. wide: each row's
+ * marking nearest the expected column within twice the band instead
+ * (rte_lane_paint_near), for a bend sharper than the walk foresaw. */
 static bool search_window(const lane_maps *maps, const lane_fit_hint *hint, const lane_line *line,
-                          const curve_walk *walk, int32_t y_hi, int32_t y_lo, curve_window *out)
+                          const curve_walk *walk, int32_t y_hi, int32_t y_lo, bool wide,
+                          curve_window *out)
 {
     const rte_image_u8 *edges = maps->edges;
     const int32_t cx0 = maps->cx0, cy0 = maps->cy0;
@@ -89,7 +92,9 @@ static bool search_window(const lane_maps *maps, const lane_fit_hint *hint, cons
             line->slope_q16 +
             ((walk_residual(hint, walk, y) - walk_residual(hint, walk, y - 1)) * 256);
         band_pixels px;
-        if (!rte_lane_paint_row(maps, y, xa, xa + 2 * band, slope, &px))
+        const bool ok = wide ? rte_lane_paint_near(maps, y, (ex + 128) >> 8, 2 * band, slope, &px)
+                             : rte_lane_paint_row(maps, y, xa, xa + 2 * band, slope, &px);
+        if (!ok)
             continue;
         sum_r += (px.sum_x + px.n * cx0) * 256 - px.n * lx;
         sum_y += px.n * y;
@@ -175,9 +180,12 @@ static void walk_side(const lane_maps *maps, const lane_fit_hint *hint, const la
         if (y_hi < hint->y_top)
             break;
         curve_window w;
-        if (!search_window(maps, hint, line, &walk, y_hi, y_lo, &w))
+        if (!search_window(maps, hint, line, &walk, y_hi, y_lo, false, &w) &&
+            (cs->n == 0 || !search_window(maps, hint, line, &walk, y_hi, y_lo, true, &w)))
             continue;
-        if (walk.y > w.y)
+        /* a change of residual over a few rows only (a first window at
+         * the bottom row) would extrapolate noise far up */
+        if (walk.y - w.y >= rows / 2)
             walk.d_q16 =
                 lane_clamp32((w.r_q8 - walk.o_q8) * 256 / (walk.y - w.y), -2 * 65536, 2 * 65536);
         walk.o_q8 = w.r_q8;
@@ -292,6 +300,24 @@ static rte_i128 straight_sse(const curve_side *cs)
     return sse;
 }
 
+/* The weighted squared residuals (1/65536 px^2) of a side's windows to
+ * the bend b, c with the side's own lateral term A (from its sums ss),
+ * and their weight in *w. */
+static rte_i128 side_curve_sse(const curve_side *cs, const side_sums *ss, int64_t b, int64_t c,
+                               rte_i128 *w)
+{
+    const rte_i128 a = side_offset(ss, b, c);
+    rte_i128 sse = 0;
+    for (int32_t i = 0; i < cs->n; i++) {
+        const curve_window *wi = &cs->win[i];
+        const rte_i128 e =
+            wi->x_q8 - (a * cs->bs[i].delta_q16 >> 16) - b - (c * cs->bs[i].q_q16 >> 16);
+        sse += wi->weight * e * e;
+        *w += wi->weight;
+    }
+    return sse;
+}
+
 /* Whether the bend explains the windows: on the sides with three windows
  * or more, the curves' squared residuals at most a third of the straight
  * lines', and the straight lines off by more than 1.5 px (RMS). Paint
@@ -303,17 +329,90 @@ static bool bend_pays(const curve_side cs[2], const bool use[2], int64_t b, int6
     for (int side = 0; side < 2; side++) {
         if (!use[side] || cs[side].n < 3 || ss[side].sdd <= 0)
             continue;
-        const rte_i128 a = side_offset(&ss[side], b, c);
         sse_line += straight_sse(&cs[side]);
-        for (int32_t i = 0; i < cs[side].n; i++) {
-            const curve_window *wi = &cs[side].win[i];
-            const rte_i128 e = wi->x_q8 - (a * cs[side].bs[i].delta_q16 >> 16) - b -
-                               (c * cs[side].bs[i].q_q16 >> 16);
-            sse_curve += wi->weight * e * e;
-            w += wi->weight;
-        }
+        sse_curve += side_curve_sse(&cs[side], &ss[side], b, c, &w);
     }
     return w > 0 && 3 * sse_curve <= sse_line && sse_line > w * 147456;
+}
+
+/* Whether a side left out of the bend (its windows disagreed with the
+ * joint fit) still follows it: its windows, with their own lateral term
+ * A, as close to the road's bend as to their own straight line (1.5 px
+ * RMS of slack). Roads are parallel: a side whose paint stops short (a
+ * glare patch, a dash) then takes the bend beyond it instead of running
+ * straight on. *ss gets the side's sums. */
+static bool follows_bend(const curve_side *cs, int64_t b, int64_t c, side_sums *ss)
+{
+    rte_i128 sdd = 0, sd1 = 0, sdg = 0, sdx = 0, w = 0;
+    for (int32_t i = 0; i < cs->n; i++) {
+        const rte_i128 wi = cs->win[i].weight, dl = cs->bs[i].delta_q16, g = cs->bs[i].q_q16;
+        sdd += wi * (dl * dl >> 16);
+        sd1 += wi * dl;
+        sdg += wi * (dl * g >> 16);
+        sdx += wi * (dl * cs->win[i].x_q8 >> 16);
+    }
+    *ss = (side_sums){sdd, sd1, sdg, sdx};
+    if (cs->n < 3 || sdd <= 0)
+        return false;
+    return side_curve_sse(cs, ss, b, c, &w) <= straight_sse(cs) + w * 147456;
+}
+
+/* The windows' bases for the horizon of *h. */
+static void set_basis(curve_side *cs, const lane_fit_hint *h)
+{
+    for (int32_t i = 0; i < cs->n; i++)
+        cs->bs[i] = basis_at(h, cs->win[i].y);
+}
+
+/* The horizon row under which the bend fits the windows of the sides in
+ * use best (least squared residuals), into *h, and the windows' bases for
+ * it; for a side bent alone. On a flat road the horizon is where the two
+ * lines meet, but a road that climbs or drops, or a camera that pitches,
+ * moves it: on a winding mountain road the markings' own horizon lay
+ * anywhere from a lane's length above the ROI's top row to just above it.
+ * Candidates from a lane's length above the top row to two rows above it,
+ * closer together near it, where the bend's shape changes fastest. (For
+ * the joint fit the horizon stays where the lines meet: chosen freely
+ * there, it fits an S-bend's reversal, which the model cannot follow, and
+ * the tracked shape then leads a dashed side astray.) */
+static void choose_horizon(curve_side cs[2], const bool use[2], lane_fit_hint *h)
+{
+    static const int32_t steps_64[] = {0, 1, 2, 4, 8, 16, 32, 64}; /* of the span, /64 */
+    const int32_t span = h->y_bottom - h->y_top;
+    const int32_t n_steps = (int32_t)(sizeof steps_64 / sizeof steps_64[0]);
+    rte_i128 reference = -1, best = -1;
+    lane_fit_hint chosen = *h;
+    /* k = -1: the hint's own horizon (where the lines meet, else the
+     * default), the reference the others must halve: a horizon chosen for
+     * a few pixels' gain turns a dashed side's bend */
+    for (int32_t k = -1; k < n_steps; k++) {
+        lane_fit_hint t = *h;
+        if (k >= 0) {
+            t.y_horizon = h->y_top - 2 - span * steps_64[k] / 64;
+            t.has_horizon = true;
+        }
+        for (int side = 0; side < 2; side++)
+            if (use[side])
+                set_basis(&cs[side], &t);
+        int64_t b, c;
+        side_sums ss[2];
+        if (!joint_fit(cs, use, &b, &c, ss))
+            continue;
+        rte_i128 sse = 0, w = 0;
+        for (int side = 0; side < 2; side++)
+            if (use[side] && ss[side].sdd > 0)
+                sse += side_curve_sse(&cs[side], &ss[side], b, c, &w);
+        if (k < 0)
+            reference = sse;
+        else if ((reference < 0 || 2 * sse < reference) && (best < 0 || sse < best)) {
+            best = sse;
+            chosen = t;
+        }
+    }
+    *h = chosen;
+    for (int side = 0; side < 2; side++)
+        if (use[side])
+            set_basis(&cs[side], h);
 }
 
 /* The bend of the sides in use[]: b, c and the bow (the 1/d term's
@@ -334,6 +433,76 @@ static bool fit_bend(const curve_side cs[2], const bool use[2], const lane_fit_h
     return bend_pays(cs, use, *b, *c, ss);
 }
 
+/* One side's bend: b, c and the bow (as fit_bend gives them), the highest
+ * row it is reported to and the hint with its horizon. */
+typedef struct side_bend {
+    bool bent;
+    int64_t b, c, bow;
+    int32_t y_supported;
+    lane_fit_hint hint;
+} side_bend;
+
+/* When the joint fit fails (the markings disagree: paint of something
+ * else, a worn line, a road that is not flat, so that the two do not
+ * share one horizon): each side alone, with its own horizon, and a side
+ * that does not bend alone takes the other's bend when its windows agree
+ * with it (follows_bend). */
+static void bend_each_side(curve_side cs[2], const bool supports[2], const int64_t weight[2],
+                           side_sums ss[2], side_bend sb[2])
+{
+    side_sums alone_ss[2];
+    for (int side = 0; side < 2; side++) {
+        const bool alone[2] = {side == 0, side == 1};
+        side_bend *t = &sb[side];
+        choose_horizon(cs, alone, &t->hint);
+        /* alone, its windows must start in the lane's lowest quarter: a
+         * line that missed the near paint would otherwise bend to the far */
+        t->bent = supports[side] && cs[side].bs[0].u_q16 <= 16384 &&
+                  fit_bend(cs, alone, &t->hint, &t->b, &t->c, &t->bow, alone_ss);
+        ss[side] = alone_ss[side];
+        t->y_supported = cs[side].y_supported;
+    }
+    /* A road bends one way: bends of opposite signs mean one side lies on
+     * something else, and the better supported one is kept. */
+    if (sb[0].bent && sb[1].bent && (sb[0].c < 0) != (sb[1].c < 0))
+        sb[weight[0] >= weight[1] ? 1 : 0].bent = false;
+    for (int side = 0; side < 2; side++) {
+        const side_bend *o = &sb[1 - side];
+        if (sb[side].bent || !o->bent)
+            continue;
+        set_basis(&cs[side], &o->hint);
+        if (follows_bend(&cs[side], o->b, o->c, &ss[side]))
+            sb[side] = *o;
+    }
+}
+
+/* A bent side's line becomes its chord and *curve gets its bow. ss: the
+ * side's window sums under its bend's horizon. */
+static void apply_bend(const side_bend *sb, const side_sums *ss, lane_line *line, lane_curve *curve)
+{
+    const lane_fit_hint *hs = &sb->hint;
+    const int32_t span = hs->y_bottom - hs->y_top;
+    const curve_basis bottom = basis_at(hs, hs->y_bottom);
+    const int64_t delta_top = delta_at(hs, hs->y_top);
+    /* A: from its windows, else where its straight line is. */
+    int64_t a;
+    if (ss->sdd > 0) {
+        a = side_offset(ss, sb->b, sb->c);
+    } else {
+        const curve_basis at = basis_at(hs, line->y_mid);
+        a = (lane_line_x_q8(line, line->y_mid) - sb->b - (sb->c * at.q_q16 >> 16)) * 65536 /
+            at.delta_q16;
+    }
+    const int64_t xb = a + sb->b + (sb->c * bottom.q_q16 >> 16);
+    const int64_t xt = (a * delta_top >> 16) + sb->b + sb->c;
+    line->y_mid = hs->y_bottom;
+    line->x_mid_q8 = xb;
+    line->slope_q16 = (xt - xb) * 256 / -span;
+    curve->bow_q8 = sb->bow;
+    curve->y_supported = sb->y_supported;
+    curve->y_horizon = (int32_t)lane_horizon_row(hs);
+}
+
 void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const bool seen[2],
                          lane_line line[2], lane_curve curve[2])
 {
@@ -347,11 +516,13 @@ void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const
     bool use[2] = {false, false}, supports[2] = {false, false};
     int64_t weight[2] = {0, 0};
     for (int side = 0; side < 2; side++) {
-        curve[side] = (lane_curve){0, hint->y_bottom, y_horizon};
+        curve[side] = (lane_curve){0, hint->y_bottom, y_horizon, hint->y_bottom};
         cs[side].n = 0;
         if (!seen[side] || span < 2 * CURVE_WINDOWS)
             continue;
         walk_side(maps, hint, &line[side], &cs[side]);
+        if (cs[side].n > 0)
+            curve[side].y_lowest = (int32_t)cs[side].win[0].y;
         use[side] = cs[side].n >= 1;
         /* A curve needs one side's windows up to the lane's upper half. */
         supports[side] = cs[side].n >= 4 && cs[side].bs[cs[side].n - 1].u_q16 >= 32768;
@@ -360,47 +531,25 @@ void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const
     }
     if (!supports[0] && !supports[1])
         return;
-    /* Both sides' windows together; else, when the other side's windows
-     * disagree with the bend (paint of something else, a worn line), the
-     * better supported side alone, the other one staying straight. */
-    int64_t b, c, bow;
-    bool bent[2] = {seen[0], seen[1]};
-    if (!fit_bend(cs, use, hint, &b, &c, &bow, ss)) {
-        const int best = supports[1] && (!supports[0] || weight[1] > weight[0]) ? 1 : 0;
-        const bool alone[2] = {best == 0, best == 1};
-        /* alone, its windows must start in the lane's lowest quarter: a
-         * line that missed the near paint would otherwise bend to the far */
-        if (!use[0] || !use[1] || cs[best].bs[0].u_q16 > 16384 ||
-            !fit_bend(cs, alone, hint, &b, &c, &bow, ss))
-            return;
-        bent[1 - best] = false;
-        use[1 - best] = false;
-    }
-    /* The shared bend carries a dashed side up to where the other is seen. */
-    int32_t y_supported = hint->y_bottom;
-    for (int side = 0; side < 2; side++)
-        if (use[side] && cs[side].y_supported < y_supported)
-            y_supported = cs[side].y_supported;
-    const curve_basis bottom = basis_at(hint, hint->y_bottom);
-    const int64_t delta_top = delta_at(hint, hint->y_top);
-    for (int side = 0; side < 2; side++) {
-        if (!bent[side])
-            continue;
-        /* A_side: from its windows, else where its straight line is. */
-        int64_t a;
-        if (ss[side].sdd > 0) {
-            a = side_offset(&ss[side], b, c);
-        } else {
-            const curve_basis at = basis_at(hint, line[side].y_mid);
-            a = (lane_line_x_q8(&line[side], line[side].y_mid) - b - (c * at.q_q16 >> 16)) * 65536 /
-                at.delta_q16;
+    /* Both sides' windows together, one bend for the road, else each side
+     * alone (bend_each_side). */
+    side_bend sb[2];
+    sb[0] = sb[1] = (side_bend){false, 0, 0, 0, hint->y_bottom, h};
+    side_bend joint = sb[0];
+    if (fit_bend(cs, use, hint, &joint.b, &joint.c, &joint.bow, ss)) {
+        /* The shared bend carries a dashed side up to where the other is
+         * seen. */
+        for (int side = 0; side < 2; side++)
+            if (use[side] && cs[side].y_supported < joint.y_supported)
+                joint.y_supported = cs[side].y_supported;
+        for (int side = 0; side < 2; side++) {
+            sb[side] = joint;
+            sb[side].bent = seen[side];
         }
-        const int64_t xb = a + b + (c * bottom.q_q16 >> 16);
-        const int64_t xt = (a * delta_top >> 16) + b + c;
-        line[side].y_mid = hint->y_bottom;
-        line[side].x_mid_q8 = xb;
-        line[side].slope_q16 = (xt - xb) * 256 / -span;
-        curve[side].bow_q8 = bow;
-        curve[side].y_supported = y_supported;
+    } else if (use[0] && use[1]) {
+        bend_each_side(cs, supports, weight, ss, sb);
     }
+    for (int side = 0; side < 2; side++)
+        if (sb[side].bent)
+            apply_bend(&sb[side], &ss[side], &line[side], &curve[side]);
 }

@@ -10,6 +10,50 @@ static int32_t seg_length(const rte_lane_segment *s)
     return (int32_t)rte_isqrt64((uint64_t)(dx * dx + dy * dy));
 }
 
+/* Whether the edge at column x of row y (crop coordinates) bounds paint:
+ * the brighter side (two pixels out) brighter than the other by
+ * LANE_PAINT_STEP and darker again within `width` pixels, i.e. a stripe of
+ * a marking's width, not the border of a wide bright area (a road's edge,
+ * a shadow's end, a kerb). */
+#define LANE_PAINT_STEP 12
+static bool borders_paint(const rte_image_u8 *img, int32_t x, int32_t y, int32_t width)
+{
+    if (y < 0 || y >= img->height || x - width - 2 < 0 || x + width + 2 > img->width - 1)
+        return false;
+    const uint8_t *row = rte_u8_row(img, y);
+    const int32_t dir = row[x + 2] > row[x - 2] ? 1 : -1, paint = row[x + 2 * dir];
+    if (paint < row[x - 2 * dir] + LANE_PAINT_STEP)
+        return false;
+    for (int32_t k = 3; k <= width; k++)
+        if (row[x + k * dir] + LANE_PAINT_STEP <= paint)
+            return true;
+    return false;
+}
+
+/* Points of a segment tested for paint (rte_lane_paint_weights). */
+#define LANE_PAINT_SAMPLES 8
+
+void rte_lane_paint_weights(rte_lane_context *ctx, const lane_maps *maps, const lane_fit_hint *rows,
+                            int32_t count)
+{
+    for (int32_t i = 0; i < count; i++) {
+        const rte_lane_segment *s = &ctx->segments[i];
+        int32_t paint = 0;
+        for (int32_t k = 0; k < LANE_PAINT_SAMPLES; k++) {
+            /* points at (k + 1/2) / SAMPLES along the segment */
+            const int32_t x = s->x0 + (int32_t)(((int64_t)(s->x1 - s->x0) * (2 * k + 1)) /
+                                                (2 * LANE_PAINT_SAMPLES));
+            const int32_t y = s->y0 + (int32_t)(((int64_t)(s->y1 - s->y0) * (2 * k + 1)) /
+                                                (2 * LANE_PAINT_SAMPLES));
+            const int32_t width = (int32_t)(2 * rte_lane_band_px(rows, maps->tol, y));
+            paint += borders_paint(maps->src, x - maps->cx0, y - maps->cy0, width);
+        }
+        const int64_t len = seg_length(s);
+        ctx->weight[i] =
+            (int32_t)((len * (paint + 1) + LANE_PAINT_SAMPLES) / (LANE_PAINT_SAMPLES + 1));
+    }
+}
+
 /* Sorts idx[0..n) by key[idx] (shell sort: no recursion, no allocation). */
 static void lane_sort(int32_t *idx, const int64_t *key, int32_t n)
 {
@@ -28,19 +72,20 @@ static void lane_sort(int32_t *idx, const int64_t *key, int32_t n)
     }
 }
 
-/* Weighted median of key over the segments sides[0..n) (weights: lengths). */
+/* Weighted median of key over the segments members[0..n) (weights: the
+ * segments' fit weights). */
 static int64_t weighted_median(int32_t *work, const int32_t *members, int32_t n, const int64_t *key,
-                               const rte_lane_segment *segs)
+                               const int32_t *weight)
 {
     int64_t total = 0;
     for (int32_t i = 0; i < n; i++) {
         work[i] = members[i];
-        total += seg_length(&segs[members[i]]);
+        total += weight[members[i]];
     }
     lane_sort(work, key, n);
     int64_t acc = 0;
     for (int32_t i = 0; i < n; i++) {
-        acc += seg_length(&segs[work[i]]);
+        acc += weight[work[i]];
         if (2 * acc >= total)
             return key[work[i]];
     }
@@ -59,14 +104,14 @@ static void fit_medians(rte_lane_context *ctx, const int32_t *members, int32_t n
         const rte_lane_segment *s = &segs[members[i]];
         key[members[i]] = (int64_t)(s->x1 - s->x0) * 65536 / (s->y1 - s->y0);
     }
-    line->slope_q16 = weighted_median(work, members, n, key, segs);
+    line->slope_q16 = weighted_median(work, members, n, key, ctx->weight);
     for (int32_t i = 0; i < n; i++) {
         const rte_lane_segment *s = &segs[members[i]];
         /* midpoint x (Q8) moved along the slope to y_mid */
         const int64_t xm = (int64_t)(s->x0 + s->x1) * 128, ym2 = (int64_t)(s->y0 + s->y1);
         key[members[i]] = xm - ((line->slope_q16 * (ym2 - 2 * line->y_mid)) >> 9);
     }
-    line->x_mid_q8 = weighted_median(work, members, n, key, segs);
+    line->x_mid_q8 = weighted_median(work, members, n, key, ctx->weight);
 }
 
 /* Largest horizontal distance of a segment's end points from the line, 1/256 px. */
@@ -85,15 +130,17 @@ static int64_t seg_residual_q8(const lane_line *l, const rte_lane_segment *s)
 
 /* Weighted least squares of x on y over the inlier segments, each taken as
  * a uniform line of points (its second moment includes the segment's own
- * extent: d^2/12), weighted by length and lane_row_weight_q8. Returns false
+ * extent: d^2/12), weighted by their fit weights (length and paint) and
+ * lane_row_weight_q8. Returns false
  * when the rows do not spread enough to give a slope and there is no prior. */
-static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *members, int32_t n,
-                              const lane_fit_hint *hint, lane_line *line)
+static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *weight,
+                              const int32_t *members, int32_t n, const lane_fit_hint *hint,
+                              lane_line *line)
 {
     int64_t w = 0, sx = 0, sy = 0;
     for (int32_t i = 0; i < n; i++) {
         const rte_lane_segment *s = &segs[members[i]];
-        const int64_t len = seg_length(s) * lane_row_weight_q8(hint, (s->y0 + s->y1) / 2);
+        const int64_t len = weight[members[i]] * lane_row_weight_q8(hint, (s->y0 + s->y1) / 2);
         w += len;
         sx += len * (s->x0 + s->x1); /* Q1 */
         sy += len * (s->y0 + s->y1);
@@ -104,7 +151,7 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *membe
     int64_t cyy = 0, cxy = 0;
     for (int32_t i = 0; i < n; i++) {
         const rte_lane_segment *s = &segs[members[i]];
-        const int64_t len = seg_length(s) * lane_row_weight_q8(hint, (s->y0 + s->y1) / 2);
+        const int64_t len = weight[members[i]] * lane_row_weight_q8(hint, (s->y0 + s->y1) / 2);
         const int64_t X = s->x0 + s->x1 - mx, Y = s->y0 + s->y1 - my;
         const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0;
         /* Q2 moments times 3: 3*X*Y + (2dx)(2dy)*3/12 = 3XY + dx*dy */
@@ -159,7 +206,7 @@ int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n,
         if (ctx->params.fit == RTE_LANE_FIT_THEIL_SEN || n == 0)
             break;
         lane_line ls = *line;
-        if (fit_least_squares(segs, members, n, hint, &ls))
+        if (fit_least_squares(segs, ctx->weight, members, n, hint, &ls))
             *line = ls;
     }
     int64_t support = 0;

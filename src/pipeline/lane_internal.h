@@ -34,12 +34,14 @@ typedef struct lane_line {
 
 /* What lane_curve.c found beyond the line: the bow (the lane's middle
  * beside its chord, 1/256 px, positive to the right; 0 when straight),
- * the highest row the windows saw paint on and the horizon row the bow's
- * shape is drawn from. */
+ * the highest row the windows saw paint on, the horizon row the bow's
+ * shape is drawn from and the lowest row the windows saw paint on (the
+ * bottom row when there were none). */
 typedef struct lane_curve {
     int64_t bow_q8;
     int32_t y_supported;
     int32_t y_horizon;
+    int32_t y_lowest;
 } lane_curve;
 
 /* What the least-squares fit knows besides the segments: the rows the lane
@@ -70,15 +72,21 @@ struct rte_lane_context {
     rte_image_u8 gray; /* grey when the frame is not grey itself */
     rte_image_u8 cue;  /* grey with the colour cue */
     rte_image_u8 blurred;
-    rte_image_u8 edges;
-    rte_image_u8 mask; /* ROI polygon, crop coordinates */
+    rte_image_u8 edges;     /* Canny over the ROI's bounding box: the lanes are followed here */
+    rte_image_u8 edges_roi; /* the same inside the ROI polygon: what the Hough search sees */
+    rte_image_u8 mask;      /* ROI polygon, crop coordinates */
     /* Segments */
     rte_hough_segment *raw;
     rte_lane_segment *segments;
-    int32_t *order; /* per-side index lists and weighted-median work */
+    int32_t *order;  /* per-side index lists and weighted-median work */
+    int32_t *weight; /* per segment: the fits' weight (rte_lane_paint_weights) */
     int64_t *keys;
     rte_arena arena;
     lane_track track[2];
+    /* The lane's width on the bottom row (1/256 px) while both sides show
+     * paint near it (rte_lane_width_hold). */
+    bool width_valid;
+    int32_t width_q8;
     void *memory;
 };
 
@@ -106,6 +114,12 @@ rte_lane rte_lane_track_predict(const lane_track *t, int32_t y_top, int32_t y_bo
 void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
                            const lane_curve *curve, int64_t support, rte_lane *out);
 
+/* lane_track.c: the lane's width on the bottom row, tracked while both
+ * sides show paint in the lane's lowest quarter; a side seen only farther
+ * up (a dashed line between two dashes) then has its bottom end put that
+ * width from the other side's, its top end kept. */
+void rte_lane_width_hold(rte_lane_context *ctx, const bool seen[2], lane_line line[2],
+                         const lane_curve curve[2], int32_t y_top, int32_t y_bottom);
 /* lane_fit.c: the robust fit of one side over the segments members[0..n)
  * (reordered; the inliers are marked `use`). Returns the supporting
  * length. */
@@ -118,15 +132,24 @@ typedef struct band_pixels {
     int64_t first, last; /* the outermost */
 } band_pixels;
 
-/* The images the pixel searches read: the edge map, the ROI mask, the
- * image the edges came from (grey or the colour cue) and grey, all the
- * crop at (cx0, cy0); tol is the search band's half-width on the bottom
- * row. */
+/* The images the pixel searches read: the edge map, the image the edges
+ * came from (grey or the colour cue) and grey, all the crop of the ROI's
+ * bounding box at (cx0, cy0); tol is the search band's half-width on the
+ * bottom row. The edge map is not masked by the ROI polygon: the polygon
+ * is where segments are searched, and a lane found from them is followed
+ * anywhere in the crop (on a bend the markings leave the trapezoid). */
 typedef struct lane_maps {
-    const rte_image_u8 *edges, *roi, *src, *gray;
+    const rte_image_u8 *edges, *src, *gray;
     int32_t cx0, cy0;
     int64_t tol;
 } lane_maps;
+
+/* lane_fit.c: each segment's weight in the fits (ctx->weight[0..count)):
+ * its length, scaled by how much of it borders paint (a bright stripe of
+ * a marking's width, twice the search band at its row, beside it) from a
+ * ninth (none) to one (all). */
+void rte_lane_paint_weights(rte_lane_context *ctx, const lane_maps *maps, const lane_fit_hint *rows,
+                            int32_t count);
 
 /* lane_refine.c: the half-width of the band searched around a lane at row
  * y (tol on the bottom row, narrowing in perspective), and the edge pixels
@@ -137,10 +160,10 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
                               int64_t slope_q16);
 
 /* lane_refine.c: the segment fit refined on the edge pixels along it
- * (`edges` and the ROI mask `roi` are the crop at (cx0, cy0); `tol` the
- * band's half-width on the bottom row). */
-void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                              int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line);
+ * (`edges` is the crop at (cx0, cy0); `tol` the band's half-width on the
+ * bottom row). */
+void rte_lane_refine_on_edges(const rte_image_u8 *edges, int32_t cx0, int32_t cy0,
+                              const lane_fit_hint *hint, int64_t tol, lane_line *line);
 
 /* lane_refine.c: whether row y of the maps holds paint between the edge
  * pixels at columns first and last (crop coordinates), and the marking
@@ -149,10 +172,14 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
 bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t last);
 /* lane_refine.c: the edge pixels of columns xa..xb (crop coordinates) of
  * frame row y that run along slope_q16, when they mark paint: the columns
- * inside the map and both ends inside the ROI, two edges at least with
- * paint between them (rte_lane_is_ridge). */
+ * inside the map, two edges at least with paint between them
+ * (rte_lane_is_ridge), or the two inner edges of a double line. */
 bool rte_lane_paint_row(const lane_maps *maps, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16,
                         band_pixels *px);
+/* lane_refine.c: the marking nearest column x of frame row y, within
+ * `reach` of it (see lane_refine.c); false when there is none. */
+bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t reach,
+                         int64_t slope_q16, band_pixels *px);
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
                               const rte_lane *pred, int32_t band_scale, int64_t *offset_q8);
 

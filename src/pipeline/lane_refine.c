@@ -28,8 +28,12 @@ static inline uint64_t load_le64(const uint8_t *p)
     return v;
 }
 
-static inline void band_add(band_pixels *px, int64_t x)
+/* Adds column x to *px and, when there is one, to the list (at most cap
+ * columns). */
+static inline void band_add(band_pixels *px, int64_t x, int32_t *list, int64_t cap)
 {
+    if (list && px->n < cap)
+        list[px->n] = (int32_t)x;
     px->n++;
     px->sum_x += x;
     px->first = x < px->first ? x : px->first;
@@ -41,8 +45,8 @@ static inline void band_add(band_pixels *px, int64_t x)
  * in the row above or below at one of the two columns the slope reaches
  * there, so edges crossing the line (shadows, patch borders, car bumpers)
  * do not count. Eight pixels at a time away from the map's borders. */
-band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb,
-                              int64_t slope_q16)
+static inline band_pixels band_scan(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb,
+                                    int64_t slope_q16, int32_t *list, int64_t cap)
 {
     band_pixels px = {0, 0, INT64_MAX, INT64_MIN};
     const uint8_t *row = rte_u8_row(edges, y);
@@ -65,7 +69,7 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
                                     load_le64(down + x + step) | load_le64(down + x + step + 1));
             /* the top bit of each nonzero byte of m */
             for (uint64_t nz = (((m & low7) + low7) | m) & ~low7; nz; nz &= nz - 1)
-                band_add(&px, x + (__builtin_ctzll(nz) >> 3));
+                band_add(&px, x + (__builtin_ctzll(nz) >> 3), list, cap);
         }
         return px;
     }
@@ -79,15 +83,22 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
                     (down && xd >= 0 && xd < edges->width && down[xd]);
         }
         if (along)
-            band_add(&px, x);
+            band_add(&px, x, list, cap);
     }
     return px;
 }
 
-/* Paint between the outermost edges: in their middle brighter by
- * LANE_RIDGE_MIN grey levels than both sides (two pixels outside), so a
- * car's flank, a shadow's border or a seam, with one bright side only, is
- * not taken for a marking. Either image may show it: the colour cue (a
+band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb,
+                              int64_t slope_q16)
+{
+    return band_scan(edges, y, xa, xb, slope_q16, NULL, 0);
+}
+
+/* Paint between the outermost edges: its brightest pixel between them
+ * brighter by LANE_RIDGE_MIN grey levels than both sides (two pixels
+ * outside), so a car's flank, a shadow's border or a seam, with one bright
+ * side only, is not taken for a marking. The brightest, not the middle:
+ * the middle of a double line is the road between its two lines. Either image may show it: the colour cue (a
  * yellow line on light concrete) or grey (where glare brightens the road
  * beside white paint until the cue takes it for paint too). A side
  * saturated in grey (glare) tells nothing and is left out; one side must
@@ -96,7 +107,10 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
 #define LANE_SATURATED 250
 static bool ridge_in(const uint8_t *row, int64_t first, int64_t last, bool skip_a, bool skip_b)
 {
-    const int32_t mid = row[(first + last) / 2], a = row[first - 2], b = row[last + 2];
+    int32_t mid = row[(first + last) / 2];
+    for (int64_t x = first + 1; x < last; x++)
+        mid = row[x] > mid ? row[x] : mid;
+    const int32_t a = row[first - 2], b = row[last + 2];
     return (skip_a || mid >= a + LANE_RIDGE_MIN) && (skip_b || mid >= b + LANE_RIDGE_MIN);
 }
 
@@ -113,18 +127,91 @@ bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t 
            (maps->src->buf != maps->gray->buf && ridge_in(grey, first, last, glare_a, glare_b));
 }
 
+/* The gap of a double line: edges at first and last (row y of the crop)
+ * with road between them, each flanked by a line of paint (brighter than
+ * the gap's darkest pixel by LANE_RIDGE_MIN) that ends within `reach` (an edge pixel, and
+ * darker road beyond it). Near the camera a double centre line is wider
+ * than the search band, which then holds only its two inner edges; their
+ * middle is the marking's centre. */
+static bool double_gap(const lane_maps *maps, int32_t y, int64_t first, int64_t last, int64_t reach)
+{
+    if (last - first < 2 || first - reach - 2 < 0 || last + reach + 2 > maps->src->width - 1)
+        return false;
+    const uint8_t *row = rte_u8_row(maps->src, y), *edge = rte_u8_row(maps->edges, y);
+    int32_t gap = 255; /* the gap's darkest pixel (the edge pixels may lie on the paint) */
+    for (int64_t x = first + 1; x < last; x++)
+        gap = row[x] < gap ? row[x] : gap;
+    const int32_t a = row[first - 2], b = row[last + 2];
+    if (a < gap + LANE_RIDGE_MIN || b < gap + LANE_RIDGE_MIN)
+        return false;
+    int64_t l = first - 3, r = last + 3;
+    while (l >= first - reach && !edge[l])
+        l--;
+    while (r <= last + reach && !edge[r])
+        r++;
+    return l >= first - reach && r <= last + reach && row[l - 2] + LANE_RIDGE_MIN <= a &&
+           row[r + 2] + LANE_RIDGE_MIN <= b;
+}
+
 bool rte_lane_paint_row(const lane_maps *maps, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16,
                         band_pixels *px)
 {
     if (xa < 0 || xb > maps->edges->width - 1)
         return false;
-    const uint8_t *inside = rte_u8_row(maps->roi, y - maps->cy0);
-    if (!inside[xa] || !inside[xb])
-        return false;
     *px = rte_lane_band_row(maps->edges, y - maps->cy0, xa, xb, slope_q16);
     /* one edge alone would pull the row to it */
     return px->n >= 2 && px->last != px->first &&
-           rte_lane_is_ridge(maps, y - maps->cy0, px->first, px->last);
+           (rte_lane_is_ridge(maps, y - maps->cy0, px->first, px->last) ||
+            double_gap(maps, y - maps->cy0, px->first, px->last, xb - xa));
+}
+
+/* The marking nearest column x (frame coordinates) of frame row y, its
+ * middle within `reach` of x: the edge pixels along slope_q16 there,
+ * grouped into edges (runs of pixels at most two apart); each two
+ * neighbouring edges with paint between them (rte_lane_is_ridge) or a
+ * double line's gap between them (double_gap), at most twice `reach`
+ * apart, are a marking, and the one whose middle is nearest x wins (a
+ * double line's gap before the lines beside it). *px gets its two edges'
+ * pixels. Used where the marking has left the band the lane predicts (a
+ * bend sharper near the horizon than the rows below it showed). */
+#define LANE_NEAR_MAX 512
+bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t reach,
+                         int64_t slope_q16, band_pixels *px)
+{
+    const int32_t yc = y - maps->cy0, w = maps->edges->width;
+    reach = reach < LANE_NEAR_MAX / 4 - 1 ? reach : LANE_NEAR_MAX / 4 - 1;
+    /* a marking's middle within reach and its width within twice that */
+    int64_t xa = x - maps->cx0 - 2 * reach, xb = x - maps->cx0 + 2 * reach;
+    xa = xa < 2 ? 2 : xa;
+    xb = xb > w - 3 ? w - 3 : xb;
+    if (xb - xa < 2 || yc < 1 || yc > maps->edges->height - 2)
+        return false;
+    /* the edge pixels, then the edges: [start, end] column runs */
+    int32_t cols[LANE_NEAR_MAX], start[LANE_NEAR_MAX], end[LANE_NEAR_MAX], n_edges = 0;
+    const band_pixels all = band_scan(maps->edges, yc, xa, xb, slope_q16, cols, LANE_NEAR_MAX);
+    for (int64_t i = 0; i < all.n && i < LANE_NEAR_MAX; i++) {
+        if (n_edges > 0 && cols[i] - end[n_edges - 1] <= 2)
+            end[n_edges - 1] = cols[i];
+        else
+            start[n_edges] = end[n_edges] = cols[i], n_edges++;
+    }
+    int64_t best = INT64_MAX;
+    bool best_gap = false;
+    for (int32_t i = 0; i + 1 < n_edges; i++) {
+        const int64_t first = start[i], last = end[i + 1];
+        const int64_t d = lane_abs64(first + last - 2 * (x - maps->cx0));
+        if (last - first > 2 * reach || d > 2 * reach)
+            continue;
+        const bool gap = double_gap(maps, yc, end[i], start[i + 1], reach);
+        if (!gap && !rte_lane_is_ridge(maps, yc, first, last))
+            continue;
+        if ((gap && !best_gap) || (gap == best_gap && d < best)) {
+            best = d;
+            best_gap = gap;
+            *px = rte_lane_band_row(maps->edges, yc, first, last, slope_q16);
+        }
+    }
+    return best != INT64_MAX && px->n >= 2;
 }
 
 /* Where the marking near a lane `pred` is: the mean offset from it of the
@@ -157,8 +244,8 @@ int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
 }
 
 /* The segment fit refined on the edge pixels themselves: the edge pixels
- * within band_px of the line that run along it (band_row; `edges` and the
- * ROI mask `roi` are the crop at (cx0, cy0)) enter a weighted
+ * within band_px of the line that run along it (band_row; `edges` is the
+ * crop at (cx0, cy0)) enter a weighted
  * least-squares fit of their horizontal residuals to the line (row weights
  * as for segments, the tracked slope as a prior). Up to three passes, each
  * in the band around the line of the one before, until the line's ends
@@ -168,8 +255,8 @@ int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
  * search left without a segment (or split differently) then count by
  * their pixels, so the lane does not depend on which segments the search
  * happened to find, and a marking's two edges put the line on its centre. */
-void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi, int32_t cx0,
-                              int32_t cy0, const lane_fit_hint *hint, int64_t tol, lane_line *line)
+void rte_lane_refine_on_edges(const rte_image_u8 *edges, int32_t cx0, int32_t cy0,
+                              const lane_fit_hint *hint, int64_t tol, lane_line *line)
 {
     const int32_t y0 = hint->y_top > cy0 ? hint->y_top : cy0;
     const int32_t y1 =
@@ -186,13 +273,10 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, const rte_image_u8 *roi
             const int64_t band = rte_lane_band_px(hint, tol, y);
             const int64_t lx = lane_line_x_q8(line, y), xa = ((lx + 128) >> 8) - band - cx0,
                           xb = xa + 2 * band;
-            /* Only rows where the whole band is inside the ROI: where the
-             * ROI's border cuts a marking, its edge on the inside alone
+            /* Only rows where the whole band is inside the crop: where
+             * its border cuts a marking, the edge on the inside alone
              * would pull the line off the marking's centre. */
             if (xa < 0 || xb > edges->width - 1)
-                continue;
-            const uint8_t *inside = rte_u8_row(roi, y - cy0);
-            if (!inside[xa] || !inside[xb])
                 continue;
             const band_pixels px = rte_lane_band_row(edges, y - cy0, xa, xb, line->slope_q16);
             /* Both edges of the marking, one either side of the line: a row

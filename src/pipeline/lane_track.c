@@ -143,3 +143,33 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
         out->x_top_q8 = t->x_top_q8;
     }
 }
+
+void rte_lane_width_hold(rte_lane_context *ctx, const bool seen[2], lane_line line[2],
+                         const lane_curve curve[2], int32_t y_top, int32_t y_bottom)
+{
+    const int32_t span = y_bottom - y_top;
+    if (!seen[0] || !seen[1] || span <= 0)
+        return;
+    bool near[2];
+    for (int side = 0; side < 2; side++)
+        near[side] = (y_bottom - curve[side].y_lowest) * 4 <= span;
+    const int64_t xl = lane_line_x_q8(&line[0], y_bottom), xr = lane_line_x_q8(&line[1], y_bottom);
+    if (near[0] && near[1]) {
+        const int64_t w = xr - xl;
+        if (w <= 0)
+            return;
+        const int64_t lim = 1 << 28;
+        ctx->width_q8 = lane_clamp32(
+            ctx->width_valid ? ctx->width_q8 + (((w - ctx->width_q8) * ctx->params.alpha_q8) >> 8)
+                             : w,
+            0, lim);
+        ctx->width_valid = true;
+        return;
+    }
+    if (!ctx->width_valid || near[0] == near[1])
+        return;
+    const int far = near[0] ? 1 : 0;
+    const int64_t xb = far == 1 ? xl + ctx->width_q8 : xr - ctx->width_q8;
+    const int64_t xt = lane_line_x_q8(&line[far], y_top);
+    line[far] = (lane_line){xb, (xt - xb) * 256 / -span, y_bottom};
+}
