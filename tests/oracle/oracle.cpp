@@ -23,7 +23,9 @@ int random_count() { return env_int("RTE_ORACLE_RANDOM", 200); }
 
 std::mt19937 make_rng() { return std::mt19937((unsigned)env_int("RTE_ORACLE_SEED", 20261122)); }
 
-static void add_folder(const char *env_name, std::vector<Input> &out)
+/* The images of the folder named by env_name, and of its subfolders when
+ * `recursive`. */
+static void add_folder(const char *env_name, bool recursive, std::vector<Input> &out)
 {
     const char *dir = std::getenv(env_name);
     if (!dir || !*dir || !fs::is_directory(dir)) {
@@ -32,13 +34,18 @@ static void add_folder(const char *env_name, std::vector<Input> &out)
         return;
     }
     std::vector<std::string> paths;
-    for (const auto &e : fs::recursive_directory_iterator(dir)) {
+    const auto keep = [&paths](const fs::directory_entry &e) {
         std::string ext = e.path().extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
         if (e.is_regular_file() &&
             (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".pgm" || ext == ".ppm"))
             paths.push_back(e.path().string());
-    }
+    };
+    if (recursive)
+        std::for_each(fs::recursive_directory_iterator(dir), fs::recursive_directory_iterator(),
+                      keep);
+    else
+        std::for_each(fs::directory_iterator(dir), fs::directory_iterator(), keep);
     std::sort(paths.begin(), paths.end());
     for (const auto &p : paths) {
         Input in;
@@ -56,8 +63,10 @@ static void add_folder(const char *env_name, std::vector<Input> &out)
 std::vector<Input> file_inputs()
 {
     std::vector<Input> out;
-    add_folder("RTE_FIXTURES_DIR", out);
-    add_folder("RTE_SHARED_DATA_DIR", out);
+    /* fixtures/ itself: its subfolders hold the lane tests' labelled
+     * frames, road photos like those of the shared folder's lanes/ */
+    add_folder("RTE_FIXTURES_DIR", false, out);
+    add_folder("RTE_SHARED_DATA_DIR", true, out);
     return out;
 }
 

@@ -40,9 +40,10 @@ struct Input {
     cv::Mat bgr;  // CV_8UC3 (for colour kernels); grey replicated for random images
 };
 
-// Every image file under $RTE_FIXTURES_DIR and $RTE_SHARED_DATA_DIR (png, jpg,
-// pgm, ppm), read the way cv2.imread + cvtColor(BGR2GRAY) does. A missing
-// folder is reported on stderr and skipped.
+// Every image file in $RTE_FIXTURES_DIR (not its subfolders) and under
+// $RTE_SHARED_DATA_DIR (png, jpg, pgm, ppm), read the way cv2.imread +
+// cvtColor(BGR2GRAY) does. A missing folder is reported on stderr and
+// skipped.
 std::vector<Input> file_inputs();
 
 // Random test images: the count comes from $RTE_ORACLE_RANDOM (default 200),
