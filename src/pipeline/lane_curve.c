@@ -7,196 +7,18 @@
  * x = a d + b + c / d, d = y - y_horizon (rows below the horizon), with
  * a = X0 / h, b = x_centre + f psi and c = f^2 h kappa / 2. The straight
  * fit (segments, then the refit on the edge pixels) gives a line; windows
- * of rows then follow the marking up the image from the bottom row, each
- * searched around the line moved by the residual the windows below it
- * show (extrapolated, then through a fit of them once there are three),
- * so the search follows a bend the straight line leaves. Both sides'
- * windows are then fitted together, b and c shared and a per side, so a
+ * of rows then follow the marking up the image (lane_windows.c). Both
+ * sides' windows are then fitted together, b and c shared and a per side, so a
  * dashed side takes the solid side's bend. The horizon row is where the
  * two straight lines meet, else an eighth of the lane above the ROI's top
  * row (lane_horizon_row). The curve replaces the lines only when it
  * explains the windows much better than they do (bend_pays). */
-#include "lane_fixed.h"
+#include "lane_windows.h"
 
 #include "algo/geom_fixed.h"
 
-#define CURVE_WINDOWS 12
 /* A bow below this (1/256 px) is no curve: the straight fit stands. */
 #define CURVE_MIN_BOW_Q8 192 /* 3/4 px */
-
-typedef struct curve_window {
-    int64_t r_q8;   /* mean residual to the line, 1/256 px */
-    int64_t y;      /* mean row */
-    int64_t x_q8;   /* the line's x there plus r: where the paint is */
-    int64_t weight; /* edge pixels */
-} curve_window;
-
-/* The model's basis at a row: u = (y_bottom - y) / span, q = d_top / d
- * (1 on the top row) and delta = d / d_bottom (1 on the bottom row), all
- * in 1/65536. */
-typedef struct curve_basis {
-    int64_t u_q16, q_q16, delta_q16;
-} curve_basis;
-
-typedef struct curve_walk {
-    int64_t o_q8;  /* residual at row y of the last window that saw paint */
-    int64_t d_q16; /* its change per row upwards, 1/65536 px */
-    int64_t y;
-    bool fitted;  /* p holds a fit of the windows so far */
-    int64_t p[3]; /* residual = p0 + p1 u + p2 q, 1/256 px */
-} curve_walk;
-
-static int64_t delta_at(const lane_fit_hint *h, int64_t y)
-{
-    const int64_t y_h = lane_horizon_row(h), d = y - y_h > 1 ? y - y_h : 1;
-    return d * 65536 / (h->y_bottom - y_h);
-}
-
-static curve_basis basis_at(const lane_fit_hint *h, int64_t y)
-{
-    const int64_t span = h->y_bottom - h->y_top, y_h = lane_horizon_row(h);
-    const int64_t d = y - y_h > 1 ? y - y_h : 1;
-    return (curve_basis){(h->y_bottom - y) * 65536 / span, (h->y_top - y_h) * 65536 / d,
-                         delta_at(h, y)};
-}
-
-/* The walk's expected residual at row y. */
-static int64_t walk_residual(const lane_fit_hint *h, const curve_walk *walk, int64_t y)
-{
-    if (walk->fitted) {
-        const curve_basis b = basis_at(h, y);
-        return walk->p[0] + ((walk->p[1] * b.u_q16 + walk->p[2] * b.q_q16) >> 16);
-    }
-    return walk->o_q8 + ((walk->d_q16 * (walk->y - y)) >> 8);
-}
-
-/* The rows y_hi down to y_lo searched around the line plus the walk's
- * expected residual; false when too few rows hold paint. wide: each row's
- * marking nearest the expected column within twice the band instead
- * (rte_lane_paint_near), for a bend sharper than the walk foresaw. */
-static bool search_window(const lane_maps *maps, const lane_fit_hint *hint, const lane_line *line,
-                          const curve_walk *walk, int32_t y_hi, int32_t y_lo, bool wide,
-                          curve_window *out)
-{
-    const rte_image_u8 *edges = maps->edges;
-    const int32_t cx0 = maps->cx0, cy0 = maps->cy0;
-    int64_t sum_r = 0, sum_y = 0, n = 0, rows = 0;
-    for (int32_t y = y_hi; y >= y_lo; y--) {
-        if (y < cy0 + 1 || y > cy0 + edges->height - 1)
-            continue;
-        const int64_t lx = lane_line_x_q8(line, y), ex = lx + walk_residual(hint, walk, y);
-        const int64_t band = rte_lane_band_px(hint, maps->tol, y);
-        const int64_t xa = ((ex + 128) >> 8) - band - cx0;
-        /* the expected marking's direction here, x per row downwards */
-        const int64_t slope =
-            line->slope_q16 +
-            ((walk_residual(hint, walk, y) - walk_residual(hint, walk, y - 1)) * 256);
-        band_pixels px;
-        const bool ok = wide ? rte_lane_paint_near(maps, y, (ex + 128) >> 8, 2 * band, slope, &px)
-                             : rte_lane_paint_row(maps, y, xa, xa + 2 * band, slope, &px);
-        if (!ok)
-            continue;
-        sum_r += (px.sum_x + px.n * cx0) * 256 - px.n * lx;
-        sum_y += px.n * y;
-        n += px.n;
-        rows++;
-    }
-    const int64_t need = (y_hi - y_lo + 1) / 3;
-    if (n == 0 || rows < (need > 2 ? need : 2))
-        return false;
-    out->r_q8 = sum_r / n;
-    out->y = sum_y / n;
-    out->x_q8 = lane_line_x_q8(line, out->y) + out->r_q8;
-    out->weight = n;
-    return true;
-}
-
-/* 3x3 determinant of rows a, b, c. */
-static rte_i128 det3(const rte_i128 a[3], const rte_i128 b[3], const rte_i128 c[3])
-{
-    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-           a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
-
-/* Weighted least squares r = p0 + p1 u + p2 q over the windows (u, q in
- * 1/65536, r and p in 1/256 px); false when ill-posed. The moments are
- * means (weights normalised), so every product stays far inside 128
- * bits. */
-static bool fit_model(const curve_window *win, const curve_basis *bs, int32_t n, int64_t p[3])
-{
-    rte_i128 m[3][3] = {{0}}, v[3] = {0}, w = 0;
-    for (int32_t i = 0; i < n; i++) {
-        const rte_i128 f[3] = {65536, bs[i].u_q16, bs[i].q_q16};
-        for (int j = 0; j < 3; j++) {
-            for (int k = 0; k < 3; k++)
-                m[j][k] += (f[j] * f[k] >> 16) * win[i].weight;
-            v[j] += f[j] * win[i].weight * win[i].r_q8;
-        }
-        w += win[i].weight;
-    }
-    if (w <= 0)
-        return false;
-    for (int j = 0; j < 3; j++) {
-        for (int k = 0; k < 3; k++)
-            m[j][k] /= w;
-        v[j] /= w;
-    }
-    const rte_i128 det = det3(m[0], m[1], m[2]);
-    /* windows bunched too closely to tell a bend from a slope */
-    if (det < ((rte_i128)1 << 24))
-        return false;
-    for (int j = 0; j < 3; j++) {
-        rte_i128 c[3][3];
-        for (int r = 0; r < 3; r++)
-            for (int k = 0; k < 3; k++)
-                c[r][k] = k == j ? v[r] : m[r][k];
-        const rte_i128 q = det3(c[0], c[1], c[2]) / det;
-        if (q > ((rte_i128)1 << 40) || q < -((rte_i128)1 << 40))
-            return false;
-        p[j] = (int64_t)q;
-    }
-    return true;
-}
-
-/* The windows of one side, up from the bottom row. */
-typedef struct curve_side {
-    curve_window win[CURVE_WINDOWS];
-    curve_basis bs[CURVE_WINDOWS];
-    int32_t n;
-    int32_t y_supported;
-} curve_side;
-
-static void walk_side(const lane_maps *maps, const lane_fit_hint *hint, const lane_line *line,
-                      curve_side *cs)
-{
-    const int32_t span = hint->y_bottom - hint->y_top;
-    const int32_t rows = (span + CURVE_WINDOWS) / CURVE_WINDOWS;
-    curve_walk walk = {0, 0, hint->y_bottom, false, {0, 0, 0}};
-    cs->n = 0;
-    cs->y_supported = hint->y_bottom;
-    for (int32_t j = 0; j < CURVE_WINDOWS; j++) {
-        const int32_t y_hi = hint->y_bottom - j * rows;
-        const int32_t y_lo = y_hi - rows + 1 > hint->y_top ? y_hi - rows + 1 : hint->y_top;
-        if (y_hi < hint->y_top)
-            break;
-        curve_window w;
-        if (!search_window(maps, hint, line, &walk, y_hi, y_lo, false, &w) &&
-            (cs->n == 0 || !search_window(maps, hint, line, &walk, y_hi, y_lo, true, &w)))
-            continue;
-        /* a change of residual over a few rows only (a first window at
-         * the bottom row) would extrapolate noise far up */
-        if (walk.y - w.y >= rows / 2)
-            walk.d_q16 =
-                lane_clamp32((w.r_q8 - walk.o_q8) * 256 / (walk.y - w.y), -2 * 65536, 2 * 65536);
-        walk.o_q8 = w.r_q8;
-        walk.y = w.y;
-        cs->y_supported = y_lo;
-        cs->bs[cs->n] = basis_at(hint, w.y);
-        cs->win[cs->n++] = w;
-        if (cs->n >= 3)
-            walk.fitted = fit_model(cs->win, cs->bs, cs->n, walk.p);
-    }
-}
 
 /* The joint model of both sides over their windows, in normalised
  * variables: x = A_side delta + B + C gamma, delta = d / d_bottom and
@@ -520,7 +342,7 @@ void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const
         cs[side].n = 0;
         if (!seen[side] || span < 2 * CURVE_WINDOWS)
             continue;
-        walk_side(maps, hint, &line[side], &cs[side]);
+        rte_lane_walk_side(maps, hint, &line[side], &cs[side]);
         if (cs[side].n > 0)
             curve[side].y_lowest = (int32_t)cs[side].win[0].y;
         use[side] = cs[side].n >= 1;

@@ -3,7 +3,7 @@
  * lane.c (parameters, the ROI, the stages in order, the centre),
  * lane_cue.c (colour cue, automatic Canny thresholds), lane_fit.c (the
  * robust fit of the segments), lane_refine.c (the refit on the edge
- * pixels), lane_curve.c (the curve model), lane_double.c (double
+ * pixels), lane_windows.c and lane_curve.c (the curve model), lane_double.c (double
  * markings) and lane_track.c (sides, gate, the trackers). */
 #ifndef RTEDGE_LANE_INTERNAL_H
 #define RTEDGE_LANE_INTERNAL_H
@@ -177,7 +177,9 @@ bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t 
 bool rte_lane_paint_row(const lane_maps *maps, int32_t y, int64_t xa, int64_t xb, int64_t slope_q16,
                         band_pixels *px);
 /* lane_refine.c: the marking nearest column x of frame row y, within
- * `reach` of it (see lane_refine.c); false when there is none. */
+ * `reach` of it (see lane_refine.c); false when there is none. Its edge
+ * pixels run along slope_q16, or have any direction for LANE_SLOPE_ANY. */
+#define LANE_SLOPE_ANY INT64_MIN
 bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t reach,
                          int64_t slope_q16, band_pixels *px);
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,

@@ -44,7 +44,8 @@ static inline void band_add(band_pixels *px, int64_t x, int32_t *list, int64_t c
  * that run along a line of slope_q16 (x per row): each needs an edge pixel
  * in the row above or below at one of the two columns the slope reaches
  * there, so edges crossing the line (shadows, patch borders, car bumpers)
- * do not count. Eight pixels at a time away from the map's borders. */
+ * do not count (LANE_SLOPE_ANY: every edge pixel counts). Eight pixels at
+ * a time away from the map's borders. */
 static inline band_pixels band_scan(const rte_image_u8 *edges, int32_t y, int64_t xa, int64_t xb,
                                     int64_t slope_q16, int32_t *list, int64_t cap)
 {
@@ -54,7 +55,9 @@ static inline band_pixels band_scan(const rte_image_u8 *edges, int32_t y, int64_
     const uint8_t *down = y < edges->height - 1 ? row + edges->stride : NULL;
     /* below: x + slope lies in [x + step, x + step + 1]; above: x - slope
      * in [x - back, x - back + 1] */
-    const int64_t step = slope_q16 >> 16, back = step + ((slope_q16 & 0xFFFF) != 0);
+    const bool any = slope_q16 == LANE_SLOPE_ANY;
+    const int64_t step = any ? 0 : slope_q16 >> 16;
+    const int64_t back = any ? 0 : step + ((slope_q16 & 0xFFFF) != 0);
     const int64_t words_end = xa + ((xb - xa) / 8 + 1) * 8; /* the word loop reads up to here + 1 */
     if (up && down && xa - back >= 0 && xa + step >= 0 && words_end + 1 - back <= edges->width &&
         words_end + 1 + step <= edges->width && words_end <= edges->width) {
@@ -65,8 +68,10 @@ static inline band_pixels band_scan(const rte_image_u8 *edges, int32_t y, int64_
                 h &= ((uint64_t)1 << (8 * (xb - x + 1))) - 1; /* bytes past xb */
             if (!h)
                 continue;
-            const uint64_t m = h & (load_le64(up + x - back) | load_le64(up + x - back + 1) |
-                                    load_le64(down + x + step) | load_le64(down + x + step + 1));
+            const uint64_t m =
+                any ? h
+                    : h & (load_le64(up + x - back) | load_le64(up + x - back + 1) |
+                           load_le64(down + x + step) | load_le64(down + x + step + 1));
             /* the top bit of each nonzero byte of m */
             for (uint64_t nz = (((m & low7) + low7) | m) & ~low7; nz; nz &= nz - 1)
                 band_add(&px, x + (__builtin_ctzll(nz) >> 3), list, cap);
@@ -76,7 +81,7 @@ static inline band_pixels band_scan(const rte_image_u8 *edges, int32_t y, int64_
     for (int64_t x = xa; x <= xb; x++) {
         if (!row[x])
             continue;
-        bool along = false;
+        bool along = any;
         for (int64_t k = 0; k <= 1 && !along; k++) {
             const int64_t xu = x - back + k, xd = x + step + k;
             along = (up && xu >= 0 && xu < edges->width && up[xu]) ||
