@@ -79,6 +79,7 @@ rte_lane rte_lane_track_predict(const lane_track *t, int32_t y_top, int32_t y_bo
                       .y_horizon = t->y_horizon};
 }
 
+#define LANE_FAR_STEPS 8
 void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
                            const lane_curve *curve, int64_t support, rte_lane *out)
 {
@@ -108,14 +109,22 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
             const int64_t len = (int64_t)rte_isqrt64((uint64_t)(dxl * dxl + dyl * dyl)) + 1;
             const int64_t share = lane_clamp32(support * 256 / len, 192, 256); /* /256 */
             const int64_t alpha = (int64_t)p->alpha_q8 * share >> 8;
+            /* The clamp holds the bottom row, where the vehicle is; the
+             * far end and the bow, which a bend moves fast (on a winding
+             * road at 6 fps the far end moved 100 px a frame), may move
+             * LANE_FAR_STEPS times as far when the marking was seen in the
+             * lane's upper quarter (not extrapolated past a glare patch
+             * or the last dash). */
+            const bool seen_far = (curve->y_supported - out->y_top) * 4 <= dyl;
             const int64_t step = (int64_t)p->max_step_px * 256;
+            const int64_t far = seen_far ? LANE_FAR_STEPS * step : step;
             const int64_t rb = lane_clamp32(mb - pb, -step, step),
-                          rt = lane_clamp32(mt - pt, -step, step);
+                          rt = lane_clamp32(mt - pt, -far, far);
             t->x_bottom_q8 = lane_clamp32(pb + ((rb * alpha) >> 8), -lim, lim);
             t->x_top_q8 = lane_clamp32(pt + ((rt * alpha) >> 8), -lim, lim);
             t->v_bottom_q8 = lane_clamp32(t->v_bottom_q8 + ((rb * p->beta_q8) >> 8), -step, step);
             t->v_top_q8 = lane_clamp32(t->v_top_q8 + ((rt * p->beta_q8) >> 8), -step, step);
-            const int64_t rbow = lane_clamp32(curve->bow_q8 - t->bow_q8, -step, step);
+            const int64_t rbow = lane_clamp32(curve->bow_q8 - t->bow_q8, -far, far);
             t->bow_q8 = lane_clamp32(t->bow_q8 + ((rbow * alpha) >> 8), -lim, lim);
             t->y_horizon = curve->y_horizon;
             t->lost = 0;
