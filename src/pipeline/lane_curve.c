@@ -8,8 +8,8 @@
  * a = X0 / h, b = x_centre + f psi and c = f^2 h kappa / 2. The straight
  * fit (segments, then the refit on the edge pixels) gives a line; windows
  * of rows then follow the marking up the image (lane_windows.c). Both
- * sides' windows are then fitted together, b and c shared and a per side, so a
- * dashed side takes the solid side's bend. The horizon row is where the
+ * sides' windows are then fitted together, b and c shared and a per side,
+ * so a dashed side takes the solid side's bend. The horizon row is where the
  * two straight lines meet, else an eighth of the lane above the ROI's top
  * row (lane_horizon_row). The curve replaces the lines only when it
  * explains the windows much better than they do (bend_pays). */
@@ -31,23 +31,28 @@ typedef struct side_sums {
     rte_i128 sdd, sd1, sdg, sdx; /* sums of w delta f, f = delta, 1, gamma, x */
 } side_sums;
 
+/* A side's sums of w delta f over its windows. */
+static side_sums sums_of(const curve_side *cs)
+{
+    side_sums t = {0, 0, 0, 0};
+    for (int32_t i = 0; i < cs->n; i++) {
+        const curve_window *w = &cs->win[i];
+        const rte_i128 dl = cs->bs[i].delta_q16, g = cs->bs[i].q_q16, x = w->x_q8;
+        t.sdd += w->weight * (dl * dl >> 16);
+        t.sd1 += w->weight * dl;
+        t.sdg += w->weight * (dl * g >> 16);
+        t.sdx += w->weight * (dl * x >> 16);
+    }
+    return t;
+}
+
 static bool joint_fit(const curve_side cs[2], const bool use[2], int64_t *b_q8, int64_t *c_q8,
                       side_sums ss[2])
 {
     rte_i128 m11 = 0, m1g = 0, mgg = 0, v1 = 0, vg = 0;
     for (int side = 0; side < 2; side++) {
         side_sums *t = &ss[side];
-        *t = (side_sums){0, 0, 0, 0};
-        if (!use[side])
-            continue;
-        for (int32_t i = 0; i < cs[side].n; i++) {
-            const curve_window *w = &cs[side].win[i];
-            const rte_i128 dl = cs[side].bs[i].delta_q16, g = cs[side].bs[i].q_q16, x = w->x_q8;
-            t->sdd += w->weight * (dl * dl >> 16);
-            t->sd1 += w->weight * dl;
-            t->sdg += w->weight * (dl * g >> 16);
-            t->sdx += w->weight * (dl * x >> 16);
-        }
+        *t = use[side] ? sums_of(&cs[side]) : (side_sums){0, 0, 0, 0};
         if (t->sdd <= 0)
             continue;
         /* components along delta: f~ = f - delta * sum(w delta f) / sdd */
@@ -165,17 +170,10 @@ static bool bend_pays(const curve_side cs[2], const bool use[2], int64_t b, int6
  * straight on. *ss gets the side's sums. */
 static bool follows_bend(const curve_side *cs, int64_t b, int64_t c, side_sums *ss)
 {
-    rte_i128 sdd = 0, sd1 = 0, sdg = 0, sdx = 0, w = 0;
-    for (int32_t i = 0; i < cs->n; i++) {
-        const rte_i128 wi = cs->win[i].weight, dl = cs->bs[i].delta_q16, g = cs->bs[i].q_q16;
-        sdd += wi * (dl * dl >> 16);
-        sd1 += wi * dl;
-        sdg += wi * (dl * g >> 16);
-        sdx += wi * (dl * cs->win[i].x_q8 >> 16);
-    }
-    *ss = (side_sums){sdd, sd1, sdg, sdx};
-    if (cs->n < 3 || sdd <= 0)
+    *ss = sums_of(cs);
+    if (cs->n < 3 || ss->sdd <= 0)
         return false;
+    rte_i128 w = 0;
     return side_curve_sse(cs, ss, b, c, &w) <= straight_sse(cs) + w * 147456;
 }
 

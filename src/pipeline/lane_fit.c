@@ -12,20 +12,19 @@ static int32_t seg_length(const rte_lane_segment *s)
 
 /* Whether the edge at column x of row y (crop coordinates) bounds paint:
  * the brighter side (two pixels out) brighter than the other by
- * LANE_PAINT_STEP and darker again within `width` pixels, i.e. a stripe of
+ * LANE_RIDGE_MIN and darker again within `width` pixels, i.e. a stripe of
  * a marking's width, not the border of a wide bright area (a road's edge,
  * a shadow's end, a kerb). */
-#define LANE_PAINT_STEP 12
 static bool borders_paint(const rte_image_u8 *img, int32_t x, int32_t y, int32_t width)
 {
     if (y < 0 || y >= img->height || x - width - 2 < 0 || x + width + 2 > img->width - 1)
         return false;
     const uint8_t *row = rte_u8_row(img, y);
     const int32_t dir = row[x + 2] > row[x - 2] ? 1 : -1, paint = row[x + 2 * dir];
-    if (paint < row[x - 2 * dir] + LANE_PAINT_STEP)
+    if (paint < row[x - 2 * dir] + LANE_RIDGE_MIN)
         return false;
     for (int32_t k = 3; k <= width; k++)
-        if (row[x + k * dir] + LANE_PAINT_STEP <= paint)
+        if (row[x + k * dir] + LANE_RIDGE_MIN <= paint)
             return true;
     return false;
 }

@@ -63,6 +63,10 @@ static inline int64_t lane_horizon_row(const lane_fit_hint *h)
     return h->y_top - ((h->y_bottom - h->y_top) / 8 + 1);
 }
 
+/* How much brighter paint is than the road beside it, in grey levels
+ * (rte_lane_is_ridge, the double line's gap, the segments' paint weights). */
+#define LANE_RIDGE_MIN 12
+
 /* A segment's weight by its row, /256: the inverse variance of a pixel's
  * lateral position on the road, which grows as (distance from the horizon)^2
  * in perspective (the horizon taken an eighth of the lane above the ROI

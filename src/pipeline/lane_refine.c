@@ -103,12 +103,12 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
  * brighter by LANE_RIDGE_MIN grey levels than both sides (two pixels
  * outside), so a car's flank, a shadow's border or a seam, with one bright
  * side only, is not taken for a marking. The brightest, not the middle:
- * the middle of a double line is the road between its two lines. Either image may show it: the colour cue (a
- * yellow line on light concrete) or grey (where glare brightens the road
+ * the middle of a double line is the road between its two lines. Either
+ * image may show it: the colour cue (a yellow line on light concrete) or
+ * grey (where glare brightens the road
  * beside white paint until the cue takes it for paint too). A side
  * saturated in grey (glare) tells nothing and is left out; one side must
  * remain, so paint inside glare does not count. */
-#define LANE_RIDGE_MIN 12
 #define LANE_SATURATED 250
 static bool ridge_in(const uint8_t *row, int64_t first, int64_t last, bool skip_a, bool skip_b)
 {
@@ -134,8 +134,8 @@ bool rte_lane_is_ridge(const lane_maps *maps, int32_t y, int64_t first, int64_t 
 
 /* The gap of a double line: edges at first and last (row y of the crop)
  * with road between them, each flanked by a line of paint (brighter than
- * the gap's darkest pixel by LANE_RIDGE_MIN) that ends within `reach` (an edge pixel, and
- * darker road beyond it). Near the camera a double centre line is wider
+ * the gap's darkest pixel by LANE_RIDGE_MIN) that ends within `reach` (an
+ * edge pixel, and darker road beyond it). Near the camera a double centre line is wider
  * than the search band, which then holds only its two inner edges; their
  * middle is the marking's centre. */
 static bool double_gap(const lane_maps *maps, int32_t y, int64_t first, int64_t last, int64_t reach)
@@ -200,7 +200,7 @@ bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t re
         else
             start[n_edges] = end[n_edges] = cols[i], n_edges++;
     }
-    int64_t best = INT64_MAX;
+    int64_t best = INT64_MAX, best_first = 0, best_last = 0;
     bool best_gap = false;
     for (int32_t i = 0; i + 1 < n_edges; i++) {
         const int64_t first = start[i], last = end[i + 1];
@@ -213,10 +213,14 @@ bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t re
         if ((gap && !best_gap) || (gap == best_gap && d < best)) {
             best = d;
             best_gap = gap;
-            *px = rte_lane_band_row(maps->edges, yc, first, last, slope_q16);
+            best_first = first;
+            best_last = last;
         }
     }
-    return best != INT64_MAX && px->n >= 2;
+    if (best == INT64_MAX)
+        return false;
+    *px = rte_lane_band_row(maps->edges, yc, best_first, best_last, slope_q16);
+    return px->n >= 2;
 }
 
 /* Where the marking near a lane `pred` is: the mean offset from it of the

@@ -64,11 +64,7 @@ if ! awk '/frames right/ { split($2, f, "/"); right += f[1]; n += f[2] }
     echo "FAIL: with the default ROI fewer than 95% of the frames are right"
     failed=1
 fi
-# "...: confidence 0.50..0.75: N sides seen, M right"
-if ! awk '$3 >= "0.50" { seen += $4; right += $7 }
-    END { printf "confidence >= 0.5: %d sides seen, %d right (%.1f%%)\n", seen, right,
-                 seen ? 100 * right / seen : 0
-          exit !(seen > 0 && right >= 0.95 * seen) }' "$cal"; then
+if ! awk -v floor=0.95 -f "$(dirname "$0")/confident_share.awk" "$cal"; then
     echo "FAIL: sides seen with confidence >= 0.5 are right in fewer than 95% of cases"
     failed=1
 fi

@@ -41,10 +41,7 @@ challenge02 0.90
 challenge03 0.43
 project_video03 1.00
 FLOORS
-if ! awk '$3 >= "0.50" && $2 == "confidence" { seen += $4; right += $7 }
-    END { printf "confidence >= 0.5: %d sides seen, %d right (%.1f%%)\n", seen, right,
-                 seen ? 100 * right / seen : 0
-          exit !(seen > 0 && right >= 0.85 * seen) }' "$OUT/eval.txt"; then
+if ! awk -v floor=0.85 -f "$(dirname "$0")/confident_share.awk" "$OUT/eval.txt"; then
     echo "FAIL: sides seen with confidence >= 0.5 are right in fewer than 85% of cases"
     failed=1
 fi
