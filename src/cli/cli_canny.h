@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "cli.h"
 #include "rtedge/arena.h"
@@ -21,6 +22,12 @@ typedef struct blur_options {
     double sigma_y;
     rte_gaussian_kernel kernel;
 } blur_options;
+
+/* Builds o->kernel (configuration time); an exit code, after a message. */
+int cli_blur_prepare(const char *name, void *blur_options_ptr);
+size_t cli_blur_scratch(void *blur_options_ptr, int32_t w, int32_t h);
+
+static inline size_t cli_max_size(size_t a, size_t b) { return a > b ? a : b; }
 
 typedef struct canny_options {
     double low, high, auto_sigma;

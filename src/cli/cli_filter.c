@@ -26,6 +26,21 @@ static bool has_extension(const char *path, const char *ext)
     return true;
 }
 
+rte_status cli_filter_apply(const char *name, const filter_spec *spec, const rte_image_u8 *gray,
+                            rte_image_u8 *out, rte_image_s16 *d, bool abs_to_out)
+{
+    rte_arena arena;
+    void *arena_memory = cli_new_arena(
+        name, spec->scratch ? spec->scratch(spec->ctx, gray->width, gray->height) : 0, &arena);
+    rte_status st = RTE_ERR_NO_MEMORY;
+    if (arena_memory)
+        st = spec->apply(spec->ctx, gray, out, d, &arena);
+    if (st == RTE_OK && spec->int16 && abs_to_out)
+        st = rte_abs_s16_u8(d, out);
+    free(arena_memory);
+    return st;
+}
+
 int cli_filter_main(const cli_entry *self, int argc, char **argv, const filter_spec *spec)
 {
     char details[1024];
@@ -45,18 +60,12 @@ int cli_filter_main(const cli_entry *self, int argc, char **argv, const filter_s
     int32_t w = in.gray.width, h = in.gray.height;
     rte_image_u8 out;
     rte_image_s16 d = {0};
-    rte_arena arena;
     void *out_memory = cli_new_u8(self->name, w, h, &out);
     void *d_memory = spec->int16 ? cli_new_s16(self->name, w, h, &d) : NULL;
-    void *arena_memory =
-        cli_new_arena(self->name, spec->scratch ? spec->scratch(spec->ctx, w, h) : 0, &arena);
-    rte_status st = RTE_ERR_NO_MEMORY;
-    if (out_memory && arena_memory && (d_memory || !spec->int16))
-        st = spec->apply(spec->ctx, &in.gray, &out, &d, &arena);
-
     bool npy = spec->int16 && has_extension(paths[1], ".npy");
-    if (st == RTE_OK && spec->int16 && !npy)
-        st = rte_abs_s16_u8(&d, &out);
+    rte_status st = RTE_ERR_NO_MEMORY;
+    if (out_memory && (d_memory || !spec->int16))
+        st = cli_filter_apply(self->name, spec, &in.gray, &out, &d, !npy);
     if (st != RTE_OK) {
         cli_error(self->name, "%s", rte_status_message(st));
         rc = CLI_EXIT_FAILURE;
@@ -69,6 +78,5 @@ int cli_filter_main(const cli_entry *self, int argc, char **argv, const filter_s
     cli_image_free(&in);
     free(out_memory);
     free(d_memory);
-    free(arena_memory);
     return rc;
 }

@@ -31,6 +31,11 @@ typedef struct filter_spec {
     void (*report)(void *ctx); /* prints what the run found, after OUT is written; may be NULL */
 } filter_spec;
 
+/* Runs spec's kernel (prepared) on gray: into *out, or for int16 results
+ * into *d and, with abs_to_out, its saturated absolute value into *out
+ * (cv2.convertScaleAbs). */
+rte_status cli_filter_apply(const char *name, const filter_spec *spec, const rte_image_u8 *gray,
+                            rte_image_u8 *out, rte_image_s16 *d, bool abs_to_out);
 /* Parses the options, prepares, reads IN, runs the kernel and writes OUT
  * (.npy for int16 results, else the image); an exit code. */
 int cli_filter_main(const cli_entry *self, int argc, char **argv, const filter_spec *spec);

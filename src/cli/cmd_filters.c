@@ -18,8 +18,6 @@
 #include "rtedge/polygon_mask.h"
 #include "rtedge/threshold.h"
 
-static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
-
 /* --- gray --- */
 
 static rte_status gray_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
@@ -39,7 +37,7 @@ int cmd_gray(const cli_entry *self, int argc, char **argv)
 
 /* --- blur, median --- */
 
-static int blur_prepare(const char *name, void *ctx)
+int cli_blur_prepare(const char *name, void *ctx)
 {
     blur_options *o = ctx;
     rte_status st = rte_gaussian_kernel_init(
@@ -52,7 +50,7 @@ static int blur_prepare(const char *name, void *ctx)
     return CLI_EXIT_OK;
 }
 
-static size_t blur_scratch(void *ctx, int32_t w, int32_t h)
+size_t cli_blur_scratch(void *ctx, int32_t w, int32_t h)
 {
     return rte_gaussian_blur_u8_scratch_size(w, h, &((blur_options *)ctx)->kernel);
 }
@@ -77,8 +75,8 @@ int cmd_blur(const cli_entry *self, int argc, char **argv)
     filter_spec spec = {"= cv2.GaussianBlur(img, (ksize, ksize-y), sigma, sigmaY=sigma-y)",
                         options,
                         &b,
-                        blur_prepare,
-                        blur_scratch,
+                        cli_blur_prepare,
+                        cli_blur_scratch,
                         blur_apply,
                         false,
                         NULL};
@@ -121,122 +119,6 @@ int cmd_median(const cli_entry *self, int argc, char **argv)
     return cli_filter_main(self, argc, argv, &spec);
 }
 
-/* --- sobel, scharr, laplacian, log: int16 results --- */
-
-typedef enum derivative_kind { DERIV_SOBEL, DERIV_SCHARR, DERIV_LAPLACIAN } derivative_kind;
-
-typedef struct derivative_options {
-    derivative_kind kind;
-    int dx, dy, ksize;
-    bool blur_first; /* log: Gaussian blur, then the Laplacian */
-    blur_options blur;
-} derivative_options;
-
-static int derivative_prepare(const char *name, void *ctx)
-{
-    derivative_options *o = ctx;
-    const char *problem = NULL;
-    if (o->kind == DERIV_SOBEL && (o->ksize % 2 == 0 || o->dx + o->dy == 0))
-        problem = "--ksize must be odd and dx + dy at least 1";
-    else if (o->kind == DERIV_SCHARR && o->dx + o->dy != 1)
-        problem = "exactly one of --dx 1 and --dy 1";
-    else if (o->kind == DERIV_LAPLACIAN && o->ksize == 2)
-        problem = "--ksize must be 1 or 3";
-    if (problem) {
-        cli_error(name, "%s", problem);
-        return CLI_EXIT_USAGE;
-    }
-    return o->blur_first ? blur_prepare(name, &o->blur) : CLI_EXIT_OK;
-}
-
-static size_t derivative_scratch(void *ctx, int32_t w, int32_t h)
-{
-    derivative_options *o = ctx;
-    switch (o->kind) {
-    case DERIV_SOBEL: return rte_sobel_scratch_size(w, h, o->ksize);
-    case DERIV_SCHARR: return rte_scharr_scratch_size(w, h);
-    case DERIV_LAPLACIAN: break;
-    }
-    size_t scratch = rte_laplacian_scratch_size(w, h, o->ksize);
-    if (o->blur_first) /* the blurred image lives in `out` */
-        scratch = max_size(scratch, blur_scratch(&o->blur, w, h));
-    return scratch;
-}
-
-static rte_status derivative_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out,
-                                   rte_image_s16 *d, rte_arena *arena)
-{
-    derivative_options *o = ctx;
-    switch (o->kind) {
-    case DERIV_SOBEL: return rte_sobel_s16(gray, d, o->dx, o->dy, o->ksize, arena);
-    case DERIV_SCHARR: return rte_scharr_s16(gray, d, o->dx, o->dy, arena);
-    case DERIV_LAPLACIAN: break;
-    }
-    if (o->blur_first) {
-        rte_status st = rte_gaussian_blur_u8(gray, out, &o->blur.kernel, arena);
-        if (st != RTE_OK)
-            return st;
-        gray = out;
-    }
-    return rte_laplacian_s16(gray, d, o->ksize, arena);
-}
-
-static int derivative_main(const cli_entry *self, int argc, char **argv, derivative_options *o,
-                           cli_option *options, const char *details)
-{
-    filter_spec spec = {details,          options, o,   derivative_prepare, derivative_scratch,
-                        derivative_apply, true,    NULL};
-    return cli_filter_main(self, argc, argv, &spec);
-}
-
-int cmd_sobel(const cli_entry *self, int argc, char **argv)
-{
-    derivative_options o = {.kind = DERIV_SOBEL, .dx = 1, .dy = 0, .ksize = 3};
-    cli_option options[] = {
-        {"dx", CLI_INT, &o.dx, 0, 2, NULL, "order of the x derivative", NULL},
-        {"dy", CLI_INT, &o.dy, 0, 2, NULL, "order of the y derivative", NULL},
-        {"ksize", CLI_INT, &o.ksize, 1, 7, NULL, "aperture: 1, 3, 5 or 7", NULL},
-        {0}};
-    return derivative_main(self, argc, argv, &o, options,
-                           "= cv2.Sobel(img, cv2.CV_16S, dx, dy, ksize=ksize)");
-}
-
-int cmd_scharr(const cli_entry *self, int argc, char **argv)
-{
-    derivative_options o = {.kind = DERIV_SCHARR, .dx = 1, .dy = 0};
-    cli_option options[] = {{"dx", CLI_INT, &o.dx, 0, 1, NULL, "x derivative (dx + dy = 1)", NULL},
-                            {"dy", CLI_INT, &o.dy, 0, 1, NULL, "y derivative", NULL},
-                            {0}};
-    return derivative_main(self, argc, argv, &o, options, "= cv2.Scharr(img, cv2.CV_16S, dx, dy)");
-}
-
-int cmd_laplacian(const cli_entry *self, int argc, char **argv)
-{
-    derivative_options o = {.kind = DERIV_LAPLACIAN, .ksize = 1};
-    cli_option options[] = {{"ksize", CLI_INT, &o.ksize, 1, 3, NULL, "aperture: 1 or 3", NULL},
-                            {0}};
-    return derivative_main(self, argc, argv, &o, options,
-                           "= cv2.Laplacian(img, cv2.CV_16S, ksize=ksize)");
-}
-
-int cmd_log(const cli_entry *self, int argc, char **argv)
-{
-    derivative_options o = {.kind = DERIV_LAPLACIAN,
-                            .ksize = 1,
-                            .blur_first = true,
-                            .blur = {.ksize = 3, .ksize_y = -1}};
-    cli_option options[] = {
-        {"blur", CLI_INT, &o.blur.ksize, 0, RTE_GAUSSIAN_MAX_KSIZE, NULL,
-         "Gaussian kernel size, 0 = from --sigma", NULL},
-        {"sigma", CLI_DOUBLE, &o.blur.sigma, 0, 100, NULL, "Gaussian sigma, 0 = from the size",
-         NULL},
-        {"ksize", CLI_INT, &o.ksize, 1, 3, NULL, "Laplacian aperture: 1 or 3", NULL},
-        {0}};
-    return derivative_main(
-        self, argc, argv, &o, options,
-        "= cv2.Laplacian(cv2.GaussianBlur(img, (blur, blur), sigma), cv2.CV_16S, ksize=ksize)");
-}
-
 /* --- canny --- */
 
 int cli_canny_prepare(const char *name, void *ctx)
@@ -247,7 +129,7 @@ int cli_canny_prepare(const char *name, void *ctx)
         return CLI_EXIT_USAGE;
     }
     o->blur_first = o->blur.ksize > 0 || o->blur.sigma > 0;
-    return o->blur_first ? blur_prepare(name, &o->blur) : CLI_EXIT_OK;
+    return o->blur_first ? cli_blur_prepare(name, &o->blur) : CLI_EXIT_OK;
 }
 
 size_t cli_canny_scratch(void *ctx, int32_t w, int32_t h)
@@ -256,7 +138,7 @@ size_t cli_canny_scratch(void *ctx, int32_t w, int32_t h)
     size_t scratch = rte_canny_scratch_size(w, h, o->aperture);
     if (o->blur_first) /* the blurred image, then the larger of the two kernels' needs */
         scratch = rte_arena_piece_size((size_t)w * (size_t)h) +
-                  max_size(scratch, blur_scratch(&o->blur, w, h));
+                  cli_max_size(scratch, cli_blur_scratch(&o->blur, w, h));
     return scratch;
 }
 

@@ -31,8 +31,6 @@ typedef struct hough_run {
     int min_dist, votes, min_radius, max_radius;
 } hough_run;
 
-static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
-
 /* Everything per run: the edge map (and for circles the gradients), then
  * the transform and the JSON. */
 typedef struct hough_buffers {
@@ -59,7 +57,8 @@ static size_t transform_scratch(const hough_run *o, const rte_hough_config *cfg,
     case HOUGH_LINES: return rte_hough_lines_scratch_size(cfg, o->max_out);
     case HOUGH_SEGMENTS: return rte_hough_segments_scratch_size(cfg);
     default:
-        return max_size(rte_hough_circles_scratch_size(w, h, cp), rte_sobel_scratch_size(w, h, 3));
+        return cli_max_size(rte_hough_circles_scratch_size(w, h, cp),
+                            rte_sobel_scratch_size(w, h, 3));
     }
 }
 
@@ -106,7 +105,7 @@ static bool alloc_buffers(const char *name, hough_run *o, const rte_hough_config
 {
     size_t scratch = transform_scratch(o, cfg, cp, w, h);
     if (!o->edges_given)
-        scratch = max_size(scratch, cli_canny_scratch(&o->canny, w, h));
+        scratch = cli_max_size(scratch, cli_canny_scratch(&o->canny, w, h));
     if (!(b->arena_mem = cli_new_arena(name, scratch, &b->arena)))
         return false;
     if (!o->edges_given && !(b->edges_mem = cli_new_u8(name, w, h, &b->edges)))

@@ -11,6 +11,7 @@ const cli_entry cli_commands[] = {
     {"laplacian", "Laplacian to int16 (= Laplacian(..., CV_16S, ksize))", cmd_laplacian},
     {"log", "Laplacian of Gaussian: blur, then Laplacian", cmd_log},
     {"canny", "Canny edges, fixed or automatic thresholds (= Canny)", cmd_canny},
+    {"compare", "Sobel, LoG and Canny side by side in a captioned grid", cmd_compare},
     {"threshold", "fixed or Otsu threshold (= threshold); prints the threshold", cmd_threshold},
     {"erode", "erosion (= erode)", cmd_morphology},
     {"dilate", "dilation (= dilate)", cmd_morphology},

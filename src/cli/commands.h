@@ -12,7 +12,8 @@ struct cli_entry {
 /* Terminated by an entry with name == NULL. */
 extern const cli_entry cli_commands[];
 
-/* cmd_filters.c: the image kernels of librtedge. */
+/* cmd_filters.c, cmd_derivatives.c: the image kernels of librtedge;
+ * cmd_compare.c: the edge operators side by side. */
 int cmd_gray(const cli_entry *self, int argc, char **argv);
 int cmd_blur(const cli_entry *self, int argc, char **argv);
 int cmd_median(const cli_entry *self, int argc, char **argv);
@@ -21,6 +22,7 @@ int cmd_scharr(const cli_entry *self, int argc, char **argv);
 int cmd_laplacian(const cli_entry *self, int argc, char **argv);
 int cmd_log(const cli_entry *self, int argc, char **argv);
 int cmd_canny(const cli_entry *self, int argc, char **argv);
+int cmd_compare(const cli_entry *self, int argc, char **argv);
 int cmd_threshold(const cli_entry *self, int argc, char **argv);
 int cmd_morphology(const cli_entry *self, int argc, char **argv);
 int cmd_mask(const cli_entry *self, int argc, char **argv);
