@@ -3,7 +3,8 @@
 
 A pinhole camera (focal F px, height CAM_H m, looking level along the road)
 drives along a flat road whose centre line bends: constant-curvature bends,
-S-bends, a lane whose width changes, tree shadows, glare, worn and dashed
+S-bends, a straight road into a sharp turn (its markings running nearly
+along the rows near the horizon), a lane whose width changes, tree shadows, glare, worn and dashed
 markings, a light/dark pavement seam parallel to the lane and a double
 yellow centre line. Each scene is a directory of BGR PNG frames
 (OUT/curve_<scene>/0000.png, ...) and OUT/curve_<scene>.csv with one line
@@ -65,6 +66,8 @@ def curvature_at(scene, s):
         return 1.0 / scene["radius"]
     if kind == "s":  # right, then left, period `period` m
         return math.sin(2 * math.pi * s / scene["period"]) / scene["radius"]
+    if kind == "turn":  # straight, then a sharp right turn from `turn_at` m
+        return 1.0 / scene["radius"] if s >= scene["turn_at"] else 0.0
     return 0.0
 
 
@@ -228,6 +231,8 @@ SCENES = {
     "seam": dict(bend="right", radius=180.0, seam=0.9, left="solid", right="dashed"),
     "double_yellow": dict(bend="left", radius=140.0, left="double_yellow", right="solid"),
     "straight": dict(bend="none", left="solid", right="dashed", left_yellow=True),
+    "sharp_turn": dict(bend="turn", radius=22.0, turn_at=36.0, left="solid", right="solid",
+                       left_yellow=True),
 }
 
 

@@ -141,6 +141,9 @@ typedef struct rte_lane_segment {
     rte_lane_segment_use use;
 } rte_lane_segment;
 
+/* Points of a lane's far trace (rte_lane.far_count). */
+#define RTE_LANE_FAR_POINTS 12
+
 typedef struct rte_lane {
     bool found;          /* a lane is reported (measured now or predicted) */
     bool predicted;      /* not seen in this frame: held from the tracker's prediction */
@@ -159,6 +162,14 @@ typedef struct rte_lane {
     /* The highest row the marking was seen on this frame (y_bottom when
      * the lane is predicted or nothing above the bottom window was seen). */
     int32_t y_supported;
+    /* The marking followed beyond where the curve leaves it (a road that
+     * turns sharply past a crest, its markings running nearly along the
+     * rows): far_count points from far_y[0], a row where the curve lies on
+     * the marking, upwards (far_y falling), x in 1/256 pixel; rows above
+     * far_y[0] take x from them (rte_lane_x_q8). 0 when the curve holds up
+     * to where the marking ends. */
+    int32_t far_count;
+    int32_t far_x_q8[RTE_LANE_FAR_POINTS], far_y[RTE_LANE_FAR_POINTS];
     /* share of the lane's rows with paint along it, 1000 from two fifths of
      * them (docs/lanes.md, "Lane line and confidence") */
     int32_t confidence_permille;
@@ -199,7 +210,9 @@ typedef struct rte_lane_result {
     int64_t stage_ns[RTE_LANE_STAGES]; /* CLOCK_MONOTONIC time spent per stage */
 } rte_lane_result;
 
-/* x of a found lane at row y (its curve), in 1/256 pixel. */
+/* x of a found lane at row y, in 1/256 pixel: its curve, and above the far
+ * trace's first row the trace's pieces (the last one extended beyond its
+ * end). */
 int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
 
 /* Rows between the points of rte_lane_polyline (more when max_points are
@@ -207,9 +220,10 @@ int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
 #define RTE_LANE_POINT_STEP 10
 /* A found lane as points from its bottom row up to the highest row its
  * markings were seen on (the ROI's top row for a straight or predicted
- * lane), every RTE_LANE_POINT_STEP rows and at that row: at most
- * max_points (>= 2) into x_q8[] (1/256 px) and y[]; returns how many (0
- * for a lane not found). */
+ * lane), every RTE_LANE_POINT_STEP rows and at that row, or, with a far
+ * trace, up to the trace's first row and then the trace's points: at most
+ * max_points (>= 2) into x_q8[] (1/256 px) and y[], rows falling; returns
+ * how many (0 for a lane not found). */
 int32_t rte_lane_polyline(const rte_lane *lane, int32_t max_points, int32_t *x_q8, int32_t *y);
 /* Curvature of a found lane's image curve at its bottom row, in 1/px:
  * positive when it bends right going up the image, 0 when straight.

@@ -1,11 +1,13 @@
 /* Lane detection, per frame (integer only: built with -mgeneral-regs-only):
  * the parameters, the ROI and the stages in order, with their timings;
- * the stages' own work is in lane_cue.c, lane_fit.c, lane_refine.c and
- * lane_track.c. The stages and the reasons for them are in
+ * the stages' own work is in lane_cue.c, lane_fit.c, lane_refine.c,
+ * lane_windows.c, lane_curve.c, lane_double.c, lane_track.c and
+ * lane_trace.c. The stages and the reasons for them are in
  * include/rtedge/lane.h and docs/lanes.md. */
 #include <string.h>
 #include <time.h>
 
+#include "algo/geom_fixed.h"
 #include "lane_fixed.h"
 #include "rtedge/color.h"
 #include "rtedge/polygon_mask.h"
@@ -243,7 +245,8 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
     return rows;
 }
 
-int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y)
+/* x of the lane's curve at row y (its far trace aside). */
+static int32_t curve_x_q8(const rte_lane *lane, int32_t y)
 {
     const int64_t span = lane->y_bottom - lane->y_top, v = lane->y_bottom - y;
     if (span <= 0)
@@ -262,6 +265,24 @@ int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y)
     if (sag_mid >= 0)
         return lane_clamp32(chord, INT32_MIN, INT32_MAX);
     return lane_clamp32(chord + lane->bow_q8 * sag / sag_mid, INT32_MIN, INT32_MAX);
+}
+
+int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y)
+{
+    const int32_t n = lane->far_count;
+    if (n < 2 || n > RTE_LANE_FAR_POINTS || y > lane->far_y[0])
+        return curve_x_q8(lane, y);
+    /* along the far trace's pieces, the last one extended beyond its end */
+    int32_t i = 0;
+    while (i < n - 2 && y < lane->far_y[i + 1])
+        i++;
+    const int64_t xa = lane->far_x_q8[i], ya = lane->far_y[i];
+    const int64_t xb = lane->far_x_q8[i + 1], yb = lane->far_y[i + 1];
+    if (ya == yb)
+        return (int32_t)xa;
+    /* 128 bits: any int32 fields, whatever a caller filled in */
+    const rte_i128 x = xa + (rte_i128)(xb - xa) * (y - ya) / (yb - ya);
+    return x < INT32_MIN ? INT32_MIN : x > INT32_MAX ? INT32_MAX : (int32_t)x;
 }
 
 /* atan(t) in milliradians for t in 1/65536 (error below 2 mrad). */
@@ -370,8 +391,10 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
     for (int side = 0; side < 2; side++)
         rte_lane_track_update(ctx, side, seen[side], &line[side], &curve[side], support[side],
                               &out->lane[side]);
-    for (int side = 0; side < 2; side++)
+    for (int side = 0; side < 2; side++) {
+        rte_lane_trace_far(&maps, &rows, &out->lane[side]);
         lane_confidence(&maps, &out->lane[side]);
+    }
     lane_centre(out, w, y_bottom, y_top);
 }
 

@@ -66,6 +66,8 @@ static inline int64_t lane_horizon_row(const lane_fit_hint *h)
 /* How much brighter paint is than the road beside it, in grey levels
  * (rte_lane_is_ridge, the double line's gap, the segments' paint weights). */
 #define LANE_RIDGE_MIN 12
+/* A grey level this bright is glare (or may be): it tells nothing of paint. */
+#define LANE_SATURATED 250
 
 /* A segment's weight by its row, /256: the inverse variance of a pixel's
  * lateral position on the road, which grows as (distance from the horizon)^2

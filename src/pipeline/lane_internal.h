@@ -4,7 +4,8 @@
  * lane_cue.c (colour cue, automatic Canny thresholds), lane_fit.c (the
  * robust fit of the segments), lane_refine.c (the refit on the edge
  * pixels), lane_windows.c and lane_curve.c (the curve model), lane_double.c (double
- * markings) and lane_track.c (sides, gate, the trackers). */
+ * markings), lane_track.c (sides, gate, the trackers) and lane_trace.c (the
+ * far trace). */
 #ifndef RTEDGE_LANE_INTERNAL_H
 #define RTEDGE_LANE_INTERNAL_H
 
@@ -190,6 +191,10 @@ int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
  * the two (see lane_curve.c); a curved side's line becomes its chord. */
 void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *hint, const bool seen[2],
                          lane_line line[2], lane_curve curve[2]);
+
+/* lane_trace.c: a found lane's marking followed beyond where its curve
+ * leaves it, into lane->far_count and its points (see rte_lane). */
+void rte_lane_trace_far(const lane_maps *maps, const lane_fit_hint *rows, rte_lane *lane);
 
 /* lane_double.c: a side whose marking has a twin beside it (a double
  * centre line) moved onto the centre between the two (both sides seen). */

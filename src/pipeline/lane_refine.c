@@ -109,7 +109,6 @@ band_pixels rte_lane_band_row(const rte_image_u8 *edges, int32_t y, int64_t xa, 
  * beside white paint until the cue takes it for paint too). A side
  * saturated in grey (glare) tells nothing and is left out; one side must
  * remain, so paint inside glare does not count. */
-#define LANE_SATURATED 250
 static bool ridge_in(const uint8_t *row, int64_t first, int64_t last, bool skip_a, bool skip_b)
 {
     int32_t mid = row[(first + last) / 2];

@@ -5,8 +5,9 @@
 
 #include "lane_fixed.h"
 
-/* The highest row the polyline reaches: where the markings were seen, the
- * ROI's top for a predicted lane or one seen only by its segments. */
+/* The highest row the points reach without a far trace: where the
+ * markings were seen, the ROI's top for a predicted lane or one seen only
+ * by its segments. */
 static int32_t lane_end_row(const rte_lane *l)
 {
     return l->predicted || l->y_supported >= l->y_bottom - RTE_LANE_POINT_STEP ? l->y_top
@@ -17,17 +18,33 @@ int32_t rte_lane_polyline(const rte_lane *l, int32_t max_points, int32_t *x_q8, 
 {
     if (!l || !l->found || max_points < 2 || !x_q8 || !y)
         return 0;
-    const int32_t end = lane_end_row(l), length = l->y_bottom - end;
-    /* every RTE_LANE_POINT_STEP rows, or more when max_points are too few */
-    int32_t step = (length + max_points - 2) / (max_points - 1);
+    /* the far trace's points (the last of them when too many), with the
+     * curve's points below its first row: one at least */
+    int32_t far = l->far_count >= 2 && l->far_count <= RTE_LANE_FAR_POINTS ? l->far_count : 0;
+    far = far < max_points - 1 ? far : max_points - 1;
+    const int32_t curve_points = max_points - far;
+    const int32_t end = far > 0 ? l->far_y[0] : lane_end_row(l), length = l->y_bottom - end;
+    /* every RTE_LANE_POINT_STEP rows, or more when the points are too few */
+    int32_t step = curve_points > 1 ? (length + curve_points - 2) / (curve_points - 1) : length;
     step = step < RTE_LANE_POINT_STEP ? RTE_LANE_POINT_STEP : step;
     int32_t n = 0;
-    for (int32_t row = l->y_bottom; n < max_points; row -= step) {
-        row = row < end ? end : row;
+    if (far == 0) {
+        for (int32_t row = l->y_bottom; n < curve_points; row -= step) {
+            row = row < end ? end : row;
+            x_q8[n] = rte_lane_x_q8(l, row);
+            y[n++] = row;
+            if (row == end)
+                break;
+        }
+        return n;
+    }
+    for (int32_t row = l->y_bottom; n < curve_points && row > end; row -= step) {
         x_q8[n] = rte_lane_x_q8(l, row);
         y[n++] = row;
-        if (row == end)
-            break;
+    }
+    for (int32_t i = l->far_count - far; i < l->far_count; i++) {
+        x_q8[n] = l->far_x_q8[i];
+        y[n++] = l->far_y[i];
     }
     return n;
 }

@@ -7,8 +7,11 @@
 # over all scenes the sides seen with confidence >= 0.5 must be right in 95%
 # of cases (the confidence's calibration, docs/lanes.md).
 # The floors are 95% (23 of 24 frames), and today's result less a frame
-# where a scene is below that (the width change: its first five frames,
-# docs/lanes.md, "Accuracy"); the scenes run with the ROI's top widened to
+# where a scene is below that (the width change: its first five frames;
+# the sharp turn: its last three frames, 6 to 8 m before the turn, where
+# the curve fit of the whole lane leaves the near marking, docs/lanes.md,
+# "Accuracy"); the sharp turn bends only far up, so its bottom-row
+# curvature is not checked; the scenes run with the ROI's top widened to
 # 0.25..0.75 of the width, where a tight bend's far dashes lie. With the
 # default ROI (the tutorial's trapezoid, which seeds the lanes only from
 # segments inside it) 95% of all frames must be right.
@@ -50,16 +53,17 @@ glare 0.95 right
 straight 0.95
 width_change 0.75 left
 double_yellow 0.95 left
+sharp_turn 0.83
 SCENES
 # The default ROI, over all scenes: "...: N/24 frames right ..."
 for scene in tight_bend s_bend worn left_bend right_bend shadows seam glare straight \
-    width_change double_yellow; do
+    width_change double_yellow sharp_turn; do
     # shellcheck disable=SC2086 # the cross build's wrapper is a command line
     ${MESON_EXE_WRAPPER:-} "$RTEDGE" lanes --sequence "$DIR/curve_$scene" >"$DIR/curve_default_$scene.jsonl" &&
         /usr/bin/python3 "$EVAL" "$DIR/curve_$scene.csv" "$DIR/curve_default_$scene.jsonl"
 done >"$DIR/curve_default.txt"
 if ! awk '/frames right/ { split($2, f, "/"); right += f[1]; n += f[2] }
-    END { printf "default ROI: %d/%d frames right\n", right, n; exit !(n == 264 && right >= 0.95 * n) }' \
+    END { printf "default ROI: %d/%d frames right\n", right, n; exit !(n == 288 && right >= 0.95 * n) }' \
     "$DIR/curve_default.txt"; then
     echo "FAIL: with the default ROI fewer than 95% of the frames are right"
     failed=1

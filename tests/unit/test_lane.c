@@ -1200,6 +1200,132 @@ static void test_real_clip(void **state)
     rte_y4m_close(rd);
 }
 
+/* ---- the far trace (rte_lane.far_count) ---- */
+
+/* x at a row and the polyline of a lane with a far trace: the curve below
+ * its first point, its pieces above, the last one extended; the polyline
+ * ends with its points, within max_points; a far_count out of range is no
+ * trace. */
+static void test_far_trace_contract(void **state)
+{
+    (void)state;
+    rte_lane l = {.found = true,
+                  .x_bottom_q8 = 100 * 256,
+                  .x_top_q8 = 200 * 256,
+                  .y_bottom = 359,
+                  .y_top = 219,
+                  .y_horizon = 200,
+                  .y_supported = 359};
+    rte_lane curve = l;
+    const int32_t fx[3] = {176 * 256, 230 * 256, 300 * 256}, fy[3] = {260, 250, 244};
+    l.far_count = 3;
+    for (int i = 0; i < 3; i++) {
+        l.far_x_q8[i] = fx[i];
+        l.far_y[i] = fy[i];
+    }
+    for (int32_t y = 359; y > 260; y--)
+        assert_int_equal(rte_lane_x_q8(&l, y), rte_lane_x_q8(&curve, y));
+    assert_int_equal(rte_lane_x_q8(&l, 260), 176 * 256);
+    assert_int_equal(rte_lane_x_q8(&l, 250), 230 * 256);
+    assert_int_equal(rte_lane_x_q8(&l, 255), 203 * 256);
+    assert_int_equal(rte_lane_x_q8(&l, 244), 300 * 256);
+    /* beyond the end: the last piece (70 px over 6 rows) extended */
+    assert_int_equal(rte_lane_x_q8(&l, 238), (300 + 70) * 256);
+
+    int32_t xs[32], ys[32];
+    int32_t n = rte_lane_polyline(&l, 32, xs, ys);
+    assert_true(n >= 4);
+    assert_int_equal(ys[0], 359);
+    assert_int_equal(ys[n - 3], 260);
+    assert_int_equal(ys[n - 2], 250);
+    assert_int_equal(xs[n - 2], 230 * 256);
+    assert_int_equal(ys[n - 1], 244);
+    assert_int_equal(xs[n - 1], 300 * 256);
+    for (int32_t i = 1; i < n; i++)
+        assert_true(ys[i] < ys[i - 1]);
+    /* too few points: the curve keeps its bottom row, the far trace its
+     * last points */
+    n = rte_lane_polyline(&l, 3, xs, ys);
+    assert_int_equal(n, 3);
+    assert_int_equal(ys[0], 359);
+    assert_int_equal(ys[1], 250);
+    assert_int_equal(ys[2], 244);
+
+    /* any values a caller fills in: no overflow, x clamped */
+    rte_lane wild = l;
+    wild.far_count = 2;
+    wild.far_x_q8[0] = INT32_MIN;
+    wild.far_x_q8[1] = INT32_MAX;
+    wild.far_y[0] = 0;
+    wild.far_y[1] = -1;
+    assert_int_equal(rte_lane_x_q8(&wild, INT32_MIN), INT32_MAX);
+    wild.far_y[1] = 0;
+    assert_int_equal(rte_lane_x_q8(&wild, -5), INT32_MIN);
+    for (int32_t bad = -1; bad <= RTE_LANE_FAR_POINTS + 1; bad += RTE_LANE_FAR_POINTS + 2) {
+        l.far_count = bad;
+        assert_int_equal(rte_lane_x_q8(&l, 244), rte_lane_x_q8(&curve, 244));
+    }
+}
+
+/* Paints a marking along the polyline pts[0..n) ({x, y} pairs), a square
+ * brush of 2 * half + 1 pixels. */
+static void paint_marking(rte_image_u8 *img, const double (*pts)[2], int n, int half, uint8_t v)
+{
+    for (int i = 0; i + 1 < n; i++) {
+        const double dx = pts[i + 1][0] - pts[i][0], dy = pts[i + 1][1] - pts[i][1];
+        const int steps = (int)(4 * (fabs(dx) + fabs(dy))) + 1;
+        for (int s = 0; s <= steps; s++) {
+            const int xc = (int)lround(pts[i][0] + dx * s / steps);
+            const int yc = (int)lround(pts[i][1] + dy * s / steps);
+            for (int y = yc - half; y <= yc + half; y++)
+                for (int x = xc - half; x <= xc + half; x++)
+                    if (x >= 0 && y >= 0 && x < img->width && y < img->height)
+                        rte_u8_row(img, y)[x] = v;
+        }
+    }
+}
+
+/* A drawn road whose left marking turns sharply right near the top, to
+ * run nearly along the rows: the far trace follows it where the curve
+ * cannot (every drawn vertex within 2% of the width within a row of it,
+ * but the end, where the marking runs 30 px a row); the straight right
+ * marking gets none. Without the trace the lane is 45 px off near row 236. */
+static void test_far_trace_drawn(void **state)
+{
+    (void)state;
+    const int32_t w = 640, h = 360;
+    rte_image_u8 img = {w, h, w, test_malloc((size_t)w * h)};
+    memset(img.buf, 90, (size_t)w * h);
+    static const double left[][2] = {{150, 359}, {237, 262}, {250, 252}, {275, 245},
+                                     {310, 240}, {360, 236}, {420, 234}};
+    static const double right[][2] = {{490, 359}, {393, 216}};
+    paint_marking(&img, left, 7, 2, 230);
+    paint_marking(&img, right, 2, 2, 230);
+    rte_lane_context *ctx = make_ctx(w, h, NULL);
+    rte_lane_result r;
+    assert_int_equal(rte_lane_process_gray(ctx, &img, NULL, 0, &r), RTE_OK);
+    const rte_lane *L = &r.lane[RTE_LANE_LEFT], *R = &r.lane[RTE_LANE_RIGHT];
+    assert_true(L->found && R->found);
+    assert_true(L->far_count >= 2);
+    assert_int_equal(R->far_count, 0);
+    for (int i = 0; i < 6; i++) {
+        /* within a row of the vertex: where the marking runs 10 px a row,
+         * a row's x is that uncertain */
+        double err = 1e9, x = 0;
+        for (int32_t dy = -1; dy <= 1; dy++) {
+            const double xr = rte_lane_x_q8(L, (int32_t)left[i][1] + dy) / 256.0;
+            if (fabs(xr - left[i][0]) < err) {
+                err = fabs(xr - left[i][0]);
+                x = xr;
+            }
+        }
+        if (err > 0.02 * w)
+            fail_msg("left near row %.0f: %.1f, drawn at %.1f", left[i][1], x, left[i][0]);
+    }
+    rte_lane_destroy(ctx);
+    test_free(img.buf);
+}
+
 int main(int argc, char **argv)
 {
     if (argc > 1)
@@ -1210,7 +1336,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_color_cue),       cmocka_unit_test(test_tracking),
         cmocka_unit_test(test_runtime_params),  cmocka_unit_test(test_y4m),
         cmocka_unit_test(test_synthetic_roads), cmocka_unit_test(test_real_photos),
-        cmocka_unit_test(test_real_clip),
+        cmocka_unit_test(test_real_clip),       cmocka_unit_test(test_far_trace_contract),
+        cmocka_unit_test(test_far_trace_drawn),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
