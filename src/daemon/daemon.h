@@ -80,7 +80,9 @@ const rted_config *rted_daemon_config(const rted_daemon *d);
 void rted_daemon_handle_params(rted_daemon *d, const void *data, size_t size);
 /* The publisher's lcm_t (memq://, udpm://), for in-process subscribers. */
 lcm_t *rted_daemon_lcm(rted_daemon *d);
-/* The latency of the last status window, microseconds: p50, p99, max. */
+/* Capture-to-publish latency over the whole run, microseconds: p50 and p99
+ * (within 1.6%: a log-linear histogram) and the max (exact); 0 before the
+ * first frame. */
 void rted_daemon_latency(const rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *max);
 
 #endif

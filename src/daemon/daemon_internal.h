@@ -24,6 +24,11 @@
 
 /* Latencies kept per status window (the newest ones when more frames came). */
 #define RTED_RING 8192
+/* The whole run's latencies (--bench): a log-linear histogram of
+ * microseconds, exact below RTED_HIST_SUB, then RTED_HIST_SUB buckets per
+ * power of two (each under 1/64 = 1.6% wide) up to 2^31. */
+#define RTED_HIST_SUB 64
+#define RTED_HIST_BUCKETS (RTED_HIST_SUB * 26)
 #define RTED_MAX_SETS 64
 /* params_t messages handled per step at most (the rest wait in the socket,
  * where the kernel drops what does not fit). */
@@ -77,6 +82,9 @@ struct rted_daemon {
     int32_t ring[RTED_RING], sorted[RTED_RING];
     uint32_t ring_n; /* latencies in the window (may exceed RTED_RING) */
     int32_t window_max;
+    uint32_t run_hist[RTED_HIST_BUCKETS];
+    uint64_t run_n;
+    int32_t run_max;
     uint64_t window_processed;
     int64_t window_start_ns;
     rte_source_state state;

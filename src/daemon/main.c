@@ -212,7 +212,7 @@ static void report(rted_daemon *d, bool bench)
     rted_counters n;
     rted_daemon_get_counters(d, &n);
     if (bench) {
-        /* The last status window: run with a long status period to cover the run. */
+        /* the whole run's latencies */
         int32_t p50, p99, max;
         rted_daemon_latency(d, &p50, &p99, &max);
         struct rusage ru;

@@ -1,6 +1,7 @@
 /* The status message and the latency window it reports: capture-to-publish
  * latencies in a fixed ring, sorted in place when a status goes out (an
- * integer heap sort: bounded time, no allocation). */
+ * integer heap sort: bounded time, no allocation); and the whole run's
+ * latencies in a fixed histogram, for --bench. */
 #include <string.h>
 
 #include "daemon_internal.h"
@@ -90,19 +91,58 @@ void rted_daemon_publish_status(rted_daemon *d)
     rted_log_flush(&d->log_params, t);
 }
 
+/* The histogram bucket of v >= 0 microseconds, and the middle of a
+ * bucket's range. */
+static uint32_t hist_bucket(int32_t v)
+{
+    if (v < RTED_HIST_SUB)
+        return (uint32_t)v;
+    const uint32_t e = 31 - (uint32_t)__builtin_clz((uint32_t)v); /* >= 6 */
+    const uint32_t shift = e - 6;
+    return RTED_HIST_SUB + shift * RTED_HIST_SUB + (((uint32_t)v >> shift) - RTED_HIST_SUB);
+}
+
+static int32_t hist_value(uint32_t b)
+{
+    if (b < RTED_HIST_SUB)
+        return (int32_t)b;
+    const uint32_t shift = (b - RTED_HIST_SUB) / RTED_HIST_SUB;
+    const uint32_t low = (RTED_HIST_SUB + (b - RTED_HIST_SUB) % RTED_HIST_SUB) << shift;
+    return (int32_t)(low + ((1u << shift) >> 1));
+}
+
+/* The value of 0-based rank r of the run's latencies. */
+static int32_t hist_rank(const rted_daemon *d, uint64_t r)
+{
+    uint64_t seen = 0;
+    for (uint32_t b = 0; b < RTED_HIST_BUCKETS; b++) {
+        seen += d->run_hist[b];
+        if (seen > r)
+            return hist_value(b) < d->run_max ? hist_value(b) : d->run_max;
+    }
+    return d->run_max;
+}
+
 void rted_daemon_latency(const rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *max)
 {
-    *p50 = d->status_msg.latency_p50_us;
-    *p99 = d->status_msg.latency_p99_us;
-    *max = d->status_msg.latency_max_us;
+    *p50 = *p99 = *max = 0;
+    if (d->run_n == 0)
+        return;
+    *p50 = hist_rank(d, (d->run_n - 1) * 50 / 100);
+    *p99 = hist_rank(d, (d->run_n - 1) * 99 / 100);
+    *max = d->run_max;
 }
 
 void rted_record_latency(rted_daemon *d, int64_t lat_ns)
 {
     int64_t us = lat_ns / 1000;
-    int32_t v = us > INT32_MAX ? INT32_MAX : (int32_t)us;
+    int32_t v = us > INT32_MAX ? INT32_MAX : us < 0 ? 0 : (int32_t)us;
     d->ring[d->ring_n % RTED_RING] = v;
     d->ring_n++;
     if (v > d->window_max)
         d->window_max = v;
+    d->run_hist[hist_bucket(v)]++;
+    d->run_n++;
+    if (v > d->run_max)
+        d->run_max = v;
 }
