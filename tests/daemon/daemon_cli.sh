@@ -270,3 +270,25 @@ print("record: %d NV12 images %dx%d; lanes found %d; replay identical: %s"
 sys.exit(0 if ok else 1)
 EOP
 echo "ok: --record and its replay"
+
+# tools/render_log draws the log's frames (its image_t when published) with
+# the lanes on them: three frames, three PNGs of the frame's size, each the
+# recorded picture with green lane curves.
+"$RTEDGED" --source "$Y4M" --fast --max-frames 3 --lcm-url "file://$TMP/render.lcm" \
+    --set publish.images=true 2>/dev/null || fail "rtedged for render_log"
+$PY "$(dirname "$SUB")/render_log" --types "$TYPES" --out "$TMP/render" "$TMP/render.lcm" \
+    >"$TMP/render.txt" || fail "render_log: $(cat "$TMP/render.txt")"
+$PY - "$TMP/render" "$Y4M" <<'EOP' || fail "render_log's overlays"
+import glob, sys
+import cv2, numpy as np
+pngs = sorted(glob.glob(sys.argv[1] + "/frame_*.png"))
+frame = cv2.VideoCapture(sys.argv[2]).read()[1]
+ok = len(pngs) == 3
+for p in pngs:
+    img = cv2.imread(p)
+    green = (img[:, :, 1] > 200) & (img[:, :, 0] < 60) & (img[:, :, 2] < 60)
+    ok = ok and img.shape == frame.shape and green.sum() > 500 and img.std() > 20
+print("render_log: %d PNGs, %s" % (len(pngs), "lanes drawn on the frames" if ok else "WRONG"))
+sys.exit(0 if ok else 1)
+EOP
+echo "ok: render_log"
