@@ -415,8 +415,9 @@ int cmd_lanes(const cli_entry *self, int argc, char **argv)
         "IN | --sequence DIR_OR_Y4M",
         self->summary,
         "Prints the lanes as JSON: (x1, y1) on the bottom row, (x2, y2) on the ROI's\n"
-        "top row (the chord), points [[x, y], ...] every 10 rows up the lane and its\n"
-        "curvature at the bottom row (1/px, > 0: bends right going up);\n"
+        "top row (the chord), points [[x, y], ...] every 10 rows up the lane (then\n"
+        "the far trace's, where a sharply turning marking is followed beyond the\n"
+        "curve) and its curvature at the bottom row (1/px, > 0: bends right going up);\n"
         "offset_px = lane centre minus image centre on the bottom row.\n"
         "With --sequence, one JSON line per frame, tracked.",
         options,
