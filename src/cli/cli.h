@@ -9,6 +9,10 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+/* The larger of two scratch sizes (kernels run one after the other share
+ * an arena). */
+static inline size_t cli_max_size(size_t a, size_t b) { return a > b ? a : b; }
+
 /* Exit codes, the same for every subcommand. */
 enum {
     CLI_EXIT_OK = 0,

@@ -27,8 +27,6 @@ typedef struct blur_options {
 int cli_blur_prepare(const char *name, void *blur_options_ptr);
 size_t cli_blur_scratch(void *blur_options_ptr, int32_t w, int32_t h);
 
-static inline size_t cli_max_size(size_t a, size_t b) { return a > b ? a : b; }
-
 typedef struct canny_options {
     double low, high, auto_sigma;
     int aperture, auto_rule; /* auto_rule: 0 none, 1 median, 2 otsu */

@@ -111,8 +111,6 @@ static rte_status print_features(const rte_point *pts, int32_t n, feature_buffer
     return RTE_OK;
 }
 
-static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
-
 /* The contour list and the feature buffers for config's limits on a w x h
  * image; false when one could not be allocated (the others are freed by
  * contour_buffers_free either way). */
@@ -129,9 +127,9 @@ static bool contour_buffers_new(const char *command, const rte_grasp_config *con
     b->approx = malloc((size_t)maxp * sizeof *b->approx);
     b->defects = malloc((size_t)maxp * sizeof *b->defects);
     size_t scratch = rte_contours_scratch_size(w, h, cs->max_contours);
-    scratch = max_size(scratch, rte_shape_classify_scratch_size(maxp));
-    scratch = max_size(scratch, rte_shape_hull_scratch_size(maxp));
-    scratch = max_size(scratch, rte_shape_approx_scratch_size(maxp));
+    scratch = cli_max_size(scratch, rte_shape_classify_scratch_size(maxp));
+    scratch = cli_max_size(scratch, rte_shape_hull_scratch_size(maxp));
+    scratch = cli_max_size(scratch, rte_shape_approx_scratch_size(maxp));
     b->arena_memory = cli_new_arena(command, scratch, &b->arena);
     return cs->points && cs->contours && b->hull_idx && b->hull && b->approx && b->defects &&
            b->arena_memory;
