@@ -183,6 +183,11 @@ bool rte_lane_paint_row(const lane_maps *maps, int32_t y, int64_t xa, int64_t xb
 #define LANE_SLOPE_ANY INT64_MIN
 bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t reach,
                          int64_t slope_q16, band_pixels *px);
+/* lane_refine.c: whether row y shows paint along `lane` (within
+ * band_scale times the refit's band around it, its edges along the lane's
+ * direction there), into *px; *lane_x_q8 gets the lane's x on that row. */
+bool rte_lane_paint_along(const lane_maps *maps, const lane_fit_hint *hint, const rte_lane *lane,
+                          int32_t band_scale, int32_t y, int64_t *lane_x_q8, band_pixels *px);
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
                               const rte_lane *pred, int32_t band_scale, int64_t *offset_q8);
 

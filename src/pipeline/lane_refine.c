@@ -222,6 +222,17 @@ bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t re
     return px->n >= 2;
 }
 
+bool rte_lane_paint_along(const lane_maps *maps, const lane_fit_hint *hint, const rte_lane *lane,
+                          int32_t band_scale, int32_t y, int64_t *lane_x_q8, band_pixels *px)
+{
+    const int64_t band = band_scale * rte_lane_band_px(hint, maps->tol, y);
+    const int64_t lx = rte_lane_x_q8(lane, y), xa = ((lx + 128) >> 8) - band - maps->cx0;
+    /* the curve's direction here, x per row downwards */
+    const int64_t slope = ((int64_t)rte_lane_x_q8(lane, y + 1) - lx) * 256;
+    *lane_x_q8 = lx;
+    return rte_lane_paint_row(maps, y, xa, xa + 2 * band, slope, px);
+}
+
 /* Where the marking near a lane `pred` is: the mean offset from it of the
  * rows (within band_scale times the refit's band around it) that show a
  * marking, i.e. two edges with paint between them (rte_lane_is_ridge), in
@@ -229,19 +240,15 @@ bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t re
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
                               const rte_lane *pred, int32_t band_scale, int64_t *offset_q8)
 {
-    const rte_image_u8 *edges = maps->edges;
     const int32_t cx0 = maps->cx0, cy0 = maps->cy0;
     int64_t sum_r = 0, n = 0;
     int32_t rows = 0;
     for (int32_t y = hint->y_bottom; y >= hint->y_top; y--) {
-        if (y < cy0 || y > cy0 + edges->height - 1)
+        if (y < cy0 || y > cy0 + maps->edges->height - 1)
             continue;
-        const int64_t band = band_scale * rte_lane_band_px(hint, maps->tol, y);
-        const int64_t lx = rte_lane_x_q8(pred, y), xa = ((lx + 128) >> 8) - band - cx0;
-        /* the curve's direction here, x per row downwards */
-        const int64_t slope = ((int64_t)rte_lane_x_q8(pred, y + 1) - lx) * 256;
+        int64_t lx;
         band_pixels px;
-        if (!rte_lane_paint_row(maps, y, xa, xa + 2 * band, slope, &px))
+        if (!rte_lane_paint_along(maps, hint, pred, band_scale, y, &lx, &px))
             continue;
         sum_r += (px.sum_x + px.n * cx0) * 256 - px.n * lx;
         n += px.n;

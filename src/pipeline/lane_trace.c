@@ -177,12 +177,9 @@ static bool trace_start(const lane_maps *maps, const lane_fit_hint *rows, const 
         const int32_t slot = (r - y_lo) % TRACE_RUN_ROWS;
         bool paint = false;
         band_pixels px = {0, 0, 0, 0};
-        if (r <= y_hi) {
-            const int64_t band = rte_lane_band_px(rows, maps->tol, r);
-            const int64_t lx = rte_lane_x_q8(lane, r), xa = ((lx + 128) >> 8) - band - maps->cx0;
-            const int64_t slope = ((int64_t)rte_lane_x_q8(lane, r + 1) - lx) * 256;
-            paint = rte_lane_paint_row(maps, r, xa, xa + 2 * band, slope, &px);
-        }
+        int64_t lx;
+        if (r <= y_hi)
+            paint = rte_lane_paint_along(maps, rows, lane, 1, r, &lx, &px);
         in_run += (int32_t)paint - (int32_t)seen[slot];
         seen[slot] = paint;
         xs_q8[slot] = paint ? (px.sum_x + px.n * maps->cx0) * 256 / px.n : 0;
