@@ -68,8 +68,11 @@ typedef struct rted_config {
     /* [params] */
     bool params_enabled;
     char params_channel[64];
-    char params_keys[RTED_TEXT]; /* "section.key,..."; "" = every numeric runtime key */
+    char params_keys[RTED_TEXT]; /* "section.key,..."; "" = every runtime key */
     int32_t params_max_per_second;
+    char params_state_channel[64];
+    int32_t params_state_period_ms;
+    char params_save_path[RTED_TEXT]; /* ACTION_SAVE's file; "" = refused */
     /* [deadline] */
     double deadline_ms;         /* 0 = 1000 / fps (or 1000 / 30) */
     double grasp_min_budget_ms; /* skip grasp when less than this is left */
@@ -107,6 +110,23 @@ bool rted_config_set_real(rted_config *c, const rted_key *k, double value, char 
                           size_t why_size);
 bool rted_config_set_bool(rted_config *c, const rted_key *k, bool value, char *why,
                           size_t why_size);
+/* Text and choice keys (a choice by its name). */
+bool rted_config_set_text(rted_config *c, const rted_key *k, const char *value, char *why,
+                          size_t why_size);
+/* What param_state_t tells of a key besides its name and type. */
+typedef struct rted_key_desc {
+    const char *unit, *help;
+    double min, max; /* RTED_KEY_INT, RTED_KEY_REAL */
+    bool has_unset;  /* `unset` is valid too: "the default" */
+    double unset;
+    const char *const *choices; /* RTED_KEY_CHOICE: NULL-terminated */
+} rted_key_desc;
+void rted_key_describe(const rted_key *k, rted_key_desc *d);
+/* The key's value in c: integers and booleans (0, 1) in *int_value, reals
+ * in *real_value, text and a choice's name in *text_value (pointing into
+ * c or the table); the others 0 or "". */
+void rted_config_get(const rted_config *c, const rted_key *k, int64_t *int_value,
+                     double *real_value, const char **text_value);
 /* true when params.keys lets params_t change `name` ("section.key"). */
 bool rted_config_params_allowed(const rted_config *c, const char *name);
 
@@ -129,8 +149,20 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size);
 bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height, char *msg,
                              size_t msg_size);
 #define RTED_ROI_MIN_SIDE 16
-/* The effective configuration as INI. */
+/* The effective configuration as INI, values only (--check-config). */
 void rted_config_print(const rted_config *c, FILE *f);
+/* The largest text rted_config_write makes (checked where it is used). */
+#define RTED_CONFIG_TEXT_MAX 65536
+/* c as an rtedged.conf that rted_config_load reads back to c: "# title",
+ * then every key with its help, range and default, as --help-config has
+ * them, set to its value in c. Returns the length written into buf
+ * (NUL-terminated), 0 when it does not fit in size bytes. */
+size_t rted_config_write(const rted_config *c, const char *title, char *buf, size_t size);
+/* rted_config_write (in buf, size bytes) into the file `path` ("-":
+ * stdout), replacing it whole (a temporary file beside it, renamed over
+ * it). false and *why otherwise. */
+bool rted_config_save(const rted_config *c, const char *path, char *buf, size_t size, char *why,
+                      size_t why_size);
 /* The documented default file: every key with help, range and default. */
 void rted_config_print_help(FILE *f);
 /* FNV-1a of the printed configuration's values. */

@@ -60,7 +60,7 @@ typedef struct list_check {
     size_t msg_size;
 } list_check;
 
-/* params.keys: every name a numeric or boolean runtime key. */
+/* params.keys: every name a runtime key. */
 static bool check_listed(const char *name, size_t len, void *user)
 {
     list_check *lc = user;
@@ -72,13 +72,9 @@ static bool check_listed(const char *name, size_t len, void *user)
     memcpy(buf, name, len);
     buf[len] = 0;
     const rted_key *k = rted_config_find_key(buf);
-    const rted_key_type type = k ? rted_key_get_type(k) : RTED_KEY_TEXT;
-    if (!k || !rted_key_is_runtime(k) || type == RTED_KEY_TEXT || type == RTED_KEY_CHOICE) {
+    if (!k || !rted_key_is_runtime(k)) {
         rted_msgf(lc->msg, lc->msg_size, "params.keys: '%s' is not %s", buf,
-                  !k ? "a key"
-                  : !rted_key_is_runtime(k)
-                      ? "a runtime key (it fixes sizes or the source)"
-                      : "a numeric or boolean key (params_t carries no text)");
+                  !k ? "a key" : "a runtime key (it fixes sizes or the source)");
         return false;
     }
     return true;
@@ -196,7 +192,8 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
                   c->params_channel);
         return false;
     }
-    const char *own[] = {c->lane_channel, c->grasp_channel, c->status_channel, c->image_channel};
+    const char *own[] = {c->lane_channel, c->grasp_channel, c->status_channel, c->image_channel,
+                         c->params_state_channel};
     for (size_t i = 0; i < sizeof own / sizeof own[0]; i++)
         if (!strcmp(own[i], c->params_channel)) {
             rted_msgf(msg, msg_size,

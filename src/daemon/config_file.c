@@ -7,9 +7,12 @@
 #include "config_table.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "log.h"
 
@@ -157,6 +160,63 @@ bool rted_config_set(rted_config *c, const char *assignment, const char *origin,
     if (!rted_config_store(c, k, trim(eq + 1), why, sizeof why)) {
         rted_key_get_name(k, name, sizeof name);
         rted_msgf(msg, msg_size, "%s: %s: %s", origin, name, why);
+        return false;
+    }
+    return true;
+}
+
+bool rted_config_save(const rted_config *c, const char *path, char *buf, size_t size, char *why,
+                      size_t why_size)
+{
+    char title[RTED_TEXT + 160];
+    snprintf(title, sizeof title,
+             "rtedged.conf written by rtedged: the configuration in force (hash %016llx)",
+             (unsigned long long)rted_config_hash(c));
+    size_t n = rted_config_write(c, title, buf, size);
+    if (!n) {
+        rted_msgf(why, why_size, "the configuration's text is over %zu bytes", size);
+        return false;
+    }
+    if (!strcmp(path, "-")) {
+        if (fwrite(buf, 1, n, stdout) != n || fflush(stdout) != 0) {
+            rted_msgf(why, why_size, "cannot write to stdout: %s", strerror(errno));
+            return false;
+        }
+        return true;
+    }
+    /* Written beside the file and renamed over it: a reader sees the old
+     * file or the new one, never a part. */
+    char tmp[RTED_TEXT + 16];
+    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp) {
+        rted_msgf(why, why_size, "the path is too long");
+        return false;
+    }
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        rted_msgf(why, why_size, "cannot create %s: %s", tmp, strerror(errno));
+        return false;
+    }
+    for (size_t done = 0; done < n;) {
+        ssize_t w = write(fd, buf + done, n - done);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0) {
+            rted_msgf(why, why_size, "cannot write %s: %s", tmp,
+                      w < 0 ? strerror(errno) : "no space");
+            close(fd);
+            unlink(tmp);
+            return false;
+        }
+        done += (size_t)w;
+    }
+    if (fsync(fd) != 0 || close(fd) != 0) {
+        rted_msgf(why, why_size, "cannot write %s: %s", tmp, strerror(errno));
+        unlink(tmp);
+        return false;
+    }
+    if (rename(tmp, path) != 0) {
+        rted_msgf(why, why_size, "cannot replace %s: %s", path, strerror(errno));
+        unlink(tmp);
         return false;
     }
     return true;

@@ -22,18 +22,6 @@
 #define K_TEXT RTED_KEY_TEXT
 #define K_ENUM RTED_KEY_CHOICE
 
-struct rted_key {
-    const char *section, *key;
-    rted_key_type type;
-    size_t offset, size; /* size: K_TEXT capacity */
-    double min, max;     /* K_INT, K_REAL */
-    bool has_unset;      /* `unset` is allowed besides min..max ("the default") */
-    double unset;
-    const char *const *choices; /* K_ENUM, NULL-terminated */
-    bool runtime;               /* may change while running (SIGHUP, params_t) */
-    const char *def;
-    const char *help;
-};
 typedef struct rted_key key_def;
 
 static const char *const source_kinds[] = {"auto", "y4m",  "images",    "raw", "lcm-log",
@@ -44,34 +32,27 @@ static const char *const binarizers[] = {"otsu", "fixed", "canny-close", NULL};
 static const char *const polarities[] = {"auto", "dark", "bright", NULL};
 
 #define OFF(f) offsetof(rted_config, f)
-#define INT(s, k, f, lo, hi, rt, d, h)                           \
-    {                                                            \
-        s, k, K_INT, OFF(f), 0, lo, hi, false, 0, NULL, rt, d, h \
-    }
-/* An integer or real key whose value `u` means "the default" besides lo..hi. */
-#define INTU(s, k, f, u, lo, hi, rt, d, h)                      \
-    {                                                           \
-        s, k, K_INT, OFF(f), 0, lo, hi, true, u, NULL, rt, d, h \
-    }
-#define REAL(s, k, f, lo, hi, rt, d, h)                           \
+/* A number key: type t, unit u, range lo..hi, and (has_un) a value `un`
+ * meaning "the default" besides the range. */
+#define NUM(t, s, k, f, u, has_un, un, lo, hi, rt, d, h)          \
     {                                                             \
-        s, k, K_REAL, OFF(f), 0, lo, hi, false, 0, NULL, rt, d, h \
+        s, k, t, OFF(f), 0, u, lo, hi, has_un, un, NULL, rt, d, h \
     }
-#define REALU(s, k, f, u, lo, hi, rt, d, h)                      \
-    {                                                            \
-        s, k, K_REAL, OFF(f), 0, lo, hi, true, u, NULL, rt, d, h \
+#define INT(s, k, f, u, lo, hi, rt, d, h) NUM(K_INT, s, k, f, u, false, 0, lo, hi, rt, d, h)
+#define INTU(s, k, f, u, un, lo, hi, rt, d, h) NUM(K_INT, s, k, f, u, true, un, lo, hi, rt, d, h)
+#define REAL(s, k, f, u, lo, hi, rt, d, h) NUM(K_REAL, s, k, f, u, false, 0, lo, hi, rt, d, h)
+#define REALU(s, k, f, u, un, lo, hi, rt, d, h) NUM(K_REAL, s, k, f, u, true, un, lo, hi, rt, d, h)
+#define BOOL(s, k, f, rt, d, h)                                     \
+    {                                                               \
+        s, k, K_BOOL, OFF(f), 0, "", 0, 1, false, 0, NULL, rt, d, h \
     }
-#define BOOL(s, k, f, rt, d, h)                                 \
-    {                                                           \
-        s, k, K_BOOL, OFF(f), 0, 0, 1, false, 0, NULL, rt, d, h \
+#define TEXT(s, k, f, rt, d, h)                                                                 \
+    {                                                                                           \
+        s, k, K_TEXT, OFF(f), sizeof(((rted_config *)0)->f), "", 0, 0, false, 0, NULL, rt, d, h \
     }
-#define TEXT(s, k, f, rt, d, h)                                                             \
-    {                                                                                       \
-        s, k, K_TEXT, OFF(f), sizeof(((rted_config *)0)->f), 0, 0, false, 0, NULL, rt, d, h \
-    }
-#define ENUM(s, k, f, ch, rt, d, h)                           \
-    {                                                         \
-        s, k, K_ENUM, OFF(f), 0, 0, 0, false, 0, ch, rt, d, h \
+#define ENUM(s, k, f, ch, rt, d, h)                               \
+    {                                                             \
+        s, k, K_ENUM, OFF(f), 0, "", 0, 0, false, 0, ch, rt, d, h \
     }
 
 static const key_def keys[] = {
@@ -87,20 +68,21 @@ static const key_def keys[] = {
          "images, raw, v4l2, libcamera: pixel format (grey, bgr24, rgb24, yuyv,\n"
          "uyvy, nv12; v4l2 also mjpeg, decoded to grey); empty: bgr24 (images),\n"
          "yuyv (v4l2), the camera's choice (libcamera)"),
-    INT("source", "width", width, 0, 8192, false, "0",
+    INT("source", "width", width, "px", 0, 8192, false, "0",
         "largest frame width (raw, v4l2: the frame width); 0: from the source"),
-    INT("source", "height", height, 0, 8192, false, "0", "largest frame height, as width"),
+    INT("source", "height", height, "px", 0, 8192, false, "0", "largest frame height, as width"),
     ENUM("source", "pace", pace, paces, false, "recorded",
          "recorded: the recording's timestamps scaled by speed; fps: a fixed rate;\n"
          "fast: as fast as possible (never drops)"),
-    REAL("source", "fps", fps, 0.1, 1000, false, "30", "the rate of pace = fps"),
-    REAL("source", "speed", speed, 0.001, 1000, false, "1", "pace = recorded: 2 = twice real time"),
-    INT("source", "max_pause_ms", max_pause_ms, 0, 86400000, false, "10000",
+    REAL("source", "fps", fps, "Hz", 0.1, 1000, false, "30", "the rate of pace = fps"),
+    REAL("source", "speed", speed, "x", 0.001, 1000, false, "1",
+         "pace = recorded: 2 = twice real time"),
+    INT("source", "max_pause_ms", max_pause_ms, "ms", 0, 86400000, false, "10000",
         "pace = recorded: a frame recorded longer than this after the one before\n"
         "is due at once, and the pace starts again from it (a pause in a log, a\n"
         "damaged timestamp); 0: wait out any pause"),
     BOOL("source", "loop", loop, false, "false", "start a recording again at its end"),
-    INT("source", "max_frames", max_frames, 0, 2147483647, false, "0",
+    INT("source", "max_frames", max_frames, "frames", 0, 2147483647, false, "0",
         "stop after this many processed frames; 0: never"),
     TEXT("source", "controls", source_controls, false, "",
          "v4l2: controls set at open and at each reopening, 'name=value' pairs,\n"
@@ -112,28 +94,30 @@ static const key_def keys[] = {
          "path = the log; empty: no recording"),
 
     BOOL("lane", "enabled", lane_enabled, false, "true", "run the lane path"),
-    INT("lane", "max_segments", lane_max_segments, 1, 65536, false, "512",
+    INT("lane", "max_segments", lane_max_segments, "segments", 1, 65536, false, "512",
         "Hough segments kept and published per frame"),
-    INT("lane", "blur_ksize", lane_blur_ksize, 1, 15, false, "5", "Gaussian kernel size (odd)"),
+    INT("lane", "blur_ksize", lane_blur_ksize, "px", 1, 15, false, "5",
+        "Gaussian kernel size (odd)"),
     ENUM("lane", "canny_mode", lane_canny_mode, canny_modes, true, "median",
          "Canny thresholds: fixed (canny_low/high) or from the ROI's histogram"),
-    INTU("lane", "canny_low", lane_canny_low, -1, 0, 2040, true, "-1",
+    INTU("lane", "canny_low", lane_canny_low, "L1 gradient", -1, 0, 2040, true, "-1",
          "fixed mode, L1 gradient; -1: the lane default"),
-    INTU("lane", "canny_high", lane_canny_high, -1, 0, 2040, true, "-1", "as canny_low"),
-    INTU("lane", "hough_threshold", lane_hough_threshold, -1, 1, 16384, true, "-1",
+    INTU("lane", "canny_high", lane_canny_high, "L1 gradient", -1, 0, 2040, true, "-1",
+         "as canny_low"),
+    INTU("lane", "hough_threshold", lane_hough_threshold, "votes", -1, 1, 16384, true, "-1",
          "Hough votes; -1: the lane default for the frame height; at most the\n"
          "frame's width + height (more could never be reached)"),
-    INTU("lane", "min_length", lane_min_length, -1, 0, 16384, true, "-1",
+    INTU("lane", "min_length", lane_min_length, "px", -1, 0, 16384, true, "-1",
          "shortest segment, pixels; -1: default for the frame height; at most\n"
          "the frame's width + height"),
-    INTU("lane", "max_gap", lane_max_gap, -1, 0, 16384, true, "-1",
+    INTU("lane", "max_gap", lane_max_gap, "px", -1, 0, 16384, true, "-1",
          "largest gap joined in a segment; -1: default for the frame height; at\n"
          "most the frame's width + height"),
-    INT("lane", "hough_seed", lane_hough_seed, 0, INT32_MAX, true, "0",
+    INT("lane", "hough_seed", lane_hough_seed, "", 0, INT32_MAX, true, "0",
         "point order of the Hough search; 0: the built-in seed"),
-    INTU("lane", "hold_frames", lane_hold_frames, -1, 0, 1000, true, "-1",
+    INTU("lane", "hold_frames", lane_hold_frames, "frames", -1, 0, 1000, true, "-1",
          "frames a lost lane is predicted; -1: the lane default"),
-    INTU("lane", "gate_px", lane_gate_px, -1, 0, 16384, true, "-1",
+    INTU("lane", "gate_px", lane_gate_px, "px", -1, 0, 16384, true, "-1",
          "segments farther from a tracked lane are ignored; -1: default; at most\n"
          "the frame's width + height"),
     BOOL("lane", "use_color", lane_use_color, true, "true",
@@ -145,21 +129,22 @@ static const key_def keys[] = {
 
     BOOL("grasp", "enabled", grasp_enabled, false, "true",
          "run the grasp path (optional stage: skipped first when the deadline is short)"),
-    INT("grasp", "max_objects", grasp_max_objects, 1, 1024, false, "32",
+    INT("grasp", "max_objects", grasp_max_objects, "objects", 1, 1024, false, "32",
         "objects kept and published per frame"),
-    INT("grasp", "max_contours", grasp_max_contours, 1, 1000000, false, "4096",
+    INT("grasp", "max_contours", grasp_max_contours, "contours", 1, 1000000, false, "4096",
         "contours stored per frame"),
-    INT("grasp", "max_points", grasp_max_points, 16, 50000000, false, "262144",
+    INT("grasp", "max_points", grasp_max_points, "points", 16, 50000000, false, "262144",
         "contour points stored per frame"),
-    INT("grasp", "blur_ksize", grasp_blur_ksize, 1, 15, false, "5", "Gaussian size (odd)"),
+    INT("grasp", "blur_ksize", grasp_blur_ksize, "px", 1, 15, false, "5", "Gaussian size (odd)"),
     ENUM("grasp", "binarize", grasp_binarize, binarizers, true, "otsu",
          "object mask: Otsu, a fixed threshold, or closed Canny edges"),
-    INT("grasp", "threshold", grasp_threshold, 0, 255, true, "128", "binarize = fixed"),
+    INT("grasp", "threshold", grasp_threshold, "grey level", 0, 255, true, "128",
+        "binarize = fixed"),
     ENUM("grasp", "polarity", grasp_polarity, polarities, true, "auto",
          "objects darker or brighter than the table; auto: not the border's side"),
-    INT("grasp", "min_area", grasp_min_area, 0, 67108864, true, "100",
+    INT("grasp", "min_area", grasp_min_area, "px²", 0, 67108864, true, "100",
         "smallest object, px; at most the frame's area"),
-    INTU("grasp", "max_area", grasp_max_area, 0, 1, 67108864, true, "0",
+    INTU("grasp", "max_area", grasp_max_area, "px²", 0, 1, 67108864, true, "0",
          "largest object, px; 0: no limit"),
     BOOL("grasp", "skip_border", grasp_skip_border, true, "false",
          "drop objects touching the image border"),
@@ -173,7 +158,7 @@ static const key_def keys[] = {
     BOOL("publish", "images", publish_images, false, "false",
          "also publish each analysed grey frame as image_t (for tools/render_log)"),
     TEXT("publish", "image_channel", image_channel, false, "RTEDGE_IMAGE", "image_t"),
-    INT("publish", "status_period_ms", status_period_ms, 10, 60000, false, "1000",
+    INT("publish", "status_period_ms", status_period_ms, "ms", 10, 60000, false, "1000",
         "status_t period and latency window"),
 
     BOOL("params", "enabled", params_enabled, false, "false",
@@ -184,21 +169,29 @@ static const key_def keys[] = {
          "params_t in (udpm://, memq://)"),
     TEXT("params", "keys", params_keys, false, "",
          "the keys params_t may change, 'section.key' separated by ','; empty:\n"
-         "every (runtime) key that takes a number or a boolean"),
-    INT("params", "max_per_second", params_max_per_second, 1, 1000, false, "10",
+         "every runtime key"),
+    INT("params", "max_per_second", params_max_per_second, "1/s", 1, 1000, false, "10",
         "params_t messages handled per second (a burst of as many); more are\n"
         "counted in status_t's config_rate_limited and dropped, not queued"),
+    TEXT("params", "state_channel", params_state_channel, false, "RTEDGE_PARAM_STATE",
+         "param_state_t out: every runtime key's type, range and value, and the\n"
+         "last request's outcome; at start, after each change, every state_period_ms"),
+    INT("params", "state_period_ms", params_state_period_ms, "ms", 100, 60000, false, "2000",
+        "param_state_t period"),
+    TEXT("params", "save_path", params_save_path, false, "",
+         "params_t ACTION_SAVE writes the configuration in force here as an\n"
+         "rtedged.conf (replacing the file whole); empty: saving is refused"),
 
-    REALU("deadline", "ms", deadline_ms, 0, 0.1, 10000, true, "0",
+    REALU("deadline", "ms", deadline_ms, "ms", 0, 0.1, 10000, true, "0",
           "per-frame budget, capture to publish; 0: 1000 / source.fps"),
-    REAL("deadline", "grasp_min_budget_ms", grasp_min_budget_ms, 0, 10000, true, "2",
+    REAL("deadline", "grasp_min_budget_ms", grasp_min_budget_ms, "ms", 0, 10000, true, "2",
          "skip the grasp path when less than this is left of the budget"),
-    REALU("deadline", "max_late_ms", max_late_ms, -1, 0, 60000, false, "100",
+    REALU("deadline", "max_late_ms", max_late_ms, "ms", -1, 0, 60000, false, "100",
           "drop frames later than this behind their pace; -1: never"),
 
-    INT("realtime", "priority", rt_priority, 0, 99, false, "0",
+    INT("realtime", "priority", rt_priority, "", 0, 99, false, "0",
         "SCHED_FIFO priority; 0: normal scheduling (a warning if not permitted)"),
-    INT("realtime", "cpu", rt_cpu, -1, 1023, false, "-1", "pin to this CPU; -1: no affinity"),
+    INT("realtime", "cpu", rt_cpu, "", -1, 1023, false, "-1", "pin to this CPU; -1: no affinity"),
     BOOL("realtime", "mlockall", rt_mlockall, false, "false",
          "lock all memory (a warning if not permitted)"),
 };
@@ -311,6 +304,16 @@ bool rted_config_store(rted_config *c, const rted_key *k, const char *value, cha
             rted_msgf(why, why_size, "longer than %zu characters", k->size - 1);
             return false;
         }
+        if (value[0] && (strchr(" \t", value[0]) || strchr(" \t", value[strlen(value) - 1]))) {
+            /* the file would read it back without them */
+            rted_msgf(why, why_size, "'%s' starts or ends with a blank", value);
+            return false;
+        }
+        for (const char *p = value; *p; p++)
+            if ((unsigned char)*p < 0x20 || *p == 0x7f) {
+                rted_msgf(why, why_size, "a control character (0x%02x) in the text", *p);
+                return false;
+            }
         if (value[0] == '#' || strstr(value, " #") || strstr(value, "\t#")) {
             /* the file would read it back as a comment (config_file.c) */
             rted_msgf(why, why_size, "'%s': a '#' at the start or after a blank begins a comment",
@@ -390,6 +393,14 @@ bool rted_config_set_bool(rted_config *c, const rted_key *k, bool value, char *w
     return true;
 }
 
+bool rted_config_set_text(rted_config *c, const rted_key *k, const char *value, char *why,
+                          size_t why_size)
+{
+    if (k->type != K_TEXT && k->type != K_ENUM)
+        return wrong_type(k, "text", why, why_size);
+    return rted_config_store(c, k, value, why, why_size);
+}
+
 void rted_config_defaults(rted_config *c)
 {
     memset(c, 0, sizeof *c);
@@ -399,82 +410,24 @@ void rted_config_defaults(rted_config *c)
             abort(); /* a bad default in the table is a programming error */
 }
 
-static void print_value(const rted_config *c, const key_def *k, FILE *f)
+void rted_key_describe(const rted_key *k, rted_key_desc *d)
+{
+    *d = (rted_key_desc){k->unit, k->help, k->min, k->max, k->has_unset, k->unset, k->choices};
+}
+
+void rted_config_get(const rted_config *c, const rted_key *k, int64_t *int_value,
+                     double *real_value, const char **text_value)
 {
     const char *field = (const char *)c + k->offset;
+    *int_value = 0;
+    *real_value = 0;
+    *text_value = "";
     switch (k->type) {
-    case K_INT: fprintf(f, "%d", *(const int32_t *)field); break;
-    case K_REAL: {
-        /* The shortest text that reads back as the same double. */
-        double v = *(const double *)field;
-        char text[32];
-        for (int digits = 6; digits <= 17; digits++) {
-            snprintf(text, sizeof text, "%.*g", digits, v);
-            if (strtod(text, NULL) == v)
-                break;
-        }
-        fputs(text, f);
-        break;
-    }
-    case K_BOOL: fputs(*(const bool *)field ? "true" : "false", f); break;
-    case K_TEXT: fputs(field, f); break;
-    case K_ENUM: fputs(k->choices[*(const int32_t *)field], f); break;
-    }
-}
-
-void rted_config_print(const rted_config *c, FILE *f)
-{
-    const char *section = "";
-    for (size_t i = 0; i < N_KEYS; i++) {
-        if (strcmp(section, keys[i].section)) {
-            section = keys[i].section;
-            fprintf(f, "%s[%s]\n", i ? "\n" : "", section);
-        }
-        fprintf(f, "%s = ", keys[i].key);
-        print_value(c, &keys[i], f);
-        fputc('\n', f);
-    }
-}
-
-void rted_config_print_help(FILE *f)
-{
-    fputs("# rtedged.conf: the rtedge daemon's configuration (INI). Every key with its\n"
-          "# default; a line `key = value` under its [section]. '#' starts a comment,\n"
-          "# at the start of a line or after a blank (';' only at the start).\n"
-          "# Override any key with `rtedged --set section.key=value`. Keys marked\n"
-          "# (runtime) may change while running: SIGHUP re-reads this file and\n"
-          "# params_t messages set them; the others fix sizes at start and a change\n"
-          "# is refused until a restart. Generated by `rtedged --help-config`.\n",
-          f);
-    const char *section = "";
-    for (size_t i = 0; i < N_KEYS; i++) {
-        const key_def *k = &keys[i];
-        if (strcmp(section, k->section)) {
-            section = k->section;
-            fprintf(f, "\n[%s]\n", section);
-        }
-        fputs("\n# ", f);
-        for (const char *h = k->help; *h; h++) {
-            fputc(*h, f);
-            if (*h == '\n')
-                fputs("# ", f);
-        }
-        fputs("\n# ", f);
-        switch (k->type) {
-        case K_INT: fprintf(f, "integer %.0f..%.0f", k->min, k->max); break;
-        case K_REAL: fprintf(f, "number %g..%g", k->min, k->max); break;
-        case K_BOOL: fputs("true or false", f); break;
-        case K_TEXT: fprintf(f, "text, at most %zu characters", k->size - 1); break;
-        case K_ENUM:
-            fputs("one of", f);
-            for (int32_t j = 0; k->choices[j]; j++)
-                fprintf(f, " %s", k->choices[j]);
-            break;
-        }
-        if (k->has_unset)
-            fprintf(f, ", or %g", k->unset);
-        fprintf(f, "; default %s%s\n%s = %s\n", k->def[0] ? k->def : "(empty)",
-                k->runtime ? " (runtime)" : "", k->key, k->def);
+    case K_INT: *int_value = *(const int32_t *)field; break;
+    case K_REAL: *real_value = *(const double *)field; break;
+    case K_BOOL: *int_value = *(const bool *)field; break;
+    case K_TEXT: *text_value = field; break;
+    case K_ENUM: *text_value = k->choices[*(const int32_t *)field]; break;
     }
 }
 

@@ -1,9 +1,24 @@
-/* What the configuration's reader and checks need of the key table
+/* What the configuration's reader, printer and checks need of the key table
  * (config_keys.c) beyond config.h. Internal to the daemon's config_*.c. */
 #ifndef RTEDGED_CONFIG_TABLE_H
 #define RTEDGED_CONFIG_TABLE_H
 
 #include "config.h"
+
+/* One row of the table: everything about a key. */
+struct rted_key {
+    const char *section, *key;
+    rted_key_type type;
+    size_t offset, size; /* size: a text key's capacity */
+    const char *unit;    /* integer and real keys: "px", "ms", ... ("" none) */
+    double min, max;     /* integer and real keys */
+    bool has_unset;      /* `unset` is allowed besides min..max ("the default") */
+    double unset;
+    const char *const *choices; /* choice keys, NULL-terminated */
+    bool runtime;               /* may change while running (SIGHUP, params_t) */
+    const char *def;
+    const char *help;
+};
 
 /* At least the number of keys in the table (checked where it is). */
 #define RTED_CONFIG_MAX_KEYS 128

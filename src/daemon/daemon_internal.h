@@ -6,6 +6,7 @@
  *   messages.c     filling and publishing the lane, grasp and image messages
  *   loop.c         the per-frame step and the run loop
  *   reconfigure.c  run-time configuration: SIGHUP, the params_t channel
+ *   param_state.c  the param_state_t message: runtime keys, last outcome
  *   status.c       the latency window and the status message */
 #ifndef RTEDGED_DAEMON_INTERNAL_H
 #define RTEDGED_DAEMON_INTERNAL_H
@@ -33,6 +34,8 @@
 /* params_t messages handled per step at most (the rest wait in the socket,
  * where the kernel drops what does not fit). */
 #define RTED_PARAMS_PER_STEP 16
+/* Runtime keys in param_state_t at most (checked at open). */
+#define RTED_STATE_MAX_KEYS 64
 
 struct rted_daemon {
     rted_config cfg;
@@ -61,6 +64,17 @@ struct rted_daemon {
     int64_t params_window_ns;
     int32_t params_in_window;
     rted_params_request params_req;
+    /* param_state_t: one row per runtime key over the key table's strings,
+     * the last request's outcome, the next periodic publication; a saved
+     * configuration's text (RTED_CONFIG_TEXT_MAX bytes). */
+    rtedge_param_state_t state_msg;
+    rtedge_param_info_t state_keys[RTED_STATE_MAX_KEYS];
+    const rted_key *state_key_of[RTED_STATE_MAX_KEYS];
+    char state_names[RTED_STATE_MAX_KEYS][RTED_PARAM_NAME_MAX];
+    char state_reason[RTED_MSG];
+    int32_t state_max_bytes;
+    int64_t state_due_ns;
+    char *config_text;
 
     /* source.record: every delivered frame, packed, as image_t. */
     rte_publisher *rec;
@@ -129,6 +143,20 @@ void rted_params_open(rted_daemon *d);
 void rted_params_close(rted_daemon *d);
 /* Handles the params_t messages waiting, within the rate and per-step limits. */
 void rted_params_poll(rted_daemon *d);
+
+/* param_state.c */
+/* Builds the message over the runtime keys, sizes its largest encoding
+ * (d->state_max_bytes) and allocates the save buffer. */
+bool rted_param_state_init(rted_daemon *d, char *msg, size_t msg_size);
+void rted_param_state_close(rted_daemon *d);
+/* The values in force, the hash and what is settable, from d->cfg. */
+void rted_param_state_refresh(rted_daemon *d);
+/* Publishes now and schedules the next after params.state_period_ms. */
+void rted_param_state_publish(rted_daemon *d);
+/* A request's outcome (RTEDGE_PARAM_STATE_T_OUTCOME_*) and reason,
+ * published at once; saved: with d->config_text as saved_config. */
+void rted_param_state_outcome(rted_daemon *d, int64_t request_id, int8_t outcome,
+                              const char *reason, bool saved);
 
 /* status.c */
 void rted_record_latency(rted_daemon *d, int64_t lat_ns);

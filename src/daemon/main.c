@@ -44,6 +44,9 @@ static void usage(FILE *f)
           "  --list-cameras      list the V4L2 and libcamera cameras with their formats,\n"
           "                      sizes and frame rates; exit 0 if any, 1 if none\n"
           "  --check-config      validate and print the effective configuration, exit 0 or 2\n"
+          "  --dump-config FILE  write the effective configuration as a commented\n"
+          "                      rtedged.conf to FILE ('-': stdout), exit 0 (1: not\n"
+          "                      written, 2: a bad configuration)\n"
           "  --help-config       print every key with its help, range and default\n"
           "  --bench             run, then print latency p50/p99/max and peak RSS\n"
           "Signals: SIGINT/SIGTERM finish the frame, publish a final status and exit 0;\n"
@@ -62,6 +65,7 @@ typedef struct options {
     char direct[16][RTED_TEXT + 32];
     int n_sets, n_direct;
     bool check, bench;
+    const char *dump_path; /* --dump-config */
 } options;
 
 /* The options that print and exit: the exit code, or -1 when a is none of them. */
@@ -126,8 +130,12 @@ static int parse_options(options *o, int argc, char **argv)
             o->bench = true;
             continue;
         }
-        if ((!strcmp(a, "--config") || !strcmp(a, "--set")) && !v)
+        if ((!strcmp(a, "--config") || !strcmp(a, "--set") || !strcmp(a, "--dump-config")) && !v)
             goto missing;
+        if (!strcmp(a, "--dump-config")) {
+            o->dump_path = argv[++i];
+            continue;
+        }
         if (!strcmp(a, "--config")) {
             o->config_path = argv[++i];
             continue;
@@ -193,6 +201,17 @@ static bool configure(rted_config *cfg, const options *o)
     return true;
 }
 
+/* --dump-config: the configuration into path. */
+static int dump_config(const rted_config *cfg, const char *path)
+{
+    char *buf = malloc(RTED_CONFIG_TEXT_MAX), why[RTED_MSG];
+    bool ok = buf && rted_config_save(cfg, path, buf, RTED_CONFIG_TEXT_MAX, why, sizeof why);
+    if (!ok)
+        fprintf(stderr, "rtedged: --dump-config %s: %s\n", path, buf ? why : "out of memory");
+    free(buf);
+    return ok ? 0 : RTED_EXIT_FAILED;
+}
+
 static void handle_signals(void)
 {
     struct sigaction sa;
@@ -248,6 +267,8 @@ int main(int argc, char **argv)
         rted_config_print(&cfg, stdout);
         return 0;
     }
+    if (o.dump_path)
+        return dump_config(&cfg, o.dump_path);
 
     rted_daemon *d;
     char msg[RTED_MSG];

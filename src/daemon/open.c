@@ -1,8 +1,9 @@
 /* rted_daemon_open(): everything sized once from the configuration and the
  * source's maxima, in this order: the source, the pacer, the lane and grasp
  * contexts, one arena for the grey buffer and the message arrays, the
- * publisher (its encode buffer), the params channel, the recording, then
- * the real-time settings. A frame then makes no heap call. */
+ * param_state_t message, the publisher (its encode buffer), the params
+ * channel, the recording, then the real-time settings. A frame then makes
+ * no heap call. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <math.h>
@@ -139,7 +140,8 @@ static bool open_publisher(rted_daemon *d, char *msg, size_t msg_size)
                               c->grasp_max_objects,
                               RTED_MAX_SETS,
                               c->publish_images ? (int32_t)gray_bytes : 0,
-                              0};
+                              0,
+                              d->state_max_bytes};
     char why[RTED_MSG];
     if (rte_publisher_create(&d->pub, c->lcm_url, &lim, why, sizeof why) != RTE_OK) {
         snprintf(msg, msg_size, "cannot publish to %s: %s", c->lcm_url, why);
@@ -159,7 +161,7 @@ static bool open_after_source(rted_daemon *d, char *msg, size_t msg_size)
     }
     if (!open_pacer(d, msg, msg_size) || !open_lane(d, msg, msg_size) ||
         !open_grasp(d, msg, msg_size) || !open_memory(d, msg, msg_size) ||
-        !open_publisher(d, msg, msg_size))
+        !rted_param_state_init(d, msg, msg_size) || !open_publisher(d, msg, msg_size))
         return false;
     rted_params_open(d);
     return !c->record_path[0] || rted_open_recording(d, msg, msg_size);
@@ -188,6 +190,7 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     /* A first status says the daemon is up; it also makes liblcm cache the
      * channel (memq:// strdup()s a channel's name on its first message). */
     rted_daemon_publish_status(d);
+    rted_param_state_publish(d);
     *out = d;
     return true;
 }
@@ -200,6 +203,7 @@ void rted_daemon_close(rted_daemon *d)
     rte_publisher_destroy(d->pub);
     rte_publisher_destroy(d->rec);
     free(d->rec_buf);
+    rted_param_state_close(d);
     rte_grasp_destroy(d->grasp);
     rte_lane_destroy(d->lane);
     rte_source_close(&d->source);

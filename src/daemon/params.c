@@ -84,18 +84,46 @@ static bool get_name(reader *r, int32_t index, char *name, char *why, size_t why
     return true;
 }
 
+/* Value `index`'s text: length (its NUL included), printable ASCII, NUL. */
+static bool get_text(reader *r, rted_param *p, int32_t index, char *why, size_t why_size)
+{
+    uint32_t len;
+    const uint8_t *b;
+    if (!get_u32(r, &len))
+        return refuse(why, why_size, "value %d (%s): cut short before its text", index + 1,
+                      p->name);
+    if (len < 1 || len > RTED_PARAM_TEXT_MAX)
+        return refuse(why, why_size,
+                      "value %d (%s): a text of %u bytes (with its NUL; 1..%d allowed)", index + 1,
+                      p->name, len, RTED_PARAM_TEXT_MAX);
+    if (!take(r, len, &b))
+        return refuse(why, why_size, "value %d (%s): cut short in its text", index + 1, p->name);
+    if (b[len - 1] != 0)
+        return refuse(why, why_size, "value %d (%s): the text does not end with a NUL byte",
+                      index + 1, p->name);
+    for (uint32_t i = 0; i + 1 < len; i++)
+        if (b[i] < 0x20 || b[i] > 0x7e)
+            return refuse(why, why_size,
+                          "value %d (%s): byte %u of the text is 0x%02x (printable ASCII only)",
+                          index + 1, p->name, i, b[i]);
+    memcpy(p->text_value, b, len);
+    return true;
+}
+
 bool rted_params_decode(const void *data, size_t size, rted_params_request *req, char *why,
                         size_t why_size)
 {
     req->count = 0;
     req->have_id = false;
+    req->action = RTEDGE_PARAMS_T_ACTION_SET;
     if (size < RTED_PARAMS_MIN_BYTES || size > RTED_PARAMS_MAX_BYTES)
         return refuse(why, why_size, "a message of %zu bytes (a params_t has %d..%d)", size,
                       RTED_PARAMS_MIN_BYTES, RTED_PARAMS_MAX_BYTES);
-    /* The size check above guarantees these four fields. */
+    /* The size check above guarantees the head's fields. */
     reader r = {data, size};
     int64_t hash = 0;
     uint32_t count = 0;
+    const uint8_t *action;
     get_i64(&r, &hash);
     if (hash != __rtedge_params_t_get_hash())
         return refuse(why, why_size, "not a params_t (fingerprint %016llx)",
@@ -103,10 +131,20 @@ bool rted_params_decode(const void *data, size_t size, rted_params_request *req,
     get_i64(&r, &req->utime);
     get_i64(&r, &req->request_id);
     req->have_id = true;
+    take(&r, 1, &action);
     get_u32(&r, &count);
-    if (count < 1 || count > RTED_PARAMS_MAX)
+    req->action = (int8_t)action[0];
+    if (req->action == RTEDGE_PARAMS_T_ACTION_SAVE) {
+        if (count != 0)
+            return refuse(why, why_size, "ACTION_SAVE with nparams = %d (0 allowed)",
+                          (int32_t)count);
+    } else if (req->action != RTEDGE_PARAMS_T_ACTION_SET) {
+        return refuse(why, why_size, "action %d is neither ACTION_SET (0) nor ACTION_SAVE (1)",
+                      req->action);
+    } else if (count < 1 || count > RTED_PARAMS_MAX) {
         return refuse(why, why_size, "nparams = %d (1..%d allowed)", (int32_t)count,
                       RTED_PARAMS_MAX);
+    }
     for (int32_t i = 0; i < (int32_t)count; i++) {
         rted_param *p = &req->params[i];
         const uint8_t *kind;
@@ -117,6 +155,8 @@ bool rted_params_decode(const void *data, size_t size, rted_params_request *req,
             return refuse(why, why_size, "value %d (%s): cut short", i + 1, p->name);
         p->kind = (int8_t)kind[0];
         memcpy(&p->real_value, &bits, sizeof bits);
+        if (!get_text(&r, p, i, why, why_size))
+            return false;
     }
     if (r.left)
         return refuse(why, why_size, "%zu bytes after the last value", r.left);
@@ -130,6 +170,7 @@ static const char *kind_name(int8_t kind)
     case RTEDGE_PARAM_T_KIND_INT: return "KIND_INT";
     case RTEDGE_PARAM_T_KIND_REAL: return "KIND_REAL";
     case RTEDGE_PARAM_T_KIND_BOOL: return "KIND_BOOL";
+    case RTEDGE_PARAM_T_KIND_TEXT: return "KIND_TEXT";
     default: return NULL;
     }
 }
@@ -139,7 +180,8 @@ static int8_t kind_for(rted_key_type t)
 {
     return t == RTED_KEY_INT    ? RTEDGE_PARAM_T_KIND_INT
            : t == RTED_KEY_REAL ? RTEDGE_PARAM_T_KIND_REAL
-                                : RTEDGE_PARAM_T_KIND_BOOL;
+           : t == RTED_KEY_BOOL ? RTEDGE_PARAM_T_KIND_BOOL
+                                : RTEDGE_PARAM_T_KIND_TEXT;
 }
 
 /* One value onto *next; false and *why (without the "value N" prefix). */
@@ -154,24 +196,21 @@ static bool set_one(const rted_param *p, const rted_config *now, rted_config *ne
                       "cannot change while running (it fixes sizes or the "
                       "source): restart rtedged");
     rted_key_type t = rted_key_get_type(k);
-    if (t == RTED_KEY_TEXT || t == RTED_KEY_CHOICE)
-        return refuse(why, why_size,
-                      "takes %s, which params_t cannot carry: set it in the "
-                      "configuration file and send SIGHUP",
-                      t == RTED_KEY_TEXT ? "text" : "a choice");
     if (!rted_config_params_allowed(now, p->name))
         return refuse(why, why_size, "not in params.keys");
     const char *given = kind_name(p->kind);
     if (!given)
         return refuse(why, why_size,
                       "kind %d is none of KIND_INT (1), KIND_REAL (2), "
-                      "KIND_BOOL (3)",
+                      "KIND_BOOL (3), KIND_TEXT (4)",
                       p->kind);
     if (p->kind != kind_for(t))
         return refuse(why, why_size, "takes %s, not %s", kind_name(kind_for(t)), given);
     switch (t) {
     case RTED_KEY_INT: return rted_config_set_int(next, k, p->int_value, why, why_size);
     case RTED_KEY_REAL: return rted_config_set_real(next, k, p->real_value, why, why_size);
+    case RTED_KEY_TEXT:
+    case RTED_KEY_CHOICE: return rted_config_set_text(next, k, p->text_value, why, why_size);
     default:
         if (p->int_value != 0 && p->int_value != 1)
             return refuse(why, why_size, "a KIND_BOOL value is 0 or 1, not %lld",

@@ -133,7 +133,25 @@ bool rted_daemon_reload(rted_daemon *d, char *msg, size_t msg_size)
         d->n.refused++;
         return false;
     }
-    return rted_daemon_apply(d, &next, msg, msg_size);
+    if (!rted_daemon_apply(d, &next, msg, msg_size))
+        return false;
+    rted_param_state_publish(d);
+    return true;
+}
+
+/* ACTION_SAVE: the configuration in force into params.save_path. */
+static bool save(rted_daemon *d, char *why, size_t why_size)
+{
+    const char *path = d->cfg.params_save_path;
+    if (!path[0]) {
+        rted_msgf(why, why_size, "saving is off (params.save_path is empty)");
+        return false;
+    }
+    if (!rted_config_save(&d->cfg, path, d->config_text, RTED_CONFIG_TEXT_MAX, why, why_size))
+        return false;
+    rted_msgf(why, why_size, "saved to %s (hash %016llx)", path,
+              (unsigned long long)d->config_hash);
+    return true;
 }
 
 void rted_daemon_handle_params(rted_daemon *d, const void *data, size_t size)
@@ -142,12 +160,23 @@ void rted_daemon_handle_params(rted_daemon *d, const void *data, size_t size)
     rted_config next;
     char why[RTED_MSG];
     d->n.params_received++;
-    if (!rted_params_decode(data, size, r, why, sizeof why) ||
-        !rted_params_to_config(r, &d->cfg, &next, why, sizeof why)) {
+    if (!rted_params_decode(data, size, r, why, sizeof why)) {
+        d->n.refused++;
+    } else if (r->action == RTEDGE_PARAMS_T_ACTION_SAVE) {
+        if (save(d, why, sizeof why)) {
+            rted_log_limited(&d->log_params, "params request %lld: %s", (long long)r->request_id,
+                             why);
+            rted_param_state_outcome(d, r->request_id, RTEDGE_PARAM_STATE_T_OUTCOME_SAVED, why,
+                                     true);
+            return;
+        }
+        d->n.refused++;
+    } else if (!rted_params_to_config(r, &d->cfg, &next, why, sizeof why)) {
         d->n.refused++;
     } else if (rted_daemon_apply(d, &next, why, sizeof why)) {
         rted_log_limited(&d->log_params, "params request %lld applied (%d values, hash %016llx)",
                          (long long)r->request_id, r->count, (unsigned long long)d->config_hash);
+        rted_param_state_outcome(d, r->request_id, RTEDGE_PARAM_STATE_T_OUTCOME_APPLIED, "", false);
         return;
     }
     if (r->have_id)
@@ -155,6 +184,8 @@ void rted_daemon_handle_params(rted_daemon *d, const void *data, size_t size)
                          (long long)r->request_id, why);
     else
         rted_log_limited(&d->log_params, "params message refused: %s", why);
+    rted_param_state_outcome(d, r->have_id ? r->request_id : 0,
+                             RTEDGE_PARAM_STATE_T_OUTCOME_REFUSED, why, false);
 }
 
 /* liblcm's callback: within params.max_per_second, else counted and dropped. */

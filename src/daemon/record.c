@@ -58,7 +58,7 @@ bool rted_open_recording(rted_daemon *d, char *msg, size_t msg_size)
     char url[RTED_TEXT + 16], why[RTE_PUBLISH_MESSAGE_SIZE] = "";
     snprintf(url, sizeof url, "%s%s", strncmp(c->record_path, "file://", 7) ? "file://" : "",
              c->record_path);
-    rte_publish_limits lim = {RTED_TEXT + 16, 0, 0, 0, 0, (int32_t)bytes, 0};
+    rte_publish_limits lim = {RTED_TEXT + 16, 0, 0, 0, 0, (int32_t)bytes, 0, 0};
     if (rte_publisher_create(&d->rec, url, &lim, why, sizeof why) != RTE_OK) {
         snprintf(msg, msg_size, "source.record: %s", why);
         return false;

@@ -89,6 +89,8 @@ void rted_daemon_publish_status(rted_daemon *d)
     d->window_start_ns = t;
     rted_log_flush(&d->log_frames, t);
     rted_log_flush(&d->log_params, t);
+    if (t >= d->state_due_ns)
+        rted_param_state_publish(d);
 }
 
 /* The histogram bucket of v >= 0 microseconds, and the middle of a

@@ -77,7 +77,7 @@ static size_t worst_case_size(const rte_publish_limits *l)
         size = max_size(size, (size_t)rtedge_status_t_encoded_size(&status));
 
         for (int32_t i = 0; i < l->max_params; i++)
-            w.params[i].name = w.text;
+            w.params[i].name = w.params[i].text_value = w.text;
         rtedge_params_t params = {0};
         params.nparams = l->max_params;
         params.params = w.params;
@@ -94,6 +94,7 @@ static size_t worst_case_size(const rte_publish_limits *l)
         image.metadata = w.metadata;
         size = max_size(size,
                         (size_t)rtedge_image_t_encoded_size(&image) + (size_t)l->max_image_bytes);
+        size = max_size(size, (size_t)l->max_state_bytes);
     }
     free(w.text);
     free(w.roi);
@@ -372,10 +373,27 @@ rte_status rte_publish_params(rte_publisher *pub, const char *channel, const rte
         return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d parameters, at most %d",
                       channel, m->nparams, pub->limits.max_params);
     for (int32_t i = 0; i < m->nparams; i++)
-        if (!text_ok(m->params[i].name, pub->limits.max_text))
+        if (!text_ok(m->params[i].name, pub->limits.max_text) ||
+            !text_ok(m->params[i].text_value, pub->limits.max_text))
             return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
-                          "%s: parameter %d's name missing or over %d bytes", channel, i,
+                          "%s: parameter %d's name or text missing or over %d bytes", channel, i,
                           pub->limits.max_text);
     int len = rtedge_params_t_encode(pub->buf, 0, encode_limit(pub), m);
+    return send_encoded(pub, channel, len, msg, msg_size);
+}
+
+rte_status rte_publish_param_state(rte_publisher *pub, const char *channel,
+                                   const rtedge_param_state_t *m, char *msg, size_t msg_size)
+{
+    rte_status st = check_channel(pub, channel, m, msg, msg_size);
+    if (st != RTE_OK)
+        return st;
+    /* Its strings are the daemon's own (never NULL); the size is what counts. */
+    int size = rtedge_param_state_t_encoded_size(m);
+    if (size < 0 || size > pub->limits.max_state_bytes)
+        return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
+                      "%s: param_state_t of %d bytes, at most %d", channel, size,
+                      pub->limits.max_state_bytes);
+    int len = rtedge_param_state_t_encode(pub->buf, 0, encode_limit(pub), m);
     return send_encoded(pub, channel, len, msg, msg_size);
 }

@@ -34,6 +34,7 @@
 #include "rtedge_grasp_detection_t.h"
 #include "rtedge_image_t.h"
 #include "rtedge_lane_detection_t.h"
+#include "rtedge_param_state_t.h"
 #include "rtedge_params_t.h"
 #include "rtedge_status_t.h"
 
@@ -54,6 +55,7 @@ typedef struct rte_publish_limits {
     int32_t max_params;      /* params_t.nparams */
     int32_t max_image_bytes; /* image_t.size (0: images are not published) */
     int32_t max_metadata;    /* image_t.nmetadata, each at most max_text bytes of key and value */
+    int32_t max_state_bytes; /* an encoded param_state_t (0: none is published) */
 } rte_publish_limits;
 
 typedef struct rte_publish_stats {
@@ -83,6 +85,9 @@ rte_status rte_publish_image(rte_publisher *pub, const char *channel, const rted
                              char *msg, size_t msg_size);
 rte_status rte_publish_params(rte_publisher *pub, const char *channel, const rtedge_params_t *m,
                               char *msg, size_t msg_size);
+/* The caller's message, whole: its encoded size at most max_state_bytes. */
+rte_status rte_publish_param_state(rte_publisher *pub, const char *channel,
+                                   const rtedge_param_state_t *m, char *msg, size_t msg_size);
 
 /* The publisher's lcm_t (memq://, udpm://) for subscribing on the same
  * instance (memq delivers only within it); NULL for file://. */

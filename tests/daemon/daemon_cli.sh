@@ -18,6 +18,22 @@ field() { $PY -c 'import json,sys; d=json.loads(sys.argv[1]); exec("print(" + sy
 "$RTEDGED" --config "$CONF" --check-config >"$TMP/eff" || fail "--check-config on rtedged.conf"
 grep -q '^\[realtime\]' "$TMP/eff" || fail "--check-config prints no [realtime]"
 echo "ok: rtedged.conf and --check-config"
+# --dump-config writes a commented rtedged.conf that reads back to the same
+# effective configuration, text with ';' and a choice among its values.
+DUMP_SETS="--set lane.canny_mode=fixed --set lane.canny_low=40 --set lane.canny_high=120"
+# shellcheck disable=SC2086
+"$RTEDGED" --config "$CONF" $DUMP_SETS --set 'lane.roi=0,1;0.4,0.6;0.6,0.6;1,1' \
+    --dump-config "$TMP/dumped.conf" || fail "--dump-config"
+# shellcheck disable=SC2086
+"$RTEDGED" --config "$CONF" $DUMP_SETS --set 'lane.roi=0,1;0.4,0.6;0.6,0.6;1,1' \
+    --check-config >"$TMP/eff1" || fail "--check-config with the dump's options"
+"$RTEDGED" --config "$TMP/dumped.conf" --check-config >"$TMP/eff2" || fail "the dump is refused"
+cmp -s "$TMP/eff1" "$TMP/eff2" || fail "the dump reads back differently: $(diff "$TMP/eff1" "$TMP/eff2")"
+grep -q '^# Canny thresholds' "$TMP/dumped.conf" || fail "the dump has no help comments"
+"$RTEDGED" --dump-config - | grep -q '^canny_mode = median$' || fail "--dump-config - (stdout)"
+"$RTEDGED" --dump-config "$TMP/no/such/dir.conf" 2>"$TMP/err"
+[ $? -eq 1 ] && grep -q "cannot create" "$TMP/err" || fail "--dump-config to a bad path: $(cat "$TMP/err")"
+echo "ok: --dump-config round trip"
 
 # Inline comments: '#' after a blank ends the line; ';' separates list items.
 printf '[grasp] # objects\nthreshold = 3\t# inline\n[lane]\nroi = 0,1;0.4,0.6;0.6,0.6;1,1 # fractions\n' >"$TMP/inline.conf"
@@ -62,7 +78,7 @@ bad no_section 1 "outside a \[section\]" 'threshold = 3\n'
 for set in 'deadline.ms=1e-300:out of range 0.1..10000 (or 0)' \
            'lane.hough_threshold=100000:out of range 1..16384 (or -1)' \
            'grasp.min_area=100000000:out of range 0..67108864' \
-           'params.keys=lane.roi:params_t carries no text' \
+           'params.keys=lane.roi,lane.max_segments:max_segments' \
            'params.keys=source.path:not a runtime key' \
            'params.channel=RTEDGE_.*:not a channel name'; do
     "$RTEDGED" --set "${set%%:*}" --check-config 2>"$TMP/err" >/dev/null

@@ -322,7 +322,7 @@ static void test_images_source(void **state)
 }
 
 typedef struct log_counts {
-    int lanes, grasps, statuses, other, grasp_ok;
+    int lanes, grasps, statuses, states, other, grasp_ok;
 } log_counts;
 
 static void read_log(const char *file, log_counts *lc)
@@ -350,6 +350,12 @@ static void read_log(const char *file, log_counts *lc)
             assert_true(rtedge_status_t_decode(e->data, 0, e->datalen, &m) > 0);
             rtedge_status_t_decode_cleanup(&m);
             lc->statuses++;
+        } else if (!strcmp(e->channel, "RTEDGE_PARAM_STATE")) {
+            rtedge_param_state_t m;
+            assert_true(rtedge_param_state_t_decode(e->data, 0, e->datalen, &m) > 0);
+            assert_true(m.nkeys > 10);
+            rtedge_param_state_t_decode_cleanup(&m);
+            lc->states++;
         } else {
             lc->other++;
         }
@@ -385,6 +391,7 @@ static void test_file_log(void **state)
     assert_int_equal(lc.grasps, 15);
     assert_int_equal(lc.grasp_ok, 15);
     assert_true(lc.statuses >= 1);
+    assert_true(lc.states >= 1);
     assert_int_equal(lc.other, 0);
 }
 
@@ -396,7 +403,7 @@ static void test_lcm_log_source(void **state)
     path(out, sizeof out, "from_log.lcm");
     snprintf(url, sizeof url, "file://%s", frames);
     snprintf(out_url, sizeof out_url, "file://%s", out);
-    rte_publish_limits lim = {64, 8, 1, 1, 1, OW * OH, 0};
+    rte_publish_limits lim = {64, 8, 1, 1, 1, OW * OH, 0, 0};
     rte_publisher *pub;
     char msg[256];
     assert_int_equal(rte_publisher_create(&pub, url, &lim, msg, sizeof msg), RTE_OK);
@@ -483,8 +490,10 @@ static void test_reload(void **state)
     assert_int_equal(n.refused, 1);
     assert_int_equal(n.reloads, 1);
     /* params_t: a runtime value applied, an out-of-range one and a size refused. */
-    rtedge_param_t p[1] = {
-        {.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT, .int_value = 100}};
+    rtedge_param_t p[1] = {{.name = "grasp.min_area",
+                            .kind = RTEDGE_PARAM_T_KIND_INT,
+                            .int_value = 100,
+                            .text_value = ""}};
     rtedge_params_t pm = {.utime = 0, .request_id = 7, .nparams = 1, .params = p};
     uint8_t buf[512];
     int len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
@@ -510,9 +519,14 @@ static void test_params_channel(void **state)
     static seen s;
     memset(&s, 0, sizeof s);
     lcm_subscription_t *sub = lcm_subscribe(lcm, "RTEDGE_GRASP", on_message, &s);
-    rtedge_param_t p[2] = {
-        {.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT, .int_value = 920},
-        {.name = "deadline.ms", .kind = RTEDGE_PARAM_T_KIND_REAL, .real_value = 900}};
+    rtedge_param_t p[2] = {{.name = "grasp.min_area",
+                            .kind = RTEDGE_PARAM_T_KIND_INT,
+                            .int_value = 920,
+                            .text_value = ""},
+                           {.name = "deadline.ms",
+                            .kind = RTEDGE_PARAM_T_KIND_REAL,
+                            .real_value = 900,
+                            .text_value = ""}};
     rtedge_params_t pm = {.request_id = 1, .nparams = 2, .params = p};
     uint8_t buf[512];
     int len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
@@ -530,8 +544,10 @@ static void test_params_channel(void **state)
     len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
     lcm_publish(lcm, "RTEDGE_PARAMS", buf, (unsigned)len);
     rted_daemon_step(d);
-    p[0] = (rtedge_param_t){
-        .name = "lane.max_segments", .kind = RTEDGE_PARAM_T_KIND_INT, .int_value = 10};
+    p[0] = (rtedge_param_t){.name = "lane.max_segments",
+                            .kind = RTEDGE_PARAM_T_KIND_INT,
+                            .int_value = 10,
+                            .text_value = ""};
     len = rtedge_params_t_encode(buf, 0, sizeof buf, &pm);
     lcm_publish(lcm, "RTEDGE_PARAMS", buf, (unsigned)len);
     rted_daemon_step(d);

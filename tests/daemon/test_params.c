@@ -23,6 +23,7 @@
 #include "daemon_fixtures.h"
 #include "heapcount.h"
 #include "params.h"
+#include "rtedge_param_state_t.h"
 #include "rtedge_params_t.h"
 
 static const char *build_dir;
@@ -52,17 +53,24 @@ static void put_bytes(writer *w, const void *p, size_t n)
     w->n += n;
 }
 
-static void put_head(writer *w, int64_t request_id, uint32_t nparams)
+static void put_head_action(writer *w, int64_t request_id, int8_t action, uint32_t nparams)
 {
     w->n = 0;
     put_u64(w, (uint64_t)__rtedge_params_t_get_hash());
     put_u64(w, 123456);
     put_u64(w, (uint64_t)request_id);
+    w->buf[w->n++] = (uint8_t)action;
     put_u32(w, nparams);
 }
 
-/* A value with a proper name: length with the NUL, bytes, NUL. */
-static void put_value(writer *w, const char *name, int8_t kind, int64_t i, double r)
+static void put_head(writer *w, int64_t request_id, uint32_t nparams)
+{
+    put_head_action(w, request_id, RTEDGE_PARAMS_T_ACTION_SET, nparams);
+}
+
+/* A value with a proper name and text: length with the NUL, bytes, NUL. */
+static void put_text_value(writer *w, const char *name, int8_t kind, int64_t i, double r,
+                           const char *text)
 {
     put_u32(w, (uint32_t)strlen(name) + 1);
     put_bytes(w, name, strlen(name) + 1);
@@ -71,6 +79,13 @@ static void put_value(writer *w, const char *name, int8_t kind, int64_t i, doubl
     uint64_t bits;
     memcpy(&bits, &r, sizeof bits);
     put_u64(w, bits);
+    put_u32(w, (uint32_t)strlen(text) + 1);
+    put_bytes(w, text, strlen(text) + 1);
+}
+
+static void put_value(writer *w, const char *name, int8_t kind, int64_t i, double r)
+{
+    put_text_value(w, name, kind, i, r, "");
 }
 
 static bool decode(const writer *w, rted_params_request *r, char *why, size_t why_size)
@@ -93,28 +108,44 @@ static void expect_decode_refused(const writer *w, const char *reason)
 static void test_decode_valid(void **state)
 {
     writer w;
-    put_head(&w, 42, 2);
+    put_head(&w, 42, 3);
     put_value(&w, "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 920, 0);
     put_value(&w, "deadline.ms", RTEDGE_PARAM_T_KIND_REAL, 0, 25.5);
+    put_text_value(&w, "lane.roi", RTEDGE_PARAM_T_KIND_TEXT, 0, 0, "0,1;0.5,0.5;1,1");
     static rted_params_request r;
     char why[RTED_MSG];
     assert_true(decode(&w, &r, why, sizeof why));
     assert_int_equal(r.request_id, 42);
-    assert_int_equal(r.count, 2);
+    assert_int_equal(r.action, RTEDGE_PARAMS_T_ACTION_SET);
+    assert_int_equal(r.count, 3);
     assert_string_equal(r.params[0].name, "grasp.min_area");
     assert_int_equal(r.params[0].kind, RTEDGE_PARAM_T_KIND_INT);
     assert_int_equal(r.params[0].int_value, 920);
     assert_string_equal(r.params[1].name, "deadline.ms");
     assert_true(r.params[1].real_value == 25.5);
+    assert_int_equal(r.params[2].kind, RTEDGE_PARAM_T_KIND_TEXT);
+    assert_string_equal(r.params[2].text_value, "0,1;0.5,0.5;1,1");
     /* The same bytes as lcm-gen's encoder writes. */
-    rtedge_param_t p[2] = {
-        {.name = "grasp.min_area", .kind = RTEDGE_PARAM_T_KIND_INT, .int_value = 920},
-        {.name = "deadline.ms", .kind = RTEDGE_PARAM_T_KIND_REAL, .real_value = 25.5}};
-    rtedge_params_t m = {.utime = 123456, .request_id = 42, .nparams = 2, .params = p};
+    rtedge_param_t p[3] = {
+        {.name = "grasp.min_area",
+         .kind = RTEDGE_PARAM_T_KIND_INT,
+         .int_value = 920,
+         .text_value = ""},
+        {.name = "deadline.ms",
+         .kind = RTEDGE_PARAM_T_KIND_REAL,
+         .real_value = 25.5,
+         .text_value = ""},
+        {.name = "lane.roi", .kind = RTEDGE_PARAM_T_KIND_TEXT, .text_value = "0,1;0.5,0.5;1,1"}};
+    rtedge_params_t m = {.utime = 123456, .request_id = 42, .nparams = 3, .params = p};
     uint8_t gen[512];
     int len = rtedge_params_t_encode(gen, 0, sizeof gen, &m);
     assert_int_equal(len, (int)w.n);
     assert_memory_equal(gen, w.buf, w.n);
+    /* A save request carries no values. */
+    put_head_action(&w, 43, RTEDGE_PARAMS_T_ACTION_SAVE, 0);
+    assert_true(decode(&w, &r, why, sizeof why));
+    assert_int_equal(r.action, RTEDGE_PARAMS_T_ACTION_SAVE);
+    assert_int_equal(r.count, 0);
 }
 
 static void test_decode_counts(void **state)
@@ -131,6 +162,13 @@ static void test_decode_counts(void **state)
     expect_decode_refused(&w, "nparams = -1");
     put_head(&w, 1, 0);
     expect_decode_refused(&w, "nparams = 0");
+    /* Actions: a save carries no values; no other action exists. */
+    put_head_action(&w, 1, RTEDGE_PARAMS_T_ACTION_SAVE, 1);
+    put_value(&w, "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 1, 0);
+    expect_decode_refused(&w, "ACTION_SAVE with nparams = 1 (0 allowed)");
+    put_head_action(&w, 1, 5, 1);
+    put_value(&w, "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 1, 0);
+    expect_decode_refused(&w, "action 5 is neither ACTION_SET (0) nor ACTION_SAVE (1)");
     put_head(&w, 1, RTED_PARAMS_MAX + 1);
     for (int i = 0; i <= RTED_PARAMS_MAX; i++)
         put_value(&w, "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 1, 0);
@@ -201,6 +239,45 @@ static void test_decode_names(void **state)
     expect_decode_refused(&w, "byte 0 of the name is 0x47");
 }
 
+static void test_decode_texts(void **state)
+{
+    writer w;
+    /* Control bytes (a newline would start a line of its own in a saved
+     * rtedged.conf) and bytes beyond ASCII. */
+    put_head(&w, 1, 1);
+    put_text_value(&w, "lane.roi", RTEDGE_PARAM_T_KIND_TEXT, 0, 0, "0,1;1,1\n[params]");
+    expect_decode_refused(&w, "value 1 (lane.roi): byte 7 of the text is 0x0a");
+    put_head(&w, 1, 1);
+    put_text_value(&w, "lane.roi", RTEDGE_PARAM_T_KIND_TEXT, 0, 0, "0,1;\xc3\xa9");
+    expect_decode_refused(&w, "byte 4 of the text is 0xc3");
+    /* Without its NUL; lengths huge, zero and over the bound. */
+    put_head(&w, 1, 1);
+    put_value(&w, "lane.roi", RTEDGE_PARAM_T_KIND_TEXT, 0, 0);
+    w.n -= 5;
+    put_u32(&w, 3);
+    put_bytes(&w, "abc", 3);
+    expect_decode_refused(&w, "value 1 (lane.roi): the text does not end with a NUL byte");
+    uint32_t lengths[] = {0x7fffffffu, 0, RTED_PARAM_TEXT_MAX + 1};
+    for (size_t i = 0; i < sizeof lengths / sizeof lengths[0]; i++) {
+        put_head(&w, 1, 1);
+        put_value(&w, "lane.roi", RTEDGE_PARAM_T_KIND_TEXT, 0, 0);
+        w.n -= 5;
+        put_u32(&w, lengths[i]);
+        memset(w.buf + w.n, 'a', 300);
+        w.n += 300;
+        expect_decode_refused(&w, "value 1 (lane.roi): a text of");
+    }
+    /* Cut short before and inside it. */
+    put_head(&w, 1, 1);
+    put_text_value(&w, "lane.roi", RTEDGE_PARAM_T_KIND_TEXT, 0, 0, "0,1;0.5,0.5;1,1");
+    w.n -= 17;
+    expect_decode_refused(&w, "cut short before its text");
+    put_head(&w, 1, 1);
+    put_text_value(&w, "lane.roi", RTEDGE_PARAM_T_KIND_TEXT, 0, 0, "0,1;0.5,0.5;1,1");
+    w.n -= 3;
+    expect_decode_refused(&w, "cut short in its text");
+}
+
 /* ---- from a request to a configuration ---- */
 
 static bool to_config(const rted_config *now, const char *name, int8_t kind, int64_t i, double r,
@@ -212,6 +289,30 @@ static bool to_config(const rted_config *now, const char *name, int8_t kind, int
     static rted_params_request req;
     assert_true(decode(&w, &req, why, why_size));
     return rted_params_to_config(&req, now, next, why, why_size);
+}
+
+static bool text_to_config(const rted_config *now, const char *name, const char *text,
+                           rted_config *next, char *why, size_t why_size)
+{
+    writer w;
+    put_head(&w, 9, 1);
+    put_text_value(&w, name, RTEDGE_PARAM_T_KIND_TEXT, 0, 0, text);
+    static rted_params_request req;
+    assert_true(decode(&w, &req, why, why_size));
+    return rted_params_to_config(&req, now, next, why, why_size);
+}
+
+static void expect_text_refused(const rted_config *now, const char *name, const char *text,
+                                const char *reason)
+{
+    rted_config next;
+    char why[RTED_MSG] = "";
+    bool ok = text_to_config(now, name, text, &next, why, sizeof why);
+    if (ok || !strstr(why, reason))
+        print_error("%s = '%s': %s '%s', expected '%s'\n", name, text,
+                    ok ? "applied" : "refused with", why, reason);
+    assert_false(ok);
+    assert_non_null(strstr(why, reason));
 }
 
 static void expect_refused(const rted_config *now, const char *name, int8_t kind, int64_t i,
@@ -246,9 +347,20 @@ static void test_to_config(void **state)
     expect_refused(&c, "grasp.skip_border", I, 1, 0, "takes KIND_BOOL, not KIND_INT");
     expect_refused(&c, "grasp.min_area", 7, 1, 0, "kind 7 is none of");
     expect_refused(&c, "grasp.skip_border", B, 2, 0, "a KIND_BOOL value is 0 or 1, not 2");
-    /* Choice and text keys are not reachable (issue 18's injection). */
-    expect_refused(&c, "lane.canny_mode", I, 0, 0, "takes a choice, which params_t cannot carry");
-    expect_refused(&c, "lane.roi", I, 0, 0, "takes text, which params_t cannot carry");
+    /* Choice and text keys take KIND_TEXT, checked as the file's text is. */
+    assert_true(text_to_config(&c, "lane.canny_mode", "fixed", &next, why, sizeof why));
+    assert_int_equal(next.lane_canny_mode, 0);
+    assert_true(
+        text_to_config(&c, "lane.roi", "0,1;0.4,0.55;0.6,0.55;1,1", &next, why, sizeof why));
+    assert_string_equal(next.lane_roi, "0,1;0.4,0.55;0.6,0.55;1,1");
+    assert_true(text_to_config(&c, "grasp.polarity", "dark", &next, why, sizeof why));
+    expect_refused(&c, "lane.canny_mode", I, 0, 0, "takes KIND_TEXT, not KIND_INT");
+    expect_refused(&c, "lane.canny_low", RTEDGE_PARAM_T_KIND_TEXT, 0, 0,
+                   "takes KIND_INT, not KIND_TEXT");
+    expect_text_refused(&c, "lane.canny_mode", "sobel", "'sobel' is not one of fixed median otsu");
+    expect_text_refused(&c, "lane.roi", " 0,1;0.5,0.5;1,1", "starts or ends with a blank");
+    expect_text_refused(&c, "lane.roi", "0,1;0.5,0.5;1,1 # x", "begins a comment");
+    expect_text_refused(&c, "publish.url", "memq://", "cannot change while running");
     expect_refused(&c, "lane.max_segments", I, 10, 0, "cannot change while running");
     expect_refused(&c, "publish.url", I, 0, 0, "cannot change while running");
     expect_refused(&c, "params.max_per_second", I, 1000, 0, "cannot change while running");
@@ -313,12 +425,13 @@ static void test_config_lists(void **state)
     rted_config_defaults(&c);
     char msg[RTED_MSG];
     const char *bad[][2] = {
-        {"params.keys=lane.roi", "params.keys: 'lane.roi' is not a numeric or boolean key"},
+        {"params.keys=publish.url", "params.keys: 'publish.url' is not a runtime key"},
         {"params.keys=lane.max_segments", "not a runtime key"},
         {"params.keys=grasp.min_area,,lane.canny_low", "an empty or overlong name"},
         {"params.keys=nosuch.key", "'nosuch.key' is not a key"},
         {"params.channel=RTEDGE_.*", "is not a channel name"},
         {"params.channel=RTEDGE_LANES", "also one of the channels rtedged publishes on"},
+        {"params.channel=RTEDGE_PARAM_STATE", "also one of the channels rtedged publishes on"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
         expect_invalid(&c, bad[i][0], false, bad[i][1]);
@@ -582,6 +695,201 @@ static void test_rate_limit(void **state)
 /* A run-time change that would make a path fail or find nothing on the
  * source's frames is refused with the reason, the configuration in force
  * kept. */
+/* ---- param_state_t: the schema, values and outcomes a tuning tool sees ---- */
+
+typedef struct state_seen {
+    int count;
+    rtedge_param_state_t last;
+} state_seen;
+
+static void on_state(const lcm_recv_buf_t *rb, const char *channel, void *user)
+{
+    state_seen *s = user;
+    if (s->count)
+        rtedge_param_state_t_decode_cleanup(&s->last);
+    assert_true(rtedge_param_state_t_decode(rb->data, 0, (int)rb->data_size, &s->last) > 0);
+    s->count++;
+}
+
+static const rtedge_param_info_t *state_key(const rtedge_param_state_t *m, const char *name)
+{
+    for (int32_t i = 0; i < m->nkeys; i++)
+        if (!strcmp(m->keys[i].name, name))
+            return &m->keys[i];
+    return NULL;
+}
+
+/* Sends w through memq:// and handles it: the state that came back. */
+static const rtedge_param_state_t *request(rted_daemon *d, state_seen *s, const writer *w)
+{
+    lcm_t *lcm = rted_daemon_lcm(d);
+    int before = s->count;
+    lcm_publish(lcm, "RTEDGE_PARAMS", w->buf, (unsigned)w->n);
+    rted_daemon_step(d);
+    drain(lcm);
+    assert_int_equal(s->count, before + 1);
+    return &s->last;
+}
+
+static rted_daemon *state_daemon(const char *name, rted_config *c, const char *save_path,
+                                 const char *keys, bool enabled)
+{
+    char y4m[512];
+    path(y4m, sizeof y4m, name);
+    looping_objects_config(c, y4m, 5);
+    c->params_enabled = enabled;
+    c->status_period_ms = 60000;
+    snprintf(c->params_save_path, sizeof c->params_save_path, "%s", save_path);
+    snprintf(c->params_keys, sizeof c->params_keys, "%s", keys);
+    return open_daemon(c, NULL);
+}
+
+static void test_param_state(void **state)
+{
+    char saved[512];
+    path(saved, sizeof saved, "saved.conf");
+    remove(saved);
+    rted_config c;
+    rted_daemon *d = state_daemon("state.y4m", &c, saved, "", true);
+    lcm_t *lcm = rted_daemon_lcm(d);
+    static state_seen s;
+    memset(&s, 0, sizeof s);
+    lcm_subscription_t *sub = lcm_subscribe(lcm, "RTEDGE_PARAM_STATE", on_state, &s);
+    writer w;
+    /* A choice, a text and two numbers at once: applied, and the state shows them. */
+    put_head(&w, 501, 4);
+    put_text_value(&w, "lane.canny_mode", RTEDGE_PARAM_T_KIND_TEXT, 0, 0, "fixed");
+    put_value(&w, "lane.canny_low", RTEDGE_PARAM_T_KIND_INT, 30, 0);
+    put_value(&w, "lane.canny_high", RTEDGE_PARAM_T_KIND_INT, 90, 0);
+    put_text_value(&w, "lane.roi", RTEDGE_PARAM_T_KIND_TEXT, 0, 0, "0,1;0.4,0.5;0.6,0.5;1,1");
+    const rtedge_param_state_t *m = request(d, &s, &w);
+    assert_int_equal(m->request_id, 501);
+    assert_int_equal(m->outcome, RTEDGE_PARAM_STATE_T_OUTCOME_APPLIED);
+    assert_true(m->enabled && m->can_save);
+    assert_string_equal(m->params_channel, "RTEDGE_PARAMS");
+    assert_string_equal(m->saved_config, "");
+    assert_int_equal(rted_daemon_config(d)->lane_canny_low, 30);
+    /* The schema: only runtime keys, each with its type, range, unit and value. */
+    assert_null(state_key(m, "publish.url"));
+    assert_null(state_key(m, "lane.max_segments"));
+    const rtedge_param_info_t *k = state_key(m, "lane.canny_low");
+    assert_non_null(k);
+    assert_int_equal(k->type, RTEDGE_PARAM_INFO_T_TYPE_INT);
+    assert_true(k->min == 0 && k->max == 2040 && k->has_unset && k->unset_value == -1);
+    assert_string_equal(k->unit, "L1 gradient");
+    assert_int_equal(k->int_value, 30);
+    assert_true(k->settable);
+    k = state_key(m, "lane.canny_mode");
+    assert_int_equal(k->type, RTEDGE_PARAM_INFO_T_TYPE_CHOICE);
+    assert_int_equal(k->nchoices, 3);
+    assert_string_equal(k->choices[0], "fixed");
+    assert_string_equal(k->choices[2], "otsu");
+    assert_string_equal(k->text_value, "fixed");
+    k = state_key(m, "lane.roi");
+    assert_int_equal(k->type, RTEDGE_PARAM_INFO_T_TYPE_TEXT);
+    assert_string_equal(k->text_value, "0,1;0.4,0.5;0.6,0.5;1,1");
+    k = state_key(m, "deadline.ms");
+    assert_int_equal(k->type, RTEDGE_PARAM_INFO_T_TYPE_REAL);
+    assert_string_equal(k->unit, "ms");
+    k = state_key(m, "grasp.skip_border");
+    assert_int_equal(k->type, RTEDGE_PARAM_INFO_T_TYPE_BOOL);
+    assert_true(strlen(k->help) > 10);
+    assert_int_equal(m->config_hash, (int64_t)rted_config_hash(rted_daemon_config(d)));
+    /* Refused: the reason, the configuration in force unchanged. */
+    put_head(&w, 502, 1);
+    put_value(&w, "lane.canny_high", RTEDGE_PARAM_T_KIND_INT, 5000, 0);
+    m = request(d, &s, &w);
+    assert_int_equal(m->request_id, 502);
+    assert_int_equal(m->outcome, RTEDGE_PARAM_STATE_T_OUTCOME_REFUSED);
+    assert_non_null(strstr(m->reason, "value 1 (lane.canny_high): 5000 is out of range 0..2040"));
+    assert_int_equal(state_key(m, "lane.canny_high")->int_value, 90);
+    put_head(&w, 503, 1);
+    put_value(&w, "lane.canny_low", RTEDGE_PARAM_T_KIND_INT, 100, 0);
+    m = request(d, &s, &w);
+    assert_int_equal(m->outcome, RTEDGE_PARAM_STATE_T_OUTCOME_REFUSED);
+    assert_non_null(strstr(m->reason, "canny_low"));
+    /* A malformed message: refused, with no request id to echo. */
+    put_head(&w, 504, 1);
+    put_value(&w, "lane.canny_low", RTEDGE_PARAM_T_KIND_INT, 40, 0);
+    w.buf[3] ^= 1;
+    m = request(d, &s, &w);
+    assert_int_equal(m->request_id, 0);
+    assert_non_null(strstr(m->reason, "not a params_t"));
+    /* Save: the file reads back to the configuration in force. */
+    put_head_action(&w, 505, RTEDGE_PARAMS_T_ACTION_SAVE, 0);
+    m = request(d, &s, &w);
+    assert_int_equal(m->request_id, 505);
+    assert_int_equal(m->outcome, RTEDGE_PARAM_STATE_T_OUTCOME_SAVED);
+    assert_non_null(strstr(m->reason, "saved to"));
+    FILE *f = fopen(saved, "rb");
+    assert_non_null(f);
+    static char text[RTED_CONFIG_TEXT_MAX];
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    assert_string_equal(text, m->saved_config);
+    rted_config back;
+    char why[RTED_MSG];
+    rted_config_defaults(&back);
+    assert_true(rted_config_load(&back, saved, why, sizeof why));
+    assert_true(rted_config_validate(&back, why, sizeof why));
+    assert_int_equal(rted_config_hash(&back), rted_config_hash(rted_daemon_config(d)));
+    assert_int_equal(back.lane_canny_low, 30);
+    assert_string_equal(back.lane_roi, "0,1;0.4,0.5;0.6,0.5;1,1");
+    lcm_unsubscribe(lcm, sub);
+    rted_daemon_close(d);
+    rtedge_param_state_t_decode_cleanup(&s.last);
+
+    /* Saving off, an allow list: refused saves, settable only where listed. */
+    d = state_daemon("state2.y4m", &c, "", "grasp.min_area", true);
+    lcm = rted_daemon_lcm(d);
+    memset(&s, 0, sizeof s);
+    sub = lcm_subscribe(lcm, "RTEDGE_PARAM_STATE", on_state, &s);
+    put_head_action(&w, 601, RTEDGE_PARAMS_T_ACTION_SAVE, 0);
+    m = request(d, &s, &w);
+    assert_int_equal(m->outcome, RTEDGE_PARAM_STATE_T_OUTCOME_REFUSED);
+    assert_non_null(strstr(m->reason, "saving is off (params.save_path is empty)"));
+    assert_false(m->can_save);
+    assert_true(state_key(m, "grasp.min_area")->settable);
+    assert_false(state_key(m, "lane.canny_low")->settable);
+    put_head(&w, 602, 1);
+    put_value(&w, "lane.canny_low", RTEDGE_PARAM_T_KIND_INT, 40, 0);
+    m = request(d, &s, &w);
+    assert_non_null(strstr(m->reason, "not in params.keys"));
+    lcm_unsubscribe(lcm, sub);
+    rted_daemon_close(d);
+    rtedge_param_state_t_decode_cleanup(&s.last);
+
+    /* The channel off: the state says so, requests go unheard. */
+    char y4m[512];
+    path(y4m, sizeof y4m, "state3.y4m");
+    looping_objects_config(&c, y4m, 5);
+    c.status_period_ms = 60000;
+    c.params_state_period_ms = 100;
+    d = open_daemon(&c, NULL);
+    lcm = rted_daemon_lcm(d);
+    memset(&s, 0, sizeof s);
+    sub = lcm_subscribe(lcm, "RTEDGE_PARAM_STATE", on_state, &s);
+    put_head(&w, 701, 1);
+    put_value(&w, "grasp.min_area", RTEDGE_PARAM_T_KIND_INT, 920, 0);
+    lcm_publish(lcm, "RTEDGE_PARAMS", w.buf, (unsigned)w.n);
+    rted_daemon_step(d);
+    drain(lcm);
+    assert_int_equal(s.count, 0);
+    assert_int_equal(rted_daemon_config(d)->grasp_min_area, c.grasp_min_area);
+    /* The periodic state goes out with the first status after its period. */
+    struct timespec pause = {0, 120000000};
+    nanosleep(&pause, NULL);
+    rted_daemon_publish_status(d);
+    drain(lcm);
+    assert_int_equal(s.count, 1);
+    assert_false(s.last.enabled);
+    assert_false(state_key(&s.last, "grasp.min_area")->settable);
+    rtedge_param_state_t_decode_cleanup(&s.last);
+    lcm_unsubscribe(lcm, sub);
+    rted_daemon_close(d);
+}
+
 static void test_apply_frame_checks(void **state)
 {
     rted_config c;
@@ -622,6 +930,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_decode_valid),
         cmocka_unit_test(test_decode_counts),
         cmocka_unit_test(test_decode_names),
+        cmocka_unit_test(test_decode_texts),
         cmocka_unit_test(test_to_config),
         cmocka_unit_test(test_to_config_whole),
         cmocka_unit_test(test_config_lists),
@@ -629,6 +938,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_handler_hostile_stream_no_heap),
         cmocka_unit_test(test_rate_limit),
         cmocka_unit_test(test_apply_frame_checks),
+        cmocka_unit_test(test_param_state),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,6 +1,7 @@
 /* The params_t handler on well-formed messages with chosen values: the
  * input picks keys from the configuration table (or a bad name), a kind
- * (mostly the key's own) and values (boundaries, specials, any bits); the
+ * (mostly the key's own) and values (boundaries, specials, any bits; for
+ * text and choice keys a choice's name, a ROI or printable bytes); the
  * message is encoded with lcm-gen's encoder, decoded by the daemon's own
  * decoder (which must give back exactly what was encoded) and handled on a
  * running daemon, then a frame. */
@@ -97,6 +98,35 @@ static size_t key_count(void)
     return n;
 }
 
+/* A text value: one of a few meaningful ones or up to 40 printable bytes
+ * (blanks, '#' and ';' among them). */
+static void text_value(input *in, char *text, size_t size)
+{
+    static const char *const special[] = {"fixed",
+                                          "median",
+                                          "otsu",
+                                          "canny-close",
+                                          "dark",
+                                          "auto",
+                                          "0,1;0.45,0.6;0.55,0.6;1,1",
+                                          "0,0;1,0;1,1",
+                                          "",
+                                          " fixed",
+                                          "0,1;0.5,0.5;1,1 # x",
+                                          "9,9;9,9;9,9"};
+    uint8_t pick = u8(in);
+    if (pick < 128) {
+        snprintf(text, size, "%s", special[pick % (sizeof special / sizeof special[0])]);
+        return;
+    }
+    size_t n = pick % 41;
+    if (n >= size)
+        n = size - 1;
+    for (size_t i = 0; i < n; i++)
+        text[i] = (char)(0x20 + u8(in) % 95);
+    text[n] = 0;
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static const char *const bad_names[] = {
@@ -107,6 +137,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     input in = {data, size};
     static char names[RTED_PARAMS_MAX + 2][RTED_PARAM_NAME_MAX];
     static rtedge_param_t params[RTED_PARAMS_MAX + 2];
+    static char texts[RTED_PARAMS_MAX + 2][48];
     uint8_t first = u8(&in);
     int32_t count = first < 240 ? 1 + first % 6 : 1 + first % (RTED_PARAMS_MAX + 2);
     for (int32_t i = 0; i < count; i++) {
@@ -119,12 +150,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         rted_key_type t = rted_key_get_type(k);
         int8_t right = t == RTED_KEY_REAL   ? RTEDGE_PARAM_T_KIND_REAL
                        : t == RTED_KEY_BOOL ? RTEDGE_PARAM_T_KIND_BOOL
-                                            : RTEDGE_PARAM_T_KIND_INT;
+                       : t == RTED_KEY_INT  ? RTEDGE_PARAM_T_KIND_INT
+                                            : RTEDGE_PARAM_T_KIND_TEXT;
         uint8_t kind = u8(&in);
         params[i] =
             (rtedge_param_t){.name = names[i], .kind = kind < 200 ? right : (int8_t)(kind % 9 - 1)};
         params[i].int_value = int_value(&in);
         params[i].real_value = real_value(&in);
+        text_value(&in, texts[i], sizeof texts[i]);
+        params[i].text_value = texts[i];
     }
     rtedge_params_t m = {.utime = (int64_t)u64(&in),
                          .request_id = (int64_t)u64(&in),
@@ -146,6 +180,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             FUZZ_ASSERT(req.params[i].kind == params[i].kind);
             FUZZ_ASSERT(req.params[i].int_value == params[i].int_value);
             FUZZ_ASSERT(!memcmp(&req.params[i].real_value, &params[i].real_value, sizeof(double)));
+            FUZZ_ASSERT(!strcmp(req.params[i].text_value, texts[i]));
         }
     }
 

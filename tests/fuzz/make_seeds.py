@@ -164,33 +164,40 @@ write("config", "sets_frame", b"\x00grasp.min_area=5000000\nlane.hough_threshold
 
 
 # ---- params: encoded params_t ----
-def params(values, request_id=1):
+def params(values, request_id=1, action=0):
     m = params_t()
-    m.utime, m.request_id = 123, request_id
+    m.utime, m.request_id, m.action = 123, request_id, action
     m.params = []
-    for name, kind, iv, rv in values:
+    for name, kind, iv, rv, *text in values:
         p = param_t()
         p.name, p.kind, p.int_value, p.real_value = name, kind, iv, rv
+        p.text_value = text[0] if text else ""
         m.params.append(p)
     m.nparams = len(m.params)
     return m.encode()
 
 
-I, R, BO = param_t.KIND_INT, param_t.KIND_REAL, param_t.KIND_BOOL
-head = params([("grasp.min_area", I, 1, 0)])[:28]  # fingerprint, utime, request_id, nparams
+I, R, BO, T = param_t.KIND_INT, param_t.KIND_REAL, param_t.KIND_BOOL, param_t.KIND_TEXT
+head = params([("grasp.min_area", I, 1, 0)])[:29]  # fingerprint, utime, request_id, action, nparams
 write("params", "valid_int", params([("grasp.min_area", I, 920, 0)]))
 write("params", "valid_three", params([("lane.canny_low", I, 40, 0), ("lane.canny_high", I, 120, 0),
                                        ("deadline.ms", R, 0, 25.0)]))
 write("params", "valid_bool", params([("grasp.skip_border", BO, 1, 0), ("lane.use_color", BO, 0, 0)]))
-write("params", "repro_nparams_0x7fffffff", (head[:24] + struct.pack(">I", 0x7fffffff) + b"A" * 53)[:53])
+write("params", "valid_text", params([("lane.canny_mode", T, 0, 0, "fixed"),
+                                      ("lane.roi", T, 0, 0, "0,1;0.4,0.55;0.6,0.55;1,1")]))
+write("params", "valid_save", params([], action=params_t.ACTION_SAVE))
+write("params", "bad_action", params([("grasp.min_area", I, 920, 0)], action=9))
+write("params", "text_newline", params([("lane.roi", T, 0, 0, "0,1;1,1\n[params]")]))
+write("params", "text_comment", params([("lane.roi", T, 0, 0, "0,1;0.5,0.5;1,1 # x")]))
+write("params", "repro_nparams_0x7fffffff", (head[:25] + struct.pack(">I", 0x7fffffff) + b"A" * 53)[:53])
 unterminated = params([("grasp.min_area", I, 5, 0)])
-write("params", "repro_name_without_nul", unterminated[:28] + struct.pack(">I", 14) + b"grasp.min_area"
-      + unterminated[28 + 4 + 15:])
-write("params", "repro_57k_malformed", head[:24] + struct.pack(">I", 1) + b"\xff" * (57000 - 28))
+write("params", "repro_name_without_nul", unterminated[:29] + struct.pack(">I", 14) + b"grasp.min_area"
+      + unterminated[29 + 4 + 15:])
+write("params", "repro_57k_malformed", head[:25] + struct.pack(">I", 1) + b"\xff" * (57000 - 29))
 write("params", "repro_injection", params([("lane.canny_mode=fixed     ", I, 0, 0)]))
 write("params", "repro_real_for_int", params([("grasp.min_area", R, 0, 5000.0)]))
 write("params", "repro_kind_7", params([("grasp.min_area", 7, 5000, 0)]))
-write("params", "repro_negative_count", head[:24] + struct.pack(">i", -3) + params([("x.y", I, 0, 0)])[28:])
+write("params", "repro_negative_count", head[:25] + struct.pack(">i", -3) + params([("x.y", I, 0, 0)])[29:])
 write("params", "repro_deadline_1e-300", params([("deadline.ms", R, 0, 1e-300)]))
 write("params", "repro_hough_threshold_100000", params([("lane.hough_threshold", I, 100000, 0)]))
 write("params", "repro_min_area_1e8", params([("grasp.min_area", I, 100000000, 0)]))

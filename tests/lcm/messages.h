@@ -10,7 +10,7 @@
 #define SAMPLE_SEGMENTS 7
 #define SAMPLE_OBJECTS 3
 #define SAMPLE_ROI 4
-#define SAMPLE_PARAMS 2
+#define SAMPLE_PARAMS 3
 #define SAMPLE_IMAGE_W 33
 #define SAMPLE_IMAGE_H 5
 
@@ -145,9 +145,14 @@ static inline void samples_fill(samples *s, uint32_t seed)
     st->arena_peak_bytes = 5 << 20;
     st->config_hash = (int64_t)0x8badf00ddeadbeefULL;
 
-    s->params[0] = (rtedge_param_t){(char *)"canny.low", RTEDGE_PARAM_T_KIND_INT, 50, 0.0};
-    s->params[1] = (rtedge_param_t){(char *)"lane.smooth", RTEDGE_PARAM_T_KIND_REAL, 0, 0.25};
-    s->paramset = (rtedge_params_t){123456, 7, SAMPLE_PARAMS, s->params};
+    s->params[0] =
+        (rtedge_param_t){(char *)"lane.canny_low", RTEDGE_PARAM_T_KIND_INT, 50, 0.0, (char *)""};
+    s->params[1] =
+        (rtedge_param_t){(char *)"deadline.ms", RTEDGE_PARAM_T_KIND_REAL, 0, 0.25, (char *)""};
+    s->params[2] = (rtedge_param_t){(char *)"lane.canny_mode", RTEDGE_PARAM_T_KIND_TEXT, 0, 0.0,
+                                    (char *)"fixed"};
+    s->paramset =
+        (rtedge_params_t){123456, 7, RTEDGE_PARAMS_T_ACTION_SET, SAMPLE_PARAMS, s->params};
 
     for (int i = 0; i < SAMPLE_IMAGE_W * SAMPLE_IMAGE_H; i++)
         s->pixels[i] = (uint8_t)sample_i(&r);

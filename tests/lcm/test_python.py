@@ -65,8 +65,10 @@ assert (status.frames_received, status.frames_processed) == (1000, 990)
 assert abs(status.fps - 29.97) < 1e-3
 assert status.config_hash == 0x8badf00ddeadbeef - (1 << 64)
 params = got["PARAMS"]
-assert [p.name for p in params.params] == ["canny.low", "lane.smooth"]
+assert [p.name for p in params.params] == ["lane.canny_low", "deadline.ms", "lane.canny_mode"]
 assert params.params[0].int_value == 50 and params.params[1].real_value == 0.25
+assert params.params[2].kind == rtedge.param_t.KIND_TEXT and params.params[2].text_value == "fixed"
+assert params.action == rtedge.params_t.ACTION_SET
 image = got["IMAGE"]
 assert image.pixelformat == rtedge.image_t.PIXEL_FORMAT_GRAY == 1497715271
 assert (image.width, image.height, image.size) == (33, 5, 165) and len(image.data) == 165

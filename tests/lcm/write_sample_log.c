@@ -13,7 +13,7 @@ int main(int argc, char **argv)
     }
     static samples s;
     samples_fill(&s, 21);
-    rte_publish_limits limits = {64, 8, 16, 4, 4, SAMPLE_IMAGE_W * SAMPLE_IMAGE_H, 2};
+    rte_publish_limits limits = {64, 8, 16, 4, 4, SAMPLE_IMAGE_W * SAMPLE_IMAGE_H, 2, 0};
     char url[4200], msg[RTE_PUBLISH_MESSAGE_SIZE];
     snprintf(url, sizeof url, "file://%s", argv[1]);
     rte_publisher *pub;

@@ -488,7 +488,7 @@ static void test_lcm_log_images(void **state)
     char path[700], url[800], msg[RTE_SOURCE_MESSAGE_SIZE];
     tmp_path(path, sizeof path, "images.lcmlog");
     snprintf(url, sizeof url, "file://%s", path);
-    rte_publish_limits limits = {32, 0, 0, 0, 0, 4096, 1};
+    rte_publish_limits limits = {32, 0, 0, 0, 0, 4096, 1, 0};
     rte_publisher *pub;
     assert_int_equal(rte_publisher_create(&pub, url, &limits, msg, sizeof msg), RTE_OK);
     uint8_t pixels[20 * 10];
@@ -639,7 +639,7 @@ static void test_no_heap_calls_per_frame(void **state)
 
     tmp_path(path, sizeof path, "heap.lcmlog");
     snprintf(url, sizeof url, "file://%s", path);
-    rte_publish_limits limits = {32, 0, 0, 0, 0, 64 * 48, 1};
+    rte_publish_limits limits = {32, 0, 0, 0, 0, 64 * 48, 1, 0};
     rte_publisher *pub;
     assert_int_equal(rte_publisher_create(&pub, url, &limits, msg, sizeof msg), RTE_OK);
     rtedge_image_t img = {0, 64, 48, 64, RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY, 64 * 48, raw, 0, NULL};
