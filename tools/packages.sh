@@ -2,7 +2,7 @@
 # missing ones (apt-get update once, then install). Sourced by tools/test,
 # tools/bench and tools/demo.
 RTE_BUILD_PACKAGES=(meson ninja-build gcc g++ pkg-config binutils
-    libspng-dev libturbojpeg0-dev          # image files
+    libspng-dev libturbojpeg0-dev libjpeg62-turbo-dev  # image files, the debug stream's JPEG
     liblcm-dev liblcm-bin libglib2.0-dev   # LCM: lcm-gen; lcm.pc needs glib
     linux-libc-dev libcamera-dev)          # cameras: V4L2 headers, libcamera
 RTE_BENCH_PACKAGES=(valgrind)  # tools/bench --instructions (callgrind)

@@ -206,6 +206,12 @@ typedef struct rte_lane_result {
     const rte_lane_segment *segments;
     int32_t segment_count;
     bool truncated;
+    /* The Canny edges inside the ROI polygon (what the Hough search saw):
+     * the ROI's bounding box, a view of the context's memory valid until
+     * the next call, its top-left pixel at (edges_x0, edges_y0) of the
+     * frame. */
+    rte_image_u8 edges;
+    int32_t edges_x0, edges_y0;
     int64_t t_ns;
     int64_t stage_ns[RTE_LANE_STAGES]; /* CLOCK_MONOTONIC time spent per stage */
 } rte_lane_result;

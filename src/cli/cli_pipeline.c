@@ -198,39 +198,3 @@ void *cli_overlay_canvas(const char *command, const cli_image *in, rte_image_u8c
     }
     return mem;
 }
-
-void cli_overlay_label(rte_image_u8c3 *canvas, int32_t x, int32_t y, const char *text,
-                       rte_draw_color c)
-{
-    int32_t tw, th;
-    rte_draw_text_size(text, 1, &tw, &th);
-    if (x + tw + 2 > canvas->width)
-        x = canvas->width - tw - 2;
-    if (y + th + 2 > canvas->height)
-        y = canvas->height - th - 2;
-    x = x < 1 ? 1 : x;
-    y = y < 1 ? 1 : y;
-    const rte_draw_color black = {0, 0, 0};
-    for (int32_t yy = y - 1; yy <= y + th; yy++)
-        rte_draw_line(canvas, x - 1, yy, x + tw, yy, black, 1);
-    rte_draw_text(canvas, x, y, text, c, 1);
-}
-
-static int32_t round_q8(int32_t v) { return (v + 128) >> 8; }
-
-void cli_overlay_box(rte_image_u8c3 *canvas, const int32_t corners_q8[4][2], rte_draw_color c)
-{
-    rte_point p[4];
-    for (int i = 0; i < 4; i++)
-        p[i] = (rte_point){round_q8(corners_q8[i][0]), round_q8(corners_q8[i][1])};
-    rte_draw_polyline(canvas, p, 4, 1, c, 1);
-}
-
-rte_draw_color cli_overlay_color(int32_t i)
-{
-    static const rte_draw_color palette[] = {
-        {0, 0, 255},   {0, 200, 0},   {255, 160, 0}, {0, 200, 255},
-        {255, 0, 255}, {255, 255, 0}, {0, 128, 255}, {128, 0, 255},
-    };
-    return palette[(uint32_t)i % (sizeof palette / sizeof palette[0])];
-}

@@ -39,12 +39,5 @@ void cli_print_q16(int64_t v);
 
 /* A BGR copy of the input to draw on (grey replicated); NULL after a message. */
 void *cli_overlay_canvas(const char *command, const cli_image *in, rte_image_u8c3 *canvas);
-/* A label with a dark box behind it, kept inside the image, at (x, y) top-left. */
-void cli_overlay_label(rte_image_u8c3 *canvas, int32_t x, int32_t y, const char *text,
-                       rte_draw_color c);
-/* The four Q8 corners of a rotated rectangle as a closed polyline. */
-void cli_overlay_box(rte_image_u8c3 *canvas, const int32_t corners_q8[4][2], rte_draw_color c);
-/* A distinct colour for object i. */
-rte_draw_color cli_overlay_color(int32_t i);
 
 #endif

@@ -1,6 +1,5 @@
 /* The grasp path on an image file: `rtedge grasp` (grasp points as JSON)
  * and `rtedge shapes` (the shape table), both with an optional overlay. */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -8,6 +7,7 @@
 #include "cli_image.h"
 #include "cli_pipeline.h"
 #include "commands.h"
+#include "draw/overlay.h"
 #include "rtedge/grasp.h"
 
 #define PIPELINE_DETAILS                                                                          \
@@ -78,50 +78,27 @@ static void grasp_end(grasp_run *run)
     cli_image_free(&run->in);
 }
 
-/* The object's outline in its colour. */
-static void draw_contour(rte_image_u8c3 *canvas, const rte_grasp_result *r,
-                         const rte_grasp_object *o, rte_draw_color c)
-{
-    const rte_contour *ct = &r->contours->contours[o->contour];
-    rte_draw_polyline(canvas, r->contours->points + ct->offset, ct->count, 1, c, 1);
-}
-
 static int32_t q8_px(int32_t v) { return (v + 128) >> 8; }
 
-/* Draws with draw_object for every object and writes the overlay. */
-static int overlay(grasp_run *run,
-                   void (*draw_object)(rte_image_u8c3 *, const grasp_run *, int32_t))
+/* Draws the objects with draw and writes the overlay. */
+static int overlay(grasp_run *run, void (*draw)(rte_overlay *, const grasp_run *))
 {
     if (!run->overlay)
         return CLI_EXIT_OK;
-    rte_image_u8c3 canvas;
-    void *mem = cli_overlay_canvas(run->name, &run->in, &canvas);
+    rte_overlay o = {.scale_q16 = 65536};
+    void *mem = cli_overlay_canvas(run->name, &run->in, &o.canvas);
     if (!mem)
         return CLI_EXIT_FAILURE;
-    /* largest last, so small objects inside big ones stay visible */
-    for (int32_t i = run->result.n_objects - 1; i >= 0; i--)
-        draw_object(&canvas, run, i);
-    int rc = cli_save_bgr(run->name, run->overlay, &canvas);
+    draw(&o, run);
+    int rc = cli_save_bgr(run->name, run->overlay, &o.canvas);
     free(mem);
     return rc;
 }
 
-static void draw_grasp(rte_image_u8c3 *canvas, const grasp_run *run, int32_t i)
+static void draw_grasp(rte_overlay *o, const grasp_run *run)
 {
-    const rte_grasp_object *o = &run->result.objects[i];
-    const rte_draw_color c = cli_overlay_color(i);
-    draw_contour(canvas, &run->result, o, c);
-    cli_overlay_box(canvas, o->info.box.corners_q8, (rte_draw_color){255, 255, 255});
-    /* the jaws' closing line: across the short side, as long as the opening */
-    const double a = o->angle_q16 / 65536.0 * 3.14159265358979323846 / 180.0;
-    const double half = o->width_q8 / 512.0, x = o->x_q8 / 256.0, y = o->y_q8 / 256.0;
-    const double dx = half * cos(a), dy = half * sin(a);
-    rte_draw_line(canvas, (int32_t)(x - dx + 0.5), (int32_t)(y - dy + 0.5), (int32_t)(x + dx + 0.5),
-                  (int32_t)(y + dy + 0.5), (rte_draw_color){0, 255, 255}, 2);
-    rte_draw_dot(canvas, q8_px(o->x_q8), q8_px(o->y_q8), 3, (rte_draw_color){0, 0, 255});
-    char label[48];
-    snprintf(label, sizeof label, "%d %s", (int)i, rte_grasp_shape_name(o->info.shape));
-    cli_overlay_label(canvas, o->info.bounds.x, o->info.bounds.y - 10, label, c);
+    rte_overlay_grasp(o, &run->result,
+                      RTE_OVERLAY_CONTOURS | RTE_OVERLAY_GRASP | RTE_OVERLAY_LABELS);
 }
 
 static void print_q8_pair(int32_t x, int32_t y)
@@ -177,14 +154,17 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
     return rc;
 }
 
-static void draw_shape(rte_image_u8c3 *canvas, const grasp_run *run, int32_t i)
+static void draw_shapes(rte_overlay *o, const grasp_run *run)
 {
-    const rte_grasp_object *o = &run->result.objects[i];
-    const rte_draw_color c = cli_overlay_color(i);
-    draw_contour(canvas, &run->result, o, c);
-    rte_draw_dot(canvas, q8_px(o->x_q8), q8_px(o->y_q8), 2, c);
-    cli_overlay_label(canvas, q8_px(o->x_q8) - 20, q8_px(o->y_q8) + 5,
-                      rte_grasp_shape_name(o->info.shape), c);
+    /* largest last, so small objects inside big ones stay visible */
+    rte_overlay_grasp(o, &run->result, RTE_OVERLAY_CONTOURS);
+    for (int32_t i = run->result.n_objects - 1; i >= 0; i--) {
+        const rte_grasp_object *g = &run->result.objects[i];
+        const rte_draw_color c = rte_overlay_color(i);
+        rte_draw_dot(&o->canvas, q8_px(g->x_q8), q8_px(g->y_q8), 2, c);
+        rte_overlay_label(&o->canvas, q8_px(g->x_q8) - 20, q8_px(g->y_q8) + 5,
+                          rte_grasp_shape_name(g->info.shape), c);
+    }
 }
 
 int cmd_shapes(const cli_entry *self, int argc, char **argv)
@@ -208,7 +188,7 @@ int cmd_shapes(const cli_entry *self, int argc, char **argv)
     }
     if (r->truncated)
         printf("(truncated: %d more objects)\n", (int)r->dropped_objects);
-    rc = overlay(&run, draw_shape);
+    rc = overlay(&run, draw_shapes);
     grasp_end(&run);
     return rc;
 }

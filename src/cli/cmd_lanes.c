@@ -12,7 +12,9 @@
 
 #include "cli.h"
 #include "cli_image.h"
+#include "cli_pipeline.h"
 #include "commands.h"
+#include "draw/overlay.h"
 #include "io/imageio.h"
 #include "rtedge/lane.h"
 #include "io/y4m.h"
@@ -164,77 +166,17 @@ static void print_result(const rte_lane_result *r, long frame, bool segments)
     printf("}}\n");
 }
 
-/* Bresenham line of the given BGR colour, `thick` pixels wide (clipped). */
-static void draw_line(rte_image_u8c3 *img, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
-                      const uint8_t bgr[3], int32_t thick)
-{
-    const int32_t dx = abs(x1 - x0), dy = -abs(y1 - y0), sx = x0 < x1 ? 1 : -1,
-                  sy = y0 < y1 ? 1 : -1;
-    int32_t err = dx + dy;
-    for (;;) {
-        for (int32_t oy = -(thick / 2); oy <= thick / 2; oy++)
-            for (int32_t ox = -(thick / 2); ox <= thick / 2; ox++) {
-                const int32_t x = x0 + ox, y = y0 + oy;
-                if (x >= 0 && y >= 0 && x < img->width && y < img->height)
-                    memcpy(img->buf + (size_t)y * (size_t)img->stride + (size_t)x * 3, bgr, 3);
-            }
-        if (x0 == x1 && y0 == y1)
-            break;
-        const int32_t e2 = 2 * err;
-        if (e2 >= dy) {
-            err += dy;
-            x0 += sx;
-        }
-        if (e2 <= dx) {
-            err += dx;
-            y0 += sy;
-        }
-    }
-}
-
 static int write_overlay(const char *name, const char *path, const cli_image *in,
                          const rte_lane_result *r)
 {
-    const int32_t w = in->gray.width, h = in->gray.height;
-    uint8_t *mem = malloc((size_t)w * (size_t)h * 3);
-    if (!mem) {
-        cli_error(name, "not enough memory for the overlay");
+    rte_overlay o = {.scale_q16 = 65536};
+    void *mem = cli_overlay_canvas(name, in, &o.canvas);
+    if (!mem)
         return CLI_EXIT_FAILURE;
-    }
-    rte_image_u8c3 img = {w, h, w * 3, mem};
-    for (int32_t y = 0; y < h; y++)
-        for (int32_t x = 0; x < w; x++) {
-            uint8_t *d = mem + (size_t)y * (size_t)w * 3 + (size_t)x * 3;
-            if (in->bgr.buf)
-                memcpy(d, in->bgr.buf + (size_t)y * (size_t)in->bgr.stride + (size_t)x * 3, 3);
-            else
-                d[0] = d[1] = d[2] = rte_u8_row(&in->gray, y)[x];
-        }
-    static const uint8_t green[3] = {0, 255, 0}, grey[3] = {128, 128, 128};
-    static const uint8_t blue[3] = {255, 0, 0}, red[3] = {0, 0, 255};
-    for (int32_t i = 0; i < r->segment_count; i++) {
-        const rte_lane_segment *s = &r->segments[i];
-        const bool used = s->use == RTE_LANE_SEG_LEFT || s->use == RTE_LANE_SEG_RIGHT;
-        draw_line(&img, s->x0, s->y0, s->x1, s->y1, used ? green : grey, 1);
-    }
-    for (int side = 0; side < 2; side++) {
-        const rte_lane *l = &r->lane[side];
-        if (!l->found)
-            continue;
-        int32_t xs[LANE_MAX_POINTS], ys[LANE_MAX_POINTS];
-        const int32_t n = rte_lane_polyline(l, LANE_MAX_POINTS, xs, ys);
-        for (int32_t i = 0; i + 1 < n; i++)
-            draw_line(&img, (xs[i] + 128) >> 8, ys[i], (xs[i + 1] + 128) >> 8, ys[i + 1],
-                      side == RTE_LANE_LEFT ? blue : red, l->predicted ? 1 : 3);
-    }
-    char msg[RTE_IO_MESSAGE_SIZE];
-    rte_status st = rte_image_write_bgr(path, &img, msg, sizeof msg);
+    rte_overlay_lanes(&o, r, RTE_OVERLAY_SEGMENTS | RTE_OVERLAY_LANES);
+    int rc = cli_save_bgr(name, path, &o.canvas);
     free(mem);
-    if (st != RTE_OK) {
-        cli_error(name, "%s", msg);
-        return CLI_EXIT_FAILURE;
-    }
-    return CLI_EXIT_OK;
+    return rc;
 }
 
 static int lanes_image(const char *name, const lanes_options *o, const char *path)

@@ -73,6 +73,12 @@ typedef struct rted_config {
     char params_state_channel[64];
     int32_t params_state_period_ms;
     char params_save_path[RTED_TEXT]; /* ACTION_SAVE's file; "" = refused */
+    /* [debug] */
+    bool debug_enabled;
+    char debug_channel[64];
+    double debug_rate_hz, debug_scale;
+    char debug_layers[RTED_TEXT];
+    int32_t debug_quality;
     /* [deadline] */
     double deadline_ms;         /* 0 = 1000 / fps (or 1000 / 30) */
     double grasp_min_budget_ms; /* skip grasp when less than this is left */
@@ -174,6 +180,9 @@ bool rted_config_fixed_change(const rted_config *now, const rted_config *next, c
  * only checks). Returns the number of controls, -1 when malformed or more
  * than max (max is RTE_V4L2_MAX_CONTROLS when out is NULL). */
 int32_t rted_parse_controls(const char *text, rte_v4l2_control *out, int32_t max);
+/* Parses debug.layers (rte_overlay_layer bits); -1 and the first unknown
+ * name in bad otherwise. */
+int32_t rted_parse_debug_layers(const char *text, char *bad, size_t bad_size);
 /* Parses lane.roi ("x,y;x,y;..." fractions) into Q16 vertices. */
 int32_t rted_parse_roi(const char *text, int32_t *xy_q16, int32_t max_vertices);
 

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "draw/overlay.h"
 #include "log.h"
 #include "rtedge/lane.h"
 #include "rtedge/polygon_mask.h"
@@ -78,6 +79,29 @@ static bool check_listed(const char *name, size_t len, void *user)
         return false;
     }
     return true;
+}
+
+typedef struct layer_list {
+    int32_t mask;
+    char *bad;
+    size_t bad_size;
+} layer_list;
+
+static bool add_layer(const char *name, size_t len, void *user)
+{
+    layer_list *l = user;
+    int32_t bit = rte_overlay_layer_named(name, len);
+    if (bit < 0)
+        snprintf(l->bad, l->bad_size, "%.*s", (int)(len > 64 ? 64 : len), name);
+    else
+        l->mask |= bit;
+    return bit >= 0;
+}
+
+int32_t rted_parse_debug_layers(const char *text, char *bad, size_t bad_size)
+{
+    layer_list l = {0, bad, bad_size};
+    return each_listed(text, add_layer, &l) ? l.mask : -1;
 }
 
 int32_t rted_parse_controls(const char *text, rte_v4l2_control *out, int32_t max)
@@ -180,6 +204,14 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
     list_check lc = {msg, msg_size};
     if (!each_listed(c->params_keys, check_listed, &lc))
         return false;
+    char bad[80];
+    if (rted_parse_debug_layers(c->debug_layers, bad, sizeof bad) < 0) {
+        rted_msgf(msg, msg_size,
+                  "debug.layers: '%s' is none of roi, edges, segments, lanes, contours, grasp, "
+                  "labels, all",
+                  bad);
+        return false;
+    }
     /* liblcm takes a subscription's channel as a regular expression: a plain
      * name only, and none of the daemon's own (it would read its output). */
     if (!c->params_channel[0] ||
@@ -192,8 +224,8 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
                   c->params_channel);
         return false;
     }
-    const char *own[] = {c->lane_channel, c->grasp_channel, c->status_channel, c->image_channel,
-                         c->params_state_channel};
+    const char *own[] = {c->lane_channel,  c->grasp_channel,        c->status_channel,
+                         c->image_channel, c->params_state_channel, c->debug_channel};
     for (size_t i = 0; i < sizeof own / sizeof own[0]; i++)
         if (!strcmp(own[i], c->params_channel)) {
             rted_msgf(msg, msg_size,

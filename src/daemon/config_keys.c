@@ -182,10 +182,25 @@ static const key_def keys[] = {
          "params_t ACTION_SAVE writes the configuration in force here as an\n"
          "rtedged.conf (replacing the file whole); empty: saving is refused"),
 
+    BOOL("debug", "enabled", debug_enabled, false, "false",
+         "publish a debug overlay stream: the analysed frame with the layers below,\n"
+         "JPEG-encoded (image_t, MJPEG) on `channel`; memory for it is set aside at\n"
+         "start, and nothing is allocated per frame"),
+    TEXT("debug", "channel", debug_channel, false, "RTEDGE_DEBUG", "image_t (MJPEG) out"),
+    REAL("debug", "rate_hz", debug_rate_hz, "Hz", 0.1, 100, true, "10",
+         "at most this many overlay frames a second (frames in between are skipped)"),
+    REAL("debug", "scale", debug_scale, "x", 0.05, 1, true, "0.5",
+         "the overlay's size as a fraction of the frame's"),
+    TEXT("debug", "layers", debug_layers, true, "roi,edges,segments,lanes,contours,grasp,labels",
+         "what the overlay shows, ','-separated: roi, edges, segments, lanes,\n"
+         "contours, grasp, labels, or all; empty: the frame alone"),
+    INT("debug", "quality", debug_quality, "", 1, 100, true, "80", "JPEG quality"),
+
     REALU("deadline", "ms", deadline_ms, "ms", 0, 0.1, 10000, true, "0",
           "per-frame budget, capture to publish; 0: 1000 / source.fps"),
     REAL("deadline", "grasp_min_budget_ms", grasp_min_budget_ms, "ms", 0, 10000, true, "2",
-         "skip the grasp path when less than this is left of the budget"),
+         "skip the optional stages (the grasp path, publish.images, the debug\n"
+         "overlay) when less than this is left of the budget"),
     REALU("deadline", "max_late_ms", max_late_ms, "ms", -1, 0, 60000, false, "100",
           "drop frames later than this behind their pace; -1: never"),
 

@@ -23,7 +23,7 @@ typedef struct rted_counters {
     uint64_t dropped;    /* stale (pacer) plus the source's own drops */
     uint64_t bad_frames; /* unreadable frames the source skipped */
     uint64_t deadline_misses;
-    uint64_t stages_skipped; /* grasp paths (and images) skipped to keep the deadline */
+    uint64_t stages_skipped; /* grasp paths, images, overlays skipped to keep the deadline */
     uint64_t published;
     uint64_t publish_errors;
     uint64_t status_sent;
@@ -33,6 +33,7 @@ typedef struct rted_counters {
     uint64_t params_received; /* params_t messages handled (applied or refused) */
     uint64_t rate_limited;    /* params_t messages dropped over params.max_per_second */
     uint64_t path_errors;     /* frames a path could not process (e.g. a ROI that misses them) */
+    uint64_t debug_frames;    /* debug overlays published */
 } rted_counters;
 
 /* rtedged's exit codes (docs/daemon.md). */

@@ -7,6 +7,7 @@
  *   loop.c         the per-frame step and the run loop
  *   reconfigure.c  run-time configuration: SIGHUP, the params_t channel
  *   param_state.c  the param_state_t message: runtime keys, last outcome
+ *   debug_stream.c debug.enabled: the overlay stream (JPEG image_t)
  *   status.c       the latency window and the status message */
 #ifndef RTEDGED_DAEMON_INTERNAL_H
 #define RTEDGED_DAEMON_INTERNAL_H
@@ -22,6 +23,7 @@
 #include "sources/pacer.h"
 #include "publish/publish.h"
 #include "sources/source.h"
+#include "io/jpeg_encoder.h"
 
 /* Latencies kept per status window (the newest ones when more frames came). */
 #define RTED_RING 8192
@@ -76,6 +78,16 @@ struct rted_daemon {
     int64_t state_due_ns;
     char *config_text;
 
+    /* debug.enabled: a canvas for the largest frame, the JPEG encoder, the
+     * message, the layers and quality in force, when the next overlay is
+     * due (capture time). */
+    rte_jpeg_encoder *jpeg;
+    uint8_t *debug_canvas;
+    rtedge_image_t debug_msg;
+    uint32_t debug_layers;
+    int32_t debug_quality;
+    int64_t debug_next_ns;
+
     /* source.record: every delivered frame, packed, as image_t. */
     rte_publisher *rec;
     uint8_t *rec_buf;
@@ -122,9 +134,27 @@ bool rted_open_recording(rted_daemon *d, char *msg, size_t msg_size);
 /* Copies f, packed, into the recording (a failure counts a publish error). */
 void rted_record_frame(rted_daemon *d, const rte_source_frame *f);
 
+/* debug_stream.c */
+/* The canvas and the encoder when debug.enabled (false and *msg when
+ * there is no memory for them). */
+bool rted_debug_open(rted_daemon *d, char *msg, size_t msg_size);
+void rted_debug_close(rted_daemon *d);
+/* The largest JPEG the stream publishes (0 when it is off). */
+int32_t rted_debug_max_bytes(const rted_daemon *d);
+/* debug.layers and debug.quality from d->cfg (no allocation). */
+void rted_debug_apply(rted_daemon *d);
+/* true when the stream is on and an overlay is due for a frame captured at t_ns. */
+bool rted_debug_due(const rted_daemon *d, int64_t t_ns);
+/* The overlay of this frame's results (either may be NULL) over gray. */
+void rted_debug_publish(rted_daemon *d, const rte_source_frame *f, const rte_image_u8 *gray,
+                        const rte_lane_result *lane, const rte_grasp_result *grasp);
+
 /* messages.c */
 /* Points the messages at d's source id, ROI and arrays. */
 void rted_messages_init(rted_daemon *d);
+/* A message sent, or one that could not be (counted, not said: status_t
+ * carries publish_errors). */
+void rted_count_publish(rted_daemon *d, rte_status st);
 void rted_publish_lane(rted_daemon *d, const rte_source_frame *f, const rte_lane_result *r);
 void rted_publish_grasp(rted_daemon *d, const rte_source_frame *f, const rte_grasp_result *r);
 /* g: the frame's grey image (copied into d->gray when not packed). */

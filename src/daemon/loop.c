@@ -33,30 +33,34 @@ static void path_error(rted_daemon *d, int path, const rte_source_frame *f, rte_
 static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
 {
     const int64_t t0 = f->capture_ns;
+    rte_lane_result lr;
+    bool have_lane = false, have_grasp = false;
     if (d->lane) {
-        rte_lane_result lr;
         rte_status st = rte_lane_process(d->lane, &f->frame, f->recorded_ns, &lr);
         if (st == RTE_OK)
             rted_publish_lane(d, f, &lr);
+        have_lane = st == RTE_OK;
         path_error(d, 0, f, st);
     }
+    const bool debug = rted_debug_due(d, t0);
     rte_image_u8 gray;
-    bool need_gray = d->grasp || d->cfg.publish_images;
+    bool need_gray = d->grasp || d->cfg.publish_images || debug;
     if (need_gray && rte_frame_gray_view(&f->frame, &gray) != RTE_OK) {
         gray = d->gray;
         gray.width = f->frame.width;
         gray.height = f->frame.height;
         rte_frame_to_gray(&f->frame, &gray);
     }
+    rte_grasp_result gr;
     if (d->grasp) {
         /* The optional stage: only when the budget still holds it. */
         if (d->deadline_ns - (rte_clock_now_ns() - t0) < d->grasp_min_ns) {
             d->n.stages_skipped++;
         } else {
-            rte_grasp_result gr;
             rte_status st = rte_grasp_process(d->grasp, &gray, &gr);
             if (st == RTE_OK)
                 rted_publish_grasp(d, f, &gr);
+            have_grasp = st == RTE_OK;
             path_error(d, 1, f, st);
         }
     }
@@ -66,10 +70,18 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
         else
             rted_publish_image(d, f, &gray);
     }
+    /* The results are out: the latency is theirs. The overlay follows,
+     * within what is left of the budget. */
     int64_t lat = rte_clock_now_ns() - t0;
     rted_record_latency(d, lat);
     if (lat > d->deadline_ns)
         d->n.deadline_misses++;
+    if (debug) {
+        if (d->deadline_ns - lat < d->grasp_min_ns)
+            d->n.stages_skipped++;
+        else
+            rted_debug_publish(d, f, &gray, have_lane ? &lr : NULL, have_grasp ? &gr : NULL);
+    }
     d->n.processed++;
     d->window_processed++;
     return RTED_STEP_FRAME;

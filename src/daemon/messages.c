@@ -18,9 +18,7 @@ void rted_messages_init(rted_daemon *d)
     d->image_msg.pixelformat = RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY;
 }
 
-/* A message sent, or one that could not be (counted, not said: status_t
- * carries publish_errors). */
-static void count_publish(rted_daemon *d, rte_status st)
+void rted_count_publish(rted_daemon *d, rte_status st)
 {
     if (st == RTE_OK)
         d->n.published++;
@@ -81,7 +79,7 @@ void rted_publish_lane(rted_daemon *d, const rte_source_frame *f, const rte_lane
     m->heading_rad = (float)r->heading_mrad / 1000.0f;
     fill_header(d, &m->header, f, rte_clock_now_ns());
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
-    count_publish(d, rte_publish_lane(d->pub, d->cfg.lane_channel, m, msg, sizeof msg));
+    rted_count_publish(d, rte_publish_lane(d->pub, d->cfg.lane_channel, m, msg, sizeof msg));
 }
 
 static void fill_grasp_object(rtedge_grasp_object_t *g, const rte_grasp_object *o)
@@ -125,7 +123,7 @@ void rted_publish_grasp(rted_daemon *d, const rte_source_frame *f, const rte_gra
     m->objects_truncated = r->truncated || n < r->n_objects;
     fill_header(d, &m->header, f, rte_clock_now_ns());
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
-    count_publish(d, rte_publish_grasp(d->pub, d->cfg.grasp_channel, m, msg, sizeof msg));
+    rted_count_publish(d, rte_publish_grasp(d->pub, d->cfg.grasp_channel, m, msg, sizeof msg));
 }
 
 void rted_publish_image(rted_daemon *d, const rte_source_frame *f, const rte_image_u8 *g)
@@ -146,5 +144,5 @@ void rted_publish_image(rted_daemon *d, const rte_source_frame *f, const rte_ima
     m->data = g->buf;
     m->nmetadata = 0;
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
-    count_publish(d, rte_publish_image(d->pub, d->cfg.image_channel, m, msg, sizeof msg));
+    rted_count_publish(d, rte_publish_image(d->pub, d->cfg.image_channel, m, msg, sizeof msg));
 }

@@ -1,7 +1,8 @@
 /* rted_daemon_open(): everything sized once from the configuration and the
  * source's maxima, in this order: the source, the pacer, the lane and grasp
  * contexts, one arena for the grey buffer and the message arrays, the
- * param_state_t message, the publisher (its encode buffer), the params
+ * param_state_t message, the debug stream's canvas and JPEG encoder, the
+ * publisher (its encode buffer), the params
  * channel, the recording, then the real-time settings. A frame then makes
  * no heap call. */
 #define _GNU_SOURCE
@@ -134,12 +135,15 @@ static bool open_publisher(rted_daemon *d, char *msg, size_t msg_size)
 {
     const rted_config *c = &d->cfg;
     size_t gray_bytes = (size_t)d->width * (size_t)d->height;
+    int32_t image_bytes = c->publish_images ? (int32_t)gray_bytes : 0;
+    if (rted_debug_max_bytes(d) > image_bytes)
+        image_bytes = rted_debug_max_bytes(d);
     rte_publish_limits lim = {RTED_TEXT + 16,
                               RTE_LANE_MAX_ROI_VERTICES,
                               c->lane_max_segments,
                               c->grasp_max_objects,
                               RTED_MAX_SETS,
-                              c->publish_images ? (int32_t)gray_bytes : 0,
+                              image_bytes,
                               0,
                               d->state_max_bytes};
     char why[RTED_MSG];
@@ -161,7 +165,8 @@ static bool open_after_source(rted_daemon *d, char *msg, size_t msg_size)
     }
     if (!open_pacer(d, msg, msg_size) || !open_lane(d, msg, msg_size) ||
         !open_grasp(d, msg, msg_size) || !open_memory(d, msg, msg_size) ||
-        !rted_param_state_init(d, msg, msg_size) || !open_publisher(d, msg, msg_size))
+        !rted_param_state_init(d, msg, msg_size) || !rted_debug_open(d, msg, msg_size) ||
+        !open_publisher(d, msg, msg_size))
         return false;
     rted_params_open(d);
     return !c->record_path[0] || rted_open_recording(d, msg, msg_size);
@@ -204,6 +209,7 @@ void rted_daemon_close(rted_daemon *d)
     rte_publisher_destroy(d->rec);
     free(d->rec_buf);
     rted_param_state_close(d);
+    rted_debug_close(d);
     rte_grasp_destroy(d->grasp);
     rte_lane_destroy(d->lane);
     rte_source_close(&d->source);

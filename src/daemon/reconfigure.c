@@ -61,6 +61,7 @@ void rted_derive(rted_daemon *d)
     d->deadline_ns = (int64_t)llround(ms * 1e6);
     d->grasp_min_ns = (int64_t)llround(c->grasp_min_budget_ms * 1e6);
     d->config_hash = rted_config_hash(c);
+    rted_debug_apply(d);
     /* The header's ROI in pixels of the analysed frame. */
     const rte_lane_params *p = &d->lane_base.params;
     rte_lane_params lp;

@@ -428,6 +428,9 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     out->segments = ctx->segments;
     out->segment_count = count;
     out->truncated = truncated;
+    out->edges = edges_inside;
+    out->edges_x0 = ctx->crop_x0;
+    out->edges_y0 = ctx->crop_y0;
     out->stage_ns[RTE_LANE_STAGE_FIT] = rte_clock_now_ns() - t0;
     return RTE_OK;
 }

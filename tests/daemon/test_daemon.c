@@ -722,6 +722,10 @@ static void heap_run(const char *url, bool images, const char *record)
     c.max_frames = 1000;
     c.status_period_ms = 10;
     c.publish_images = images;
+    /* the debug overlay stream too, at full size, as often as it may */
+    c.debug_enabled = true;
+    c.debug_scale = 1;
+    c.debug_rate_hz = 100;
     if (record)
         snprintf(c.record_path, sizeof c.record_path, "%s", record);
     rted_daemon *d = open_daemon(&c, NULL);
@@ -737,16 +741,18 @@ static void heap_run(const char *url, bool images, const char *record)
     rted_daemon_get_counters(d, &n);
     rted_daemon_close(d);
     assert_int_equal(n.processed, 1000);
-    print_message("%s: 999 frames, %llu messages, %llu status, %llu rewinds: %llu heap calls "
-                  "(malloc %llu calloc %llu realloc %llu free %llu)\n",
-                  url, (unsigned long long)n.published, (unsigned long long)n.status_sent,
-                  (unsigned long long)n.rewinds, (unsigned long long)heapcount_calls(&hc),
-                  (unsigned long long)hc.malloc_calls, (unsigned long long)hc.calloc_calls,
-                  (unsigned long long)hc.realloc_calls, (unsigned long long)hc.free_calls);
+    print_message("%s: 999 frames, %llu messages (%llu debug overlays), %llu status, %llu "
+                  "rewinds: %llu heap calls (malloc %llu calloc %llu realloc %llu free %llu)\n",
+                  url, (unsigned long long)n.published, (unsigned long long)n.debug_frames,
+                  (unsigned long long)n.status_sent, (unsigned long long)n.rewinds,
+                  (unsigned long long)heapcount_calls(&hc), (unsigned long long)hc.malloc_calls,
+                  (unsigned long long)hc.calloc_calls, (unsigned long long)hc.realloc_calls,
+                  (unsigned long long)hc.free_calls);
     /* Nothing allocates. The only calls allowed are glibc's fseeko()
      * calling free(NULL) (its backup read area) when the Y4M source seeks
      * back for a rewind: at most one per rewind, none per frame. */
     assert_int_equal(heapcount_allocations(&hc), 0);
+    assert_true(n.debug_frames >= 2);
     assert_int_equal(n.rewinds, 99);
     assert_true(hc.free_calls == 0 || hc.free_calls == n.rewinds);
 }
