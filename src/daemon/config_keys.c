@@ -180,7 +180,8 @@ static const key_def keys[] = {
         "param_state_t period"),
     TEXT("params", "save_path", params_save_path, false, "",
          "params_t ACTION_SAVE writes the configuration in force here as an\n"
-         "rtedged.conf (replacing the file whole); empty: saving is refused"),
+         "rtedged.conf (replacing the file whole); empty: the text is only returned\n"
+         "in param_state_t"),
 
     BOOL("debug", "enabled", debug_enabled, false, "false",
          "publish a debug overlay stream: the analysed frame with the layers below,\n"

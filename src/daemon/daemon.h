@@ -34,6 +34,7 @@ typedef struct rted_counters {
     uint64_t rate_limited;    /* params_t messages dropped over params.max_per_second */
     uint64_t path_errors;     /* frames a path could not process (e.g. a ROI that misses them) */
     uint64_t debug_frames;    /* debug overlays published */
+    uint64_t saves;           /* params_t save requests answered (ACTION_SAVE) */
 } rted_counters;
 
 /* rtedged's exit codes (docs/daemon.md). */

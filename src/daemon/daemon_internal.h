@@ -38,6 +38,11 @@
 #define RTED_PARAMS_PER_STEP 16
 /* Runtime keys in param_state_t at most (checked at open). */
 #define RTED_STATE_MAX_KEYS 64
+/* Stages timed in status_t: the lane path's, the grasp path's four, the
+ * debug overlay. */
+#define RTED_GRASP_STAGE0 RTE_LANE_STAGES
+#define RTED_DEBUG_STAGE (RTED_GRASP_STAGE0 + 4)
+#define RTED_STAGES (RTED_DEBUG_STAGE + 1)
 
 struct rted_daemon {
     rted_config cfg;
@@ -103,6 +108,12 @@ struct rted_daemon {
     rtedge_grasp_detection_t grasp_msg;
     rtedge_image_t image_msg;
     rtedge_status_t status_msg;
+
+    /* Per stage over the status window: time summed, largest, frames. */
+    int64_t stage_sum_ns[RTED_STAGES], stage_max_ns[RTED_STAGES];
+    uint32_t stage_frames[RTED_STAGES];
+    int32_t stage_mean_us[RTED_STAGES], stage_max_us[RTED_STAGES];
+    char *stage_names[RTED_STAGES]; /* status_t's: "lane.gray", ..., "debug" */
 
     rted_counters n;
     int32_t ring[RTED_RING], sorted[RTED_RING];
@@ -190,5 +201,7 @@ void rted_param_state_outcome(rted_daemon *d, int64_t request_id, int8_t outcome
 
 /* status.c */
 void rted_record_latency(rted_daemon *d, int64_t lat_ns);
+/* One frame's time in stage (0 .. RTED_STAGES - 1). */
+void rted_record_stage(rted_daemon *d, int stage, int64_t ns);
 
 #endif

@@ -37,8 +37,11 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
     bool have_lane = false, have_grasp = false;
     if (d->lane) {
         rte_status st = rte_lane_process(d->lane, &f->frame, f->recorded_ns, &lr);
-        if (st == RTE_OK)
+        if (st == RTE_OK) {
             rted_publish_lane(d, f, &lr);
+            for (int i = 0; i < RTE_LANE_STAGES; i++)
+                rted_record_stage(d, i, lr.stage_ns[i]);
+        }
         have_lane = st == RTE_OK;
         path_error(d, 0, f, st);
     }
@@ -58,8 +61,13 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
             d->n.stages_skipped++;
         } else {
             rte_status st = rte_grasp_process(d->grasp, &gray, &gr);
-            if (st == RTE_OK)
+            if (st == RTE_OK) {
                 rted_publish_grasp(d, f, &gr);
+                const rte_grasp_timing *t = &gr.timing;
+                const int64_t ns[4] = {t->blur_ns, t->binarize_ns, t->contours_ns, t->features_ns};
+                for (int i = 0; i < 4; i++)
+                    rted_record_stage(d, RTED_GRASP_STAGE0 + i, ns[i]);
+            }
             have_grasp = st == RTE_OK;
             path_error(d, 1, f, st);
         }
@@ -79,8 +87,11 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
     if (debug) {
         if (d->deadline_ns - lat < d->grasp_min_ns)
             d->n.stages_skipped++;
-        else
+        else {
+            const int64_t t1 = rte_clock_now_ns();
             rted_debug_publish(d, f, &gray, have_lane ? &lr : NULL, have_grasp ? &gr : NULL);
+            rted_record_stage(d, RTED_DEBUG_STAGE, rte_clock_now_ns() - t1);
+        }
     }
     d->n.processed++;
     d->window_processed++;

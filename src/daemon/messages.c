@@ -15,6 +15,20 @@ void rted_messages_init(rted_daemon *d)
     d->grasp_msg.header.roi = d->roi;
     d->grasp_msg.objects = d->objects;
     d->status_msg.source_id = d->source_id;
+    /* the stages' names, as status_t lists them */
+    static const char *const grasp_stages[] = {"grasp.blur", "grasp.binarize", "grasp.contours",
+                                               "grasp.features"};
+    static const char *const lane_stages[RTE_LANE_STAGES] = {"lane.gray", "lane.blur", "lane.canny",
+                                                             "lane.hough", "lane.fit"};
+    for (int i = 0; i < RTE_LANE_STAGES; i++)
+        d->stage_names[i] = (char *)lane_stages[i];
+    for (int i = 0; i < 4; i++)
+        d->stage_names[RTED_GRASP_STAGE0 + i] = (char *)grasp_stages[i];
+    d->stage_names[RTED_DEBUG_STAGE] = (char *)"debug";
+    d->status_msg.nstages = RTED_STAGES;
+    d->status_msg.stage_names = d->stage_names;
+    d->status_msg.stage_mean_us = d->stage_mean_us;
+    d->status_msg.stage_max_us = d->stage_max_us;
     d->image_msg.pixelformat = RTEDGE_IMAGE_T_PIXEL_FORMAT_GRAY;
 }
 

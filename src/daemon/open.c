@@ -194,8 +194,7 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     d->window_start_ns = rte_clock_now_ns();
     /* A first status says the daemon is up; it also makes liblcm cache the
      * channel (memq:// strdup()s a channel's name on its first message). */
-    rted_daemon_publish_status(d);
-    rted_param_state_publish(d);
+    rted_daemon_publish_status(d); /* with the first param_state_t before it */
     *out = d;
     return true;
 }

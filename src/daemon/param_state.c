@@ -93,7 +93,7 @@ void rted_param_state_refresh(rted_daemon *d)
     const rted_config *c = &d->cfg;
     m->config_hash = (int64_t)d->config_hash;
     m->enabled = c->params_enabled && d->params_sub != NULL;
-    m->can_save = c->params_save_path[0] != 0;
+    m->save_writes_file = c->params_save_path[0] != 0;
     for (int32_t i = 0; i < m->nkeys; i++) {
         rtedge_param_info_t *p = &d->state_keys[i];
         const char *text;

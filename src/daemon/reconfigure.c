@@ -140,13 +140,22 @@ bool rted_daemon_reload(rted_daemon *d, char *msg, size_t msg_size)
     return true;
 }
 
-/* ACTION_SAVE: the configuration in force into params.save_path. */
+/* ACTION_SAVE: the configuration in force as text, and into
+ * params.save_path when that is set. */
 static bool save(rted_daemon *d, char *why, size_t why_size)
 {
     const char *path = d->cfg.params_save_path;
     if (!path[0]) {
-        rted_msgf(why, why_size, "saving is off (params.save_path is empty)");
-        return false;
+        char title[96];
+        snprintf(title, sizeof title, "rtedged.conf: the configuration in force (hash %016llx)",
+                 (unsigned long long)d->config_hash);
+        if (!rted_config_write(&d->cfg, title, d->config_text, RTED_CONFIG_TEXT_MAX)) {
+            rted_msgf(why, why_size, "the configuration's text is over %d bytes",
+                      RTED_CONFIG_TEXT_MAX);
+            return false;
+        }
+        rted_msgf(why, why_size, "not written on the robot (params.save_path is empty)");
+        return true;
     }
     if (!rted_config_save(&d->cfg, path, d->config_text, RTED_CONFIG_TEXT_MAX, why, why_size))
         return false;
@@ -165,6 +174,7 @@ void rted_daemon_handle_params(rted_daemon *d, const void *data, size_t size)
         d->n.refused++;
     } else if (r->action == RTEDGE_PARAMS_T_ACTION_SAVE) {
         if (save(d, why, sizeof why)) {
+            d->n.saves++;
             rted_log_limited(&d->log_params, "params request %lld: %s", (long long)r->request_id,
                              why);
             rted_param_state_outcome(d, r->request_id, RTEDGE_PARAM_STATE_T_OUTCOME_SAVED, why,

@@ -50,9 +50,34 @@ static void window_latency(rted_daemon *d, int32_t *p50, int32_t *p99, int32_t *
     *p99 = d->sorted[(uint64_t)(n - 1) * 99 / 100];
 }
 
+void rted_record_stage(rted_daemon *d, int stage, int64_t ns)
+{
+    d->stage_sum_ns[stage] += ns;
+    if (ns > d->stage_max_ns[stage])
+        d->stage_max_ns[stage] = ns;
+    d->stage_frames[stage]++;
+}
+
+/* The window's stage times into the message's arrays, and a new window. */
+static void stage_times(rted_daemon *d)
+{
+    for (int i = 0; i < RTED_STAGES; i++) {
+        int64_t mean = d->stage_frames[i] ? d->stage_sum_ns[i] / d->stage_frames[i] : 0;
+        d->stage_mean_us[i] = (int32_t)(mean / 1000);
+        d->stage_max_us[i] =
+            (int32_t)(d->stage_max_ns[i] / 1000 > INT32_MAX ? INT32_MAX
+                                                            : d->stage_max_ns[i] / 1000);
+        d->stage_sum_ns[i] = d->stage_max_ns[i] = 0;
+        d->stage_frames[i] = 0;
+    }
+}
+
 void rted_daemon_publish_status(rted_daemon *d)
 {
     int64_t t = rte_clock_now_ns();
+    /* param_state_t when due, before the status (which ends a run's log) */
+    if (t >= d->state_due_ns)
+        rted_param_state_publish(d);
     rte_source_stats ss;
     rte_source_get_stats(&d->source, &ss);
     rtedge_status_t *s = &d->status_msg;
@@ -78,6 +103,7 @@ void rted_daemon_publish_status(rted_daemon *d)
     s->arena_bytes = (int64_t)d->arena.size;
     s->arena_peak_bytes = (int64_t)d->arena.high_water;
     s->config_hash = (int64_t)d->config_hash;
+    stage_times(d);
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
     if (rte_publish_status(d->pub, d->cfg.status_channel, s, msg, sizeof msg) == RTE_OK)
         d->n.status_sent++;
@@ -89,8 +115,6 @@ void rted_daemon_publish_status(rted_daemon *d)
     d->window_start_ns = t;
     rted_log_flush(&d->log_frames, t);
     rted_log_flush(&d->log_params, t);
-    if (t >= d->state_due_ns)
-        rted_param_state_publish(d);
 }
 
 /* The histogram bucket of v >= 0 microseconds, and the middle of a

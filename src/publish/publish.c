@@ -72,8 +72,15 @@ static size_t worst_case_size(const rte_publish_limits *l)
         grasp.objects = w.objects;
         size = max_size(size, (size_t)rtedge_grasp_detection_t_encoded_size(&grasp));
 
+        char *stage_names[RTE_PUBLISH_MAX_STAGES];
+        int32_t stage_us[RTE_PUBLISH_MAX_STAGES] = {0};
+        for (int i = 0; i < RTE_PUBLISH_MAX_STAGES; i++)
+            stage_names[i] = w.text;
         rtedge_status_t status = {0};
         status.source_id = w.text;
+        status.nstages = RTE_PUBLISH_MAX_STAGES;
+        status.stage_names = stage_names;
+        status.stage_mean_us = status.stage_max_us = stage_us;
         size = max_size(size, (size_t)rtedge_status_t_encoded_size(&status));
 
         for (int32_t i = 0; i < l->max_params; i++)
@@ -338,6 +345,15 @@ rte_status rte_publish_status(rte_publisher *pub, const char *channel, const rte
         return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
                       "%s: source_id missing or longer than %d bytes", channel,
                       pub->limits.max_text);
+    if (m->nstages < 0 || m->nstages > RTE_PUBLISH_MAX_STAGES ||
+        (m->nstages > 0 && (!m->stage_names || !m->stage_mean_us || !m->stage_max_us)))
+        return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size, "%s: %d stages, at most %d", channel,
+                      m->nstages, RTE_PUBLISH_MAX_STAGES);
+    for (int32_t i = 0; i < m->nstages; i++)
+        if (!text_ok(m->stage_names[i], pub->limits.max_text))
+            return refuse(pub, RTE_ERR_TOO_LARGE, msg, msg_size,
+                          "%s: stage %d's name missing or over %d bytes", channel, i,
+                          pub->limits.max_text);
     int len = rtedge_status_t_encode(pub->buf, 0, encode_limit(pub), m);
     return send_encoded(pub, channel, len, msg, msg_size);
 }

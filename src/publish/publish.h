@@ -43,6 +43,8 @@ extern "C" {
 #endif
 
 #define RTE_PUBLISH_MESSAGE_SIZE 256
+/* status_t.nstages at most. */
+#define RTE_PUBLISH_MAX_STAGES 16
 
 /* The largest message of each kind the publisher must carry. Messages
  * beyond them are refused (RTE_ERR_TOO_LARGE): the caller bounds its arrays

@@ -155,7 +155,7 @@ lanes=$(field "$s" 'd["lanes"]')
 final=$(field "$s" 'd["last_status"]["frames_processed"]')
 [ "$lanes" -gt 10 ] || fail "SIGTERM: only $lanes lane messages"
 [ "$final" -eq "$lanes" ] || fail "SIGTERM: final status says $final frames, $lanes published"
-tail -c 400 "$TMP/term.lcm" | grep -q RTEDGE_STATUS || fail "SIGTERM: the log does not end with a status"
+tail -c 1000 "$TMP/term.lcm" | grep -q RTEDGE_STATUS || fail "SIGTERM: the log does not end with a status"
 echo "ok: SIGTERM after $lanes frames, final status, exit 0"
 
 # SIGHUP: a runtime key applied at the next frame, a size change refused.

@@ -765,7 +765,7 @@ static void test_param_state(void **state)
     const rtedge_param_state_t *m = request(d, &s, &w);
     assert_int_equal(m->request_id, 501);
     assert_int_equal(m->outcome, RTEDGE_PARAM_STATE_T_OUTCOME_APPLIED);
-    assert_true(m->enabled && m->can_save);
+    assert_true(m->enabled && m->save_writes_file);
     assert_string_equal(m->params_channel, "RTEDGE_PARAMS");
     assert_string_equal(m->saved_config, "");
     assert_int_equal(rted_daemon_config(d)->lane_canny_low, 30);
@@ -840,16 +840,17 @@ static void test_param_state(void **state)
     rted_daemon_close(d);
     rtedge_param_state_t_decode_cleanup(&s.last);
 
-    /* Saving off, an allow list: refused saves, settable only where listed. */
+    /* No save path: the text only; an allow list: settable only where listed. */
     d = state_daemon("state2.y4m", &c, "", "grasp.min_area", true);
     lcm = rted_daemon_lcm(d);
     memset(&s, 0, sizeof s);
     sub = lcm_subscribe(lcm, "RTEDGE_PARAM_STATE", on_state, &s);
     put_head_action(&w, 601, RTEDGE_PARAMS_T_ACTION_SAVE, 0);
     m = request(d, &s, &w);
-    assert_int_equal(m->outcome, RTEDGE_PARAM_STATE_T_OUTCOME_REFUSED);
-    assert_non_null(strstr(m->reason, "saving is off (params.save_path is empty)"));
-    assert_false(m->can_save);
+    assert_int_equal(m->outcome, RTEDGE_PARAM_STATE_T_OUTCOME_SAVED);
+    assert_non_null(strstr(m->reason, "not written on the robot (params.save_path is empty)"));
+    assert_non_null(strstr(m->saved_config, "\n[lane]\n"));
+    assert_false(m->save_writes_file);
     assert_true(state_key(m, "grasp.min_area")->settable);
     assert_false(state_key(m, "lane.canny_low")->settable);
     put_head(&w, 602, 1);

@@ -67,7 +67,8 @@ static inline void fuzz_daemon_check(rted_daemon *d, const rted_counters *before
     rted_counters after;
     rted_daemon_get_counters(d, &after);
     FUZZ_ASSERT(after.params_received == before->params_received + 1);
-    FUZZ_ASSERT(after.reloads + after.refused == before->reloads + before->refused + 1);
+    FUZZ_ASSERT(after.reloads + after.refused + after.saves ==
+                before->reloads + before->refused + before->saves + 1);
     const rted_config *c = rted_daemon_config(d);
     char msg[RTED_MSG];
     FUZZ_ASSERT(rted_config_validate(c, msg, sizeof msg));

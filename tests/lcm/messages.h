@@ -26,6 +26,8 @@ typedef struct samples {
     rtedge_lane_detection_t lane;
     rtedge_grasp_detection_t grasp;
     rtedge_status_t status;
+    char *stage_names[2];
+    int32_t stage_mean_us[2], stage_max_us[2];
     rtedge_params_t paramset;
     rtedge_image_t image;
 } samples;
@@ -131,6 +133,16 @@ static inline void samples_fill(samples *s, uint32_t seed)
     st->utime = 1000000 + sample_i(&r);
     st->source_id = (char *)"images:/data/*.png";
     st->source_state = RTEDGE_STATUS_T_SOURCE_ENDED;
+    s->stage_names[0] = (char *)"lane.canny";
+    s->stage_names[1] = (char *)"debug";
+    s->stage_mean_us[0] = 1200;
+    s->stage_mean_us[1] = 800;
+    s->stage_max_us[0] = 2500;
+    s->stage_max_us[1] = 1900;
+    st->nstages = 2;
+    st->stage_names = s->stage_names;
+    st->stage_mean_us = s->stage_mean_us;
+    st->stage_max_us = s->stage_max_us;
     st->frames_received = 1000;
     st->frames_processed = 990;
     st->frames_dropped = 10;

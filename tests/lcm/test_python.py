@@ -64,6 +64,7 @@ assert status.source_state == rtedge.status_t.SOURCE_ENDED
 assert (status.frames_received, status.frames_processed) == (1000, 990)
 assert abs(status.fps - 29.97) < 1e-3
 assert status.config_hash == 0x8badf00ddeadbeef - (1 << 64)
+assert status.stage_names == ["lane.canny", "debug"] and list(status.stage_max_us) == [2500, 1900]
 params = got["PARAMS"]
 assert [p.name for p in params.params] == ["lane.canny_low", "deadline.ms", "lane.canny_mode"]
 assert params.params[0].int_value == 50 and params.params[1].real_value == 0.25
