@@ -174,10 +174,6 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
                   c->lane_canny_low, c->lane_canny_high);
         return false;
     }
-    if ((c->lane_canny_low < 0) != (c->lane_canny_high < 0)) {
-        rted_msgf(msg, msg_size, "lane.canny_low and lane.canny_high: set both or neither");
-        return false;
-    }
     if (c->lane_blur_ksize % 2 == 0 || c->grasp_blur_ksize % 2 == 0) {
         rted_msgf(msg, msg_size, "lane.blur_ksize and grasp.blur_ksize must be odd");
         return false;

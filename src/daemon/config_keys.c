@@ -101,9 +101,9 @@ static const key_def keys[] = {
     ENUM("lane", "canny_mode", lane_canny_mode, canny_modes, true, "median",
          "Canny thresholds: fixed (canny_low/high) or from the ROI's histogram"),
     INTU("lane", "canny_low", lane_canny_low, "L1 gradient", -1, 0, 2040, true, "-1",
-         "fixed mode, L1 gradient; -1: the lane default"),
+         "fixed mode, L1 gradient; -1: the lane default (50); at most canny_high"),
     INTU("lane", "canny_high", lane_canny_high, "L1 gradient", -1, 0, 2040, true, "-1",
-         "as canny_low"),
+         "fixed mode, L1 gradient; -1: the lane default (150)"),
     INTU("lane", "hough_threshold", lane_hough_threshold, "votes", -1, 1, 16384, true, "-1",
          "Hough votes; -1: the lane default for the frame height; at most the\n"
          "frame's width + height (more could never be reached)"),

@@ -57,8 +57,9 @@ struct rted_daemon {
     char source_id[RTED_TEXT + 16];
     int32_t width, height; /* the source's maxima */
     rte_pacer pacer;
-    uint64_t passes;      /* rewinds of a looping recording so far */
-    uint64_t pass_frames; /* frames the source delivered in this pass */
+    uint64_t passes;         /* rewinds of a looping recording so far */
+    uint64_t pass_frames;    /* frames the source delivered in this pass */
+    int64_t capture_wall_us; /* the frame in hand's capture time on the wall clock */
 
     rte_lane_context *lane;
     rte_lane_config lane_base; /* defaults for the frame size, before the file's keys */
@@ -176,6 +177,10 @@ void rted_publish_image(rted_daemon *d, const rte_source_frame *f, const rte_ima
  * (false: c's ROI does not parse). */
 bool rted_lane_params(const rted_daemon *d, const rted_config *c, rte_lane_params *p);
 void rted_grasp_params(const rted_config *c, rte_grasp_params *p);
+/* Canny low at most high, either of them the lane default (-1); false and
+ * *msg otherwise. */
+bool rted_lane_thresholds_ok(const rted_config *c, const rte_lane_params *p, char *msg,
+                             size_t msg_size);
 /* What follows from d->cfg: deadline, hash, the messages' ROI. */
 void rted_derive(rted_daemon *d);
 /* Subscribes to params.channel when params.enabled (a warning when the

@@ -92,7 +92,7 @@ void rted_debug_publish(rted_daemon *d, const rte_source_frame *f, const rte_ima
         return;
     }
     rtedge_image_t *m = &d->debug_msg;
-    m->utime = f->capture_ns / 1000;
+    m->utime = d->capture_wall_us;
     m->width = w;
     m->height = h;
     m->row_stride = 0; /* compressed */

@@ -201,6 +201,8 @@ rted_step rted_daemon_step(rted_daemon *d)
         rted_record_frame(d, &f);
     if (!wait_for_pace(d, &f))
         return RTED_STEP_IDLE;
+    /* once, so that every message of the frame carries the same utime */
+    d->capture_wall_us = rte_clock_wall_us(f.capture_ns);
     return analyse(d, &f);
 }
 

@@ -43,6 +43,7 @@ void rted_count_publish(rted_daemon *d, rte_status st)
 static void fill_header(rted_daemon *d, rtedge_header_t *h, const rte_source_frame *f,
                         int64_t t_pub)
 {
+    h->utime = d->capture_wall_us;
     h->capture_utime = f->capture_ns / 1000;
     h->publish_utime = t_pub / 1000;
     h->sequence = (int64_t)f->sequence;
@@ -150,7 +151,7 @@ void rted_publish_image(rted_daemon *d, const rte_source_frame *f, const rte_ima
                    g->buf + (size_t)y * (size_t)g->stride, (size_t)g->width);
         g = &d->gray;
     }
-    m->utime = f->capture_ns / 1000;
+    m->utime = d->capture_wall_us;
     m->width = g->width;
     m->height = g->height;
     m->row_stride = g->width;

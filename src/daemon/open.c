@@ -76,6 +76,8 @@ static bool open_lane(rted_daemon *d, char *msg, size_t msg_size)
         rted_msgf(msg, msg_size, "the lane configuration is invalid for this source");
         return false;
     }
+    if (!rted_lane_thresholds_ok(c, &lc.params, msg, msg_size))
+        return false;
     rte_status st = rte_lane_create(&lc, &d->lane);
     if (st != RTE_OK) {
         rted_msgf(msg, msg_size, "lane path: %s", rte_status_message(st));

@@ -7,17 +7,9 @@
  * allocated here at open. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "daemon_internal.h"
 #include "core/clock.h"
-
-static int64_t wall_utime(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-}
 
 static int8_t info_type(rted_key_type t)
 {
@@ -120,7 +112,7 @@ void rted_param_state_publish(rted_daemon *d)
     if (!d->pub)
         return;
     rted_param_state_refresh(d);
-    d->state_msg.utime = wall_utime();
+    d->state_msg.utime = rte_clock_wall_us(rte_clock_now_ns());
     char why[RTED_MSG];
     if (rte_publish_param_state(d->pub, d->cfg.params_state_channel, &d->state_msg, why,
                                 sizeof why) != RTE_OK)

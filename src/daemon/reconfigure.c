@@ -10,6 +10,17 @@
 #include "daemon_internal.h"
 #include "core/clock.h"
 
+bool rted_lane_thresholds_ok(const rted_config *c, const rte_lane_params *p, char *msg,
+                             size_t msg_size)
+{
+    if (p->canny_low <= p->canny_high)
+        return true;
+    rted_msgf(msg, msg_size, "lane.canny_low (%d%s) exceeds lane.canny_high (%d%s)", p->canny_low,
+              c->lane_canny_low < 0 ? ", the default" : "", p->canny_high,
+              c->lane_canny_high < 0 ? ", the default" : "");
+    return false;
+}
+
 bool rted_lane_params(const rted_daemon *d, const rted_config *c, rte_lane_params *p)
 {
     *p = d->lane_base.params;
@@ -23,10 +34,10 @@ bool rted_lane_params(const rted_daemon *d, const rted_config *c, rte_lane_param
     }
     p->roi_count = n;
     p->canny_mode = (rte_lane_canny_mode)c->lane_canny_mode;
-    if (c->lane_canny_low >= 0) {
+    if (c->lane_canny_low >= 0)
         p->canny_low = c->lane_canny_low;
+    if (c->lane_canny_high >= 0)
         p->canny_high = c->lane_canny_high;
-    }
     if (c->lane_hough_threshold >= 0)
         p->hough_threshold = c->lane_hough_threshold;
     if (c->lane_min_length >= 0)
@@ -92,6 +103,10 @@ bool rted_daemon_apply(rted_daemon *d, const rted_config *next, char *msg, size_
         return false;
     }
     rte_lane_params lp;
+    if (rted_lane_params(d, next, &lp) && !rted_lane_thresholds_ok(next, &lp, msg, msg_size)) {
+        d->n.refused++;
+        return false;
+    }
     if (d->lane &&
         (!rted_lane_params(d, next, &lp) || rte_lane_set_params(d->lane, &lp) != RTE_OK)) {
         snprintf(msg, msg_size, "the lane parameters were refused by the lane path");

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "daemon_internal.h"
+#include "core/clock.h"
 
 /* image_t's code for a delivered pixel format. */
 static int32_t image_t_format(rte_pixel_format f)
@@ -88,7 +89,7 @@ void rted_record_frame(rted_daemon *d, const rte_source_frame *f)
                    fr->plane[p] + (size_t)y * (size_t)fr->stride[p], (size_t)layout.stride[p]);
     }
     rtedge_image_t *m = &d->rec_msg;
-    m->utime = f->capture_ns / 1000;
+    m->utime = rte_clock_wall_us(f->capture_ns);
     m->width = fr->width;
     m->height = fr->height;
     m->row_stride = stride;

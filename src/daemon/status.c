@@ -81,7 +81,7 @@ void rted_daemon_publish_status(rted_daemon *d)
     rte_source_stats ss;
     rte_source_get_stats(&d->source, &ss);
     rtedge_status_t *s = &d->status_msg;
-    s->utime = t / 1000;
+    s->utime = rte_clock_wall_us(t);
     s->source_state = (int8_t)ss.state;
     d->reported_state = ss.state;
     s->frames_received = (int64_t)d->n.received;
