@@ -82,7 +82,7 @@ env["PYTHONPATH"] = os.pathsep.join(p for p in (os.environ.get("RTE_PYTHON_LCM")
 daemon = subprocess.Popen(
     [RTEDGED, "--source", CLIP, "--loop", "--set", "debug.enabled=true",
      "--set", "debug.rate_hz=10", "--set", "params.enabled=true",
-     "--set", "params.save_path=" + saved, "--set", "grasp.enabled=false"],
+     "--set", "params.save_path=" + saved],
     stderr=open(os.path.join(tmp, "rtedged.err"), "w"))
 web = subprocess.Popen([sys.executable, WEB, "--types", TYPES, "--port", str(port),
                         "--token", TOKEN], env=env,
@@ -163,6 +163,37 @@ try:
     check(a.shape[1] > 200 and diff > 1.0, "the overlay shows two different frames "
           "(%dx%d, mean difference %.1f)" % (a.shape[1], a.shape[0], diff))
     driver.save_screenshot(os.path.join(tmp, "web_page.png"))
+    # The panels: per-stage bars, the lanes, the grasp objects as a table.
+    wait.until(lambda d: d.find_elements(By.CSS_SELECTOR, "#objects tbody tr"))
+    # (read in one script: the page rebuilds these as each update comes)
+    names = driver.execute_script(
+        "return [...document.querySelectorAll('#stages .bar span:first-child')]"
+        ".map((e) => e.textContent)")
+    check(len(names) == 10 and names[0] == "lane.gray" and names[-1] == "debug",
+          "a bar per stage: %s" % names)
+    check(driver.find_element(By.ID, "lane-offset").text.endswith("px") and
+          driver.find_element(By.ID, "lane-right").text.startswith("seen"),
+          "lane offset %r, right lane %r" % (driver.find_element(By.ID, "lane-offset").text,
+                                             driver.find_element(By.ID, "lane-right").text))
+    rows = driver.execute_script(
+        "return [...document.querySelectorAll('#objects tbody tr')]"
+        ".map((r) => [...r.cells].map((c) => c.textContent))")
+    check(len(rows) > 0 and len(rows[0]) == 7, "the grasp objects as a table: %s" % rows[:2])
+
+    # Dragging the ROI's top-left corner on the image moves the daemon's lane.roi.
+    roi_before = daemon_value("lane.roi")
+    corner = driver.find_element(By.CSS_SELECTOR, "#roi circle[data-index='1']")
+    ActionChains(driver).click_and_hold(corner).move_by_offset(-60, 25).release().perform()
+    time.sleep(0.5)
+    roi_after = daemon_value("lane.roi")
+    try:
+        x0, y0 = map(float, roi_before.split(";")[1].split(","))
+        x1, y1 = map(float, roi_after.split(";")[1].split(","))
+        moved = x1 < x0 - 0.03 and y1 > y0 + 0.02
+    except (AttributeError, ValueError, IndexError):
+        moved = False
+    check(moved, "dragging the ROI corner: lane.roi %r -> %r" % (roi_before, roi_after))
+    driver.save_screenshot(os.path.join(tmp, "web_roi.png"))
 
     # Capture to browser: the MJPEG stream read by the page's own fetch(),
     # each part's X-Capture-Utime (the frame's capture, wall clock) against
@@ -223,16 +254,23 @@ try:
     width = slider.size["width"]
 
     def drag_to(fraction):
-        ActionChains(driver).move_to_element_with_offset(
-            slider, int((fraction - 0.5) * width), 0).click().perform()
+        """Drags the slider's thumb to `fraction` of its track."""
+        driver.execute_script("arguments[0].scrollIntoView({block: 'center'})", slider)
+        lo, hi, v = (float(driver.execute_script("return arguments[0].%s" % a, slider))
+                     for a in ("min", "max", "value"))
+        at = (v - lo) / (hi - lo)
+        thumb = 8  # px: the track is the width less the thumb
+        x = lambda f: int((f - 0.5) * (width - 2 * thumb))  # noqa: E731
+        ActionChains(driver).move_to_element_with_offset(slider, x(at), 0).click_and_hold() \
+            .move_by_offset(x(fraction) - x(at), 0).release().perform()
 
     drag_to(0.9)
-    check(outcome_has("applied"), "the slider's value applied: %s"
+    check(outcome_has("applied (lane.canny_high)"), "the slider's value applied: %s"
           % driver.find_element(By.ID, "outcome").text)
     high = daemon_value("lane.canny_high")
     few = edge_pixels("edges_high")
     drag_to(0.1)
-    outcome_has("applied")
+    outcome_has("applied (lane.canny_high)")
     low = daemon_value("lane.canny_high")
     many = edge_pixels("edges_low")
     check(high is not None and low is not None and high > 1200 and 50 <= low < 400,
