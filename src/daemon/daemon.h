@@ -35,6 +35,7 @@ typedef struct rted_counters {
     uint64_t path_errors;     /* frames a path could not process (e.g. a ROI that misses them) */
     uint64_t debug_frames;    /* debug overlays published */
     uint64_t saves;           /* params_t save requests answered (ACTION_SAVE) */
+    uint64_t states_sent;     /* param_state_t messages published */
 } rted_counters;
 
 /* rtedged's exit codes (docs/daemon.md). */

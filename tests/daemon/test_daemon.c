@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include <cmocka.h>
 #include <lcm/eventlog.h>
@@ -722,18 +723,26 @@ static void heap_run(const char *url, bool images, const char *record)
     c.max_frames = 1000;
     c.status_period_ms = 10;
     c.publish_images = images;
-    /* the debug overlay stream too, at full size, as often as it may */
+    /* everything on: the debug overlay stream at full size as often as it
+     * may, the params channel, param_state_t every 100 ms */
     c.debug_enabled = true;
     c.debug_scale = 1;
     c.debug_rate_hz = 100;
+    c.params_enabled = true;
+    c.params_state_period_ms = 100;
     if (record)
         snprintf(c.record_path, sizeof c.record_path, "%s", record);
     rted_daemon *d = open_daemon(&c, NULL);
     assert_int_equal(rted_daemon_step(d), RTED_STEP_FRAME);
+    rted_counters n0;
+    rted_daemon_get_counters(d, &n0);
     heapcount_reset();
     rted_step st;
     while ((st = rted_daemon_step(d)) != RTED_STEP_END)
         assert_int_not_equal(st, RTED_STEP_FAILED);
+    /* at least one param_state_t inside the counted steps */
+    struct timespec pause = {0, 110000000};
+    nanosleep(&pause, NULL);
     rted_daemon_publish_status(d);
     heapcount_counts hc;
     heapcount_get(&hc);
@@ -742,17 +751,20 @@ static void heap_run(const char *url, bool images, const char *record)
     rted_daemon_close(d);
     assert_int_equal(n.processed, 1000);
     print_message("%s: 999 frames, %llu messages (%llu debug overlays), %llu status, %llu "
-                  "rewinds: %llu heap calls (malloc %llu calloc %llu realloc %llu free %llu)\n",
+                  "param states, %llu rewinds: %llu heap calls (malloc %llu calloc %llu realloc "
+                  "%llu free %llu)\n",
                   url, (unsigned long long)n.published, (unsigned long long)n.debug_frames,
-                  (unsigned long long)n.status_sent, (unsigned long long)n.rewinds,
-                  (unsigned long long)heapcount_calls(&hc), (unsigned long long)hc.malloc_calls,
-                  (unsigned long long)hc.calloc_calls, (unsigned long long)hc.realloc_calls,
-                  (unsigned long long)hc.free_calls);
+                  (unsigned long long)n.status_sent,
+                  (unsigned long long)(n.states_sent - n0.states_sent),
+                  (unsigned long long)n.rewinds, (unsigned long long)heapcount_calls(&hc),
+                  (unsigned long long)hc.malloc_calls, (unsigned long long)hc.calloc_calls,
+                  (unsigned long long)hc.realloc_calls, (unsigned long long)hc.free_calls);
     /* Nothing allocates. The only calls allowed are glibc's fseeko()
      * calling free(NULL) (its backup read area) when the Y4M source seeks
      * back for a rewind: at most one per rewind, none per frame. */
     assert_int_equal(heapcount_allocations(&hc), 0);
     assert_true(n.debug_frames >= 2);
+    assert_true(n.states_sent > n0.states_sent);
     assert_int_equal(n.rewinds, 99);
     assert_true(hc.free_calls == 0 || hc.free_calls == n.rewinds);
 }
