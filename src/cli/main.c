@@ -6,10 +6,12 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "rte_version.h"
 
 static void list_commands(FILE *out)
 {
-    fprintf(out, "usage: rtedge COMMAND [options] (rtedge COMMAND --help for each)\n\ncommands:\n");
+    fprintf(out, "usage: rtedge COMMAND [options] (rtedge COMMAND --help for each;\n"
+                 "rtedge --version)\n\ncommands:\n");
     for (const cli_entry *e = cli_commands; e->name; e++)
         fprintf(out, "  %-10s %s\n", e->name, e->summary);
 }
@@ -19,6 +21,10 @@ int main(int argc, char **argv)
     if (argc < 2) {
         list_commands(stderr);
         return CLI_EXIT_USAGE;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("rtedge %s (git %s)\n", RTE_VERSION, RTE_REVISION);
+        return CLI_EXIT_OK;
     }
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {

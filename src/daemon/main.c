@@ -7,6 +7,7 @@
 
 #include "config.h"
 #include "daemon.h"
+#include "rte_version.h"
 #include "sources/v4l2_source.h"
 
 #define MAX_SETS 64
@@ -48,6 +49,7 @@ static void usage(FILE *f)
           "                      rtedged.conf to FILE ('-': stdout), exit 0 (1: not\n"
           "                      written, 2: a bad configuration)\n"
           "  --help-config       print every key with its help, range and default\n"
+          "  --version           print the version and the git revision, exit 0\n"
           "  --bench             run, then print latency p50/p99/max and peak RSS\n"
           "Signals: SIGINT/SIGTERM finish the frame, publish a final status and exit 0;\n"
           "SIGHUP re-reads the configuration file (runtime keys only).\n"
@@ -73,6 +75,10 @@ static int print_option(const char *a)
 {
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
         usage(stdout);
+        return 0;
+    }
+    if (!strcmp(a, "--version")) {
+        printf("rtedged %s (git %s)\n", RTE_VERSION, RTE_REVISION);
         return 0;
     }
     if (!strcmp(a, "--help-config")) {

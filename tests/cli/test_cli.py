@@ -10,6 +10,7 @@ usage: test_cli.py RTEDGE_EXE FIXTURES_DIR [SHARED_DATA_DIR]
 """
 import json
 import os
+import re
 import sys
 import tempfile
 
@@ -116,6 +117,10 @@ def main():
     check(r.returncode == 2 and "usage" in r.stderr, "no command: exit 2 with usage")
     r = run("--help")
     check(r.returncode == 0 and "canny" in r.stdout, "--help lists the commands")
+    r = run("--version")
+    check(r.returncode == 0 and re.fullmatch(r"rtedge \d+\.\d+\.\d+ \(git ([0-9a-f]{7,}(-dirty)?|"
+                                            r"[\w.-]+|unknown)\)\n", r.stdout) is not None,
+          "--version: %r" % r.stdout)
     r = run("frobnicate")
     check(r.returncode == 2 and "unknown command" in r.stderr, "unknown command: exit 2")
     for sub in ("gray", "blur", "median", "sobel", "scharr", "laplacian", "log", "canny", "threshold",

@@ -18,6 +18,8 @@ field() { $PY -c 'import json,sys; d=json.loads(sys.argv[1]); exec("print(" + sy
 "$RTEDGED" --config "$CONF" --check-config >"$TMP/eff" || fail "--check-config on rtedged.conf"
 grep -q '^\[realtime\]' "$TMP/eff" || fail "--check-config prints no [realtime]"
 echo "ok: rtedged.conf and --check-config"
+"$RTEDGED" --version | grep -Eq '^rtedged [0-9]+\.[0-9]+\.[0-9]+ \(git [^)]+\)$' ||
+    fail "--version: $("$RTEDGED" --version)"
 # --dump-config writes a commented rtedged.conf that reads back to the same
 # effective configuration, text with ';' and a choice among its values.
 DUMP_SETS="--set lane.canny_mode=fixed --set lane.canny_low=40 --set lane.canny_high=120"
