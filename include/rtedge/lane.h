@@ -224,6 +224,8 @@ int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
 /* Rows between the points of rte_lane_polyline (more when max_points are
  * too few for the lane). */
 #define RTE_LANE_POINT_STEP 10
+/* Points enough for rte_lane_polyline at its own step on any frame. */
+#define RTE_LANE_POLYLINE_POINTS (RTE_LANE_MAX_SIDE / RTE_LANE_POINT_STEP + 2)
 /* A found lane as points from its bottom row up to the highest row its
  * markings were seen on (the ROI's top row for a straight or predicted
  * lane), every RTE_LANE_POINT_STEP rows and at that row, or, with a far

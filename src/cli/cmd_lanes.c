@@ -34,10 +34,6 @@ typedef struct lanes_options {
     int hough_seed;
 } lanes_options;
 
-/* Points of a reported lane: every RTE_LANE_POINT_STEP rows of the
- * largest frames (8192 rows). */
-#define LANE_MAX_POINTS (RTE_LANE_MAX_SIDE / RTE_LANE_POINT_STEP + 2)
-
 static const char *const auto_choices[] = {"none", "median", "otsu", NULL};
 static const char *const fit_choices[] = {"lsq", "theil-sen", NULL};
 
@@ -125,8 +121,8 @@ static void print_lane(const char *key, const rte_lane *l)
                l->predicted ? "true" : "false", l->x_bottom_q8 / 256.0, l->y_bottom,
                l->x_top_q8 / 256.0, l->y_top, l->confidence_permille / 1000.0);
         printf(",\"curvature\":%.6f,\"points\":[", rte_lane_curvature(l));
-        int32_t xs[LANE_MAX_POINTS], ys[LANE_MAX_POINTS];
-        const int32_t n = rte_lane_polyline(l, LANE_MAX_POINTS, xs, ys);
+        int32_t xs[RTE_LANE_POLYLINE_POINTS], ys[RTE_LANE_POLYLINE_POINTS];
+        const int32_t n = rte_lane_polyline(l, RTE_LANE_POLYLINE_POINTS, xs, ys);
         for (int32_t i = 0; i < n; i++)
             printf("%s[%.2f,%d]", i ? "," : "", xs[i] / 256.0, ys[i]);
         printf("]");

@@ -164,9 +164,10 @@ void rted_config_print(const rted_config *c, FILE *f);
  * them, set to its value in c. Returns the length written into buf
  * (NUL-terminated), 0 when it does not fit in size bytes. */
 size_t rted_config_write(const rted_config *c, const char *title, char *buf, size_t size);
-/* rted_config_write (in buf, size bytes) into the file `path` ("-":
- * stdout), replacing it whole (a temporary file beside it, renamed over
- * it). false and *why otherwise. */
+/* rted_config_write (in buf, size bytes, titled with the hash) into the
+ * file `path` ("-": stdout; NULL: the text in buf only), replacing it
+ * whole (a temporary file beside it, renamed over it). false and *why
+ * otherwise. */
 bool rted_config_save(const rted_config *c, const char *path, char *buf, size_t size, char *why,
                       size_t why_size);
 /* The documented default file: every key with help, range and default. */

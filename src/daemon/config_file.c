@@ -177,6 +177,8 @@ bool rted_config_save(const rted_config *c, const char *path, char *buf, size_t 
         rted_msgf(why, why_size, "the configuration's text is over %zu bytes", size);
         return false;
     }
+    if (!path)
+        return true;
     if (!strcmp(path, "-")) {
         if (fwrite(buf, 1, n, stdout) != n || fflush(stdout) != 0) {
             rted_msgf(why, why_size, "cannot write to stdout: %s", strerror(errno));

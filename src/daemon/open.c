@@ -137,9 +137,9 @@ static bool open_publisher(rted_daemon *d, char *msg, size_t msg_size)
 {
     const rted_config *c = &d->cfg;
     size_t gray_bytes = (size_t)d->width * (size_t)d->height;
-    int32_t image_bytes = c->publish_images ? (int32_t)gray_bytes : 0;
-    if (rted_debug_max_bytes(d) > image_bytes)
-        image_bytes = rted_debug_max_bytes(d);
+    const int32_t gray_image = c->publish_images ? (int32_t)gray_bytes : 0;
+    const int32_t debug_image = rted_debug_max_bytes(d);
+    const int32_t image_bytes = gray_image > debug_image ? gray_image : debug_image;
     rte_publish_limits lim = {RTED_TEXT + 16,
                               RTE_LANE_MAX_ROI_VERTICES,
                               c->lane_max_segments,

@@ -112,14 +112,15 @@ void rted_param_state_publish(rted_daemon *d)
     if (!d->pub)
         return;
     rted_param_state_refresh(d);
-    d->state_msg.utime = rte_clock_wall_us(rte_clock_now_ns());
+    const int64_t now = rte_clock_now_ns();
+    d->state_msg.utime = rte_clock_wall_us(now);
     char why[RTED_MSG];
     if (rte_publish_param_state(d->pub, d->cfg.params_state_channel, &d->state_msg, why,
                                 sizeof why) == RTE_OK)
         d->n.states_sent++;
     else
         d->n.publish_errors++;
-    d->state_due_ns = rte_clock_now_ns() + (int64_t)d->cfg.params_state_period_ms * 1000000;
+    d->state_due_ns = now + (int64_t)d->cfg.params_state_period_ms * 1000000;
 }
 
 void rted_param_state_close(rted_daemon *d)

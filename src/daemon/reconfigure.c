@@ -103,12 +103,12 @@ bool rted_daemon_apply(rted_daemon *d, const rted_config *next, char *msg, size_
         return false;
     }
     rte_lane_params lp;
-    if (rted_lane_params(d, next, &lp) && !rted_lane_thresholds_ok(next, &lp, msg, msg_size)) {
+    const bool lane_ok = rted_lane_params(d, next, &lp);
+    if (lane_ok && !rted_lane_thresholds_ok(next, &lp, msg, msg_size)) {
         d->n.refused++;
         return false;
     }
-    if (d->lane &&
-        (!rted_lane_params(d, next, &lp) || rte_lane_set_params(d->lane, &lp) != RTE_OK)) {
+    if (d->lane && (!lane_ok || rte_lane_set_params(d->lane, &lp) != RTE_OK)) {
         snprintf(msg, msg_size, "the lane parameters were refused by the lane path");
         d->n.refused++;
         return false;
@@ -159,23 +159,14 @@ bool rted_daemon_reload(rted_daemon *d, char *msg, size_t msg_size)
  * params.save_path when that is set. */
 static bool save(rted_daemon *d, char *why, size_t why_size)
 {
-    const char *path = d->cfg.params_save_path;
-    if (!path[0]) {
-        char title[96];
-        snprintf(title, sizeof title, "rtedged.conf: the configuration in force (hash %016llx)",
-                 (unsigned long long)d->config_hash);
-        if (!rted_config_write(&d->cfg, title, d->config_text, RTED_CONFIG_TEXT_MAX)) {
-            rted_msgf(why, why_size, "the configuration's text is over %d bytes",
-                      RTED_CONFIG_TEXT_MAX);
-            return false;
-        }
-        rted_msgf(why, why_size, "not written on the robot (params.save_path is empty)");
-        return true;
-    }
+    const char *path = d->cfg.params_save_path[0] ? d->cfg.params_save_path : NULL;
     if (!rted_config_save(&d->cfg, path, d->config_text, RTED_CONFIG_TEXT_MAX, why, why_size))
         return false;
-    rted_msgf(why, why_size, "saved to %s (hash %016llx)", path,
-              (unsigned long long)d->config_hash);
+    if (path)
+        rted_msgf(why, why_size, "saved to %s (hash %016llx)", path,
+                  (unsigned long long)d->config_hash);
+    else
+        rted_msgf(why, why_size, "not written on the robot (params.save_path is empty)");
     return true;
 }
 

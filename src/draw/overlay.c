@@ -109,9 +109,8 @@ void rte_overlay_lanes(rte_overlay *o, const rte_lane_result *r, uint32_t layers
     if (layers & RTE_OVERLAY_LANES)
         for (int side = 0; side < 2; side++) {
             const rte_lane *l = &r->lane[side];
-            enum { MAX_POINTS = RTE_LANE_MAX_SIDE / RTE_LANE_POINT_STEP + 2 };
-            int32_t xs[MAX_POINTS], ys[MAX_POINTS];
-            const int32_t n = l->found ? rte_lane_polyline(l, MAX_POINTS, xs, ys) : 0;
+            int32_t xs[RTE_LANE_POLYLINE_POINTS], ys[RTE_LANE_POLYLINE_POINTS];
+            const int32_t n = l->found ? rte_lane_polyline(l, RTE_LANE_POLYLINE_POINTS, xs, ys) : 0;
             for (int32_t i = 0; i + 1 < n; i++)
                 rte_draw_line(&o->canvas, px_q8(o, xs[i]), px(o, ys[i]), px_q8(o, xs[i + 1]),
                               px(o, ys[i + 1]), side == RTE_LANE_LEFT ? LEFT_COLOR : RIGHT_COLOR,
