@@ -8,6 +8,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "rtedge/status.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -22,15 +24,15 @@ typedef struct rte_arena {
 /* Alignment of every piece; enough for any SIMD row kernel. */
 #define RTE_ARENA_ALIGN 64
 
-void rte_arena_init(rte_arena *arena, void *memory, size_t size);
+RTE_API void rte_arena_init(rte_arena *arena, void *memory, size_t size);
 
 /* A piece of `bytes` bytes aligned to RTE_ARENA_ALIGN, or NULL when the
  * arena cannot hold it (nothing is taken then). */
-void *rte_arena_alloc(rte_arena *arena, size_t bytes);
+RTE_API void *rte_arena_alloc(rte_arena *arena, size_t bytes);
 
 /* Bytes that rte_arena_alloc(bytes) uses, padding included: add these up to
  * size an arena. */
-size_t rte_arena_piece_size(size_t bytes);
+RTE_API size_t rte_arena_piece_size(size_t bytes);
 
 static inline size_t rte_arena_mark(const rte_arena *arena) { return arena->used; }
 static inline void rte_arena_reset(rte_arena *arena, size_t mark) { arena->used = mark; }

@@ -49,15 +49,15 @@ typedef struct rte_gaussian_kernel {
  * bit-exact path for every other parameter (checked for sigmas up to 1000),
  * so all of them are inside the bit-exactness guarantee; see
  * src/algo/gaussian_kernel.c for how the taps are reproduced. */
-rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x, int32_t ksize_y,
-                                    double sigma_x, double sigma_y);
+RTE_API rte_status rte_gaussian_kernel_init(rte_gaussian_kernel *kernel, int32_t ksize_x,
+                                            int32_t ksize_y, double sigma_x, double sigma_y);
 
 /* Arena bytes rte_gaussian_blur_u8() needs for images up to max_width wide
  * with this kernel, in place or not (one padded line of column sums, plus
  * copies of ksize_y source rows when dst is src; max_height is accepted for
  * symmetry, nothing depends on it). 0 for invalid arguments. */
-size_t rte_gaussian_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
-                                         const rte_gaussian_kernel *kernel);
+RTE_API size_t rte_gaussian_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
+                                                 const rte_gaussian_kernel *kernel);
 
 /* dst = cv::GaussianBlur(src) with BORDER_REFLECT_101, as OpenCV computes it
  * for a whole Mat (or a ROI with BORDER_ISOLATED; for a plain ROI OpenCV reads
@@ -66,19 +66,20 @@ size_t rte_gaussian_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
  * before returning. Errors: RTE_ERR_ARGUMENT (NULL or a malformed kernel),
  * RTE_ERR_SIZE (bad or mismatched images), RTE_ERR_NO_MEMORY (arena too
  * small; dst is then untouched). */
-rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,
-                                const rte_gaussian_kernel *kernel, rte_arena *arena);
+RTE_API rte_status rte_gaussian_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                        const rte_gaussian_kernel *kernel, rte_arena *arena);
 
 /* Arena bytes rte_median_blur_u8() needs for images up to max_width wide with
  * aperture ksize (3 or 5). 0 for invalid arguments. */
-size_t rte_median_blur_u8_scratch_size(int32_t max_width, int32_t max_height, int32_t ksize);
+RTE_API size_t rte_median_blur_u8_scratch_size(int32_t max_width, int32_t max_height,
+                                               int32_t ksize);
 
 /* dst = cv::medianBlur(src, ksize) for ksize 1 (a copy), 3 or 5: the median of
  * the ksize x ksize neighbourhood, pixels outside the image replicated from
  * the nearest edge (BORDER_REPLICATE). Errors as rte_gaussian_blur_u8(), and
  * RTE_ERR_ARGUMENT for any other ksize. */
-rte_status rte_median_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst, int32_t ksize,
-                              rte_arena *arena);
+RTE_API rte_status rte_median_blur_u8(const rte_image_u8 *src, rte_image_u8 *dst, int32_t ksize,
+                                      rte_arena *arena);
 
 #ifdef __cplusplus
 }

@@ -52,17 +52,17 @@ typedef struct rte_canny_params {
  * becomes INT32_MIN, so every local maximum is an edge; one below -2^31
  * becomes INT32_MAX, so nothing is). RTE_ERR_ARGUMENT for an aperture other
  * than 3, 5 or 7, or a NaN threshold. */
-rte_status rte_canny_params_init(rte_canny_params *params, double low_threshold,
-                                 double high_threshold, int32_t aperture, bool l2_gradient);
+RTE_API rte_status rte_canny_params_init(rte_canny_params *params, double low_threshold,
+                                         double high_threshold, int32_t aperture, bool l2_gradient);
 
 /* Arena bytes that rte_canny_u8 needs for images up to max_width x
  * max_height with this aperture; rte_canny_from_gradient_u8 needs no more
  * than for aperture 3. */
-size_t rte_canny_scratch_size(int32_t max_width, int32_t max_height, int32_t aperture);
+RTE_API size_t rte_canny_scratch_size(int32_t max_width, int32_t max_height, int32_t aperture);
 
 /* Edges of src into dst (same size, no overlap). */
-rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_canny_params *params,
-                        rte_arena *scratch);
+RTE_API rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                const rte_canny_params *params, rte_arena *scratch);
 
 /* Fused front end: the edges of the Gaussian blur of src, exactly
  *   rte_gaussian_blur_u8(src, tmp, kernel); rte_canny_u8(tmp, dst, params)
@@ -71,14 +71,14 @@ rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_ca
  * `aperture` rows that stays in cache, and Sobel, magnitude and non-maximum
  * suppression follow on the same rows; hysteresis runs at the end as in
  * rte_canny_u8. dst may be src itself (it is written only at the end). */
-rte_status rte_canny_blurred_u8(const rte_image_u8 *src, rte_image_u8 *dst,
-                                const rte_gaussian_kernel *kernel, const rte_canny_params *params,
-                                rte_arena *scratch);
+RTE_API rte_status rte_canny_blurred_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                        const rte_gaussian_kernel *kernel,
+                                        const rte_canny_params *params, rte_arena *scratch);
 
 /* Arena bytes rte_canny_blurred_u8 needs for images up to max_width x
  * max_height with this kernel and aperture (0 for invalid arguments). */
-size_t rte_canny_blurred_scratch_size(int32_t max_width, int32_t max_height,
-                                      const rte_gaussian_kernel *kernel, int32_t aperture);
+RTE_API size_t rte_canny_blurred_scratch_size(int32_t max_width, int32_t max_height,
+                                              const rte_gaussian_kernel *kernel, int32_t aperture);
 
 /* Edges from given derivatives dx and dy (same size as dst). params must come
  * from rte_canny_params_init with aperture 3 or 5 (both give the same
@@ -88,9 +88,9 @@ size_t rte_canny_blurred_scratch_size(int32_t max_width, int32_t max_height,
  * One known difference: for the L1 magnitude rtedge takes |-32768| as 32768,
  * while OpenCV's SIMD loop takes it as -32768 (its scalar tail as 32768).
  * Derivatives of 8-bit images never come near these values. */
-rte_status rte_canny_from_gradient_u8(const rte_image_s16 *dx, const rte_image_s16 *dy,
-                                      rte_image_u8 *dst, const rte_canny_params *params,
-                                      rte_arena *scratch);
+RTE_API rte_status rte_canny_from_gradient_u8(const rte_image_s16 *dx, const rte_image_s16 *dy,
+                                              rte_image_u8 *dst, const rte_canny_params *params,
+                                              rte_arena *scratch);
 
 #ifdef __cplusplus
 }

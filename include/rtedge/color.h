@@ -53,37 +53,39 @@ typedef struct rte_frame {
 
 /* RTE_OK when the format is known, 1 <= width, height <= RTE_MAX_SIDE, the
  * planes the format uses are set and each stride holds a row. */
-rte_status rte_frame_check(const rte_frame *frame);
+RTE_API rte_status rte_frame_check(const rte_frame *frame);
 
 /* Bytes of one tightly packed frame (all planes, NV12's UV plane after its Y
  * plane), 0 for an unknown format or a size out of range. */
-size_t rte_frame_packed_size(rte_pixel_format format, int32_t width, int32_t height);
+RTE_API size_t rte_frame_packed_size(rte_pixel_format format, int32_t width, int32_t height);
 
 /* Fills *frame as a view of a tightly packed frame at `buf` (layout as in
  * rte_frame_packed_size: what a raw .yuv/.rgb file or a V4L2 buffer without
  * padding holds). RTE_ERR_SIZE when `size` is smaller than that. */
-rte_status rte_frame_packed(rte_frame *frame, rte_pixel_format format, int32_t width,
-                            int32_t height, void *buf, size_t size);
+RTE_API rte_status rte_frame_packed(rte_frame *frame, rte_pixel_format format, int32_t width,
+                                    int32_t height, void *buf, size_t size);
 
 /* "grey", "bgr24", "rgb24", "yuyv", "uyvy", "nv12"; "unknown" otherwise. */
-const char *rte_pixel_format_name(rte_pixel_format format);
+RTE_API const char *rte_pixel_format_name(rte_pixel_format format);
 /* The format with that name (as above, case-insensitive, also "gray",
  * "yuy2"), or 0 when there is none. */
-rte_pixel_format rte_pixel_format_parse(const char *name);
+RTE_API rte_pixel_format rte_pixel_format_parse(const char *name);
 
 /* Any supported frame to grey, written into dst (same width and height). */
-rte_status rte_frame_to_gray(const rte_frame *src, rte_image_u8 *dst);
+RTE_API rte_status rte_frame_to_gray(const rte_frame *src, rte_image_u8 *dst);
 
 /* For GREY and NV12 frames the grey image is already in memory: *view is set
  * to it without copying (RTE_ERR_UNSUPPORTED for the other formats). */
-rte_status rte_frame_gray_view(const rte_frame *src, rte_image_u8 *view);
+RTE_API rte_status rte_frame_gray_view(const rte_frame *src, rte_image_u8 *view);
 
 /* The conversions one by one. src and dst have the same width and height. */
-rte_status rte_color_bgr_to_gray(const rte_image_u8c3 *src, rte_image_u8 *dst);
-rte_status rte_color_rgb_to_gray(const rte_image_u8c3 *src, rte_image_u8 *dst);
+RTE_API rte_status rte_color_bgr_to_gray(const rte_image_u8c3 *src, rte_image_u8 *dst);
+RTE_API rte_status rte_color_rgb_to_gray(const rte_image_u8c3 *src, rte_image_u8 *dst);
 /* Packed 4:2:2: `src` rows of 2*dst->width bytes, `src_stride` bytes apart. */
-rte_status rte_color_yuyv_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u8 *dst);
-rte_status rte_color_uyvy_to_gray(const uint8_t *src, int32_t src_stride, rte_image_u8 *dst);
+RTE_API rte_status rte_color_yuyv_to_gray(const uint8_t *src, int32_t src_stride,
+                                          rte_image_u8 *dst);
+RTE_API rte_status rte_color_uyvy_to_gray(const uint8_t *src, int32_t src_stride,
+                                          rte_image_u8 *dst);
 
 #ifdef __cplusplus
 }

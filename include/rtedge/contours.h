@@ -66,14 +66,16 @@ typedef struct rte_contours {
 
 /* Scratch for images up to max_width x max_height and results of up to
  * max_contours contours. */
-size_t rte_contours_scratch_size(int32_t max_width, int32_t max_height, int32_t max_contours);
+RTE_API size_t rte_contours_scratch_size(int32_t max_width, int32_t max_height,
+                                         int32_t max_contours);
 
 /* Finds the borders of the non-zero regions of `src` (not modified). Objects
  * touching the image border are traced (OpenCV pads by one zero pixel).
  * Returns RTE_OK also when truncated; RTE_ERR_NO_MEMORY when the arena is
  * too small (out->n_contours is 0 then). */
-rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
-                             rte_contour_method method, rte_contours *out, rte_arena *scratch);
+RTE_API rte_status rte_contours_find(const rte_image_u8 *src, rte_contour_mode mode,
+                                     rte_contour_method method, rte_contours *out,
+                                     rte_arena *scratch);
 
 #ifdef __cplusplus
 }

@@ -14,6 +14,8 @@
 
 #include <stdint.h>
 
+#include "rtedge/status.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -29,11 +31,11 @@ enum {
 /* The RTE_CPU_* bits of this CPU that rtedge can use, or 0 when the
  * environment variable RTE_FORCE_C is set to a value other than "" or "0"
  * (every kernel then runs its plain C reference). */
-uint32_t rte_cpu_features(void);
+RTE_API uint32_t rte_cpu_features(void);
 
 /* The same bits without looking at RTE_FORCE_C (what the hardware has;
  * tests use it to run every variant the CPU supports). */
-uint32_t rte_cpu_features_hw(void);
+RTE_API uint32_t rte_cpu_features_hw(void);
 
 #ifdef __cplusplus
 }

@@ -35,22 +35,22 @@ extern "C" {
  * ksize 1, 3, 5 or 7; ksize 1 means a 3-tap derivative along each axis with
  * a non-zero order and no smoothing (1 tap) along an axis with order 0, as
  * OpenCV. RTE_ERR_ARGUMENT for other orders or sizes. */
-rte_status rte_sobel_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_t dx, int32_t dy,
-                         int32_t ksize, rte_arena *scratch);
-size_t rte_sobel_scratch_size(int32_t max_width, int32_t max_height, int32_t ksize);
+RTE_API rte_status rte_sobel_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_t dx,
+                                 int32_t dy, int32_t ksize, rte_arena *scratch);
+RTE_API size_t rte_sobel_scratch_size(int32_t max_width, int32_t max_height, int32_t ksize);
 
 /* Scharr 3x3 first derivative: (dx, dy) is (1, 0) or (0, 1). */
-rte_status rte_scharr_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_t dx, int32_t dy,
-                          rte_arena *scratch);
-size_t rte_scharr_scratch_size(int32_t max_width, int32_t max_height);
+RTE_API rte_status rte_scharr_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_t dx,
+                                  int32_t dy, rte_arena *scratch);
+RTE_API size_t rte_scharr_scratch_size(int32_t max_width, int32_t max_height);
 
 /* Laplacian. ksize 1: [0 1 0; 1 -4 1; 0 1 0]; ksize 3: [2 0 2; 0 -8 0; 2 0 2]. */
-rte_status rte_laplacian_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_t ksize,
-                             rte_arena *scratch);
-size_t rte_laplacian_scratch_size(int32_t max_width, int32_t max_height, int32_t ksize);
+RTE_API rte_status rte_laplacian_s16(const rte_image_u8 *src, rte_image_s16 *dst, int32_t ksize,
+                                     rte_arena *scratch);
+RTE_API size_t rte_laplacian_scratch_size(int32_t max_width, int32_t max_height, int32_t ksize);
 
 /* dst = min(|src|, 255) (|-32768| saturates to 255 too). No scratch. */
-rte_status rte_abs_s16_u8(const rte_image_s16 *src, rte_image_u8 *dst);
+RTE_API rte_status rte_abs_s16_u8(const rte_image_s16 *src, rte_image_u8 *dst);
 
 #ifdef __cplusplus
 }

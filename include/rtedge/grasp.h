@@ -69,7 +69,7 @@ typedef struct rte_grasp_config {
 /* Defaults: 1280x720, 4096 contours, 262144 points, 64 objects, blur 5,
  * Otsu with automatic polarity, Canny 50/150 closed by a 5x5 ellipse twice,
  * min area 100 px, no max area, border objects kept. */
-void rte_grasp_config_default(rte_grasp_config *config);
+RTE_API void rte_grasp_config_default(rte_grasp_config *config);
 
 typedef struct rte_grasp_object {
     /* Grasp: the point (centroid, Q8 px), the direction in which the
@@ -109,30 +109,31 @@ typedef struct rte_grasp_ctx rte_grasp_ctx;
 
 /* Bytes the context needs for a configuration, everything included
  * (0 when the configuration is invalid). */
-size_t rte_grasp_memory_size(const rte_grasp_config *config);
+RTE_API size_t rte_grasp_memory_size(const rte_grasp_config *config);
 
 /* Places the context in caller memory of at least rte_grasp_memory_size()
  * bytes (any alignment): nothing is allocated. The memory must outlive the
  * context; rte_grasp_destroy() is not needed (and does nothing) for it.
  * RTE_ERR_ARGUMENT for a field out of range, RTE_ERR_NO_MEMORY when
  * `bytes` is too small. */
-rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t bytes,
-                          rte_grasp_ctx **ctx);
+RTE_API rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t bytes,
+                                  rte_grasp_ctx **ctx);
 
 /* The same in one block from malloc (the only allocation of the grasp
  * path, at start-up); rte_grasp_destroy() frees it. */
-rte_status rte_grasp_create(const rte_grasp_config *config, rte_grasp_ctx **ctx);
-void rte_grasp_destroy(rte_grasp_ctx *ctx);
+RTE_API rte_status rte_grasp_create(const rte_grasp_config *config, rte_grasp_ctx **ctx);
+RTE_API void rte_grasp_destroy(rte_grasp_ctx *ctx);
 
 /* Checks and applies new parameters (RTE_ERR_ARGUMENT leaves the old ones). */
-rte_status rte_grasp_set_params(rte_grasp_ctx *ctx, const rte_grasp_params *params);
-rte_status rte_grasp_get_params(const rte_grasp_ctx *ctx, rte_grasp_params *params);
+RTE_API rte_status rte_grasp_set_params(rte_grasp_ctx *ctx, const rte_grasp_params *params);
+RTE_API rte_status rte_grasp_get_params(const rte_grasp_ctx *ctx, rte_grasp_params *params);
 
 /* One frame, at most max_width x max_height (RTE_ERR_SIZE otherwise). */
-rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_grasp_result *out);
+RTE_API rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray,
+                                     rte_grasp_result *out);
 
 /* Lower-case name of a shape class ("circle", "rectangle", ...). */
-const char *rte_grasp_shape_name(rte_shape_class shape);
+RTE_API const char *rte_grasp_shape_name(rte_shape_class shape);
 
 #ifdef __cplusplus
 }

@@ -54,8 +54,9 @@ typedef struct rte_hough_config {
  * RTE_HOUGH_MAX_ANGLES). For segments use min_theta = 0, max_theta = pi.
  * RTE_ERR_ARGUMENT when rho <= 0, theta <= 0, max_theta < min_theta or the
  * sizes are out of range. */
-rte_status rte_hough_config_init(rte_hough_config *cfg, int32_t max_width, int32_t max_height,
-                                 double rho, double theta, double min_theta, double max_theta);
+RTE_API rte_status rte_hough_config_init(rte_hough_config *cfg, int32_t max_width,
+                                         int32_t max_height, double rho, double theta,
+                                         double min_theta, double max_theta);
 
 /* ---- standard lines ---- */
 
@@ -69,13 +70,13 @@ typedef struct rte_hough_line {
 } rte_hough_line;
 
 /* Conversion helpers (configuration-time file; floating point). */
-double rte_hough_line_rho(const rte_hough_config *cfg, const rte_hough_line *line);
-double rte_hough_line_theta(const rte_hough_config *cfg, const rte_hough_line *line);
+RTE_API double rte_hough_line_rho(const rte_hough_config *cfg, const rte_hough_line *line);
+RTE_API double rte_hough_line_theta(const rte_hough_config *cfg, const rte_hough_line *line);
 /* Integer forms: rho in 1/65536 pixel, theta in 1/65536 radian. */
-int64_t rte_hough_line_rho_q16(const rte_hough_config *cfg, const rte_hough_line *line);
-int64_t rte_hough_line_theta_q16(const rte_hough_config *cfg, const rte_hough_line *line);
+RTE_API int64_t rte_hough_line_rho_q16(const rte_hough_config *cfg, const rte_hough_line *line);
+RTE_API int64_t rte_hough_line_theta_q16(const rte_hough_config *cfg, const rte_hough_line *line);
 
-size_t rte_hough_lines_scratch_size(const rte_hough_config *cfg, int32_t max_lines);
+RTE_API size_t rte_hough_lines_scratch_size(const rte_hough_config *cfg, int32_t max_lines);
 
 /* cv::HoughLines: every edge pixel votes for the lines through it; an
  * accumulator cell is a line when its votes exceed `threshold` and it is a
@@ -84,9 +85,9 @@ size_t rte_hough_lines_scratch_size(const rte_hough_config *cfg, int32_t max_lin
  * bin, then rho bin. At most `max_lines` are written to `lines`; *count gets
  * how many, *truncated is set when more lines qualified (cleared otherwise).
  * The edge map may be smaller than the configured maximum. */
-rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edges,
-                           int32_t threshold, rte_arena *arena, rte_hough_line *lines,
-                           int32_t max_lines, int32_t *count, bool *truncated);
+RTE_API rte_status rte_hough_lines(const rte_hough_config *cfg, const rte_image_u8 *edges,
+                                   int32_t threshold, rte_arena *arena, rte_hough_line *lines,
+                                   int32_t max_lines, int32_t *count, bool *truncated);
 
 /* ---- segments ---- */
 
@@ -113,7 +114,7 @@ typedef struct rte_hough_segments_params {
  * pixels (rho 1: sides up to 10922). rte_hough_segments returns
  * RTE_ERR_ARGUMENT for such a configuration, and no segments (RTE_OK) for
  * a threshold above that bound, which no cell can reach. */
-size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg);
+RTE_API size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg);
 
 /* cv::HoughLinesP (progressive probabilistic Hough) with the fixes listed in
  * docs/hough.md: points are visited in a fixed pseudo-random order; once a
@@ -123,10 +124,10 @@ size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg);
  * straight edge gives one segment. At most `max_segments`
  * are written; *truncated is set when the search stopped because the output
  * was full. */
-rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
-                              const rte_hough_segments_params *params, rte_arena *arena,
-                              rte_hough_segment *segments, int32_t max_segments, int32_t *count,
-                              bool *truncated);
+RTE_API rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *edges,
+                                      const rte_hough_segments_params *params, rte_arena *arena,
+                                      rte_hough_segment *segments, int32_t max_segments,
+                                      int32_t *count, bool *truncated);
 
 /* ---- circles ---- */
 
@@ -144,8 +145,8 @@ typedef struct rte_hough_circles_params {
     int32_t max_radius;    /* pixels; <= 0: max(width, height); <= min_radius: min_radius + 2 */
 } rte_hough_circles_params;
 
-size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
-                                      const rte_hough_circles_params *params);
+RTE_API size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
+                                              const rte_hough_circles_params *params);
 
 /* cv::HoughCircles(HOUGH_GRADIENT). The caller supplies what OpenCV computes
  * inside: `edges` = Canny(max(1, param1 / 2), param1) of the grey image and
@@ -157,10 +158,11 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
  * of the accumulator cell) and the radius to their mean distance; circles
  * are sorted by support and any centre closer than min_dist to a stronger
  * one is dropped. */
-rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
-                             const rte_image_s16 *dy, const rte_hough_circles_params *params,
-                             rte_arena *arena, rte_hough_circle *circles, int32_t max_circles,
-                             int32_t *count, bool *truncated);
+RTE_API rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
+                                     const rte_image_s16 *dy,
+                                     const rte_hough_circles_params *params, rte_arena *arena,
+                                     rte_hough_circle *circles, int32_t max_circles, int32_t *count,
+                                     bool *truncated);
 
 #ifdef __cplusplus
 }

@@ -46,16 +46,16 @@ typedef struct rte_image_u8c3 {
 } rte_image_u8c3;
 
 /* A view of caller memory; stride 0 means tightly packed. */
-rte_image_u8 rte_image_u8_view(void *buf, int32_t width, int32_t height, int32_t stride);
-rte_image_s16 rte_image_s16_view(void *buf, int32_t width, int32_t height, int32_t stride);
+RTE_API rte_image_u8 rte_image_u8_view(void *buf, int32_t width, int32_t height, int32_t stride);
+RTE_API rte_image_s16 rte_image_s16_view(void *buf, int32_t width, int32_t height, int32_t stride);
 
 /* RTE_OK when 1 <= width, height <= RTE_MAX_SIDE, stride >= width and buf is set. */
-rte_status rte_image_u8_check(const rte_image_u8 *img);
-rte_status rte_image_s16_check(const rte_image_s16 *img);
-rte_status rte_image_u8c3_check(const rte_image_u8c3 *img);
+RTE_API rte_status rte_image_u8_check(const rte_image_u8 *img);
+RTE_API rte_status rte_image_s16_check(const rte_image_s16 *img);
+RTE_API rte_status rte_image_u8c3_check(const rte_image_u8c3 *img);
 
 /* RTE_OK when both are valid and have the same width and height. */
-rte_status rte_image_u8_check_pair(const rte_image_u8 *a, const rte_image_u8 *b);
+RTE_API rte_status rte_image_u8_check_pair(const rte_image_u8 *a, const rte_image_u8 *b);
 
 static inline uint8_t *rte_u8_row(const rte_image_u8 *img, int32_t y)
 {

@@ -106,7 +106,7 @@ typedef struct rte_lane_config {
 
 /* Defaults for frames of about width x height (lengths scale with the
  * height; 540 rows give the tutorial's numbers). */
-void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height);
+RTE_API void rte_lane_config_default(rte_lane_config *cfg, int32_t width, int32_t height);
 
 typedef struct rte_lane_context rte_lane_context;
 
@@ -114,13 +114,13 @@ typedef struct rte_lane_context rte_lane_context;
  * RTE_ERR_ARGUMENT for a configuration field out of range (sizes, counts,
  * blur size, parameters), RTE_ERR_NO_MEMORY when allocation fails; *ctx is
  * NULL then. */
-rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **ctx);
-void rte_lane_destroy(rte_lane_context *ctx);
+RTE_API rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **ctx);
+RTE_API void rte_lane_destroy(rte_lane_context *ctx);
 /* Checks and copies new runtime parameters (RTE_ERR_ARGUMENT leaves the
  * old ones). Safe between any two frames; allocates nothing. */
-rte_status rte_lane_set_params(rte_lane_context *ctx, const rte_lane_params *params);
+RTE_API rte_status rte_lane_set_params(rte_lane_context *ctx, const rte_lane_params *params);
 /* Forgets the tracked lanes (e.g. after a seek in a recording). */
-void rte_lane_reset(rte_lane_context *ctx);
+RTE_API void rte_lane_reset(rte_lane_context *ctx);
 
 enum {
     RTE_LANE_LEFT = 0,
@@ -185,7 +185,7 @@ typedef enum rte_lane_stage {
     RTE_LANE_STAGES,
 } rte_lane_stage;
 
-const char *rte_lane_stage_name(rte_lane_stage stage);
+RTE_API const char *rte_lane_stage_name(rte_lane_stage stage);
 
 typedef struct rte_lane_result {
     rte_lane lane[2];  /* RTE_LANE_LEFT, RTE_LANE_RIGHT */
@@ -219,7 +219,7 @@ typedef struct rte_lane_result {
 /* x of a found lane at row y, in 1/256 pixel: its curve, and above the far
  * trace's first row the trace's pieces (the last one extended beyond its
  * end). */
-int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
+RTE_API int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
 
 /* Rows between the points of rte_lane_polyline (more when max_points are
  * too few for the lane). */
@@ -232,21 +232,23 @@ int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
  * trace, up to the trace's first row and then the trace's points: at most
  * max_points (>= 2) into x_q8[] (1/256 px) and y[], rows falling; returns
  * how many (0 for a lane not found). */
-int32_t rte_lane_polyline(const rte_lane *lane, int32_t max_points, int32_t *x_q8, int32_t *y);
+RTE_API int32_t rte_lane_polyline(const rte_lane *lane, int32_t max_points, int32_t *x_q8,
+                                  int32_t *y);
 /* Curvature of a found lane's image curve at its bottom row, in 1/px:
  * positive when it bends right going up the image, 0 when straight.
  * (Floating point: for reports, not part of the per-frame core.) */
-double rte_lane_curvature(const rte_lane *lane);
+RTE_API double rte_lane_curvature(const rte_lane *lane);
 
 /* One frame. `frame` may be any rte_frame format up to the configured
  * size; BGR24 and RGB24 frames give the colour cue, the others are used as
  * grey. t_ns is the frame's time (kept in the result). */
-rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64_t t_ns,
-                            rte_lane_result *out);
+RTE_API rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64_t t_ns,
+                                    rte_lane_result *out);
 /* The same from a grey image and, optionally, the BGR image it came from
  * (same size; NULL for grey-only sources). */
-rte_status rte_lane_process_gray(rte_lane_context *ctx, const rte_image_u8 *gray,
-                                 const rte_image_u8c3 *bgr, int64_t t_ns, rte_lane_result *out);
+RTE_API rte_status rte_lane_process_gray(rte_lane_context *ctx, const rte_image_u8 *gray,
+                                         const rte_image_u8c3 *bgr, int64_t t_ns,
+                                         rte_lane_result *out);
 
 #ifdef __cplusplus
 }

@@ -69,36 +69,36 @@ typedef struct rte_morph_element {
  * anchor (width / 2, height / 2). Configuration time (the ellipse is
  * computed in floating point as OpenCV does). RTE_ERR_ARGUMENT for an
  * unknown shape or a side outside 1..RTE_MORPH_MAX_KSIZE. */
-rte_status rte_morphology_element_init(rte_morph_element *element, rte_morph_shape shape,
-                                       int32_t width, int32_t height);
+RTE_API rte_status rte_morphology_element_init(rte_morph_element *element, rte_morph_shape shape,
+                                               int32_t width, int32_t height);
 
 /* An element from a width x height mask (row-major, non-zero = set) with
  * the given anchor; anchor_x/anchor_y of -1 mean the centre (size / 2).
  * RTE_ERR_ARGUMENT for a mask with no set cell (OpenCV has no meaningful
  * result for it). */
-rte_status rte_morphology_element_from_mask(rte_morph_element *element, const uint8_t *mask,
-                                            int32_t width, int32_t height, int32_t anchor_x,
-                                            int32_t anchor_y);
+RTE_API rte_status rte_morphology_element_from_mask(rte_morph_element *element, const uint8_t *mask,
+                                                    int32_t width, int32_t height, int32_t anchor_x,
+                                                    int32_t anchor_y);
 
 /* Arena bytes that any rte_morphology_* call needs for images up to
  * max_width x max_height with this element and iteration count. */
-size_t rte_morphology_scratch_size(int32_t max_width, int32_t max_height,
-                                   const rte_morph_element *element, int32_t iterations);
+RTE_API size_t rte_morphology_scratch_size(int32_t max_width, int32_t max_height,
+                                           const rte_morph_element *element, int32_t iterations);
 
 /* dst = op(src). `dst` has the size of `src` and may be `src` itself.
  * iterations >= 1 (RTE_ERR_ARGUMENT otherwise). RTE_ERR_NO_MEMORY when the arena is too small; the arena is returned to
  * its entry mark. */
-rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_morph_op op,
-                             const rte_morph_element *element, int32_t iterations,
-                             rte_arena *arena);
+RTE_API rte_status rte_morphology_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_morph_op op,
+                                     const rte_morph_element *element, int32_t iterations,
+                                     rte_arena *arena);
 
 /* cv::erode / cv::dilate: rte_morphology_u8 with RTE_MORPH_ERODE / _DILATE. */
-rte_status rte_morphology_erode_u8(const rte_image_u8 *src, rte_image_u8 *dst,
-                                   const rte_morph_element *element, int32_t iterations,
-                                   rte_arena *arena);
-rte_status rte_morphology_dilate_u8(const rte_image_u8 *src, rte_image_u8 *dst,
-                                    const rte_morph_element *element, int32_t iterations,
-                                    rte_arena *arena);
+RTE_API rte_status rte_morphology_erode_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                           const rte_morph_element *element, int32_t iterations,
+                                           rte_arena *arena);
+RTE_API rte_status rte_morphology_dilate_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                            const rte_morph_element *element, int32_t iterations,
+                                            rte_arena *arena);
 
 #ifdef __cplusplus
 }

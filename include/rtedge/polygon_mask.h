@@ -43,24 +43,24 @@ typedef struct rte_polygon {
 
 /* Scratch bytes for a call whose polygons have at most max_vertices
  * vertices in total. */
-size_t rte_polygon_mask_scratch_size(int32_t max_vertices);
+RTE_API size_t rte_polygon_mask_scratch_size(int32_t max_vertices);
 
 /* cv::fillPoly(img, polygons, value): sets the pixels inside or on the
  * polygons to `value`, leaves the others. Polygons with count 0 are skipped.
  * RTE_ERR_NO_MEMORY when the arena cannot hold the edges; on any error the
  * image is left unchanged. */
-rte_status rte_polygon_fill_u8(rte_image_u8 *img, const rte_polygon *polygons,
-                               int32_t polygon_count, uint8_t value, rte_arena *arena);
+RTE_API rte_status rte_polygon_fill_u8(rte_image_u8 *img, const rte_polygon *polygons,
+                                       int32_t polygon_count, uint8_t value, rte_arena *arena);
 
 /* A region-of-interest mask: mask = 0, then the polygons filled with 255
  * (left unchanged on any error). */
-rte_status rte_polygon_mask_build(rte_image_u8 *mask, const rte_polygon *polygons,
-                                  int32_t polygon_count, rte_arena *arena);
+RTE_API rte_status rte_polygon_mask_build(rte_image_u8 *mask, const rte_polygon *polygons,
+                                          int32_t polygon_count, rte_arena *arena);
 
 /* dst = src where mask != 0, else 0: cv::bitwise_and(src, src, dst, mask),
  * which for a 0/255 mask equals cv::bitwise_and(src, mask). dst may be src. */
-rte_status rte_polygon_mask_apply(const rte_image_u8 *src, const rte_image_u8 *mask,
-                                  rte_image_u8 *dst);
+RTE_API rte_status rte_polygon_mask_apply(const rte_image_u8 *src, const rte_image_u8 *mask,
+                                          rte_image_u8 *dst);
 
 /* Fractions of the image size are Q16: 65536 = the full width or height. */
 #define RTE_POLYGON_FRACTION_ONE 65536
@@ -73,8 +73,8 @@ rte_status rte_polygon_mask_apply(const rte_image_u8 *src, const rte_image_u8 *m
  * [0, 1] (within +-RTE_POLYGON_MAX_FRACTION) and give vertices outside the
  * image. `out` may be `frac`. */
 #define RTE_POLYGON_MAX_FRACTION (64 * RTE_POLYGON_FRACTION_ONE)
-rte_status rte_polygon_from_fractions(const rte_vertex *frac, int32_t count, int32_t width,
-                                      int32_t height, rte_vertex *out);
+RTE_API rte_status rte_polygon_from_fractions(const rte_vertex *frac, int32_t count, int32_t width,
+                                              int32_t height, rte_vertex *out);
 
 #ifdef __cplusplus
 }

@@ -33,14 +33,14 @@ typedef struct rte_rect {
 /* Twice the oriented area (shoelace), exact: OpenCV's
  * contourArea(oriented=true) * 2. Negative for outer borders from
  * rte_contours_find, positive for holes. 0 when n < 3. */
-int64_t rte_shape_area2(const rte_point *pts, int32_t n);
+RTE_API int64_t rte_shape_area2(const rte_point *pts, int32_t n);
 
 /* Perimeter (closed != 0) or polyline length, in 1/65536 px: the sum of
  * per-segment lengths each rounded to Q16 (error <= n/131072 px). */
-int64_t rte_shape_perimeter_q16(const rte_point *pts, int32_t n, int closed);
+RTE_API int64_t rte_shape_perimeter_q16(const rte_point *pts, int32_t n, int closed);
 
 /* cv::boundingRect of a point set; {0,0,0,0} when n == 0. */
-rte_rect rte_shape_bounding_rect(const rte_point *pts, int32_t n);
+RTE_API rte_rect rte_shape_bounding_rect(const rte_point *pts, int32_t n);
 
 /* Moments of the polygon, as cv::moments(contour). The spatial moments are
  * exact: mPQ = sPQ / dPQ with the divisors in the comments (OpenCV divides
@@ -61,18 +61,18 @@ typedef struct rte_moments {
 
 /* RTE_ERR_ARGUMENT for n < 0 or NULL; RTE_ERR_TOO_LARGE for coordinates
  * beyond RTE_SHAPE_MAX_COORD. */
-rte_status rte_shape_moments(const rte_point *pts, int32_t n, rte_moments *m);
+RTE_API rte_status rte_shape_moments(const rte_point *pts, int32_t n, rte_moments *m);
 
 /* ---- convex_hull.c ---- */
 
-size_t rte_shape_hull_scratch_size(int32_t max_points);
+RTE_API size_t rte_shape_hull_scratch_size(int32_t max_points);
 
 /* cv::convexHull(points, clockwise=false): the same hull vertices in the
  * same order (clockwise on screen), as indices into pts (`indices`, may be
  * NULL) and/or as points (`hull`, may be NULL); both need room for n
  * entries. *n_hull gets the vertex count (0 when n == 0). */
-rte_status rte_shape_convex_hull(const rte_point *pts, int32_t n, int32_t *indices, rte_point *hull,
-                                 int32_t *n_hull, rte_arena *scratch);
+RTE_API rte_status rte_shape_convex_hull(const rte_point *pts, int32_t n, int32_t *indices,
+                                         rte_point *hull, int32_t *n_hull, rte_arena *scratch);
 
 /* cv::convexityDefects: one entry per hull edge that has contour points
  * strictly off it: the edge's start and end indices, the farthest point's
@@ -84,20 +84,21 @@ typedef struct rte_defect {
     int32_t start, end, farthest, depth_q8;
 } rte_defect;
 
-rte_status rte_shape_convexity_defects(const rte_point *pts, int32_t n, const int32_t *hull,
-                                       int32_t n_hull, rte_defect *defects, int32_t *n_defects);
+RTE_API rte_status rte_shape_convexity_defects(const rte_point *pts, int32_t n, const int32_t *hull,
+                                               int32_t n_hull, rte_defect *defects,
+                                               int32_t *n_defects);
 
 /* ---- approx_poly.c ---- */
 
-size_t rte_shape_approx_scratch_size(int32_t max_points);
+RTE_API size_t rte_shape_approx_scratch_size(int32_t max_points);
 
 /* cv::approxPolyDP(curve, epsilon, closed=true) with epsilon =
  * epsilon_q16 / 65536 (< 1024 px): the same vertices in the same order.
  * Every comparison OpenCV makes in double is reproduced exactly, rounding
  * included, so the result equals OpenCV's for that (exactly representable)
  * epsilon. `out` needs room for n points. */
-rte_status rte_shape_approx_poly(const rte_point *pts, int32_t n, uint32_t epsilon_q16,
-                                 rte_point *out, int32_t *n_out, rte_arena *scratch);
+RTE_API rte_status rte_shape_approx_poly(const rte_point *pts, int32_t n, uint32_t epsilon_q16,
+                                         rte_point *out, int32_t *n_out, rte_arena *scratch);
 
 /* ---- min_area_rect.c ---- */
 
@@ -117,9 +118,9 @@ typedef struct rte_rotated_rect {
     int32_t corners_q8[4][2];
 } rte_rotated_rect;
 
-size_t rte_shape_min_area_rect_scratch_size(int32_t max_points);
-rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_rect *r,
-                                   rte_arena *scratch);
+RTE_API size_t rte_shape_min_area_rect_scratch_size(int32_t max_points);
+RTE_API rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_rect *r,
+                                           rte_arena *scratch);
 
 /* ---- enclosing_circle.c ---- */
 
@@ -131,9 +132,9 @@ typedef struct rte_circle {
     int32_t cx_q8, cy_q8, r_q8;
 } rte_circle;
 
-size_t rte_shape_enclosing_circle_scratch_size(int32_t max_points);
-rte_status rte_shape_enclosing_circle(const rte_point *pts, int32_t n, rte_circle *c,
-                                      rte_arena *scratch);
+RTE_API size_t rte_shape_enclosing_circle_scratch_size(int32_t max_points);
+RTE_API rte_status rte_shape_enclosing_circle(const rte_point *pts, int32_t n, rte_circle *c,
+                                              rte_arena *scratch);
 
 /* ---- shape.c ---- */
 
@@ -191,9 +192,9 @@ typedef struct rte_shape_info {
 #define RTE_SHAPE_SQUARE_ASPECT_Q16 75366 /* 1.15 */
 #define RTE_SHAPE_CIRCLE_MIN_Q16 59245    /* 0.904 */
 
-size_t rte_shape_classify_scratch_size(int32_t max_points);
-rte_status rte_shape_classify(const rte_point *pts, int32_t n, rte_shape_info *info,
-                              rte_arena *scratch);
+RTE_API size_t rte_shape_classify_scratch_size(int32_t max_points);
+RTE_API rte_status rte_shape_classify(const rte_point *pts, int32_t n, rte_shape_info *info,
+                                      rte_arena *scratch);
 
 #ifdef __cplusplus
 }

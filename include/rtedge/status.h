@@ -2,6 +2,15 @@
 #ifndef RTEDGE_STATUS_H
 #define RTEDGE_STATUS_H
 
+/* What the shared librtedge exports: the functions and objects declared in
+ * include/rtedge carry RTE_API; everything else is hidden (the library is
+ * built with -fvisibility=hidden), so internal helpers are not ABI. */
+#if defined(__GNUC__) && !defined(RTE_STATIC_ONLY)
+#define RTE_API __attribute__((visibility("default")))
+#else
+#define RTE_API
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -26,7 +35,7 @@ typedef enum rte_status {
 #define RTE_STATUS_LAST RTE_ERR_DEVICE
 
 /* A short English description of the status, never NULL. */
-const char *rte_status_message(rte_status status);
+RTE_API const char *rte_status_message(rte_status status);
 
 #ifdef __cplusplus
 }

@@ -43,24 +43,24 @@ typedef struct rte_threshold_params {
 /* Configuration time: fills `params` from OpenCV-style double arguments.
  * RTE_ERR_ARGUMENT for an unknown type or a thresh/maxval that is NaN or
  * outside the int32 range. */
-rte_status rte_threshold_params_init(rte_threshold_params *params, rte_threshold_type type,
-                                     double thresh, double maxval, bool otsu);
+RTE_API rte_status rte_threshold_params_init(rte_threshold_params *params, rte_threshold_type type,
+                                             double thresh, double maxval, bool otsu);
 
 /* cv::threshold(src, dst, thresh, maxval, type [| THRESH_OTSU]).
  * `dst` has the size of `src` and may be `src` itself (in place).
  * `used_thresh` (may be NULL) receives the threshold OpenCV returns:
  * floor(thresh), or Otsu's threshold when params->otsu is set. */
-rte_status rte_threshold_u8(const rte_image_u8 *src, rte_image_u8 *dst,
-                            const rte_threshold_params *params, int32_t *used_thresh);
+RTE_API rte_status rte_threshold_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                    const rte_threshold_params *params, int32_t *used_thresh);
 
 /* hist[v] = number of pixels equal to v (the counts fit uint32_t because
  * every side is at most RTE_MAX_SIDE). */
-rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256]);
+RTE_API rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256]);
 
 /* The same over the pixels where mask (same size as src) is not 0, as
  * cv::calcHist with a mask. */
-rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *mask,
-                                   uint32_t hist[256]);
+RTE_API rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *mask,
+                                           uint32_t hist[256]);
 
 /* Otsu's threshold of a histogram exactly as OpenCV 4.6 computes it for
  * THRESH_OTSU: OpenCV works in IEEE double precision, and near-ties (for
@@ -71,10 +71,10 @@ rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *
  * OpenCV's double operations in integer arithmetic instead (about 1 us
  * against 30 per histogram). A histogram with all pixels in one bin
  * gives 0. RTE_ERR_ARGUMENT when the histogram is empty. */
-rte_status rte_threshold_otsu_histogram(const uint32_t hist[256], int32_t *thresh);
+RTE_API rte_status rte_threshold_otsu_histogram(const uint32_t hist[256], int32_t *thresh);
 
 /* Otsu's threshold of an image (its histogram, then the above). */
-rte_status rte_threshold_otsu_u8(const rte_image_u8 *src, int32_t *thresh);
+RTE_API rte_status rte_threshold_otsu_u8(const rte_image_u8 *src, int32_t *thresh);
 
 /* Automatic Canny thresholds from a histogram (see rte_histogram_u8).
  *
@@ -88,12 +88,13 @@ rte_status rte_threshold_otsu_u8(const rte_image_u8 *src, int32_t *thresh);
  * sigma_permille is 0..10000; 330 is the recipe's s = 0.33
  * (RTE_AUTO_CANNY_SIGMA_PERMILLE). */
 #define RTE_AUTO_CANNY_SIGMA_PERMILLE 330
-rte_status rte_threshold_auto_canny_median(const uint32_t hist[256], int32_t sigma_permille,
-                                           int32_t *low, int32_t *high);
+RTE_API rte_status rte_threshold_auto_canny_median(const uint32_t hist[256], int32_t sigma_permille,
+                                                   int32_t *low, int32_t *high);
 
 /* Otsu rule: high = Otsu's threshold, low = high / 2 rounded down (Canny
  * floors its thresholds, so this gives the same edges as high * 0.5). */
-rte_status rte_threshold_auto_canny_otsu(const uint32_t hist[256], int32_t *low, int32_t *high);
+RTE_API rte_status rte_threshold_auto_canny_otsu(const uint32_t hist[256], int32_t *low,
+                                                 int32_t *high);
 
 #ifdef __cplusplus
 }

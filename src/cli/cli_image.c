@@ -5,7 +5,7 @@
 
 #include "cli.h"
 #include "rtedge/color.h"
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 
 int cli_load(const char *command, const char *path, cli_image *image)
 {

@@ -1,5 +1,5 @@
 /* Pieces shared by the contours, shapes and grasp subcommands: the
- * binarisation options, fixed-point printing and overlays (rtedge_draw). */
+ * binarisation options, fixed-point printing and overlays (draw.h). */
 #ifndef RTEDGE_CLI_PIPELINE_H
 #define RTEDGE_CLI_PIPELINE_H
 
@@ -7,7 +7,7 @@
 
 #include "cli.h"
 #include "cli_image.h"
-#include "draw/draw.h"
+#include "rtedge/draw.h"
 #include "rtedge/grasp.h"
 
 /* The grasp options of shapes and grasp (and the binarisation of contours). */

@@ -16,7 +16,7 @@
 #include "cli_filter.h"
 #include "cli_image.h"
 #include "commands.h"
-#include "draw/draw.h"
+#include "rtedge/draw.h"
 
 #define COMPARE_ROWS 3
 #define COMPARE_COLS 3

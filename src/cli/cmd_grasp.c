@@ -7,7 +7,7 @@
 #include "cli_image.h"
 #include "cli_pipeline.h"
 #include "commands.h"
-#include "draw/overlay.h"
+#include "rtedge/overlay.h"
 #include "rtedge/grasp.h"
 
 #define PIPELINE_DETAILS                                                                          \

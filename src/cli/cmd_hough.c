@@ -11,7 +11,7 @@
 #include "cli_image.h"
 #include "cli_pipeline.h"
 #include "commands.h"
-#include "draw/draw.h"
+#include "rtedge/draw.h"
 #include "rtedge/gradient.h"
 #include "rtedge/hough.h"
 

@@ -14,8 +14,8 @@
 #include "cli_image.h"
 #include "cli_pipeline.h"
 #include "commands.h"
-#include "draw/overlay.h"
-#include "io/imageio.h"
+#include "rtedge/overlay.h"
+#include "rtedge/imageio.h"
 #include "rtedge/lane.h"
 #include "io/y4m.h"
 

@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "sources/v4l2_source.h"
+#include "rtedge/v4l2_source.h"
 
 #define RTED_TEXT 256
 #define RTED_MSG 512

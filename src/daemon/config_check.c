@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "draw/overlay.h"
+#include "rtedge/overlay.h"
 #include "log.h"
 #include "rtedge/lane.h"
 #include "rtedge/polygon_mask.h"

@@ -22,7 +22,7 @@
 #include "rtedge/lane.h"
 #include "sources/pacer.h"
 #include "publish/publish.h"
-#include "sources/source.h"
+#include "rtedge/source.h"
 #include "io/jpeg_encoder.h"
 
 /* Latencies kept per status window (the newest ones when more frames came). */

@@ -11,7 +11,7 @@
 
 #include "daemon_internal.h"
 #include "core/clock.h"
-#include "draw/overlay.h"
+#include "rtedge/overlay.h"
 
 bool rted_debug_open(rted_daemon *d, char *msg, size_t msg_size)
 {

@@ -8,7 +8,7 @@
 #include "config.h"
 #include "daemon.h"
 #include "rte_version.h"
-#include "sources/v4l2_source.h"
+#include "rtedge/v4l2_source.h"
 
 #define MAX_SETS 64
 

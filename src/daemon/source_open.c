@@ -13,11 +13,9 @@
 #include <linux/videodev2.h>
 
 #include "daemon_internal.h"
-#ifdef RTE_HAVE_LIBCAMERA
-#include "sources/libcamera_source.h"
-#endif
+#include "rtedge/libcamera_source.h"
+#include "rtedge/v4l2_source.h"
 #include "sources/recorded_source.h"
-#include "sources/v4l2_source.h"
 
 static bool ends_with(const char *s, const char *suffix)
 {
@@ -86,7 +84,6 @@ static rte_status open_v4l2(rte_source *source, const rted_config *c, uint32_t f
 static rte_status open_libcamera(rte_source *source, const rted_config *c, rte_pixel_format fmt,
                                  char *why, size_t why_size)
 {
-#ifdef RTE_HAVE_LIBCAMERA
     rte_libcamera_config lc = {NULL, 0, fmt, c->width, c->height, 0};
     /* An index in --list-cameras (a few digits), else the camera's id. */
     char *end;
@@ -98,13 +95,6 @@ static rte_status open_libcamera(rte_source *source, const rted_config *c, rte_p
         lc.index = (int32_t)index;
     rte_libcamera_info info;
     return rte_libcamera_source_open(source, &lc, &info, why, why_size);
-#else
-    (void)source;
-    (void)c;
-    (void)fmt;
-    snprintf(why, why_size, "rtedge was built without libcamera");
-    return RTE_ERR_UNSUPPORTED;
-#endif
 }
 
 bool rted_open_source(rted_daemon *d, char *msg, size_t msg_size)

@@ -1,5 +1,5 @@
 /* Overlay drawing on BGR images (see draw.h). */
-#include "draw/draw.h"
+#include "rtedge/draw.h"
 
 #include "core/int_math.h"
 

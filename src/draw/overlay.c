@@ -1,5 +1,5 @@
 /* Debug overlays: see overlay.h. */
-#include "overlay.h"
+#include "rtedge/overlay.h"
 
 #include <stdio.h>
 #include <string.h>

@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 
 /* Where a message goes: the file it names and the caller's buffer. */
 typedef struct io_msg {

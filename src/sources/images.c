@@ -1,5 +1,5 @@
 /* Image-file source: a directory or glob of PGM/PPM/PNG/JPEG files in name
- * order, read through one rte_image_reader (rtedge_io).
+ * order, read through one rte_image_reader (imageio.h).
  *
  * Memory: open() allocates the name list, the reader and two frame buffers
  * (the decoded file, and the converted frame when grey and colour files
@@ -13,7 +13,7 @@
 #include <sys/stat.h>
 
 #include "recorded.h"
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 
 typedef struct images_source {
     rte_recording rec; /* first: see recorded.h */

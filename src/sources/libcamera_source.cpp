@@ -3,7 +3,7 @@
 // completed buffer as a view and gives the older ones straight back.
 // Everything is allocated in open(); the completion callback (libcamera's
 // thread) only stores the request in a fixed ring.
-#include "sources/libcamera_source.h"
+#include "rtedge/libcamera_source.h"
 
 #include <sys/mman.h>
 

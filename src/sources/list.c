@@ -1,15 +1,10 @@
 /* `rtedged --list-cameras`: every camera rtedge can open. */
-#include "sources/v4l2_source.h"
-
-#ifdef RTE_HAVE_LIBCAMERA
-#include "sources/libcamera_source.h"
-#endif
+#include "rtedge/libcamera_source.h"
+#include "rtedge/v4l2_source.h"
 
 int rte_list_cameras(FILE *out)
 {
     int n = rte_v4l2_list(out, NULL);
-#ifdef RTE_HAVE_LIBCAMERA
-    n += rte_libcamera_list(out);
-#endif
+    n += rte_libcamera_list(out); /* 0 without libcamera */
     return n;
 }

@@ -18,7 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "sources/source.h"
+#include "rtedge/source.h"
 
 #ifdef __cplusplus
 extern "C" {

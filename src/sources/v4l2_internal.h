@@ -19,7 +19,7 @@
 #include <linux/videodev2.h>
 #include <turbojpeg.h>
 
-#include "sources/v4l2_source.h"
+#include "rtedge/v4l2_source.h"
 
 /* Nodes looked at when a device is named by card or bus: /dev/video0..63. */
 #define MAX_DEVICE_NODES 64

@@ -17,7 +17,7 @@
 #include <turbojpeg.h>
 #include <zlib.h>
 
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 
 #define ANY_ERROR (-1)
 

@@ -101,7 +101,7 @@ def functions_of(symbol_lines):
     """{name: is_global} of the function symbols of one member (objdump -t)."""
     functions = {}
     for line in symbol_lines:
-        m = re.match(r'^[0-9a-f]+ (.{7}) \S+\s+[0-9a-f]+\s+(\S+)$', line)
+        m = re.match(r'^[0-9a-f]+ (.{7}) \S+\s+[0-9a-f]+\s+(?:\.hidden\s+)?(\S+)$', line)
         if m and m.group(1)[6] == 'F':
             functions[m.group(2)] = m.group(1)[0] in 'gu'
     return functions

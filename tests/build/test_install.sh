@@ -27,12 +27,19 @@ installed=$(cd "$root/include/rtedge" && ls)
 [ "$installed" = "$src_headers" ] ||
     fail "installed headers differ from include/rtedge: $(echo "$installed" | tr '\n' ' ')"
 nheaders=$(echo "$installed" | wc -l)
+# The shared library's ABI: it exports exactly what the headers declare
+# with RTE_API (one declaration per line, the name before its '(').
+declared=$(grep -ho '^RTE_API [^(;[]*' "$root"/include/rtedge/*.h | sed 's/.*[ *]//' | sort -u)
+exported=$(nm -D --defined-only "$libdir/librtedge.so" | awk '$2 != "A" { sub(/@.*/, "", $3); print $3 }' | sort -u)
+[ -n "$declared" ] && [ "$declared" = "$exported" ] ||
+    fail "librtedge.so exports other symbols than the RTE_API declarations: $(echo "$declared" "$exported" | tr ' ' '\n' | sort | uniq -u | tr '\n' ' ')"
+nsymbols=$(echo "$exported" | wc -l)
 
 # A program built as a user builds one.
 flags=$(PKG_CONFIG_PATH="$libdir/pkgconfig" PKG_CONFIG_SYSROOT_DIR="$dest" pkg-config --cflags --libs rtedge)
 ${CC:-cc} -std=c11 -Wall -Werror -o "$dest/consumer" "$consumer" $flags ||
     fail "cannot build against the installed headers ($flags)"
-LD_LIBRARY_PATH=$libdir "$dest/consumer" || fail "the program built against the installed librtedge failed"
+LD_LIBRARY_PATH=$libdir "$dest/consumer" "$dest/step.png" || fail "the program built against the installed librtedge failed"
 
 # The daemon, its configuration and the systemd unit (when LCM is built).
 if [ -x "$root/bin/rtedged" ]; then
@@ -50,4 +57,4 @@ if [ -x "$root/bin/rtedged" ]; then
     done
     echo "ok: rtedged, ${conf#"$dest"}, the unit and $(ls "$root"/share/rtedge/lcmtypes | wc -l) LCM types installed"
 fi
-echo "ok: librtedge, $nheaders headers and rtedge.pc installed under $prefix; a program built with them runs"
+echo "ok: librtedge ($nsymbols symbols), $nheaders headers and rtedge.pc installed under $prefix; a program built with them runs"

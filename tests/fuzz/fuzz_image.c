@@ -4,7 +4,7 @@
  * declares more is refused before anything large is allocated. */
 #include "fuzz.h"
 
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 
 #define FUZZ_MAX 256
 

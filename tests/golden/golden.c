@@ -37,7 +37,7 @@
 #include "rtedge/gradient.h"
 #include "rtedge/grasp.h"
 #include "rtedge/hough.h"
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 #include "rtedge/lane.h"
 #include "rtedge/morphology.h"
 #include "rtedge/polygon_mask.h"

@@ -18,7 +18,7 @@
 #include <zlib.h>
 
 extern "C" {
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 }
 
 namespace fs = std::filesystem;

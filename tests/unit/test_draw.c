@@ -1,7 +1,7 @@
 /* rtedge_draw: pixels where they belong, clipping, nothing past the width. */
 #include "unit.h"
 
-#include "draw/draw.h"
+#include "rtedge/draw.h"
 
 enum { W = 23, H = 17, PAD = 5 };
 

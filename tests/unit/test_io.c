@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 
 static char tmp_dir[64];
 static char msg[RTE_IO_MESSAGE_SIZE];

@@ -13,7 +13,7 @@
 #include "unit.h"
 
 #include "rtedge/color.h"
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 #include "rtedge/lane.h"
 #include "io/y4m.h"
 

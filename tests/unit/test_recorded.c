@@ -14,7 +14,7 @@
 #include <cmocka.h>
 
 #include "heapcount.h"
-#include "io/imageio.h"
+#include "rtedge/imageio.h"
 #include "sources/pacer.h"
 #include "publish/publish.h"
 #include "sources/recorded_source.h"

@@ -13,7 +13,7 @@
 #include <linux/videodev2.h>
 #include <turbojpeg.h>
 
-#include "sources/v4l2_source.h"
+#include "rtedge/v4l2_source.h"
 #include "unit.h"
 
 /* ---- the fake driver ---- */

@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "sources/v4l2_source.h"
+#include "rtedge/v4l2_source.h"
 
 int main(int argc, char **argv)
 {

@@ -7,7 +7,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "sources/libcamera_source.h"
+#include "rtedge/libcamera_source.h"
 #include "core/clock.h"
 
 #define FRAMES 20

@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "sources/v4l2_source.h"
+#include "rtedge/v4l2_source.h"
 #include "core/clock.h"
 
 static int failures;

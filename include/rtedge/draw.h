@@ -1,10 +1,8 @@
 /* Drawing on BGR images for overlays and debug renders: lines, polylines,
  * circles, filled dots and text in a built-in 5x7 bitmap font. Integer
  * only, no allocation; everything is clipped to the image (any coordinate
- * is accepted, nothing is written outside width x height).
- *
- * Not part of librtedge: the separate static library rtedge_draw, used by
- * the rtedge tool (shapes, grasp, lanes) and the daemon's debug renders. */
+ * is accepted, nothing is written outside width x height). Used by the
+ * rtedge tool (shapes, grasp, lanes) and the daemon's debug renders. */
 #ifndef RTEDGE_DRAW_H
 #define RTEDGE_DRAW_H
 
@@ -33,27 +31,27 @@ typedef struct rte_draw_color {
 /* thickness >= 1: a square brush of that many pixels, centred on the line
  * (thickness 1 is a 1-pixel Bresenham line). RTE_ERR_ARGUMENT on a bad image
  * or thickness outside 1..64. */
-rte_status rte_draw_line(rte_image_u8c3 *img, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
-                         rte_draw_color color, int32_t thickness);
+RTE_API rte_status rte_draw_line(rte_image_u8c3 *img, int32_t x0, int32_t y0, int32_t x1,
+                                 int32_t y1, rte_draw_color color, int32_t thickness);
 
 /* n vertices; closed != 0 joins the last to the first. */
-rte_status rte_draw_polyline(rte_image_u8c3 *img, const rte_point *pts, int32_t n, int closed,
-                             rte_draw_color color, int32_t thickness);
+RTE_API rte_status rte_draw_polyline(rte_image_u8c3 *img, const rte_point *pts, int32_t n,
+                                     int closed, rte_draw_color color, int32_t thickness);
 
 /* Circle outline of radius r >= 0 (midpoint algorithm). */
-rte_status rte_draw_circle(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r,
-                           rte_draw_color color, int32_t thickness);
+RTE_API rte_status rte_draw_circle(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r,
+                                   rte_draw_color color, int32_t thickness);
 
 /* Filled disc of radius r >= 0: every pixel with dx^2 + dy^2 <= r^2 + r. */
-rte_status rte_draw_dot(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r,
-                        rte_draw_color color);
+RTE_API rte_status rte_draw_dot(rte_image_u8c3 *img, int32_t cx, int32_t cy, int32_t r,
+                                rte_draw_color color);
 
 /* Text with its top-left corner at (x, y); scale 1..16. Returns RTE_OK. */
-rte_status rte_draw_text(rte_image_u8c3 *img, int32_t x, int32_t y, const char *text,
-                         rte_draw_color color, int32_t scale);
+RTE_API rte_status rte_draw_text(rte_image_u8c3 *img, int32_t x, int32_t y, const char *text,
+                                 rte_draw_color color, int32_t scale);
 
 /* Width and height in pixels of `text` at `scale`. */
-void rte_draw_text_size(const char *text, int32_t scale, int32_t *width, int32_t *height);
+RTE_API void rte_draw_text_size(const char *text, int32_t scale, int32_t *width, int32_t *height);
 
 #ifdef __cplusplus
 }

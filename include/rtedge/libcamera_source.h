@@ -1,5 +1,6 @@
 /* libcamera camera source (built when meson's `libcamera` feature finds
- * libcamera; RTE_HAVE_LIBCAMERA tells the C side). A small C++ shim behind
+ * libcamera; without it rte_libcamera_source_open() is RTE_ERR_UNSUPPORTED
+ * and rte_libcamera_list() lists nothing). A small C++ shim behind
  * a C interface: one stream, a request per buffer, the completed buffers
  * mapped and handed out as views (newest first, like the V4L2 source). */
 #ifndef RTEDGE_LIBCAMERA_SOURCE_H
@@ -9,7 +10,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "sources/source.h"
+#include "rtedge/source.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -42,14 +43,14 @@ typedef struct rte_libcamera_info {
  * the source (RTE_ERR_DEVICE, state RTE_SOURCE_FAILED): unlike the V4L2
  * source it is not reopened. rte_source_close() stops the camera and
  * releases it. */
-rte_status rte_libcamera_source_open(rte_source *source, const rte_libcamera_config *config,
-                                     rte_libcamera_info *info, char *msg, size_t msg_size);
+RTE_API rte_status rte_libcamera_source_open(rte_source *source, const rte_libcamera_config *config,
+                                             rte_libcamera_info *info, char *msg, size_t msg_size);
 
 /* Lists the libcamera cameras with their stream formats and sizes. Returns
  * the number of cameras (0 also when the camera manager does not start).
  * Not while a libcamera source is open: libcamera allows one camera
  * manager per process. */
-int rte_libcamera_list(FILE *out);
+RTE_API int rte_libcamera_list(FILE *out);
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,7 @@
 /* Image files for the CLI, the tools and recorded-frame sources: PGM/PPM,
  * PNG (libspng) and JPEG (libjpeg-turbo) in; PGM, PPM, PNG and NumPy .npy
- * out. Not part of librtedge: this is the separate static library
- * rtedge_io.
+ * out (libspng and libjpeg-turbo are librtedge's only dependencies besides
+ * libcamera; the algorithms use none).
  *
  * Decoded pixels are what OpenCV 4.6's cv::imread(path, IMREAD_COLOR) gives,
  * bit for bit: BGR order, 16-bit PNG samples reduced to their high byte,
@@ -66,7 +66,8 @@ typedef struct rte_image_info {
  * channels, format. Reads only the headers (JPEG: the markers up to the
  * first scan; PNG: every chunk header up to IEND) and needs no decode buffers (fopen's FILE aside); fails with RTE_ERR_TOO_LARGE beyond RTE_MAX_SIDE. A JPEG or PNG
  * whose EXIF orientation swaps the axes reports the swapped (displayed) size. */
-rte_status rte_image_probe(const char *path, rte_image_info *info, char *msg, size_t msg_size);
+RTE_API rte_status rte_image_probe(const char *path, rte_image_info *info, char *msg,
+                                   size_t msg_size);
 
 /* A reader: decode buffers for images up to max_width x max_height
  * (1..RTE_MAX_SIDE each), allocated once here: one row buffer, a whole-file
@@ -84,32 +85,38 @@ rte_status rte_image_probe(const char *path, rte_image_info *info, char *msg, si
  * when the image is done. Neither codec can reuse them across files. */
 typedef struct rte_image_reader rte_image_reader;
 
-rte_image_reader *rte_image_reader_create(int32_t max_width, int32_t max_height);
-void rte_image_reader_destroy(rte_image_reader *reader);
+RTE_API rte_image_reader *rte_image_reader_create(int32_t max_width, int32_t max_height);
+RTE_API void rte_image_reader_destroy(rte_image_reader *reader);
 
 /* The largest file (bytes) the reader loads whole (JPEG only: PNM and PNG
  * are streamed): room for the least compressible 4:4:4 JPEG of the maximum
  * size plus 1 MiB of metadata. */
-size_t rte_image_reader_max_file_bytes(const rte_image_reader *reader);
+RTE_API size_t rte_image_reader_max_file_bytes(const rte_image_reader *reader);
 
 /* Decodes `path` into buf (capacity bytes) as info->channels interleaved
  * channels (grey, or BGR), rows packed: stride width * channels bytes. The
  * size is checked against the reader's maxima and the capacity before
  * decoding. `info` receives the header (also on most errors after it). */
-rte_status rte_image_read(rte_image_reader *reader, const char *path, void *buf, size_t capacity,
-                          rte_image_info *info, char *msg, size_t msg_size);
+RTE_API rte_status rte_image_read(rte_image_reader *reader, const char *path, void *buf,
+                                  size_t capacity, rte_image_info *info, char *msg,
+                                  size_t msg_size);
 
 /* Decodes `path` as BGR into dst, whose width and height must equal the
  * image's (RTE_ERR_SIZE otherwise, before decoding); any stride. Grey files
  * are replicated to B = G = R, as IMREAD_COLOR does. */
-rte_status rte_image_read_bgr(rte_image_reader *reader, const char *path, const rte_image_u8c3 *dst,
-                              char *msg, size_t msg_size);
+RTE_API rte_status rte_image_read_bgr(rte_image_reader *reader, const char *path,
+                                      const rte_image_u8c3 *dst, char *msg, size_t msg_size);
 
 /* Decodes a grey file into dst (same size rule as rte_image_read_bgr).
  * A colour file gives RTE_ERR_UNSUPPORTED: read it with rte_image_read_bgr
  * and convert with rte_bgr_to_gray, which matches cv::cvtColor. */
-rte_status rte_image_read_gray(rte_image_reader *reader, const char *path, const rte_image_u8 *dst,
-                               char *msg, size_t msg_size);
+RTE_API rte_status rte_image_read_gray(rte_image_reader *reader, const char *path,
+                                       const rte_image_u8 *dst, char *msg, size_t msg_size);
+
+/* Whether a file name ends in an image extension the readers take (.png,
+ * .jpg, .jpeg, .pgm, .ppm, .pnm; any case): how directories of frames are
+ * listed. The readers themselves go by content, not by name. */
+RTE_API bool rte_image_path_has_image_extension(const char *path);
 
 /* Writers; the format comes from the extension of `path` (case-insensitive).
  * Any stride. The file is written whole or an error is returned (a partial
@@ -118,17 +125,12 @@ rte_status rte_image_read_gray(rte_image_reader *reader, const char *path, const
  *   grey:  .pgm (P5), .png (8-bit grey), .npy (|u1, shape (h, w))
  *   bgr:   .ppm (P6), .png (8-bit RGB),  .npy (|u1, shape (h, w, 3), BGR order)
  *   s16:   .npy (<i2, shape (h, w)) */
-/* Whether a file name ends in an image extension the readers take (.png,
- * .jpg, .jpeg, .pgm, .ppm, .pnm; any case): how directories of frames are
- * listed. The readers themselves go by content, not by name. */
-bool rte_image_path_has_image_extension(const char *path);
-
-rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg,
-                                size_t msg_size);
-rte_status rte_image_write_bgr(const char *path, const rte_image_u8c3 *img, char *msg,
-                               size_t msg_size);
-rte_status rte_image_write_s16(const char *path, const rte_image_s16 *img, char *msg,
-                               size_t msg_size);
+RTE_API rte_status rte_image_write_gray(const char *path, const rte_image_u8 *img, char *msg,
+                                        size_t msg_size);
+RTE_API rte_status rte_image_write_bgr(const char *path, const rte_image_u8c3 *img, char *msg,
+                                       size_t msg_size);
+RTE_API rte_status rte_image_write_s16(const char *path, const rte_image_s16 *img, char *msg,
+                                       size_t msg_size);
 
 #ifdef __cplusplus
 }

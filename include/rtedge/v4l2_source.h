@@ -20,7 +20,7 @@
 #include <stdio.h>
 #include <sys/types.h>
 
-#include "sources/source.h"
+#include "rtedge/source.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -45,7 +45,7 @@ typedef struct rte_v4l2_ops {
 } rte_v4l2_ops;
 
 /* The real syscalls. */
-extern const rte_v4l2_ops rte_v4l2_system_ops;
+RTE_API extern const rte_v4l2_ops rte_v4l2_system_ops;
 
 typedef struct rte_v4l2_control {
     char name[RTE_V4L2_NAME_SIZE]; /* matched case-insensitively; runs of spaces, underscores and
@@ -93,34 +93,34 @@ typedef struct rte_v4l2_info {
 /* Opens the camera and starts streaming. `info` (may be NULL) receives what
  * the driver settled on; `msg` says it in words (adjustments included) or
  * what failed. On failure nothing is left open. */
-rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *config,
-                                rte_v4l2_info *info, char *msg, size_t msg_size);
+RTE_API rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *config,
+                                        rte_v4l2_info *info, char *msg, size_t msg_size);
 
 /* Sets one control by name while streaming (e.g. exposure from the
  * daemon's command channel); the same matching as in the config.
  * RTE_ERR_ARGUMENT when there is no such control or the value is out of its
  * range, RTE_ERR_DEVICE when the device is gone. */
-rte_status rte_v4l2_source_set_control(rte_source *source, const char *name, int32_t value,
-                                       char *msg, size_t msg_size);
+RTE_API rte_status rte_v4l2_source_set_control(rte_source *source, const char *name, int32_t value,
+                                               char *msg, size_t msg_size);
 
 /* Sets one control by name on a device that another file handle (another
  * process) may be streaming from: opens `device` (a path or a name, as in
  * rte_v4l2_config), sets the control and closes it again. ops: NULL for
  * the real syscalls. The same errors as rte_v4l2_source_set_control. */
-rte_status rte_v4l2_set_device_control(const char *device, const char *name, int32_t value,
-                                       const rte_v4l2_ops *ops, char *msg, size_t msg_size);
+RTE_API rte_status rte_v4l2_set_device_control(const char *device, const char *name, int32_t value,
+                                               const rte_v4l2_ops *ops, char *msg, size_t msg_size);
 
 /* "YUYV", "MJPG", ... into buf[5]. */
-const char *rte_v4l2_fourcc_name(uint32_t fourcc, char buf[5]);
+RTE_API const char *rte_v4l2_fourcc_name(uint32_t fourcc, char buf[5]);
 
 /* Lists the capture nodes /dev/video0..63 with their formats, frame sizes
  * and frame intervals, one device per paragraph. Returns the number of
  * capture devices found. */
-int rte_v4l2_list(FILE *out, const rte_v4l2_ops *ops);
+RTE_API int rte_v4l2_list(FILE *out, const rte_v4l2_ops *ops);
 
 /* For `rtedged --list-cameras`: V4L2 devices, then the libcamera cameras
  * when rtedge is built with libcamera. Returns the number of cameras. */
-int rte_list_cameras(FILE *out);
+RTE_API int rte_list_cameras(FILE *out);
 
 #ifdef __cplusplus
 }
