@@ -70,6 +70,13 @@ typedef struct rte_v4l2_config {
     int32_t buffers;          /* mmap buffers, 2..RTE_V4L2_MAX_BUFFERS (0: 4) */
     int32_t reconnect_min_ms; /* first reopening delay after a loss (0: 100) */
     int32_t reconnect_max_ms; /* the delay doubles up to this (0: 2000) */
+    /* A device missing at open (no such node, no card of that name, a node
+     * that fails its set-up) is waited for: open succeeds with the source
+     * RTE_SOURCE_RECONNECTING and sized for width x height in fourcc, and
+     * next() tries the device with the reconnection's backoff, from 500 ms
+     * doubling to 8 s. The device must then stream that format at most
+     * that size. false: open fails. */
+    bool wait;
     int32_t n_controls;
     rte_v4l2_control controls[RTE_V4L2_MAX_CONTROLS]; /* set at open and at each reopening */
     const rte_v4l2_ops *ops;                          /* NULL: rte_v4l2_system_ops */

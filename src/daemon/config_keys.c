@@ -60,7 +60,7 @@ static const key_def keys[] = {
          "what `path` is; auto: *.y4m, a directory or glob of images, *.lcm/*.log\n"
          "(an LCM log of image_t), udpm:// or memq:// (live image_t), /dev/video*;\n"
          "libcamera: path is the camera id, or its index in `cam -l`"),
-    TEXT("source", "path", source_path, false, "fixtures/solidWhiteRight_clip.y4m",
+    TEXT("source", "path", source_path, false, "/dev/video0",
          "the recording, image directory or glob, LCM URL, V4L2 device or camera"),
     TEXT("source", "channel", source_channel, false, "",
          "LCM sources: the image_t channel (a log: empty = every channel)"),
@@ -88,6 +88,10 @@ static const key_def keys[] = {
          "v4l2: controls set at open and at each reopening, 'name=value' pairs,\n"
          "';'-separated, names as `v4l2-ctl -l` prints them (e.g. brightness=140;\n"
          "auto_exposure=1;exposure_time_absolute=100)"),
+    BOOL("source", "wait", wait_camera, false, "true",
+         "v4l2: a camera missing at start is waited for (tried again after 0.5 s,\n"
+         "doubling to 8 s), with the daemon sized for width x height (0: 1280x720);\n"
+         "false: rtedged exits 1"),
     TEXT("source", "record", record_path, false, "",
          "write every frame the source delivers to this LCM log of image_t (the\n"
          "frames as delivered, on publish.image_channel); replay it with\n"

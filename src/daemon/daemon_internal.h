@@ -8,7 +8,8 @@
  *   reconfigure.c  run-time configuration: SIGHUP, the params_t channel
  *   param_state.c  the param_state_t message: runtime keys, last outcome
  *   debug_stream.c debug.enabled: the overlay stream (JPEG image_t)
- *   status.c       the latency window and the status message */
+ *   status.c       the latency window and the status message
+ *   notify.c       systemd's notifications (READY, STATUS, WATCHDOG, ...) */
 #ifndef RTEDGED_DAEMON_INTERNAL_H
 #define RTEDGED_DAEMON_INTERNAL_H
 
@@ -16,6 +17,7 @@
 
 #include "daemon.h"
 #include "log.h"
+#include "notify.h"
 #include "params.h"
 #include "rtedge/arena.h"
 #include "rtedge/grasp.h"
@@ -128,6 +130,7 @@ struct rted_daemon {
     rte_source_state state;
     rte_source_state reported_state; /* the source's state in the last status */
     volatile sig_atomic_t *stop;     /* rted_daemon_run's flag: ends a wait for a frame's time */
+    rted_notify notify;              /* NOTIFY_SOCKET: READY=1 at the first frame, watchdog */
 
     /* stderr lines that could repeat without end */
     rted_log_limit log_frames, log_params;

@@ -88,7 +88,7 @@ void rted_debug_publish(rted_daemon *d, const rte_source_frame *f, const rte_ima
                                                                  : f->capture_ns + period;
     if (rte_jpeg_encode_bgr(d->jpeg, &o.canvas, &jpeg, &size, msg, sizeof msg) != RTE_OK) {
         d->n.publish_errors++;
-        rted_log_limited(&d->log_frames, "debug stream: %s", msg);
+        rted_log_limited(&d->log_frames, RTED_LOG_WARNING, "debug stream: %s", msg);
         return;
     }
     rtedge_image_t *m = &d->debug_msg;

@@ -22,12 +22,20 @@ typedef struct rted_log_limit {
 /* printf into a caller's message buffer (nothing when size is 0). */
 void rted_msgf(char *msg, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
-/* "rtedged: " and the formatted line. */
-void rted_log(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Priorities (syslog's): when stderr is the journal (JOURNAL_STREAM),
+ * each line starts with "<N>" so that the journal files it at N. */
+enum { RTED_LOG_ERR = 3, RTED_LOG_WARNING = 4, RTED_LOG_INFO = 6, RTED_LOG_DEBUG = 7 };
 
-/* As rted_log, within l's limit. */
-void rted_log_limited(rted_log_limit *l, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
+/* "rtedged: " and the formatted line ("rtedged: warning: " at
+ * RTED_LOG_WARNING). */
+void rted_log_at(int priority, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+#define rted_log(...) rted_log_at(RTED_LOG_INFO, __VA_ARGS__)
+#define rted_warn(...) rted_log_at(RTED_LOG_WARNING, __VA_ARGS__)
+#define rted_error(...) rted_log_at(RTED_LOG_ERR, __VA_ARGS__)
+
+/* As rted_log_at, within l's limit. */
+void rted_log_limited(rted_log_limit *l, int priority, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
 
 /* Says how many lines l left out, once its window has passed (called with
  * each status message, so that a burst that stopped is still reported). */

@@ -4,7 +4,8 @@
  * and publishes; a frame makes no heap call (everything was sized by
  * rted_daemon_open(), open.c). Latency is capture -> publish on
  * CLOCK_MONOTONIC; a frame whose budget runs short skips the grasp path
- * (counted). */
+ * (counted). The loop pings systemd's watchdog (notify.h): a loop that
+ * stalls stops the pings. */
 #include <time.h>
 
 #include "daemon_internal.h"
@@ -109,9 +110,9 @@ static rted_step end_of_pass(rted_daemon *d)
     d->n.bad_frames = ss.bad_frames;
     d->state = RTE_SOURCE_ENDED;
     if (!d->pass_frames) {
-        rted_log("%s: %s gave no readable frame (%llu bad frames in all): stopping", d->source_id,
-                 d->passes ? "a whole pass of the recording" : "the recording",
-                 (unsigned long long)ss.bad_frames);
+        rted_error("%s: %s gave no readable frame (%llu bad frames in all): stopping", d->source_id,
+                   d->passes ? "a whole pass of the recording" : "the recording",
+                   (unsigned long long)ss.bad_frames);
         return RTED_STEP_EMPTY;
     }
     if (!d->cfg.loop || rte_recorded_source_rewind(&d->source) != RTE_OK)
@@ -146,6 +147,7 @@ static bool wait_for_pace(rted_daemon *d, rte_source_frame *f)
         if (d->stop && *d->stop)
             return false;
         sleep_ns(wait > 50000000 ? 50000000 : wait);
+        rted_notify_watchdog(&d->notify, rte_clock_now_ns());
         waited = true;
         if (d->cfg.status_period_ms &&
             rte_clock_now_ns() - d->window_start_ns >= (int64_t)d->cfg.status_period_ms * 1000000)
@@ -158,8 +160,54 @@ static bool wait_for_pace(rted_daemon *d, rte_source_frame *f)
     return true;
 }
 
+/* The source's state changed (a camera lost, back, or there at last): said
+ * at once, on stderr, to systemd and in a status message. */
+static void source_state_changed(rted_daemon *d, const rte_source_stats *ss, const char *why)
+{
+    if (ss->state == RTE_SOURCE_STREAMING && !d->n.received) {
+        rted_log("%s: the camera is there, streaming", d->source_id);
+        rted_notify_status(&d->notify, NULL, "%s: the camera is there, waiting for a frame",
+                           d->source_id);
+    } else if (ss->state == RTE_SOURCE_STREAMING) {
+        rted_log("source streaming again (reconnection %llu)", (unsigned long long)ss->reconnects);
+        rted_notify_status(&d->notify, NULL, "streaming %s again (reconnection %llu)", d->source_id,
+                           (unsigned long long)ss->reconnects);
+    } else if (ss->state == RTE_SOURCE_RECONNECTING) {
+        rted_notify_status(&d->notify, NULL, "reconnecting: %s", why);
+    }
+    rted_daemon_publish_status(d);
+}
+
+/* A source error: a camera waited for or reconnecting (said to systemd
+ * too), or a bad frame of a recording. */
+static void source_error(rted_daemon *d, rte_status st, const rte_source_stats *ss, const char *why)
+{
+    if (!why[0])
+        why = rte_status_message(st);
+    if (ss->state == RTE_SOURCE_RECONNECTING) {
+        const char *what = d->n.received ? "reconnecting" : "waiting for camera";
+        rted_log_limited(&d->log_frames, RTED_LOG_WARNING, "%s: %s", what, why);
+        rted_notify_status(&d->notify, NULL, "%s: %s", what, why);
+        return;
+    }
+    /* A looping recording's bad frames were said in its first pass. */
+    if (!d->passes)
+        rted_log_limited(&d->log_frames, RTED_LOG_WARNING, "%s: %s",
+                         st == RTE_ERR_DEVICE ? "source" : "frame skipped", why);
+}
+
+/* The first frame: systemd is told the daemon is ready. */
+static void first_frame(rted_daemon *d, const rte_source_frame *f)
+{
+    rted_log("ready: %s streaming, first frame %dx%d", d->source_id, f->frame.width,
+             f->frame.height);
+    rted_notify_status(&d->notify, "READY=1", "streaming %s %dx%d", d->source_id, f->frame.width,
+                       f->frame.height);
+}
+
 rted_step rted_daemon_step(rted_daemon *d)
 {
+    rted_notify_watchdog(&d->notify, rte_clock_now_ns());
     if (d->cfg.max_frames && d->n.processed >= (uint64_t)d->cfg.max_frames)
         return RTED_STEP_END;
     rted_params_poll(d);
@@ -174,29 +222,22 @@ rted_step rted_daemon_step(rted_daemon *d)
     rte_source_stats ss;
     rte_source_get_stats(&d->source, &ss);
     d->n.bad_frames = ss.bad_frames;
-    if (ss.state != d->reported_state) {
-        /* A camera lost or back: said at once, not at the next period. */
-        if (ss.state == RTE_SOURCE_STREAMING)
-            rted_log("source streaming again (reconnection %llu)",
-                     (unsigned long long)ss.reconnects);
-        rted_daemon_publish_status(d);
-    }
+    if (ss.state != d->reported_state)
+        source_state_changed(d, &ss, why);
     if (st == RTE_ERR_TIMEOUT)
         return RTED_STEP_IDLE;
     if (st != RTE_OK) {
         if (ss.state == RTE_SOURCE_FAILED) {
-            rted_log("source failed: %s", why);
+            rted_error("source failed: %s", why);
+            rted_notify_status(&d->notify, NULL, "source failed: %s", why);
             return RTED_STEP_FAILED;
         }
-        /* A looping recording's bad frames were said in its first pass. */
-        if (!d->passes)
-            rted_log_limited(&d->log_frames, "%s: %s",
-                             st == RTE_ERR_DEVICE ? "source" : "frame skipped",
-                             why[0] ? why : rte_status_message(st));
+        source_error(d, st, &ss, why);
         return RTED_STEP_IDLE;
     }
     d->pass_frames++;
-    d->n.received++;
+    if (!d->n.received++)
+        first_frame(d, &f);
     if (d->rec)
         rted_record_frame(d, &f);
     if (!wait_for_pace(d, &f))
@@ -206,19 +247,33 @@ rted_step rted_daemon_step(rted_daemon *d)
     return analyse(d, &f);
 }
 
-int rted_daemon_run(rted_daemon *d, volatile sig_atomic_t *stop, volatile sig_atomic_t *reload)
+/* SIGHUP: systemd hears RELOADING=1, then READY=1 with the outcome. */
+static void reload(rted_daemon *d)
+{
+    char msg[RTED_MSG];
+    snprintf(msg, sizeof msg, "RELOADING=1\nMONOTONIC_USEC=%lld",
+             (long long)(rte_clock_now_ns() / 1000));
+    rted_notify_send(&d->notify, msg);
+    if (rted_daemon_reload(d, msg, sizeof msg)) {
+        rted_log("configuration re-read and applied (hash %016llx)",
+                 (unsigned long long)d->config_hash);
+        rted_notify_status(&d->notify, "READY=1",
+                           "configuration re-read and applied (hash %016llx)",
+                           (unsigned long long)d->config_hash);
+    } else {
+        rted_warn("configuration change refused: %s", msg);
+        rted_notify_status(&d->notify, "READY=1", "configuration change refused: %s", msg);
+    }
+}
+
+int rted_daemon_run(rted_daemon *d, volatile sig_atomic_t *stop, volatile sig_atomic_t *reload_flag)
 {
     int code = RTED_EXIT_OK;
     d->stop = stop;
     while (!*stop) {
-        if (*reload) {
-            *reload = 0;
-            char msg[RTED_MSG];
-            if (rted_daemon_reload(d, msg, sizeof msg))
-                rted_log("configuration re-read and applied (hash %016llx)",
-                         (unsigned long long)d->config_hash);
-            else
-                rted_log("configuration change refused: %s", msg);
+        if (*reload_flag) {
+            *reload_flag = 0;
+            reload(d);
         }
         rted_step s = rted_daemon_step(d);
         if (s == RTED_STEP_END)
@@ -228,6 +283,11 @@ int rted_daemon_run(rted_daemon *d, volatile sig_atomic_t *stop, volatile sig_at
             break;
         }
     }
+    rted_notify_status(&d->notify, "STOPPING=1", "stopping: %s",
+                       *stop                         ? "signal"
+                       : code == RTED_EXIT_FAILED    ? "the source failed"
+                       : code == RTED_EXIT_NO_FRAMES ? "no readable frame"
+                                                     : "the end of the source");
     rted_daemon_publish_status(d);
     return code;
 }

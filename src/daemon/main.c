@@ -7,6 +7,7 @@
 
 #include "config.h"
 #include "daemon.h"
+#include "log.h"
 #include "rte_version.h"
 #include "rtedge/v4l2_source.h"
 
@@ -191,17 +192,16 @@ static bool configure(rted_config *cfg, const options *o)
     char msg[RTED_MSG];
     rted_config_defaults(cfg);
     if (o->config_path && !rted_config_load(cfg, o->config_path, msg, sizeof msg)) {
-        fprintf(stderr, "rtedged: %s\n", msg);
+        rted_error("%s", msg);
         return false;
     }
     for (int i = 0; i < o->n_sets; i++)
         if (!rted_config_set(cfg, o->sets[i], "command line", msg, sizeof msg)) {
-            fprintf(stderr, "rtedged: %s\n", msg);
+            rted_error("%s", msg);
             return false;
         }
     if (!rted_config_validate(cfg, msg, sizeof msg)) {
-        fprintf(stderr, "rtedged: %s%s%s\n", o->config_path ? o->config_path : "",
-                o->config_path ? ": " : "", msg);
+        rted_error("%s%s%s", o->config_path ? o->config_path : "", o->config_path ? ": " : "", msg);
         return false;
     }
     return true;
@@ -245,17 +245,16 @@ static void report(rted_daemon *d, bool bench)
         printf("bench: %llu frames, latency p50 %d us, p99 %d us, max %d us, peak RSS %ld KiB\n",
                (unsigned long long)n.processed, p50, p99, max, ru.ru_maxrss);
     }
-    fprintf(stderr,
-            "rtedged: %llu frames received, %llu processed, %llu dropped, %llu bad, "
-            "%llu deadline misses, %llu stages skipped, %llu messages, %llu publish errors, "
-            "%llu reloads, %llu refused, %llu rate-limited, %llu path errors, %llu rewinds\n",
-            (unsigned long long)n.received, (unsigned long long)n.processed,
-            (unsigned long long)n.dropped, (unsigned long long)n.bad_frames,
-            (unsigned long long)n.deadline_misses, (unsigned long long)n.stages_skipped,
-            (unsigned long long)n.published, (unsigned long long)n.publish_errors,
-            (unsigned long long)n.reloads, (unsigned long long)n.refused,
-            (unsigned long long)n.rate_limited, (unsigned long long)n.path_errors,
-            (unsigned long long)n.rewinds);
+    rted_log("%llu frames received, %llu processed, %llu dropped, %llu bad, "
+             "%llu deadline misses, %llu stages skipped, %llu messages, %llu publish errors, "
+             "%llu reloads, %llu refused, %llu rate-limited, %llu path errors, %llu rewinds",
+             (unsigned long long)n.received, (unsigned long long)n.processed,
+             (unsigned long long)n.dropped, (unsigned long long)n.bad_frames,
+             (unsigned long long)n.deadline_misses, (unsigned long long)n.stages_skipped,
+             (unsigned long long)n.published, (unsigned long long)n.publish_errors,
+             (unsigned long long)n.reloads, (unsigned long long)n.refused,
+             (unsigned long long)n.rate_limited, (unsigned long long)n.path_errors,
+             (unsigned long long)n.rewinds);
 }
 
 int main(int argc, char **argv)
@@ -279,7 +278,7 @@ int main(int argc, char **argv)
     rted_daemon *d;
     char msg[RTED_MSG];
     if (!rted_daemon_open(&d, &cfg, o.config_path, msg, sizeof msg)) {
-        fprintf(stderr, "rtedged: %s\n", msg);
+        rted_error("%s", msg);
         return RTED_EXIT_FAILED;
     }
     rted_daemon_set_overrides(d, o.sets, o.n_sets);

@@ -20,19 +20,19 @@
 static void realtime(const rted_config *c)
 {
     if (c->rt_mlockall && mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
-        rted_log("warning: mlockall: %s (memory not locked)", strerror(errno));
+        rted_warn("mlockall: %s (memory not locked)", strerror(errno));
     if (c->rt_cpu >= 0) {
         cpu_set_t set;
         CPU_ZERO(&set);
         CPU_SET(c->rt_cpu, &set);
         if (sched_setaffinity(0, sizeof set, &set) != 0)
-            rted_log("warning: CPU affinity %d: %s (not pinned)", c->rt_cpu, strerror(errno));
+            rted_warn("CPU affinity %d: %s (not pinned)", c->rt_cpu, strerror(errno));
     }
     if (c->rt_priority > 0) {
         struct sched_param sp = {.sched_priority = c->rt_priority};
         if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0)
-            rted_log("warning: SCHED_FIFO priority %d: %s (normal scheduling)", c->rt_priority,
-                     strerror(errno));
+            rted_warn("SCHED_FIFO priority %d: %s (normal scheduling)", c->rt_priority,
+                      strerror(errno));
     }
 }
 
@@ -185,6 +185,9 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     }
     d->cfg = *cfg;
     d->config_path = config_path;
+    char why[RTED_MSG];
+    if (!rted_notify_open(&d->notify, why, sizeof why))
+        rted_warn("%s (no notifications to systemd)", why);
     d->log_frames = (rted_log_limit){.what = "bad-frame", .burst = 5};
     if (!rted_open_source(d, msg, msg_size) || !open_after_source(d, msg, msg_size)) {
         rted_daemon_close(d);
@@ -194,6 +197,12 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     rted_derive(d);
     realtime(&d->cfg);
     d->window_start_ns = rte_clock_now_ns();
+    rte_source_stats ss;
+    rte_source_get_stats(&d->source, &ss);
+    if (ss.state == RTE_SOURCE_RECONNECTING)
+        rted_notify_status(&d->notify, NULL, "waiting for camera %s", d->cfg.source_path);
+    else
+        rted_notify_status(&d->notify, NULL, "%s open, waiting for the first frame", d->source_id);
     /* A first status says the daemon is up; it also makes liblcm cache the
      * channel (memq:// strdup()s a channel's name on its first message). */
     rted_daemon_publish_status(d); /* with the first param_state_t before it */
@@ -206,6 +215,7 @@ void rted_daemon_close(rted_daemon *d)
     if (!d)
         return;
     rted_params_close(d);
+    rted_notify_close(&d->notify);
     rte_publisher_destroy(d->pub);
     rte_publisher_destroy(d->rec);
     free(d->rec_buf);

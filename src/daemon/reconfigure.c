@@ -181,8 +181,8 @@ void rted_daemon_handle_params(rted_daemon *d, const void *data, size_t size)
     } else if (r->action == RTEDGE_PARAMS_T_ACTION_SAVE) {
         if (save(d, why, sizeof why)) {
             d->n.saves++;
-            rted_log_limited(&d->log_params, "params request %lld: %s", (long long)r->request_id,
-                             why);
+            rted_log_limited(&d->log_params, RTED_LOG_INFO, "params request %lld: %s",
+                             (long long)r->request_id, why);
             rted_param_state_outcome(d, r->request_id, RTEDGE_PARAM_STATE_T_OUTCOME_SAVED, why,
                                      true);
             return;
@@ -191,16 +191,17 @@ void rted_daemon_handle_params(rted_daemon *d, const void *data, size_t size)
     } else if (!rted_params_to_config(r, &d->cfg, &next, why, sizeof why)) {
         d->n.refused++;
     } else if (rted_daemon_apply(d, &next, why, sizeof why)) {
-        rted_log_limited(&d->log_params, "params request %lld applied (%d values, hash %016llx)",
+        rted_log_limited(&d->log_params, RTED_LOG_INFO,
+                         "params request %lld applied (%d values, hash %016llx)",
                          (long long)r->request_id, r->count, (unsigned long long)d->config_hash);
         rted_param_state_outcome(d, r->request_id, RTEDGE_PARAM_STATE_T_OUTCOME_APPLIED, "", false);
         return;
     }
     if (r->have_id)
-        rted_log_limited(&d->log_params, "params request %lld refused: %s",
+        rted_log_limited(&d->log_params, RTED_LOG_WARNING, "params request %lld refused: %s",
                          (long long)r->request_id, why);
     else
-        rted_log_limited(&d->log_params, "params message refused: %s", why);
+        rted_log_limited(&d->log_params, RTED_LOG_WARNING, "params message refused: %s", why);
     rted_param_state_outcome(d, r->have_id ? r->request_id : 0,
                              RTEDGE_PARAM_STATE_T_OUTCOME_REFUSED, why, false);
 }
@@ -217,7 +218,7 @@ static void on_params(const lcm_recv_buf_t *rbuf, const char *channel, void *use
     }
     if (d->params_in_window >= d->cfg.params_max_per_second) {
         d->n.rate_limited++;
-        rted_log_limited(&d->log_params,
+        rted_log_limited(&d->log_params, RTED_LOG_WARNING,
                          "params message dropped: more than %d a second "
                          "(params.max_per_second)",
                          d->cfg.params_max_per_second);
@@ -237,14 +238,14 @@ void rted_params_open(rted_daemon *d)
         return;
     lcm_t *lcm = rte_publisher_lcm(d->pub);
     if (!lcm) {
-        rted_log("warning: params.enabled needs an LCM transport (udpm://, memq://), not %s: "
-                 "no params channel",
-                 c->lcm_url);
+        rted_warn("params.enabled needs an LCM transport (udpm://, memq://), not %s: "
+                  "no params channel",
+                  c->lcm_url);
         return;
     }
     d->params_sub = lcm_subscribe(lcm, c->params_channel, on_params, d);
     if (!d->params_sub)
-        rted_log("warning: cannot subscribe to %s: no params channel", c->params_channel);
+        rted_warn("cannot subscribe to %s: no params channel", c->params_channel);
 }
 
 void rted_params_close(rted_daemon *d)

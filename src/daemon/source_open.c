@@ -76,6 +76,7 @@ static rte_status open_v4l2(rte_source *source, const rted_config *c, uint32_t f
     vc.width = c->width ? c->width : 1280;
     vc.height = c->height ? c->height : 720;
     vc.fps = (int32_t)lround(c->fps);
+    vc.wait = c->wait_camera;
     vc.n_controls = rted_parse_controls(c->source_controls, vc.controls, RTE_V4L2_MAX_CONTROLS);
     rte_v4l2_info info;
     return rte_v4l2_source_open(source, &vc, &info, why, why_size);

@@ -105,6 +105,12 @@ void rted_daemon_publish_status(rted_daemon *d)
     s->config_hash = (int64_t)d->config_hash;
     stage_times(d);
     char msg[RTE_PUBLISH_MESSAGE_SIZE];
+    if (ss.state == RTE_SOURCE_STREAMING && d->n.received) {
+        const int32_t fps10 = (int32_t)(s->fps * 10.0f + 0.5f);
+        rted_notify_status(
+            &d->notify, NULL, "streaming %s, %d.%d fps, p99 %d us, %lld deadline misses",
+            d->source_id, fps10 / 10, fps10 % 10, s->latency_p99_us, (long long)s->deadline_misses);
+    }
     if (rte_publish_status(d->pub, d->cfg.status_channel, s, msg, sizeof msg) == RTE_OK)
         d->n.status_sent++;
     else

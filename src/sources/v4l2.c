@@ -141,6 +141,8 @@ void rte_v4l2_close_fd(v4l2_source *s)
 #define DEFAULT_BUFFERS 4
 #define DEFAULT_RECONNECT_MIN_MS 100
 #define DEFAULT_RECONNECT_MAX_MS 2000
+#define WAIT_MIN_MS 500
+#define WAIT_MAX_MS 8000
 
 static void describe(const v4l2_source *s, char *msg, size_t msg_size)
 {
@@ -172,7 +174,7 @@ const rte_source_ops rte_v4l2_source_ops = {"v4l2", rte_v4l2_next, v4l2_get_stat
 /* The driver's timestamp type is only known from a dequeued buffer's
  * flags; QUERYBUF returns them too, so look at buffer 0 after streaming
  * started. */
-static void check_timestamps(v4l2_source *s)
+void rte_v4l2_check_timestamps(v4l2_source *s)
 {
     struct v4l2_buffer b;
     memset(&b, 0, sizeof(b));
@@ -236,13 +238,24 @@ rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *confi
     rte_v4l2_copy_string(s->info.path, sizeof(s->info.path), s->device, sizeof(s->device));
 
     rte_status st = rte_v4l2_setup_device(s, false, msg, msg_size);
+    bool waiting = st == RTE_ERR_DEVICE && config->wait;
     if (st == RTE_OK) {
+        s->streamed = true;
         s->open_fourcc = s->info.fourcc;
-        s->out_format = rte_v4l2_delivered_format(s->info.fourcc, decode_to);
         s->max_width = s->info.width;
         s->max_height = s->info.height;
-        check_timestamps(s);
-        if (s->info.fourcc == V4L2_PIX_FMT_MJPEG) {
+        rte_v4l2_check_timestamps(s);
+    } else if (waiting) {
+        /* sized for what was asked: the device must come with that */
+        rte_v4l2_wait_for_device(s, WAIT_MIN_MS, WAIT_MAX_MS);
+        s->info.fourcc = s->open_fourcc = fourcc;
+        s->info.width = s->max_width = config->width;
+        s->info.height = s->max_height = config->height;
+        st = RTE_OK;
+    }
+    if (st == RTE_OK) {
+        s->out_format = rte_v4l2_delivered_format(s->open_fourcc, decode_to);
+        if (s->open_fourcc == V4L2_PIX_FMT_MJPEG) {
             s->decoded_size = (size_t)s->max_width * (size_t)s->max_height *
                               (decode_to == RTE_PIXEL_BGR24 ? 3 : 1);
             s->decoded = malloc(s->decoded_size);
@@ -257,7 +270,13 @@ rte_status rte_v4l2_source_open(rte_source *source, const rte_v4l2_config *confi
         v4l2_close(s);
         return st;
     }
-    describe(s, msg, msg_size);
+    if (waiting) {
+        char name[5];
+        rte_source_msg_append(msg, msg_size, "; waiting for it (sized for %s %dx%d)",
+                              rte_v4l2_fourcc_name(fourcc, name), s->max_width, s->max_height);
+    } else {
+        describe(s, msg, msg_size);
+    }
     if (info)
         *info = s->info;
     source->ops = &rte_v4l2_source_ops;

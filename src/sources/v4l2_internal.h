@@ -52,7 +52,8 @@ typedef struct v4l2_source {
     uint32_t last_delivered; /* last sequence handed out */
 
     int64_t retry_at_ns;
-    int32_t backoff_ms;
+    int32_t backoff_ms, backoff_max_ms;
+    bool streamed; /* false while a device missing at open is waited for */
     rte_source_stats stats;
 
     tjhandle tj; /* MJPEG only */
@@ -75,6 +76,8 @@ bool rte_v4l2_names_equal(const char *a, const char *b);
 int rte_v4l2_xioctl(v4l2_source *s, unsigned long request, void *arg);
 /* Closes the fd, if open; fd is -1 after. */
 void rte_v4l2_close_fd(v4l2_source *s);
+/* Once streaming: whether the driver's timestamps are CLOCK_MONOTONIC. */
+void rte_v4l2_check_timestamps(v4l2_source *s);
 
 /* ---- v4l2_negotiate.c ---- */
 
@@ -110,6 +113,9 @@ rte_status rte_v4l2_next(void *impl, rte_source_frame *out, int32_t timeout_ms, 
 
 rte_status rte_v4l2_device_lost(v4l2_source *s, const char *what, int err, char *msg,
                                 size_t msg_size);
+/* A device missing at open (cfg.wait): waited for with backoff from
+ * min_ms doubling to max_ms. */
+void rte_v4l2_wait_for_device(v4l2_source *s, int32_t min_ms, int32_t max_ms);
 rte_status rte_v4l2_reconnect(v4l2_source *s, int64_t deadline_ns, char *msg, size_t msg_size);
 
 #endif

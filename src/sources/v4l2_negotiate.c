@@ -180,8 +180,9 @@ static rte_status negotiate_format(v4l2_source *s, bool reopening, char *msg, si
     }
     if (reopening &&
         (got.fourcc != s->open_fourcc || got.width > s->max_width || got.height > s->max_height)) {
-        rte_source_msgf(msg, msg_size, "%s came back with %s %dx%d, not the %dx%d it had",
-                        s->info.path, got_name, got.width, got.height, s->max_width, s->max_height);
+        rte_source_msgf(msg, msg_size, "%s %s with %s %dx%d, not the %dx%d %s", s->info.path,
+                        s->streamed ? "came back" : "appeared", got_name, got.width, got.height,
+                        s->max_width, s->max_height, s->streamed ? "it had" : "asked for at start");
         return RTE_ERR_TOO_LARGE;
     }
     if (got.fourcc != s->cfg.fourcc || got.width != s->cfg.width || got.height != s->cfg.height) {

@@ -1,7 +1,8 @@
 /* Losing a V4L2 device and reopening it: the source reports the loss
  * once, then each next() call waits for the next attempt (within its own
  * deadline) and tries, with the delay doubling up to the configured
- * maximum. */
+ * maximum. A device missing at open (rte_v4l2_config.wait) is waited for
+ * the same way. */
 #include "sources/v4l2_internal.h"
 
 #include <string.h>
@@ -16,10 +17,19 @@ rte_status rte_v4l2_device_lost(v4l2_source *s, const char *what, int err, char 
     s->stats.state = RTE_SOURCE_RECONNECTING;
     s->stats.errors++;
     s->backoff_ms = s->cfg.reconnect_min_ms;
+    s->backoff_max_ms = s->cfg.reconnect_max_ms;
     s->retry_at_ns = s->ops->now_ns(s->ops->ctx) + (int64_t)s->backoff_ms * 1000000;
     rte_source_msgf(msg, msg_size, "%s: %s: %s; reconnecting", s->info.path, what,
                     err ? strerror(err) : "error condition");
     return RTE_ERR_DEVICE;
+}
+
+void rte_v4l2_wait_for_device(v4l2_source *s, int32_t min_ms, int32_t max_ms)
+{
+    s->stats.state = RTE_SOURCE_RECONNECTING;
+    s->backoff_ms = min_ms;
+    s->backoff_max_ms = max_ms;
+    s->retry_at_ns = s->ops->now_ns(s->ops->ctx) + (int64_t)min_ms * 1000000;
 }
 
 /* Sleeps until the next attempt (within the caller's deadline), then tries
@@ -34,20 +44,25 @@ rte_status rte_v4l2_reconnect(v4l2_source *s, int64_t deadline_ns, char *msg, si
         s->ops->poll(s->ops->ctx, NULL, 0, (int)((wake - now + 999999) / 1000000));
     now = s->ops->now_ns(s->ops->ctx);
     if (now < s->retry_at_ns) {
-        rte_source_msgf(msg, msg_size, "%s: reconnecting, next attempt in %lld ms", s->info.path,
+        rte_source_msgf(msg, msg_size, "%s: %s, next attempt in %lld ms", s->info.path,
+                        s->streamed ? "reconnecting" : "waiting for the camera",
                         (long long)((s->retry_at_ns - now + 999999) / 1000000));
         return RTE_ERR_TIMEOUT;
     }
     rte_status st = rte_v4l2_setup_device(s, true, msg, msg_size);
     if (st != RTE_OK) {
         s->stats.errors++;
-        s->backoff_ms = s->backoff_ms > s->cfg.reconnect_max_ms / 2 ? s->cfg.reconnect_max_ms
-                                                                    : 2 * s->backoff_ms;
+        s->backoff_ms =
+            s->backoff_ms > s->backoff_max_ms / 2 ? s->backoff_max_ms : 2 * s->backoff_ms;
         s->retry_at_ns = now + (int64_t)s->backoff_ms * 1000000;
         rte_source_msg_append(msg, msg_size, "; retrying in %d ms", s->backoff_ms);
         return RTE_ERR_DEVICE;
     }
     s->stats.state = RTE_SOURCE_STREAMING;
-    s->stats.reconnects++;
+    if (!s->streamed) /* the first time: not a reconnection */
+        rte_v4l2_check_timestamps(s);
+    else
+        s->stats.reconnects++;
+    s->streamed = true;
     return RTE_OK;
 }

@@ -2,7 +2,8 @@
  * publishing over memq:// (decoded by a subscriber in the same process) and
  * to file:// logs (read back with lcm_eventlog); deadline accounting;
  * damaged frames; run-time configuration (file reload, params_t); an LCM
- * log source round trip; and the heap-call count after the first frame.
+ * log source round trip; a camera missing at start waited for; and the
+ * heap-call count after the first frame (with systemd's notifications on).
  *   test_daemon BUILD_DIR   (BUILD_DIR holds road_straight.{y4m,csv}) */
 #include <math.h>
 #include <poll.h>
@@ -12,8 +13,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/un.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 #include <lcm/eventlog.h>
@@ -709,9 +713,80 @@ static void test_path_errors(void **state)
     rtedge_status_t_decode_cleanup(&s.last_status);
 }
 
+/* A camera missing at start: without source.wait rtedged cannot start;
+ * with it the daemon opens, sized for the size asked, and its steps go on
+ * with the status message saying the source is not there. */
+static void test_camera_waited_for(void **state)
+{
+    rted_config c;
+    base_config(&c, "/dev/video99", "memq://");
+    c.wait_camera = false;
+    rted_daemon *d;
+    char msg[RTED_MSG];
+    assert_false(rted_daemon_open(&d, &c, NULL, msg, sizeof msg));
+    assert_non_null(strstr(msg, "cannot open v4l2 source /dev/video99"));
+    c.wait_camera = true;
+    c.width = 320;
+    c.height = 240;
+    d = open_daemon(&c, NULL);
+    assert_int_equal(d->width, 320);
+    static seen s;
+    memset(&s, 0, sizeof s);
+    lcm_t *lcm = rted_daemon_lcm(d);
+    lcm_subscription_t *sub = lcm_subscribe(lcm, "RTEDGE_STATUS", on_message, &s);
+    /* 0.8 s: the first try after 0.5 s fails */
+    for (int i = 0; i < 8; i++)
+        assert_int_equal(rted_daemon_step(d), RTED_STEP_IDLE);
+    rted_daemon_publish_status(d);
+    drain(lcm);
+    assert_true(s.statuses >= 1);
+    assert_int_equal(s.last_status.source_state, RTEDGE_STATUS_T_SOURCE_RECONNECTING);
+    assert_int_equal(s.last_status.frames_received, 0);
+    assert_int_equal(s.last_status.source_reconnects, 0);
+    rte_source_stats ss;
+    rte_source_get_stats(&d->source, &ss);
+    assert_true(ss.errors >= 1); /* a try was made */
+    rtedge_status_t_decode_cleanup(&s.last_status);
+    lcm_unsubscribe(lcm, sub);
+    rted_daemon_close(d);
+}
+
+/* systemd's notification socket, as a service has it (NOTIFY_SOCKET, a
+ * watchdog ping at most every millisecond): the daemon opens it when
+ * NOTIFY_SOCKET is set. */
+static int notify_listen(const char *file)
+{
+    int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_NONBLOCK, 0);
+    assert_true(fd >= 0);
+    struct sockaddr_un a = {.sun_family = AF_UNIX};
+    assert_true(strlen(file) < sizeof a.sun_path);
+    memcpy(a.sun_path, file, strlen(file) + 1);
+    unlink(file);
+    assert_int_equal(bind(fd, (struct sockaddr *)&a, sizeof a), 0);
+    char pid[24];
+    snprintf(pid, sizeof pid, "%d", (int)getpid());
+    setenv("NOTIFY_SOCKET", file, 1);
+    setenv("WATCHDOG_USEC", "2000", 1);
+    setenv("WATCHDOG_PID", pid, 1);
+    return fd;
+}
+
+/* The datagrams waiting: how many start with prefix. */
+static int notify_count(int fd, const char *prefix)
+{
+    char buf[512];
+    ssize_t r;
+    int n = 0;
+    while ((r = recv(fd, buf, sizeof buf - 1, 0)) > 0) {
+        buf[r] = 0;
+        n += !strncmp(buf, prefix, strlen(prefix));
+    }
+    return n;
+}
+
 /* 1000 frames, looped, as fast as possible, lane and grasp paths, status
- * messages (and the frames recorded: record != NULL): no heap call after
- * the first frame. */
+ * messages (and the frames recorded: record != NULL), systemd's
+ * notifications: no heap call after the first frame. */
 static void heap_run(const char *url, bool images, const char *record)
 {
     char y4m[512];
@@ -732,8 +807,17 @@ static void heap_run(const char *url, bool images, const char *record)
     c.params_state_period_ms = 100;
     if (record)
         snprintf(c.record_path, sizeof c.record_path, "%s", record);
+    char sock[100], cwd[64] = "";
+    /* NOTIFY_SOCKET is absolute, and a socket path is short */
+    if (build_dir[0] != '/')
+        assert_non_null(getcwd(cwd, sizeof cwd));
+    snprintf(sock, sizeof sock, "%s/rtedged-notify-%d", cwd[0] ? cwd : "/tmp", (int)getpid());
+    const int notify_fd = notify_listen(sock);
     rted_daemon *d = open_daemon(&c, NULL);
+    unsetenv("NOTIFY_SOCKET");
     assert_int_equal(rted_daemon_step(d), RTED_STEP_FRAME);
+    assert_int_equal(notify_count(notify_fd, "READY=1\nSTATUS=streaming"), 1);
+    const uint64_t notified0 = d->notify.sent + d->notify.failed;
     rted_counters n0;
     rted_daemon_get_counters(d, &n0);
     heapcount_reset();
@@ -748,7 +832,16 @@ static void heap_run(const char *url, bool images, const char *record)
     heapcount_get(&hc);
     rted_counters n;
     rted_daemon_get_counters(d, &n);
+    const uint64_t notified = d->notify.sent + d->notify.failed - notified0;
     rted_daemon_close(d);
+    /* (the socket's queue may have filled: failed sends are dropped) */
+    const int pings = notify_count(notify_fd, "WATCHDOG=1");
+    close(notify_fd);
+    unlink(sock);
+    print_message("%s: %llu notifications in the counted steps, %d watchdog pings received\n", url,
+                  (unsigned long long)notified, pings);
+    assert_true(pings >= 1);
+    assert_true(notified >= n.status_sent);
     assert_int_equal(n.processed, 1000);
     print_message("%s: 999 frames, %llu messages (%llu debug overlays), %llu status, %llu "
                   "param states, %llu rewinds: %llu heap calls (malloc %llu calloc %llu realloc "
@@ -812,6 +905,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_run_latency),
         cmocka_unit_test(test_loop_without_good_frame),
         cmocka_unit_test(test_path_errors),
+        cmocka_unit_test(test_camera_waited_for),
         cmocka_unit_test(test_no_heap_calls_file),
         cmocka_unit_test(test_no_heap_calls_memq),
     };
