@@ -10,6 +10,7 @@ RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}"
     libcmocka-dev libopencv-dev python3-opencv python3-numpy  # unit and oracle suites
     clang-format                           # the build suite's format check
     systemd                                # the build suite: systemd-analyze on the unit
+    groff-base man-db bash-completion      # the build suite's man page and completion checks
     liblcm-java default-jdk-headless iproute2 util-linux ffmpeg  # LCM: Java types, udpm in a netns, Y4M
     libcamera-tools v4l-utils qemu-system-x86 busybox-static make xz-utils  # the camera VM suite
     python3-aiohttp python3-selenium chromium chromium-driver)  # rtedge-web in a real browser

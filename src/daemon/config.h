@@ -173,6 +173,11 @@ bool rted_config_save(const rted_config *c, const char *path, char *buf, size_t 
                       size_t why_size);
 /* The documented default file: every key with help, range and default. */
 void rted_config_print_help(FILE *f);
+/* The key table as JSON (`--help-config=json`): {"keys": [{"section", "key",
+ * "type" (int, real, bool, text, choice), "runtime", "default", "unit",
+ * "min", "max" (numbers), "unset" (a value meaning "the default", where a
+ * key has one), "max_length" (text), "choices" (choice), "help"}, ...]}. */
+void rted_config_print_json(FILE *f);
 /* FNV-1a of the printed configuration's values. */
 uint64_t rted_config_hash(const rted_config *c);
 /* true and the name of the first fixed (start-up only) key whose value differs. */

@@ -1,5 +1,6 @@
 /* The configuration as text: `--check-config`'s values, the commented
- * rtedged.conf of `--help-config`, `--dump-config` and params_t's save. */
+ * rtedged.conf of `--help-config`, `--dump-config` and params_t's save, and
+ * the key table as JSON (`--help-config=json`). */
 #include "config_table.h"
 
 #include <stdarg.h>
@@ -129,4 +130,58 @@ void rted_config_print_help(FILE *f)
     fputs(header, f);
     fwrite(buf, 1, t.n, f);
     free(buf);
+}
+
+/* s as a JSON string. */
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c == '\n')
+            fputs("\\n", f);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+void rted_config_print_json(FILE *f)
+{
+    static const char *const types[] = {"int", "real", "bool", "text", "choice"};
+    fputs("{\"keys\": [", f);
+    for (size_t i = 0; rted_config_key_at(i); i++) {
+        const rted_key *k = rted_config_key_at(i);
+        fprintf(f, "%s\n  {\"section\": ", i ? "," : "");
+        json_string(f, k->section);
+        fputs(", \"key\": ", f);
+        json_string(f, k->key);
+        fprintf(f, ", \"type\": \"%s\", \"runtime\": %s, \"default\": ", types[k->type],
+                k->runtime ? "true" : "false");
+        json_string(f, k->def);
+        fputs(", \"unit\": ", f);
+        json_string(f, k->unit);
+        if (k->type == RTED_KEY_INT || k->type == RTED_KEY_REAL)
+            fprintf(f, ", \"min\": %.17g, \"max\": %.17g", k->min, k->max);
+        if (k->has_unset)
+            fprintf(f, ", \"unset\": %.17g", k->unset);
+        if (k->type == RTED_KEY_TEXT)
+            fprintf(f, ", \"max_length\": %zu", k->size - 1);
+        if (k->type == RTED_KEY_CHOICE) {
+            fputs(", \"choices\": [", f);
+            for (int32_t j = 0; k->choices[j]; j++) {
+                fputs(j ? ", " : "", f);
+                json_string(f, k->choices[j]);
+            }
+            fputc(']', f);
+        }
+        fputs(", \"help\": ", f);
+        json_string(f, k->help);
+        fputc('}', f);
+    }
+    fputs("\n]}\n", f);
 }

@@ -50,6 +50,7 @@ static void usage(FILE *f)
           "                      rtedged.conf to FILE ('-': stdout), exit 0 (1: not\n"
           "                      written, 2: a bad configuration)\n"
           "  --help-config       print every key with its help, range and default\n"
+          "  --help-config=json  the same as JSON: type, range, unit, default, help\n"
           "  --version           print the version and the git revision, exit 0\n"
           "  --bench             run, then print latency p50/p99/max and peak RSS\n"
           "Signals: SIGINT/SIGTERM finish the frame, publish a final status and exit 0;\n"
@@ -84,6 +85,10 @@ static int print_option(const char *a)
     }
     if (!strcmp(a, "--help-config")) {
         rted_config_print_help(stdout);
+        return 0;
+    }
+    if (!strcmp(a, "--help-config=json")) {
+        rted_config_print_json(stdout);
         return 0;
     }
     if (!strcmp(a, "--list-cameras")) {

@@ -55,6 +55,14 @@ if [ -x "$root/bin/rtedged" ]; then
     for lcm in "$root"/share/rtedge/lcmtypes/*.lcm; do
         [ -f "$lcm" ] || fail "no LCM type definitions installed"
     done
-    echo "ok: rtedged, ${conf#"$dest"}, the unit and $(ls "$root"/share/rtedge/lcmtypes | wc -l) LCM types installed"
+    for f in share/man/man8/rtedged.8 share/man/man5/rtedged.conf.5 \
+        share/bash-completion/completions/rtedged; do
+        [ -f "$root/$f" ] || fail "$f not installed"
+    done
+    echo "ok: rtedged, ${conf#"$dest"}, the unit, its man pages, completion and $(ls "$root"/share/rtedge/lcmtypes | wc -l) LCM types installed"
 fi
+# rtedge's man page and bash completion.
+for f in share/man/man1/rtedge.1 share/bash-completion/completions/rtedge; do
+    [ -f "$root/$f" ] || fail "$f not installed"
+done
 echo "ok: librtedge ($nsymbols symbols), $nheaders headers and rtedge.pc installed under $prefix; a program built with them runs"
