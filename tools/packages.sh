@@ -13,7 +13,8 @@ RTE_TEST_PACKAGES=("${RTE_BUILD_PACKAGES[@]}"
     groff-base man-db bash-completion      # the build suite's man page and completion checks
     liblcm-java default-jdk-headless iproute2 util-linux ffmpeg  # LCM: Java types, udpm in a netns, Y4M
     libcamera-tools v4l-utils qemu-system-x86 busybox-static make xz-utils  # the camera VM suite
-    python3-aiohttp python3-selenium chromium chromium-driver)  # rtedge-web in a real browser
+    python3-aiohttp python3-selenium chromium chromium-driver  # rtedge-web in a real browser
+    default-jre libjchart2d-java xvfb x11-utils fonts-dejavu-core)  # tools/rtedge-spy on Xvfb
 # The fuzz stage of tools/test and tools/fuzz: Debian's clang and its
 # runtime (libFuzzer, ASan, UBSan), and how build/fuzz is configured
 # (CC=clang CXX=clang++): every library instrumented, the fuzz targets
