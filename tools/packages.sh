@@ -30,6 +30,15 @@ RTE_FUZZ_SETUP=(-Dfuzz=true -Dtests=false -Doracle=disabled -Dlibcamera=disabled
 RTE_AARCH64_PACKAGES=(gcc-aarch64-linux-gnu qemu-user
     libcmocka-dev:arm64 libspng-dev:arm64 libturbojpeg0-dev:arm64 zlib1g-dev:arm64)
 
+# The package stage of tools/test (tests/packages/check_debs.sh): Debian's
+# packaging tools, and for the arm64 packages the cross toolchain and the
+# target's build dependencies (pkgconf:arm64 gives aarch64-linux-gnu-pkg-config).
+RTE_DEB_PACKAGES=(dpkg-dev debhelper dh-python lintian python3 systemd default-jdk-headless
+    liblcm-java liblcm-bin liblcm-dev libglib2.0-dev libcamera-dev libspng-dev
+    libturbojpeg0-dev libjpeg62-turbo-dev qemu-user)
+RTE_DEB_ARM64_PACKAGES=(crossbuild-essential-arm64 pkgconf:arm64 libspng-dev:arm64
+    libturbojpeg0-dev:arm64)
+
 rte_install_packages() {
     local missing=() p
     for p in "$@"; do

@@ -62,7 +62,7 @@ if [ -x "$root/bin/rtedged" ]; then
     echo "ok: rtedged, ${conf#"$dest"}, the unit, its man pages, completion and $(ls "$root"/share/rtedge/lcmtypes | wc -l) LCM types installed"
     grep -q '^net.core.rmem_default = ' "$root/lib/sysctl.d/60-rtedge-lcm.conf" ||
         fail "no receive buffers in $root/lib/sysctl.d/60-rtedge-lcm.conf"
-    if [ -f "$root/share/java/rtedge_lcmtypes.jar" ]; then
+    if [ -f "$root/share/java/rtedge-lcmtypes.jar" ]; then
         [ -x "$root/bin/rtedge-spy" ] || fail "no rtedge-spy beside the Java types"
         # Past lcm.jar and the installed types jar, it stops at Java or the display.
         DISPLAY= "$root/bin/rtedge-spy" 2>&1 | grep -q -E 'no display|java not found|headless Java' ||

@@ -66,8 +66,8 @@ RTEDGE_DEBUG image_t'
 missing=x
 # Java's start on a loaded 2-core machine (the suites run side by side) can
 # take tens of seconds: wait up to a minute.
-end=$((SECONDS + 60))
-while [ "$SECONDS" -lt "$end" ]; do
+end=$(($(date +%s) + 60))
+while [ "$(date +%s)" -lt "$end" ]; do
     kill -0 "$spy" 2>/dev/null || fail "rtedge-spy exited"
     if [ -f "$OUT/table.txt" ] && xwininfo -root -tree | grep -q '"LCM Spy"'; then
         missing=$(echo "$expect" | while read -r ch type; do

@@ -1,7 +1,7 @@
 // Reads an rtedge LCM log with LCM's Java log reader (lcm.jar) and the
-// generated Java types (rtedge_lcmtypes.jar): each message decodes and
+// generated Java types (rtedge-lcmtypes.jar): each message decodes and
 // re-encodes to the same bytes.
-//   java -cp lcm.jar:rtedge_lcmtypes.jar ReadLog.java LOG
+//   java -cp lcm.jar:rtedge-lcmtypes.jar ReadLog.java LOG
 import java.io.ByteArrayOutputStream;
 import java.io.DataOutputStream;
 import java.util.Arrays;
