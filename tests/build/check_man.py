@@ -8,16 +8,24 @@ and groff), and none is stale against the programs:
   channel key's default name under LCM CHANNELS;
 - rtedged.conf.5: every key of `rtedged --help-config` is under its
   section's heading with its default, and the page's example is a
-  configuration rtedged accepts.
+  configuration rtedged accepts;
+- the tools' pages (rtedge-subscribe.1, rtedge-render-log.1, rtedge-web.1,
+  rtedge-spy.1): every option of the tool's --help, and every choice of
+  an option, is under OPTIONS; every environment variable its source reads
+  is under ENVIRONMENT; SEE ALSO names rtedged(8), rtedge(1) and each other
+  tool. A tool that cannot start for want of a Python module (aiohttp,
+  cv2) is noted and its options are not checked.
 
 It also checks `rtedged --help-config=json`, which the page is made from,
 against `--help-config`: the same keys in the same order with the same
 help, type, range, default and runtime mark.
 
-    check_man.py RTEDGE RTEDGED|'' PAGE...
+    check_man.py RTEDGE RTEDGED|'' [--tool PAGE=PROGRAM]... PAGE...
 
-In a cross build meson test sets MESON_EXE_WRAPPER (qemu-user): the
-programs run through it.
+(--tool rtedge-web.1=src/web/rtedge-web: the page's program, Python run
+with /usr/bin/python3, or a shell script.) In a cross build meson test sets
+MESON_EXE_WRAPPER (qemu-user): rtedge and rtedged run through it, the
+tools (scripts) do not.
 """
 import json
 import os
@@ -108,6 +116,62 @@ def check_rtedged(page, rtedged, keys):
     return len(options), len(channels)
 
 
+def tool_help(program):
+    """The tool's --help, or None when it lacks a Python module (noted)."""
+    with open(program, encoding='utf-8') as f:
+        python = 'python' in f.readline()
+    args = (['/usr/bin/python3'] if python else []) + [program, '--help']
+    env = dict(os.environ, COLUMNS='1000', LC_ALL='C.UTF-8')
+    r = subprocess.run(args, capture_output=True, text=True, env=env)
+    missing = re.search(r"ModuleNotFoundError: No module named '([\w.]+)'", r.stderr)
+    if r.returncode and missing:
+        print('note: %s cannot start without the Python module %s: its options are not '
+              'checked' % (os.path.basename(program), missing.group(1)))
+        return None
+    if r.returncode:
+        fail('%s --help exits %d: %s' % (program, r.returncode, r.stderr.strip()))
+        return None
+    return r.stdout
+
+
+def environment_variables(program):
+    """The variables the tool's source reads (os.environ in Python, ${X} in sh)."""
+    source = open(program, encoding='utf-8').read()
+    found = re.findall(r'os\.environ(?:\.get\(|\[)\s*["\']([A-Z][A-Z0-9_]*)', source)
+    found += re.findall(r'\$\{([A-Z][A-Z0-9_]*)', source)
+    return sorted(set(found))
+
+
+def check_tool(page, program, tools):
+    name = os.path.basename(page)
+    parts = sections(rendered(page))
+    options = parts.get('OPTIONS', '')
+    text = tool_help(program)
+    checked = []
+    if text is not None:
+        opts = sorted(set(re.findall(r'(?<![\w-])(--[a-z][\w-]*|-[a-zA-Z](?![\w-]))', text)))
+        for opt in opts:
+            if not has_word(options, opt):
+                fail('%s: the option %s of %s --help is not under OPTIONS' % (name, opt, program))
+        choices = [c for group in re.findall(r'\{([\w,-]+)\}', text) for c in group.split(',')]
+        for choice in sorted(set(choices)):
+            if not has_word(options, choice):
+                fail('%s: the choice %s of %s --help is not under OPTIONS'
+                     % (name, choice, program))
+        checked.append('%d options, %d choices' % (len(opts), len(set(choices))))
+    variables = environment_variables(program)
+    for var in variables:
+        if not has_word(parts.get('ENVIRONMENT', ''), var):
+            fail('%s: %s reads %s: it is not under ENVIRONMENT' % (name, program, var))
+    checked.append('environment: ' + (' '.join(variables) or 'none'))
+    see_also = ' '.join(parts.get('SEE ALSO', '').split())
+    for other in ['rtedged(8)', 'rtedge(1)'] + ['%s(1)' % os.path.splitext(t)[0]
+                                               for t in tools if t != name]:
+        if other not in see_also:
+            fail('%s: SEE ALSO does not name %s' % (name, other))
+    return ', '.join(checked)
+
+
 def help_config_keys(text):
     """[(section, key, comment lines, value)] of `rtedged --help-config`."""
     out, section, comments = [], None, []
@@ -190,7 +254,15 @@ def check_conf(page, rtedged, text_keys):
 
 
 def main():
-    rtedge, rtedged, pages = sys.argv[1], sys.argv[2], sys.argv[3:]
+    rtedge, rtedged, rest = sys.argv[1], sys.argv[2], sys.argv[3:]
+    tools, pages = {}, []
+    while rest:
+        if rest[0] == '--tool':
+            page, program = rest[1].split('=', 1)
+            tools[page] = program
+            rest = rest[2:]
+        else:
+            pages.append(rest.pop(0))
     if not shutil.which('groff'):
         print('SKIP: groff is not installed (Debian groff-base)')
         sys.exit(77)
@@ -206,15 +278,17 @@ def main():
             print('ok: --help-config=json: %d keys, as --help-config has them' % len(keys))
     for page in pages:
         name = os.path.basename(page)
+        before = len(failures)
         for warning in render_warnings(page):
             fail('%s: rendering warns:\n%s' % (name, warning))
-        before = len(failures)
         if name == 'rtedge.1':
             what = '%d commands and their options' % check_rtedge(page, rtedge)
         elif name == 'rtedged.8':
             what = '%d options, %d channels' % check_rtedged(page, rtedged, keys)
         elif name == 'rtedged.conf.5':
             what = '%d keys, the example' % check_conf(page, rtedged, text_keys)
+        elif name in tools:
+            what = check_tool(page, tools[name], tools)
         else:
             what = fail('%s: no checks for this page' % name)
         if len(failures) == before:

@@ -70,8 +70,10 @@ if [ -x "$root/bin/rtedged" ]; then
         echo "ok: rtedge-spy finds the installed types jar; the sysctl.d drop-in installed"
     fi
 fi
-# rtedge's man page and bash completion.
-for f in share/man/man1/rtedge.1 share/bash-completion/completions/rtedge; do
+# rtedge's and the tools' man pages, and rtedge's bash completion.
+for f in share/man/man1/rtedge.1 share/man/man1/rtedge-subscribe.1 \
+    share/man/man1/rtedge-render-log.1 share/man/man1/rtedge-web.1 share/man/man1/rtedge-spy.1 \
+    share/bash-completion/completions/rtedge; do
     [ -f "$root/$f" ] || fail "$f not installed"
 done
 echo "ok: librtedge ($nsymbols symbols), $nheaders headers and rtedge.pc installed under $prefix; a program built with them runs"
