@@ -103,8 +103,11 @@ grep -q '^ExecStart=/usr/bin/rtedged --config /etc/rtedge/rtedged.conf$' "$unit"
     grep -q '^Type=notify$' "$unit" && [ -f "$root/usr/lib/sysctl.d/60-rtedge-lcm.conf" ] &&
     ok "rtedged.service (Type=notify) runs the packaged daemon; the sysctl.d drop-in is in" ||
     bad "the unit or the sysctl.d drop-in"
-dpkg-deb --ctrl-tarfile "$work/$host"/rtedged_*.deb | tar -xOf - ./postinst | grep -q 'enable' &&
-    ok "rtedged's postinst enables the unit" || bad "rtedged's postinst does not enable the unit"
+postinst=$(dpkg-deb --ctrl-tarfile "$work/$host"/rtedged_*.deb | tar -xOf - ./postinst)
+echo "$postinst" | grep -q 'deb-systemd-helper enable' &&
+    echo "$postinst" | grep -q 'sysctl -q -p /usr/lib/sysctl.d/60-rtedge-lcm.conf' &&
+    ok "rtedged's postinst enables the unit and applies the receive buffers" ||
+    bad "rtedged's postinst"
 
 symbols=$(dpkg-deb --ctrl-tarfile "$work/$host"/librtedge0_*.deb | tar -xOf - ./symbols | grep -c '^ rte_')
 [ "$symbols" -gt 100 ] && ok "librtedge0: a symbols file of $symbols functions" || bad "librtedge0's symbols"
