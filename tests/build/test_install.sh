@@ -62,6 +62,8 @@ if [ -x "$root/bin/rtedged" ]; then
     echo "ok: rtedged, ${conf#"$dest"}, the unit, its man pages, completion and $(ls "$root"/share/rtedge/lcmtypes | wc -l) LCM types installed"
     grep -q '^net.core.rmem_default = ' "$root/lib/sysctl.d/60-rtedge-lcm.conf" ||
         fail "no receive buffers in $root/lib/sysctl.d/60-rtedge-lcm.conf"
+    grep -qx videodev "$root/lib/modules-load.d/rtedged.conf" ||
+        fail "no videodev in $root/lib/modules-load.d/rtedged.conf (the unit's DeviceAllow= needs it)"
     if [ -f "$root/share/java/rtedge-lcmtypes.jar" ]; then
         [ -x "$root/bin/rtedge-spy" ] || fail "no rtedge-spy beside the Java types"
         # Past lcm.jar and the installed types jar, it stops at Java or the display.

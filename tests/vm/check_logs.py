@@ -186,6 +186,42 @@ def check_vivid(path, decoder):
               "; " + "; ".join(problems[:5]) if problems else ""))
 
 
+def check_wait(path, decoder):
+    """rtedged started before vivid was loaded: statuses saying it waits
+    (RECONNECTING, nothing received) for the 2.5 s before the module came,
+    then frames, with no reconnection counted."""
+    name = "daemon-wait-log"
+    msgs = messages(path, decoder)
+    lanes, statuses = of_type(msgs, "lane_detection_t"), of_type(msgs, "status_t")
+    if not lanes or not statuses:
+        result(False, name, "%d lane and %d status messages" % (len(lanes), len(statuses)))
+        return
+    problems = check_headers(lanes, (640, 640), 480, "v4l2:/dev/video0", 33333)
+    segs = segments_of(msgs)
+    # segments_of starts in STREAMING: the first status opens the wait.
+    states = [s for s, seg in segs if s == RECONNECTING or seg]
+    if states != [RECONNECTING, STREAMING]:
+        problems.append("states %s: expected a wait, then streaming" % states)
+    waiting = [s for s in statuses if s.source_state == RECONNECTING]
+    first_streaming = next((s for s in statuses if s.source_state == STREAMING), None)
+    waited_ms = (first_streaming.utime - waiting[0].utime) // 1000 \
+        if waiting and first_streaming else 0
+    if any(s.frames_received for s in waiting):
+        problems.append("frames received while waiting")
+    if waited_ms < 2000:
+        problems.append("waited %d ms, the module came after 2.5 s" % waited_ms)
+    last = statuses[-1]
+    if last.source_state != STREAMING or last.source_reconnects != 0 or len(lanes) < 5 or \
+            last.frames_processed != len(lanes):
+        problems.append("final status: state %d, %d reconnects, %d processed, %d lane messages"
+                        % (last.source_state, last.source_reconnects, last.frames_processed,
+                           len(lanes)))
+    result(not problems, name,
+           "%d waiting statuses over %d ms, then %d lane messages, %d reconnects; %s%s"
+           % (len(waiting), waited_ms, len(lanes), last.source_reconnects, latency_summary(lanes),
+              "; " + "; ".join(problems[:5]) if problems else ""))
+
+
 def lane_result(m):
     """The lane path's output, without the times."""
     def lane(l):
@@ -264,7 +300,8 @@ def main():
         os.remove(os.path.join(out_dir, f))
     decoder = subscribe.Decoder(types_dir)
     files = extract_files(console, out_dir)
-    checks = [("daemon-vivid-log", ["daemon-vivid"], check_vivid),
+    checks = [("daemon-wait-log", ["daemon-wait"], check_wait),
+              ("daemon-vivid-log", ["daemon-vivid"], check_vivid),
               ("record-replay", ["record", "record-out"],
                lambda a, b, dec: check_record(a, b, rtedged, out_dir, dec)),
               ("daemon-libcamera-log", ["daemon-libcamera"], check_libcamera)]

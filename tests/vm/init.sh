@@ -1,5 +1,6 @@
 #!/bin/sh
-# /init of the camera test VM: loads vivid, runs the V4L2 source tests,
+# /init of the camera test VM: starts rtedged on a camera not there yet,
+# loads vivid (the daemon must stream then), runs the V4L2 source tests,
 # then rtedged itself on vivid (with faults injected while it runs, and a
 # recording), loads vimc (built out of tree), runs the libcamera source test
 # and rtedged on the libcamera camera, lists the cameras, then powers off.
@@ -106,12 +107,42 @@ daemon_record() {
 
 # Only vivid's video capture node: node_types bit 0.
 vivid_args="n_devs=1 node_types=0x1"
-if modprobe vivid $vivid_args; then
+
+# rtedged started on /dev/video0 before vivid is loaded: it must say it
+# waits for the camera and stay up (source.wait), then stream once the
+# module is loaded 2.5 s later; the host checks its log (no frames, then
+# frames, no reconnection counted). Loads vivid for the tests after it.
+daemon_wait() {
+    err=/tmp/rtedged-wait.txt
+    : >/tmp/problems
+    rtedged --source /dev/video0 --set source.width=640 --set source.height=480 \
+        --set source.format=yuyv --set publish.status_period_ms=500 \
+        --lcm-url file:///tmp/wait.lcm 2>$err &
+    pid=$!
+    wait_for "waiting for camera: /dev/video0" $err 10
+    ms_sleep 2000
+    kill -0 $pid 2>/dev/null || echo "rtedged exited while waiting" >>/tmp/problems
+    modprobe vivid $vivid_args || echo "modprobe vivid failed" >>/tmp/problems
+    wait_for "ready: v4l2:/dev/video0 streaming" $err 20 && ms_sleep 1500
+    kill -TERM $pid
+    wait $pid
+    code=$?
+    cat $err
+    send_file daemon-wait /tmp/wait.lcm
+    if [ $code -eq 0 ] && [ ! -s /tmp/problems ]; then
+        result PASS daemon-wait-run "exit 0; $(grep -c 'waiting for camera' $err) waiting lines; $(tail -n 1 $err)"
+    else
+        result FAIL daemon-wait-run "exit $code; $(tr '\n' ' ' </tmp/problems)"
+    fi
+    [ -e /sys/bus/platform/drivers/vivid ]
+}
+
+if daemon_wait; then
     vm_vivid /dev/video0 "rmmod vivid" "modprobe vivid $vivid_args"
     daemon_vivid
     daemon_record
 else
-    result FAIL vivid-load "modprobe vivid failed"
+    result FAIL vivid-load "vivid is not loaded"
 fi
 
 # libcamera lists only devices udev has initialised: without udev, an
