@@ -4,9 +4,12 @@
 # lintian on them, unpacks them (dpkg -x) and uses what they hold; then
 # cross-builds the arm64 packages with Debian's cross toolchain and runs
 # their binaries under qemu-aarch64, which must print the same bytes as the
-# amd64 ones (docs/packaging.md).
+# amd64 ones (docs/packaging.md). With VM_WORK_DIR (the vm suite's cache of
+# the kernel and Debian's packages), the .debs are also installed in the vm
+# suite's systemd guest and rtedged.service run there on vivid
+# (tests/vm/run_systemd_vm.sh).
 #
-#   check_debs.sh SOURCE_DIR WORK_DIR
+#   check_debs.sh SOURCE_DIR WORK_DIR [VM_WORK_DIR]
 #
 # Prints "ok: ..." or "FAIL: ..." per check and ends with "N passed, N
 # failed"; exits 1 on any failure.
@@ -14,6 +17,7 @@ set -uo pipefail
 
 src=$(cd "$1" && pwd)
 work=$2
+vm_work=${3:-}
 rm -rf "$work" && mkdir -p "$work" || exit 1
 work=$(cd "$work" && pwd)
 passed=0
@@ -134,6 +138,19 @@ done
     PYTHONPATH=$root/usr/lib/python3/dist-packages "$root/usr/bin/rtedge-subscribe" --help >/dev/null &&
     ok "rtedge-tools: rtedge --version, rtedge-subscribe --help; every tool in place" ||
     bad "rtedge-tools' programs"
+
+if [ -n "$vm_work" ]; then
+    echo "== the $host packages installed in a guest with systemd as PID 1 =="
+    # (run_systemd_vm.sh's BUILD_DIR is not read when it is given .debs.)
+    "$src/tests/vm/run_systemd_vm.sh" "$vm_work" "$work/$host" "$work/$host" >"$work/vm.log" 2>&1
+    status=$?
+    grep -E '^RTE-VM (PASS|FAIL)|SKIP:' "$work/vm.log" | sed 's/^/  /'
+    case $status in
+        0) ok "rtedged.service from the .debs under systemd: waits, READY, messages, watchdog restart" ;;
+        77) echo "skip: the systemd guest ($(grep -m1 SKIP: "$work/vm.log"))" ;;
+        *) bad "rtedged.service from the .debs under systemd ($work/vm.log)" ;;
+    esac
+fi
 
 echo "== arm64 packages (cross-built; LCM and libcamera left out) =="
 if ! build arm64 -a arm64 -Pcross,nocheck,pkg.rtedge.nolcm,pkg.rtedge.nolibcamera; then

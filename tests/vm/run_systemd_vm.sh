@@ -112,10 +112,12 @@ video:x:44:
 EOF
 tr -d '-' </proc/sys/kernel/random/uuid >"$root/etc/machine-id"
 printf 'ID=debian\nPRETTY_NAME="rtedge VM"\n' >"$root/etc/os-release"
+# (and SCHED_FIFO with locked memory: what the unit's capabilities are for)
 sed -i -e '/^\[source\]/,/^\[/{s/^width = .*/width = 640/;s/^height = .*/height = 480/;s/^format = .*/format = yuyv/}' \
-    -e '/^\[publish\]/,/^\[/{s|^url = .*|url = file:///var/log/rtedge/vm.lcm?mode=a|}' "$conf"
-[ "$(grep -cE '^(width = 640|height = 480|format = yuyv|url = file:///var/log/rtedge/vm.lcm\?mode=a)$' "$conf")" = 4 ] ||
-    fail "$conf: the camera's size and format and the log are not set"
+    -e '/^\[publish\]/,/^\[/{s|^url = .*|url = file:///var/log/rtedge/vm.lcm?mode=a|}' \
+    -e '/^\[realtime\]/,/^\[/{s/^priority = .*/priority = 10/;s/^mlockall = .*/mlockall = true/}' "$conf"
+[ "$(grep -cE '^(width = 640|height = 480|format = yuyv|url = file:///var/log/rtedge/vm.lcm\?mode=a|priority = 10|mlockall = true)$' "$conf")" = 6 ] ||
+    fail "$conf: the camera's size and format, the log and the realtime keys are not set"
 install -D -m 755 "$here/systemd_test.sh" "$root/usr/local/sbin/rte-vm-test"
 cat >"$root/etc/systemd/system/rte-vm-test.service" <<'EOF'
 [Unit]
@@ -148,7 +150,7 @@ boot "$work/initramfs-systemd.cpio" "$work/console-systemd.txt" \
 cat "$work/console-systemd.txt"
 
 bad=0
-verdict "$work/console-systemd.txt" systemd-wait systemd-ready systemd-sandbox systemd-messages \
-    systemd-watchdog
+verdict "$work/console-systemd.txt" systemd-wait systemd-ready systemd-sandbox systemd-realtime \
+    systemd-messages systemd-watchdog
 grep -q '^RTE-VM end' "$work/console-systemd.txt" || { echo "FAIL: the VM did not finish its tests"; bad=1; }
 exit $bad

@@ -75,6 +75,15 @@ if [ -n "$uid" ] && [ "$uid" -ne 0 ] && echo " $groups " | grep -q " 44 " &&
 else
     result FAIL systemd-sandbox "uid '$uid', groups '$groups', CapEff $caps, NoNewPrivs $(status NoNewPrivs), Seccomp $(status Seccomp)"
 fi
+# realtime.priority = 10 and realtime.mlockall = true work inside it: the
+# main thread is SCHED_FIFO (policy 1, /proc/PID/stat's 41st field) at 10,
+# and its memory is locked.
+sched=$(awk '{print $41, $40}' /proc/$pid/stat) locked=$(status VmLck | awk '{print $1}')
+if [ "$sched" = "1 10" ] && [ "${locked:-0}" -gt 0 ]; then
+    result PASS systemd-realtime "SCHED_FIFO priority 10, VmLck $locked kB"
+else
+    result FAIL systemd-realtime "policy and priority '$sched' (want '1 10'), VmLck '$locked' kB"
+fi
 
 # 3. Messages: lane messages in the LCM log (LogsDirectory), growing.
 before=$(lanes)
