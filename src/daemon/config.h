@@ -43,7 +43,7 @@ typedef struct rted_config {
     int32_t max_frames;              /* stop after this many processed frames; 0 = never */
     int32_t max_pause_ms;            /* pace = recorded: longer pauses are not waited out */
     char source_controls[RTED_TEXT]; /* v4l2: "name=value;..." */
-    bool wait_camera;                /* v4l2: a camera missing at start is waited for */
+    bool wait_camera;                /* a camera missing at start is waited for */
     char record_path[RTED_TEXT];     /* LCM log of the delivered frames; "" = none */
     /* [lane] */
     bool lane_enabled;

@@ -89,8 +89,9 @@ static const key_def keys[] = {
          "';'-separated, names as `v4l2-ctl -l` prints them (e.g. brightness=140;\n"
          "auto_exposure=1;exposure_time_absolute=100)"),
     BOOL("source", "wait", wait_camera, false, "true",
-         "v4l2: a camera missing at start is waited for (tried again after 0.5 s,\n"
-         "doubling to 8 s), with the daemon sized for width x height (0: 1280x720);\n"
+         "v4l2, libcamera: a camera missing at start is waited for (tried again\n"
+         "after 0.5 s, doubling to 8 s), with the daemon sized for width x height\n"
+         "(0: 1280x720) and, for libcamera, format (which must then be set);\n"
          "false: rtedged exits 1"),
     TEXT("source", "record", record_path, false, "",
          "write every frame the source delivers to this LCM log of image_t (the\n"

@@ -16,6 +16,7 @@
 #include "rtedge/libcamera_source.h"
 #include "rtedge/v4l2_source.h"
 #include "sources/recorded_source.h"
+#include "sources/waiting.h"
 
 static bool ends_with(const char *s, const char *suffix)
 {
@@ -98,6 +99,40 @@ static rte_status open_libcamera(rte_source *source, const rted_config *c, rte_p
     return rte_libcamera_source_open(source, &lc, &info, why, why_size);
 }
 
+/* The waiting source's opener: the configuration is the daemon's own. */
+static rte_status reopen_libcamera(void *ctx, rte_source *source, char *why, size_t why_size)
+{
+    const rted_config *c = ctx;
+    return open_libcamera(source, c, rte_pixel_format_parse(c->source_format), why, why_size);
+}
+
+/* A libcamera camera missing at start (source.wait), which has no
+ * reconnection of its own: waited for through a waiting source, announced
+ * at source.width x height (1280x720 when 0) in source.format. why holds
+ * libcamera's reason on entry. */
+static rte_status wait_for_libcamera(rted_daemon *d, rte_pixel_format fmt, char *why,
+                                     size_t why_size)
+{
+    const rted_config *c = &d->cfg;
+    if (!fmt) {
+        size_t n = strlen(why);
+        snprintf(why + n, why_size - n,
+                 "%sto wait for the camera, set source.format (its frames are sized before it "
+                 "appears)",
+                 n ? "; " : "");
+        return RTE_ERR_DEVICE;
+    }
+    rte_waiting_config wc = {.open = reopen_libcamera,
+                             .ctx = &d->cfg,
+                             .name = c->source_path,
+                             .max_width = c->width ? c->width : 1280,
+                             .max_height = c->height ? c->height : 720,
+                             .format = fmt};
+    rted_log("waiting for libcamera camera %s (%s), sized for %s %dx%d", c->source_path, why,
+             rte_pixel_format_name(fmt), wc.max_width, wc.max_height);
+    return rte_waiting_source_open(&d->source, &wc, why, why_size);
+}
+
 bool rted_open_source(rted_daemon *d, char *msg, size_t msg_size)
 {
     const rted_config *c = &d->cfg;
@@ -146,7 +181,11 @@ bool rted_open_source(rted_daemon *d, char *msg, size_t msg_size)
         break;
     }
     case RTED_SOURCE_V4L2: st = open_v4l2(&d->source, c, fourcc, why, sizeof why); break;
-    case RTED_SOURCE_LIBCAMERA: st = open_libcamera(&d->source, c, fmt, why, sizeof why); break;
+    case RTED_SOURCE_LIBCAMERA:
+        st = open_libcamera(&d->source, c, fmt, why, sizeof why);
+        if (st == RTE_ERR_DEVICE && c->wait_camera)
+            st = wait_for_libcamera(d, fmt, why, sizeof why);
+        break;
     case RTED_SOURCE_AUTO: break;
     }
     if (st != RTE_OK) {

@@ -8,10 +8,11 @@ starts the built rtedged with NOTIFY_SOCKET, WATCHDOG_USEC and WATCHDOG_PID.
      for longer than the watchdog period (systemd would act), SIGCONT brings
      them back; SIGHUP gives RELOADING=1 then READY=1; SIGTERM STOPPING=1
      and exit 0.
-  2. a camera that is not there (/dev/video99), on an abstract socket
-     address: STATUS says it is waited for with growing retries, no READY,
-     the watchdog goes on, SIGTERM ends it cleanly; stderr as the journal
-     (JOURNAL_STREAM): lines with their priority.
+  2. a camera that is not there (/dev/video99; then libcamera's camera 99),
+     on an abstract socket address: STATUS says it is waited for with
+     growing retries, no READY, the watchdog goes on, SIGTERM ends it
+     cleanly; stderr as the journal (JOURNAL_STREAM): lines with their
+     priority.
   3. WATCHDOG_PID naming another process: no pings.
 
   test_notify.py RTEDGED Y4M TMPDIR
@@ -175,18 +176,19 @@ def recording():
     os.unlink(log)
 
 
-def camera_missing():
+def camera_missing(name="/dev/video99", options=()):
     log = os.path.join(TMP, "notify-%d-cam.lcm" % os.getpid())
-    d = Daemon("cam", ["--source", "/dev/video99", "--lcm-url", "file://" + log], abstract=True,
-               journal=True)
+    d = Daemon("cam", ["--source", name, "--lcm-url", "file://" + log] + list(options),
+               abstract=True, journal=True)
     d.receive(2.3)  # tries after 0.5 and 1.5 s
     if d.proc.poll() is not None:
         fail("rtedged exited (%d) without the camera: %s" % (d.proc.returncode, d.stderr()))
     statuses = d.statuses()
-    if not statuses or statuses[0] != "waiting for camera /dev/video99":
+    if not statuses or statuses[0] != "waiting for camera " + name:
         fail("first STATUS: %r" % statuses)
-    tries = [s for s in statuses if s.startswith("waiting for camera: /dev/video99: ")]
-    if ["retrying in 1000 ms" in tries[0], "retrying in 2000 ms" in tries[1]] != [True, True]:
+    tries = [s for s in statuses if s.startswith("waiting for camera: %s: " % name)]
+    if len(tries) < 2 or [
+            "retrying in 1000 ms" in tries[0], "retrying in 2000 ms" in tries[1]] != [True, True]:
         fail("retries: %r" % tries)
     if any(m.startswith("READY=1") for _, m in d.got):
         fail("READY=1 without a camera")
@@ -198,7 +200,7 @@ def camera_missing():
     print("ok: waiting, %d watchdog pings, largest gap %.3f s" % (len(pings), max_gap(pings)))
     code = d.stop()
     err = d.stderr()
-    if code != 0 or "<4>rtedged: warning: waiting for camera: /dev/video99" not in err:
+    if code != 0 or "<4>rtedged: warning: waiting for camera: " + name not in err:
         fail("SIGTERM while waiting: exit %d: %s" % (code, err))
     for line in err.splitlines():
         if "waiting" in line:
@@ -220,7 +222,21 @@ def watchdog_elsewhere():
     os.unlink(log)
 
 
+def libcamera_built():
+    """Whether rtedged opens libcamera cameras (not RTE_ERR_UNSUPPORTED)."""
+    out = subprocess.run([RTEDGED, "--set", "source.kind=libcamera", "--source", "99",
+                          "--set", "source.wait=false", "--lcm-url", "memq://"],
+                         capture_output=True, text=True, timeout=30)
+    return "built without libcamera" not in out.stderr
+
+
 recording()
 camera_missing()
+# libcamera has no reconnection of its own: the daemon waits through a
+# waiting source (src/sources/waiting.c), with the format set.
+if libcamera_built():
+    camera_missing("99", ["--set", "source.kind=libcamera", "--set", "source.format=nv12"])
+else:
+    print("note: rtedged built without libcamera: its missing camera not tried")
 watchdog_elsewhere()
 print("ok: notify protocol")
