@@ -2,7 +2,8 @@
  * each frame's Y plane as a grey image (what the lane and tag pipelines
  * need). Chroma tags C420* (jpeg, paldv, mpeg2 and plain 420), C422, C444
  * and Cmono are understood; a missing C tag means 420, as the format says.
- * Part of rtedge_io (memory is allocated once, at open). */
+ * Memory is allocated once, at open. (`ffmpeg -i drive.mp4 -pix_fmt
+ * yuv420p drive.y4m` turns a video into one.) */
 #ifndef RTEDGE_Y4M_H
 #define RTEDGE_Y4M_H
 
@@ -31,20 +32,21 @@ typedef struct rte_y4m_info {
  * number whole and without overflow. RTE_ERR_FORMAT (not a header, a bad
  * or missing size, a bad rate) or RTE_ERR_UNSUPPORTED (interlaced, chroma
  * other than 420*, 422, 444 or mono), with the reason in why. */
-rte_status rte_y4m_parse_header(char *line, rte_y4m_info *info, char *why, size_t why_size);
+RTE_API rte_status rte_y4m_parse_header(char *line, rte_y4m_info *info, char *why, size_t why_size);
 
 /* Opens `path` and reads its header. RTE_ERR_FORMAT for a file that is not
  * YUV4MPEG2 or has no size, RTE_ERR_UNSUPPORTED for interlacing other than
  * progressive/unknown or chroma of more than 8 bits, RTE_ERR_TOO_LARGE when
  * the size exceeds max_width x max_height (<= 0: RTE_MAX_SIDE). */
-rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
-                        rte_y4m_reader **reader, rte_y4m_info *info, char *msg, size_t msg_size);
+RTE_API rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
+                                rte_y4m_reader **reader, rte_y4m_info *info, char *msg,
+                                size_t msg_size);
 /* The next frame's Y plane into dst (of the stream's size). RTE_ERR_END
  * after the last frame, RTE_ERR_TRUNCATED for a frame cut short,
  * RTE_ERR_FORMAT for a missing FRAME marker. */
-rte_status rte_y4m_read_gray(rte_y4m_reader *reader, const rte_image_u8 *dst, char *msg,
-                             size_t msg_size);
-void rte_y4m_close(rte_y4m_reader *reader);
+RTE_API rte_status rte_y4m_read_gray(rte_y4m_reader *reader, const rte_image_u8 *dst, char *msg,
+                                     size_t msg_size);
+RTE_API void rte_y4m_close(rte_y4m_reader *reader);
 
 #ifdef __cplusplus
 }

@@ -17,7 +17,7 @@
 #include "rtedge/overlay.h"
 #include "rtedge/imageio.h"
 #include "rtedge/lane.h"
-#include "io/y4m.h"
+#include "rtedge/y4m.h"
 
 typedef struct lanes_options {
     const char *overlay;

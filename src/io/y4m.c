@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/y4m.h"
+#include "rtedge/y4m.h"
 
 struct rte_y4m_reader {
     FILE *file;

@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "recorded.h"
-#include "io/y4m.h"
+#include "rtedge/y4m.h"
 
 #define Y4M_LINE_MAX 1024
 #define Y4M_READ_BUFFER (64 * 1024)

@@ -2,7 +2,7 @@
  * or damaged, a rewind) and rtedge_io's reader on the same bytes. */
 #include "fuzz_source.h"
 
-#include "io/y4m.h"
+#include "rtedge/y4m.h"
 
 #define FUZZ_MAX 64
 

@@ -43,7 +43,7 @@
 #include "rtedge/polygon_mask.h"
 #include "rtedge/shape.h"
 #include "rtedge/threshold.h"
-#include "io/y4m.h"
+#include "rtedge/y4m.h"
 
 #define GOLDEN_PI 3.14159265358979323846
 /* Rows of every image carry guard elements (an odd count, so rows start

@@ -3,8 +3,9 @@
 # the source tree as a user would (dpkg-buildpackage -b -us -uc), runs
 # lintian on them, unpacks them (dpkg -x) and uses what they hold; then
 # cross-builds the arm64 packages with Debian's cross toolchain and runs
-# their binaries under qemu-aarch64, which must print the same bytes as the
-# amd64 ones (docs/packaging.md). With VM_WORK_DIR (the vm suite's cache of
+# their binaries and the golden suite's program on their library under
+# qemu-aarch64, which must give the same bytes as the amd64 ones
+# (docs/packaging.md). With VM_WORK_DIR (the vm suite's cache of
 # the kernel and Debian's packages), the .debs are also installed in the vm
 # suite's systemd guest and rtedged.service run there on vivid
 # (tests/vm/run_systemd_vm.sh).
@@ -71,17 +72,17 @@ unpack() {
     done
 }
 
-# consumer ARCH TRIPLET: tests/build/installed_consumer.c built with
-# TRIPLET-gcc against the unpacked librtedge-dev (its rtedge.pc, resolved by
-# TRIPLET-pkg-config; the root's /usr stands in for the system's, which
-# pkg-config leaves out) into $work/ARCH/consumer.
-consumer() {
+# program ARCH TRIPLET SOURCE NAME: SOURCE built with TRIPLET-gcc against
+# the unpacked librtedge-dev (its rtedge.pc, resolved by TRIPLET-pkg-config;
+# the root's /usr stands in for the system's, which pkg-config leaves out)
+# into $work/ARCH/NAME.
+program() {
     local root=$work/$1/root triplet=$2 flags
     flags=$(PKG_CONFIG_PATH=$root/usr/lib/$triplet/pkgconfig "$triplet-pkg-config" \
         --cflags --libs rtedge) || return 1
     # shellcheck disable=SC2086
-    "$triplet-gcc" -std=c11 -Wall -Werror -o "$work/$1/consumer" "$src/tests/build/installed_consumer.c" \
-        -I"$root/usr/include" -L"$root/usr/lib/$triplet" $flags
+    "$triplet-gcc" -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Werror -o "$work/$1/$4" "$3" \
+        -I"$root/usr/include" -L"$root/usr/lib/$triplet" $flags -lm
 }
 
 echo "== $host packages =="
@@ -115,7 +116,8 @@ echo "$postinst" | grep -q 'deb-systemd-helper enable' &&
 
 symbols=$(dpkg-deb --ctrl-tarfile "$work/$host"/librtedge0_*.deb | tar -xOf - ./symbols | grep -c '^ rte_')
 [ "$symbols" -gt 100 ] && ok "librtedge0: a symbols file of $symbols functions" || bad "librtedge0's symbols"
-if consumer "$host" "$(dpkg-architecture -qDEB_HOST_GNU_TYPE)" &&
+host_triplet=$(dpkg-architecture -qDEB_HOST_GNU_TYPE)
+if program "$host" "$host_triplet" "$src/tests/build/installed_consumer.c" consumer &&
     LD_LIBRARY_PATH=$root/usr/lib/$multiarch "$work/$host/consumer" "$work/$host/step.png" >/dev/null; then
     ok "a program built against librtedge-dev runs on librtedge0"
 else
@@ -176,12 +178,36 @@ same() {
     cmp -s "$work/$name.$host.json" "$work/$name.arm64.json"
 }
 fx=$src/fixtures
+# The golden suite's program (tests/golden/golden.c: every kernel, its
+# tables and both pipelines on the fixtures, hashed) built against each
+# architecture's librtedge-dev and run on its librtedge0: the amd64 plain C
+# path writes the reference, which arm64 (NEON and plain C, under qemu) and
+# amd64 (its SIMD rows) must match.
+golden_inputs=()
+for f in solidWhiteCurve.jpg solidWhiteCurve_gray.pgm smarties.png smarties.ppm stuff.jpg \
+    solidWhiteRight_clip.y4m; do
+    golden_inputs+=("$fx/$f")
+done
+if program "$host" "$host_triplet" "$src/tests/golden/golden.c" golden &&
+    program arm64 aarch64-linux-gnu "$src/tests/golden/golden.c" golden &&
+    LD_LIBRARY_PATH=$root/usr/lib/$multiarch RTE_FORCE_C=1 "$work/$host/golden" write \
+        "$work/golden-reference.txt" "${golden_inputs[@]}" >/dev/null &&
+    LD_LIBRARY_PATH=$root/usr/lib/$multiarch "$work/$host/golden" check \
+        "$work/golden-reference.txt" "${golden_inputs[@]}" >"$work/golden.$host.log" 2>&1 &&
+    LD_LIBRARY_PATH=$aroot/usr/lib/aarch64-linux-gnu qemu "$work/arm64/golden" check \
+        "$work/golden-reference.txt" "${golden_inputs[@]}" >"$work/golden.arm64.log" 2>&1 &&
+    LD_LIBRARY_PATH=$aroot/usr/lib/aarch64-linux-gnu RTE_FORCE_C=1 qemu "$work/arm64/golden" check \
+        "$work/golden-reference.txt" "${golden_inputs[@]}" >"$work/golden.arm64-c.log" 2>&1; then
+    ok "golden: the packaged librtedge0 on arm64 (qemu; NEON and plain C) and $host: $(wc -l <"$work/golden-reference.txt") outputs alike"
+else
+    bad "golden on the packaged libraries ($work/golden.*.log)"
+fi
 same canny canny "$fx/solidWhiteCurve.jpg" --low 50 --high 150 &&
     same lanes lanes "$fx/solidWhiteCurve.jpg" --overlay &&
     same grasp grasp "$fx/stuff.jpg" --overlay &&
     ok "arm64 rtedge under qemu-aarch64: canny, lanes and grasp give the $host bytes" ||
     bad "arm64 rtedge and $host rtedge differ ($work/*.out)"
-if consumer arm64 aarch64-linux-gnu &&
+if program arm64 aarch64-linux-gnu "$src/tests/build/installed_consumer.c" consumer &&
     LD_LIBRARY_PATH=$aroot/usr/lib/aarch64-linux-gnu qemu "$work/arm64/consumer" "$work/arm64/step.png" >/dev/null; then
     ok "an arm64 program built against librtedge-dev:arm64 runs on librtedge0:arm64 (qemu)"
 else

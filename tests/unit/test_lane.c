@@ -15,7 +15,7 @@
 #include "rtedge/color.h"
 #include "rtedge/imageio.h"
 #include "rtedge/lane.h"
-#include "io/y4m.h"
+#include "rtedge/y4m.h"
 
 static const char *g_roads_dir = ".";
 

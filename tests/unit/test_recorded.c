@@ -18,7 +18,7 @@
 #include "sources/pacer.h"
 #include "publish/publish.h"
 #include "sources/recorded_source.h"
-#include "io/y4m.h"
+#include "rtedge/y4m.h"
 
 static char tmpdir[512];
 
