@@ -23,6 +23,7 @@
 
 #include "rtedge/contours.h"
 #include "rtedge/image.h"
+#include "rtedge/polygon_mask.h"
 #include "rtedge/shape.h"
 #include "rtedge/status.h"
 
@@ -44,6 +45,8 @@ typedef enum rte_grasp_polarity {
 } rte_grasp_polarity;
 
 /* Safe to change at run time (rte_grasp_set_params). */
+#define RTE_GRASP_MAX_ROI_VERTICES 8
+
 typedef struct rte_grasp_params {
     rte_grasp_binarize binarize;
     int32_t threshold; /* RTE_GRASP_FIXED: 0..255 */
@@ -51,8 +54,14 @@ typedef struct rte_grasp_params {
     int32_t canny_low, canny_high; /* RTE_GRASP_CANNY_CLOSE: L1 magnitude thresholds, 0..2040 */
     int32_t min_area;              /* pixels; smaller objects are dropped (>= 0) */
     int32_t max_area;              /* pixels; larger ones are dropped; 0 = no limit */
-    int32_t skip_border;           /* 1: drop objects touching the image border */
+    int32_t skip_border;           /* 1: drop objects touching the image or workspace border */
     int32_t max_objects;           /* 1..config.max_objects: objects reported */
+    /* The workspace: a polygon in fractions of width and height (Q16, as
+     * rte_polygon_from_fractions takes them), 3..RTE_GRASP_MAX_ROI_VERTICES
+     * vertices; objects are looked for inside it only, and one that reaches
+     * its edge touches the border. roi_count 0: the whole frame. */
+    rte_vertex roi[RTE_GRASP_MAX_ROI_VERTICES];
+    int32_t roi_count;
 } rte_grasp_params;
 
 typedef struct rte_grasp_config {

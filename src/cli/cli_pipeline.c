@@ -87,7 +87,16 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                               0,
                               0,
                               NULL,
-                              "drop objects touching the image border",
+                              "drop objects touching the image border (or the workspace's)",
+                              NULL};
+        t[n++] = (cli_option){"roi",
+                              CLI_STRING,
+                              &o->roi,
+                              0,
+                              0,
+                              NULL,
+                              "the workspace: 3..8 'x,y' fractions of width and height, "
+                              "';'-separated; objects outside it are not looked for",
                               NULL};
         t[n++] = (cli_option){"max-objects",
                               CLI_INT,
@@ -142,6 +151,11 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     p->max_area = o->max_area;
     p->skip_border = o->skip_border;
     p->max_objects = o->max_objects;
+    if (o->roi && !cli_parse_fractions(o->roi, p->roi, RTE_GRASP_MAX_ROI_VERTICES, &p->roi_count)) {
+        cli_error(command, "--roi takes 3 to %d 'x,y' fractions separated by ';', not '%s'",
+                  RTE_GRASP_MAX_ROI_VERTICES, o->roi);
+        return CLI_EXIT_USAGE;
+    }
     return CLI_EXIT_OK;
 }
 

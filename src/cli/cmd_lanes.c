@@ -37,40 +37,20 @@ typedef struct lanes_options {
 static const char *const auto_choices[] = {"none", "median", "otsu", NULL};
 static const char *const fit_choices[] = {"lsq", "theil-sen", NULL};
 
-/* "x,y;x,y;..." fractions of width and height into Q16 vertices. */
-static bool parse_roi(const char *text, rte_lane_params *p)
-{
-    int n = 0;
-    const char *s = text;
-    while (*s) {
-        char *end;
-        double fx = strtod(s, &end);
-        if (end == s || *end != ',' || n >= RTE_LANE_MAX_ROI_VERTICES)
-            return false;
-        s = end + 1;
-        double fy = strtod(s, &end);
-        if (end == s || (*end && *end != ';') || fx < -64 || fx > 64 || fy < -64 || fy > 64)
-            return false;
-        p->roi[n].x = (int32_t)(fx * RTE_POLYGON_FRACTION_ONE + (fx < 0 ? -0.5 : 0.5));
-        p->roi[n].y = (int32_t)(fy * RTE_POLYGON_FRACTION_ONE + (fy < 0 ? -0.5 : 0.5));
-        n++;
-        s = *end ? end + 1 : end;
-    }
-    p->roi_count = n;
-    return n >= 3;
-}
-
 /* The configuration for frames of w x h from the defaults and the options. */
 static int lanes_config(const char *name, const lanes_options *o, int32_t w, int32_t h,
                         rte_lane_config *cfg)
 {
     rte_lane_config_default(cfg, w, h);
     rte_lane_params *p = &cfg->params;
-    if (o->roi && !parse_roi(o->roi, p)) {
+    int n = 0;
+    if (o->roi && !cli_parse_fractions(o->roi, p->roi, RTE_LANE_MAX_ROI_VERTICES, &n)) {
         cli_error(name, "--roi takes 3 to %d 'x,y' fractions separated by ';', not '%s'",
                   RTE_LANE_MAX_ROI_VERTICES, o->roi);
         return CLI_EXIT_USAGE;
     }
+    if (o->roi)
+        p->roi_count = n;
     if (o->canny_low >= 0)
         p->canny_low = o->canny_low;
     if (o->canny_high >= 0)

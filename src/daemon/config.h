@@ -60,6 +60,7 @@ typedef struct rted_config {
     int32_t grasp_binarize, grasp_threshold, grasp_polarity;
     int32_t grasp_min_area, grasp_max_area;
     bool grasp_skip_border;
+    char grasp_roi[RTED_TEXT]; /* "": the whole frame */
     /* [publish] */
     char lcm_url[RTED_TEXT];
     char lane_channel[64], grasp_channel[64], status_channel[64];

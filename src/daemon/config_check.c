@@ -168,6 +168,12 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
                   c->lane_roi);
         return false;
     }
+    if (c->grasp_roi[0] && rted_parse_roi(c->grasp_roi, xy, RTE_GRASP_MAX_ROI_VERTICES) < 0) {
+        rted_msgf(msg, msg_size,
+                  "grasp.roi: '%s' is not 3..8 'x,y' fractions separated by ';' (or empty)",
+                  c->grasp_roi);
+        return false;
+    }
     if (c->lane_canny_low >= 0 && c->lane_canny_high >= 0 &&
         c->lane_canny_low > c->lane_canny_high) {
         rted_msgf(msg, msg_size, "lane.canny_low (%d) exceeds lane.canny_high (%d)",

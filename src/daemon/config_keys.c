@@ -152,7 +152,12 @@ static const key_def keys[] = {
     INTU("grasp", "max_area", grasp_max_area, "px²", 0, 1, 67108864, true, "0",
          "largest object, px; 0: no limit"),
     BOOL("grasp", "skip_border", grasp_skip_border, true, "false",
-         "drop objects touching the image border"),
+         "drop objects touching the image border (or the workspace's)"),
+    TEXT("grasp", "roi", grasp_roi, true, "",
+         "the workspace: 3..8 'x,y' fractions of width and height, ';'-separated\n"
+         "(e.g. 0.1,0.1;0.9,0.1;0.9,0.9;0.1,0.9); objects are looked for inside\n"
+         "it only, and one reaching its edge touches the border; empty: the\n"
+         "whole frame"),
 
     TEXT("publish", "url", lcm_url, false, "udpm://239.255.76.67:7667?ttl=0",
          "LCM URL: udpm://..., memq:// (tests), file://PATH[?mode=w|a] (a log)"),

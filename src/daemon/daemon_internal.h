@@ -107,6 +107,7 @@ struct rted_daemon {
     rtedge_segment_t *segments;
     rtedge_grasp_object_t *objects;
     rtedge_point_t roi[RTE_LANE_MAX_ROI_VERTICES];
+    rtedge_point_t grasp_roi[RTE_GRASP_MAX_ROI_VERTICES]; /* the workspace, in pixels */
     rtedge_lane_detection_t lane_msg;
     rtedge_grasp_detection_t grasp_msg;
     rtedge_image_t image_msg;

@@ -67,11 +67,17 @@ void rted_debug_publish(rted_daemon *d, const rte_source_frame *f, const rte_ima
     o.canvas = (rte_image_u8c3){w, h, w * 3, d->debug_canvas};
     rte_overlay_fill_gray(&o, gray);
     if (d->debug_layers & RTE_OVERLAY_ROI) {
+        /* the lane ROI, then the grasp path's workspace when it has one */
         rte_point roi[RTE_LANE_MAX_ROI_VERTICES];
         int32_t n = d->lane_msg.header.roi_npoints;
         for (int32_t i = 0; i < n; i++)
             roi[i] = (rte_point){d->roi[i].x, d->roi[i].y};
         rte_overlay_roi(&o, roi, n);
+        n = grasp ? d->grasp_msg.header.roi_npoints : 0;
+        for (int32_t i = 0; i < n; i++)
+            roi[i] = (rte_point){d->grasp_roi[i].x, d->grasp_roi[i].y};
+        if (n)
+            rte_overlay_roi(&o, roi, n);
     }
     if (lane)
         rte_overlay_lanes(&o, lane, d->debug_layers);

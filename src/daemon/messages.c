@@ -12,7 +12,7 @@ void rted_messages_init(rted_daemon *d)
     d->lane_msg.header.roi = d->roi;
     d->lane_msg.segments = d->segments;
     d->grasp_msg.header.source_id = d->source_id;
-    d->grasp_msg.header.roi = d->roi;
+    d->grasp_msg.header.roi = d->grasp_roi;
     d->grasp_msg.objects = d->objects;
     d->status_msg.source_id = d->source_id;
     /* the stages' names, as status_t lists them */

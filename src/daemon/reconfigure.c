@@ -63,6 +63,11 @@ void rted_grasp_params(const rted_config *c, rte_grasp_params *p)
     p->max_area = c->grasp_max_area;
     p->skip_border = c->grasp_skip_border;
     p->max_objects = c->grasp_max_objects;
+    int32_t xy[2 * RTE_GRASP_MAX_ROI_VERTICES];
+    int32_t n = c->grasp_roi[0] ? rted_parse_roi(c->grasp_roi, xy, RTE_GRASP_MAX_ROI_VERTICES) : 0;
+    p->roi_count = n > 0 ? n : 0; /* (validated before: < 0 cannot come) */
+    for (int32_t i = 0; i < p->roi_count; i++)
+        p->roi[i] = (rte_vertex){xy[2 * i], xy[2 * i + 1]};
 }
 
 void rted_derive(rted_daemon *d)
@@ -83,7 +88,13 @@ void rted_derive(rted_daemon *d)
         d->roi[i].y = (int32_t)(((int64_t)lp.roi[i].y * d->height + 32768) >> 16);
     }
     d->lane_msg.header.roi_npoints = (int16_t)lp.roi_count;
-    d->grasp_msg.header.roi_npoints = 0;
+    rte_grasp_params gp = {0};
+    rted_grasp_params(c, &gp);
+    for (int32_t i = 0; i < gp.roi_count; i++) {
+        d->grasp_roi[i].x = (int32_t)(((int64_t)gp.roi[i].x * d->width + 32768) >> 16);
+        d->grasp_roi[i].y = (int32_t)(((int64_t)gp.roi[i].y * d->height + 32768) >> 16);
+    }
+    d->grasp_msg.header.roi_npoints = (int16_t)gp.roi_count;
 }
 
 bool rted_daemon_apply(rted_daemon *d, const rted_config *next, char *msg, size_t msg_size)

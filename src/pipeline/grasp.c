@@ -15,16 +15,24 @@ rte_status rte_grasp_check_params(const rte_grasp_config *c, const rte_grasp_par
 {
     if (!c || !p)
         return RTE_ERR_ARGUMENT;
-    const int ok = (p->binarize == RTE_GRASP_OTSU || p->binarize == RTE_GRASP_FIXED ||
-                    p->binarize == RTE_GRASP_CANNY_CLOSE) &&
-                   p->threshold >= 0 && p->threshold <= 255 &&
-                   (p->polarity == RTE_GRASP_AUTO || p->polarity == RTE_GRASP_DARK ||
-                    p->polarity == RTE_GRASP_BRIGHT) &&
-                   p->canny_low >= 0 && p->canny_low <= CANNY_MAX && p->canny_high >= 0 &&
-                   p->canny_high <= CANNY_MAX && p->min_area >= 0 && p->max_area >= 0 &&
-                   (p->skip_border == 0 || p->skip_border == 1) && p->max_objects >= 1 &&
-                   p->max_objects <= c->max_objects;
-    return ok ? RTE_OK : RTE_ERR_ARGUMENT;
+    const int ok =
+        (p->binarize == RTE_GRASP_OTSU || p->binarize == RTE_GRASP_FIXED ||
+         p->binarize == RTE_GRASP_CANNY_CLOSE) &&
+        p->threshold >= 0 && p->threshold <= 255 &&
+        (p->polarity == RTE_GRASP_AUTO || p->polarity == RTE_GRASP_DARK ||
+         p->polarity == RTE_GRASP_BRIGHT) &&
+        p->canny_low >= 0 && p->canny_low <= CANNY_MAX && p->canny_high >= 0 &&
+        p->canny_high <= CANNY_MAX && p->min_area >= 0 && p->max_area >= 0 &&
+        (p->skip_border == 0 || p->skip_border == 1) && p->max_objects >= 1 &&
+        p->max_objects <= c->max_objects &&
+        (p->roi_count == 0 || (p->roi_count >= 3 && p->roi_count <= RTE_GRASP_MAX_ROI_VERTICES));
+    if (!ok)
+        return RTE_ERR_ARGUMENT;
+    for (int32_t i = 0; i < p->roi_count; i++)
+        if (p->roi[i].x < -RTE_POLYGON_MAX_FRACTION || p->roi[i].x > RTE_POLYGON_MAX_FRACTION ||
+            p->roi[i].y < -RTE_POLYGON_MAX_FRACTION || p->roi[i].y > RTE_POLYGON_MAX_FRACTION)
+            return RTE_ERR_ARGUMENT;
+    return RTE_OK;
 }
 
 rte_status rte_grasp_set_params(rte_grasp_ctx *ctx, const rte_grasp_params *params)
@@ -32,8 +40,10 @@ rte_status rte_grasp_set_params(rte_grasp_ctx *ctx, const rte_grasp_params *para
     if (!ctx)
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_grasp_check_params(&ctx->config, params);
-    if (st == RTE_OK)
+    if (st == RTE_OK) {
         ctx->params = *params;
+        ctx->workspace_w = ctx->workspace_h = 0; /* the mask is rebuilt on the next frame */
+    }
     return st;
 }
 
@@ -114,6 +124,51 @@ static rte_status binarize(rte_grasp_ctx *ctx, const rte_image_u8 *src, rte_imag
     return rte_threshold_u8(src, bin, &tp, NULL);
 }
 
+/* The workspace's mask for a w x h frame, built when the parameters or the
+ * size changed, then applied: nothing outside the workspace is an object. */
+static rte_status keep_workspace(rte_grasp_ctx *ctx, rte_image_u8 *bin)
+{
+    const rte_grasp_params *p = &ctx->params;
+    rte_image_u8 mask = sub(&ctx->workspace, bin->width, bin->height);
+    if (ctx->workspace_w != bin->width || ctx->workspace_h != bin->height) {
+        rte_vertex px[RTE_GRASP_MAX_ROI_VERTICES];
+        rte_status st =
+            rte_polygon_from_fractions(p->roi, p->roi_count, bin->width, bin->height, px);
+        rte_polygon poly = {px, p->roi_count};
+        size_t mark = rte_arena_mark(&ctx->arena);
+        if (st == RTE_OK)
+            st = rte_polygon_mask_build(&mask, &poly, 1, &ctx->arena);
+        rte_arena_reset(&ctx->arena, mark);
+        if (st != RTE_OK)
+            return st;
+        ctx->workspace_w = bin->width;
+        ctx->workspace_h = bin->height;
+    }
+    return rte_polygon_mask_apply(bin, &mask, bin);
+}
+
+/* Whether an object reaches the edge of the frame or, with a workspace, a
+ * pixel outside it (a 4-neighbour of a contour point off the mask): it may
+ * go on beyond what is seen. */
+static bool touches_border(const rte_grasp_ctx *ctx, const rte_point *pts, int32_t n, int32_t w,
+                           int32_t h)
+{
+    const rte_rect r = rte_shape_bounding_rect(pts, n);
+    if (r.x == 0 || r.y == 0 || r.x + r.width == w || r.y + r.height == h)
+        return true;
+    if (!ctx->params.roi_count)
+        return false;
+    const rte_image_u8 mask = sub(&ctx->workspace, w, h);
+    for (int32_t i = 0; i < n; i++) {
+        const uint8_t *row = rte_u8_row(&mask, pts[i].y);
+        if (!row[pts[i].x - 1] || !row[pts[i].x + 1] ||
+            !rte_u8_row(&mask, pts[i].y - 1)[pts[i].x] ||
+            !rte_u8_row(&mask, pts[i].y + 1)[pts[i].x])
+            return true;
+    }
+    return false;
+}
+
 /* Keeps the `cap` largest candidates in best[] (largest first; equal areas
  * in contour order). Returns the new count; *dropped counts the rest. */
 static int32_t keep_largest(grasp_candidate *best, int32_t n, int32_t cap, grasp_candidate c,
@@ -183,6 +238,8 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
     out->binary = &ctx->binary;
     if (st == RTE_OK)
         st = binarize(ctx, src, &bin, out);
+    if (st == RTE_OK && p->roi_count)
+        st = keep_workspace(ctx, &bin);
     const int64_t t2 = rte_clock_now_ns();
 
     if (st == RTE_OK)
@@ -205,11 +262,8 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
         a2 = a2 < 0 ? -a2 : a2;
         if (a2 < min2 || (max2 > 0 && a2 > max2))
             continue;
-        if (p->skip_border) {
-            const rte_rect r = rte_shape_bounding_rect(pts, c->count);
-            if (r.x == 0 || r.y == 0 || r.x + r.width == w || r.y + r.height == h)
-                continue;
-        }
+        if (p->skip_border && touches_border(ctx, pts, c->count, w, h))
+            continue;
         n_best =
             keep_largest(ctx->best, n_best, p->max_objects, (grasp_candidate){a2, i}, &dropped);
     }
@@ -221,9 +275,8 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
         st = rte_shape_classify(cs->points + c->offset, c->count, &o->info, &ctx->arena);
         if (st != RTE_OK)
             break;
-        const rte_rect r = o->info.bounds;
         o->contour = ctx->best[k].contour;
-        o->touches_border = r.x == 0 || r.y == 0 || r.x + r.width == w || r.y + r.height == h;
+        o->touches_border = touches_border(ctx, cs->points + c->offset, c->count, w, h);
         grasp_of(o);
         n++;
     }

@@ -59,6 +59,7 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
     s = max_size(s, rte_canny_scratch_size(w, h, 3));
     s = max_size(s, rte_morphology_scratch_size(w, h, e, c->close_iterations));
     s = max_size(s, rte_contours_scratch_size(w, h, c->max_contours));
+    s = max_size(s, rte_polygon_mask_scratch_size(RTE_GRASP_MAX_ROI_VERTICES));
     return max_size(s, rte_shape_classify_scratch_size(c->max_points));
 }
 
@@ -68,6 +69,7 @@ static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *
 {
     const size_t image = (size_t)c->max_width * (size_t)c->max_height;
     const size_t sizes[] = {
+        image,
         image,
         image,
         image,
@@ -87,13 +89,14 @@ static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *
         ctx->blurred = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[0]};
         ctx->edges = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[1]};
         ctx->binary = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[2]};
-        ctx->contours.points = (rte_point *)(void *)at[3];
-        ctx->contours.contours = (rte_contour *)(void *)at[4];
+        ctx->workspace = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[3]};
+        ctx->contours.points = (rte_point *)(void *)at[4];
+        ctx->contours.contours = (rte_contour *)(void *)at[5];
         ctx->contours.max_points = c->max_points;
         ctx->contours.max_contours = c->max_contours;
-        ctx->best = (grasp_candidate *)(void *)at[5];
-        ctx->objects = (rte_grasp_object *)(void *)at[6];
-        rte_arena_init(&ctx->arena, at[7], arena_bytes);
+        ctx->best = (grasp_candidate *)(void *)at[6];
+        ctx->objects = (rte_grasp_object *)(void *)at[7];
+        rte_arena_init(&ctx->arena, at[8], arena_bytes);
     }
     return off + RTE_ARENA_ALIGN; /* room to align the block's start */
 }

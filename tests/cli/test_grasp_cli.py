@@ -162,7 +162,20 @@ def grasp_json():
         check(r.returncode == 0 and cv2.imread(os.path.join(tmp, "s.ppm")) is not None, "shapes overlay .ppm")
         r = run("grasp", os.path.join(OBJECTS, "pic1.png"), "--overlay", os.path.join(tmp, "no", "x.png"))
         check(r.returncode == 1, f"unwritable overlay: exit {r.returncode}")
-    for bad in (["--binarize", "foo"], ["--binarize", "300"], ["--blur", "4"], ["--polarity", "up"]):
+    # --roi: a workspace over the right half of pic1; only objects inside it,
+    # and the tilted rectangle (x ~318) found where it was found without one
+    src = cv2.imread(os.path.join(OBJECTS, "pic1.png"))
+    r = run("grasp", os.path.join(OBJECTS, "pic1.png"), "--roi", "0.5,0;1,0;1,1;0.5,1")
+    check(r.returncode == 0, f"grasp --roi: exit {r.returncode} {r.stderr}")
+    if r.returncode == 0 and src is not None:
+        inside = json.loads(r.stdout)["objects"]
+        half = src.shape[1] / 2
+        check(inside and all(min(x for x, _ in o["box"]) >= half - 1 for o in inside),
+              f"grasp --roi: objects outside the workspace: {[o['center'] for o in inside]}")
+        t = [o for o in inside if math.hypot(o["center"][0] - 318, o["center"][1] - 112) < 3]
+        check(len(t) == 1 and abs(t[0]["angle"] + 33) < 3, f"grasp --roi: tilted rectangle {t}")
+    for bad in (["--binarize", "foo"], ["--binarize", "300"], ["--blur", "4"], ["--polarity", "up"],
+                ["--roi", "0.5,0;1,0"], ["--roi", "a,b;c,d;e,f"]):
         r = run("grasp", os.path.join(OBJECTS, "pic1.png"), *bad)
         check(r.returncode == 2, f"grasp {bad}: exit {r.returncode}, expected 2")
     r = run("grasp", "/nonexistent.png")

@@ -41,8 +41,9 @@ static void path(char *out, size_t size, const char *name)
 
 typedef struct seen {
     int lanes, grasps, statuses, images;
-    int grasp_ok;   /* grasp messages whose objects match the drawn ones */
-    int lane_match; /* lane messages within tolerance of the CSV */
+    int grasp_ok;     /* grasp messages whose objects match the drawn ones */
+    int workspace_ok; /* with grasp.roi: only the object inside, and the ROI in the header */
+    int lane_match;   /* lane messages within tolerance of the CSV */
     int lane_checked;
     int deadline_met;
     int64_t last_sequence;
@@ -76,6 +77,20 @@ static void check_grasp(seen *s, const rtedge_grasp_detection_t *m)
     }
     if (ok == 2)
         s->grasp_ok++;
+}
+
+/* workspace_config's run: object 1 is inside the workspace, object 0 left
+ * of it; the header carries the workspace in pixels. */
+static void check_workspace(seen *s, const rtedge_grasp_detection_t *m)
+{
+    rect r[2];
+    objects_at((int)m->header.sequence, r);
+    if (m->header.roi_npoints != 4 || m->header.roi[0].x != 88 || m->header.roi[0].y != 36 ||
+        m->nobjects != 1)
+        return;
+    const double cx = r[1].x0 + (r[1].w - 1) / 2.0, cy = r[1].y0 + (r[1].h - 1) / 2.0;
+    if (near(m->objects[0].centroid_x, cx, 0.75) && near(m->objects[0].centroid_y, cy, 0.75))
+        s->workspace_ok++;
 }
 
 static void check_lane(seen *s, const rtedge_lane_detection_t *m)
@@ -127,6 +142,7 @@ static void on_message(const lcm_recv_buf_t *rb, const char *channel, void *user
         assert_true(rtedge_grasp_detection_t_decode(rb->data, 0, (int)rb->data_size, &m) > 0);
         s->grasps++;
         check_grasp(s, &m);
+        check_workspace(s, &m);
         rtedge_grasp_detection_t_decode_cleanup(&m);
     } else if (!strcmp(channel, "RTEDGE_STATUS")) {
         rtedge_status_t m;
@@ -255,6 +271,23 @@ static void test_memq_objects(void **state)
     assert_int_equal(s.grasps, 20);
     assert_int_equal(s.images, 20);
     assert_int_equal(s.grasp_ok, 20);
+    rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
+static void workspace_config(rted_config *c)
+{
+    snprintf(c->grasp_roi, sizeof c->grasp_roi, "0.55,0.3;0.95,0.3;0.95,0.95;0.55,0.95");
+}
+
+/* grasp.roi: objects outside the workspace are not reported. */
+static void test_grasp_workspace(void **state)
+{
+    static seen s;
+    rted_counters n;
+    objects_run("objects_workspace.y4m", 20, 0, workspace_config, &s, &n);
+    assert_int_equal(s.grasps, 20);
+    assert_int_equal(s.workspace_ok, 20);
+    assert_int_equal(s.grasp_ok, 0); /* never both objects */
     rtedge_status_t_decode_cleanup(&s.last_status);
 }
 
@@ -894,6 +927,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_memq_road_lanes),
         cmocka_unit_test(test_memq_objects),
+        cmocka_unit_test(test_grasp_workspace),
         cmocka_unit_test(test_deadline_accounting),
         cmocka_unit_test(test_damaged_frames),
         cmocka_unit_test(test_file_log),

@@ -327,6 +327,71 @@ static void border_and_area_filters(void **state)
     test_free(img.buf);
 }
 
+/* A workspace polygon: objects outside it are not seen, one across its
+ * edge touches the border (dropped with skip_border, clipped without), and
+ * the one inside is found exactly as without a workspace. */
+static void workspace(void **state)
+{
+    (void)state;
+    rte_image_u8 img = unit_image_u8(160, 100, 0, 210);
+    truth t;
+    const rte_vertex outside[4] = {{5, 5}, {24, 5}, {24, 24}, {5, 24}};      /* 20 x 20 */
+    const rte_vertex across[4] = {{30, 40}, {59, 40}, {59, 69}, {30, 69}};   /* 30 x 30 */
+    const rte_vertex inside[4] = {{90, 40}, {129, 40}, {129, 59}, {90, 59}}; /* 40 x 20 */
+    fill_polygon(&img, outside, 4, 30, &t);
+    fill_polygon(&img, across, 4, 30, &t);
+    fill_polygon(&img, inside, 4, 30, &t);
+    rte_grasp_ctx *ctx = new_ctx_blur(160, 100, RTE_GRASP_FIXED, 1);
+    rte_grasp_params p;
+    assert_int_equal(rte_grasp_get_params(ctx, &p), RTE_OK);
+    p.threshold = 120;
+    p.polarity = RTE_GRASP_DARK;
+    p.min_area = 20;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 3); /* by area: across, inside, outside */
+    const int32_t inside_x = r.objects[1].x_q8, inside_y = r.objects[1].y_q8;
+    const int32_t inside_angle = r.objects[1].angle_q16;
+    assert_int_equal(inside_x, (int32_t)(109.5 * 256));
+
+    /* x from 0.25 to 0.95, y from 0.2 to 0.9 of 160 x 100: columns 40..152,
+     * rows 20..90; `across` spans columns 30..59 */
+    const int32_t q = RTE_POLYGON_FRACTION_ONE;
+    const rte_vertex roi[4] = {
+        {q / 4, q / 5}, {q * 95 / 100, q / 5}, {q * 95 / 100, q * 9 / 10}, {q / 4, q * 9 / 10}};
+    memcpy(p.roi, roi, sizeof roi);
+    p.roi_count = 4;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 2);
+    assert_int_equal(r.objects[0].x_q8, inside_x); /* the larger now: across is cut to 20 x 30 */
+    assert_int_equal(r.objects[0].touches_border, 0);
+    assert_int_equal(r.objects[0].y_q8, inside_y);
+    assert_int_equal(r.objects[0].angle_q16, inside_angle);
+    assert_int_equal(r.objects[1].touches_border, 1);
+    assert_true(r.objects[1].info.bounds.x >= 40);
+
+    p.skip_border = 1;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_int_equal(r.objects[0].x_q8, inside_x);
+
+    /* a smaller frame rebuilds the mask for its size */
+    rte_image_u8 half = rte_image_u8_view(img.buf, 80, 50, img.stride);
+    assert_int_equal(rte_grasp_process(ctx, &half, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 0); /* only `across`, on the workspace's edge */
+
+    p.roi_count = 2;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    p.roi_count = 4;
+    p.roi[1].x = RTE_POLYGON_MAX_FRACTION + 1;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    rte_grasp_destroy(ctx);
+    test_free(img.buf);
+}
+
 /* More objects than room: the largest are kept, the rest counted. */
 static void object_bound(void **state)
 {
@@ -481,10 +546,15 @@ static void caller_memory(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(synthetic_scenes),       cmocka_unit_test(canny_close_scenes),
-        cmocka_unit_test(touching_objects_merge), cmocka_unit_test(border_and_area_filters),
-        cmocka_unit_test(object_bound),           cmocka_unit_test(sizes_and_errors),
-        cmocka_unit_test(contour_bound),          cmocka_unit_test(caller_memory),
+        cmocka_unit_test(synthetic_scenes),
+        cmocka_unit_test(canny_close_scenes),
+        cmocka_unit_test(touching_objects_merge),
+        cmocka_unit_test(border_and_area_filters),
+        cmocka_unit_test(object_bound),
+        cmocka_unit_test(sizes_and_errors),
+        cmocka_unit_test(contour_bound),
+        cmocka_unit_test(caller_memory),
+        cmocka_unit_test(workspace),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
