@@ -58,10 +58,4 @@ void cli_print_help(const cli_command *cmd);
 /* Prints "rtedge NAME: message" to stderr. */
 void cli_error(const char *command, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* "x,y;x,y;..." fractions of width and height (each within -64..64) into
- * Q16 vertices (rtedge/polygon_mask.h): 3..max of them, *count set; false
- * for anything else. */
-struct rte_vertex;
-bool cli_parse_fractions(const char *text, struct rte_vertex *out, int max, int *count);
-
 #endif

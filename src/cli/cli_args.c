@@ -7,8 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rtedge/polygon_mask.h"
-
 void cli_error(const char *command, const char *fmt, ...)
 {
     va_list ap;
@@ -177,26 +175,4 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const char **positi
         return CLI_EXIT_USAGE;
     }
     return CLI_EXIT_OK;
-}
-
-bool cli_parse_fractions(const char *text, rte_vertex *out, int max, int *count)
-{
-    int n = 0;
-    const char *s = text;
-    while (*s) {
-        char *end;
-        double fx = strtod(s, &end);
-        if (end == s || *end != ',' || n >= max)
-            return false;
-        s = end + 1;
-        double fy = strtod(s, &end);
-        if (end == s || (*end && *end != ';') || fx < -64 || fx > 64 || fy < -64 || fy > 64)
-            return false;
-        out[n].x = (int32_t)(fx * RTE_POLYGON_FRACTION_ONE + (fx < 0 ? -0.5 : 0.5));
-        out[n].y = (int32_t)(fy * RTE_POLYGON_FRACTION_ONE + (fy < 0 ? -0.5 : 0.5));
-        n++;
-        s = *end ? end + 1 : end;
-    }
-    *count = n;
-    return n >= 3;
 }

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/fractions.h"
 #include "rtedge/blur.h"
 #include "rtedge/morphology.h"
 
@@ -151,7 +152,8 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     p->max_area = o->max_area;
     p->skip_border = o->skip_border;
     p->max_objects = o->max_objects;
-    if (o->roi && !cli_parse_fractions(o->roi, p->roi, RTE_GRASP_MAX_ROI_VERTICES, &p->roi_count)) {
+    p->roi_count = o->roi ? rte_parse_fractions(o->roi, p->roi, RTE_GRASP_MAX_ROI_VERTICES) : 0;
+    if (p->roi_count < 0) {
         cli_error(command, "--roi takes 3 to %d 'x,y' fractions separated by ';', not '%s'",
                   RTE_GRASP_MAX_ROI_VERTICES, o->roi);
         return CLI_EXIT_USAGE;

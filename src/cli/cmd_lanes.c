@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "core/fractions.h"
 #include "cli_image.h"
 #include "cli_pipeline.h"
 #include "commands.h"
@@ -43,8 +44,8 @@ static int lanes_config(const char *name, const lanes_options *o, int32_t w, int
 {
     rte_lane_config_default(cfg, w, h);
     rte_lane_params *p = &cfg->params;
-    int n = 0;
-    if (o->roi && !cli_parse_fractions(o->roi, p->roi, RTE_LANE_MAX_ROI_VERTICES, &n)) {
+    int32_t n = o->roi ? rte_parse_fractions(o->roi, p->roi, RTE_LANE_MAX_ROI_VERTICES) : 0;
+    if (n < 0) {
         cli_error(name, "--roi takes 3 to %d 'x,y' fractions separated by ';', not '%s'",
                   RTE_LANE_MAX_ROI_VERTICES, o->roi);
         return CLI_EXIT_USAGE;

@@ -191,7 +191,5 @@ int32_t rted_parse_controls(const char *text, rte_v4l2_control *out, int32_t max
 /* Parses debug.layers (rte_overlay_layer bits); -1 and the first unknown
  * name in bad otherwise. */
 int32_t rted_parse_debug_layers(const char *text, char *bad, size_t bad_size);
-/* Parses lane.roi ("x,y;x,y;..." fractions) into Q16 vertices. */
-int32_t rted_parse_roi(const char *text, int32_t *xy_q16, int32_t max_vertices);
 
 #endif

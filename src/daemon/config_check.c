@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/fractions.h"
 #include "rtedge/overlay.h"
 #include "log.h"
 #include "rtedge/lane.h"
@@ -139,36 +140,17 @@ int32_t rted_parse_controls(const char *text, rte_v4l2_control *out, int32_t max
     return n;
 }
 
-int32_t rted_parse_roi(const char *text, int32_t *xy_q16, int32_t max_vertices)
-{
-    int32_t n = 0;
-    const char *s = text;
-    while (*s) {
-        char *end;
-        double fx = strtod(s, &end);
-        if (end == s || *end != ',' || n >= max_vertices)
-            return -1;
-        s = end + 1;
-        double fy = strtod(s, &end);
-        if (end == s || (*end && *end != ';') || !(fx >= -64 && fx <= 64 && fy >= -64 && fy <= 64))
-            return -1;
-        xy_q16[2 * n] = (int32_t)lround(fx * 65536);
-        xy_q16[2 * n + 1] = (int32_t)lround(fy * 65536);
-        n++;
-        s = *end ? end + 1 : end;
-    }
-    return n >= 3 ? n : -1;
-}
-
 bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
 {
-    int32_t xy[16];
-    if (rted_parse_roi(c->lane_roi, xy, 8) < 0) {
+    rte_vertex roi[RTE_LANE_MAX_ROI_VERTICES > RTE_GRASP_MAX_ROI_VERTICES
+                       ? RTE_LANE_MAX_ROI_VERTICES
+                       : RTE_GRASP_MAX_ROI_VERTICES];
+    if (rte_parse_fractions(c->lane_roi, roi, RTE_LANE_MAX_ROI_VERTICES) < 0) {
         rted_msgf(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
                   c->lane_roi);
         return false;
     }
-    if (c->grasp_roi[0] && rted_parse_roi(c->grasp_roi, xy, RTE_GRASP_MAX_ROI_VERTICES) < 0) {
+    if (c->grasp_roi[0] && rte_parse_fractions(c->grasp_roi, roi, RTE_GRASP_MAX_ROI_VERTICES) < 0) {
         rted_msgf(msg, msg_size,
                   "grasp.roi: '%s' is not 3..8 'x,y' fractions separated by ';' (or empty)",
                   c->grasp_roi);
@@ -267,16 +249,13 @@ bool rted_config_check_frame(const rted_config *c, int32_t width, int32_t height
     }
     if (!c->lane_enabled)
         return true;
-    int32_t xy[2 * RTE_LANE_MAX_ROI_VERTICES];
-    int32_t n = rted_parse_roi(c->lane_roi, xy, RTE_LANE_MAX_ROI_VERTICES);
+    rte_vertex q16[RTE_LANE_MAX_ROI_VERTICES], px[RTE_LANE_MAX_ROI_VERTICES];
+    int32_t n = rte_parse_fractions(c->lane_roi, q16, RTE_LANE_MAX_ROI_VERTICES);
     if (n < 0) {
         rted_msgf(msg, msg_size, "lane.roi: '%s' is not 3..8 'x,y' fractions separated by ';'",
                   c->lane_roi);
         return false;
     }
-    rte_vertex q16[RTE_LANE_MAX_ROI_VERTICES], px[RTE_LANE_MAX_ROI_VERTICES];
-    for (int32_t i = 0; i < n; i++)
-        q16[i] = (rte_vertex){xy[2 * i], xy[2 * i + 1]};
     if (rte_polygon_from_fractions(q16, n, width, height, px) != RTE_OK) {
         rted_msgf(msg, msg_size, "lane.roi: '%s' cannot be placed on a %dx%d frame", c->lane_roi,
                   width, height);

@@ -9,6 +9,7 @@
 
 #include "daemon_internal.h"
 #include "core/clock.h"
+#include "core/fractions.h"
 
 bool rted_lane_thresholds_ok(const rted_config *c, const rte_lane_params *p, char *msg,
                              size_t msg_size)
@@ -24,14 +25,9 @@ bool rted_lane_thresholds_ok(const rted_config *c, const rte_lane_params *p, cha
 bool rted_lane_params(const rted_daemon *d, const rted_config *c, rte_lane_params *p)
 {
     *p = d->lane_base.params;
-    int32_t xy[2 * RTE_LANE_MAX_ROI_VERTICES];
-    int32_t n = rted_parse_roi(c->lane_roi, xy, RTE_LANE_MAX_ROI_VERTICES);
+    int32_t n = rte_parse_fractions(c->lane_roi, p->roi, RTE_LANE_MAX_ROI_VERTICES);
     if (n < 0)
         return false;
-    for (int32_t i = 0; i < n; i++) {
-        p->roi[i].x = xy[2 * i];
-        p->roi[i].y = xy[2 * i + 1];
-    }
     p->roi_count = n;
     p->canny_mode = (rte_lane_canny_mode)c->lane_canny_mode;
     if (c->lane_canny_low >= 0)
@@ -63,11 +59,9 @@ void rted_grasp_params(const rted_config *c, rte_grasp_params *p)
     p->max_area = c->grasp_max_area;
     p->skip_border = c->grasp_skip_border;
     p->max_objects = c->grasp_max_objects;
-    int32_t xy[2 * RTE_GRASP_MAX_ROI_VERTICES];
-    int32_t n = c->grasp_roi[0] ? rted_parse_roi(c->grasp_roi, xy, RTE_GRASP_MAX_ROI_VERTICES) : 0;
+    int32_t n =
+        c->grasp_roi[0] ? rte_parse_fractions(c->grasp_roi, p->roi, RTE_GRASP_MAX_ROI_VERTICES) : 0;
     p->roi_count = n > 0 ? n : 0; /* (validated before: < 0 cannot come) */
-    for (int32_t i = 0; i < p->roi_count; i++)
-        p->roi[i] = (rte_vertex){xy[2 * i], xy[2 * i + 1]};
 }
 
 void rted_derive(rted_daemon *d)
