@@ -276,7 +276,9 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
         if (st != RTE_OK)
             break;
         o->contour = ctx->best[k].contour;
-        o->touches_border = touches_border(ctx, cs->points + c->offset, c->count, w, h);
+        /* with skip_border the filter above has already ruled it out */
+        o->touches_border =
+            !p->skip_border && touches_border(ctx, cs->points + c->offset, c->count, w, h);
         grasp_of(o);
         n++;
     }
