@@ -16,12 +16,16 @@ import javax.swing.SwingUtilities;
  * A Java agent in rtedge-spy's JVM (JAVA_TOOL_OPTIONS=-javaagent:probe.jar=OUT,CHANNEL) for
  * tests/lcm/spy.sh: twice a second it writes what the Spy shows to the file OUT: one line per
  * visible window ("window TITLE") and one per row of its tables ("row CELL CELL ...",
- * tab-separated, as displayed: channel, type, messages, ...). Once CHANNEL's row has messages it
- * double-clicks that row with the mouse (java.awt.Robot, through the X server), as a person
- * opens a channel's viewer, and puts the viewer beside the Spy window for the screenshot.
+ * tab-separated, as displayed: channel, type, messages, ...). Once CHANNEL's row has messages and
+ * the table's rows have stayed in the same order for one poll, it double-clicks that row with the
+ * mouse (java.awt.Robot, through the X server), as a person opens a channel's viewer, and puts the
+ * viewer beside the Spy window for the screenshot. The wait matters: the Spy keeps its rows
+ * sorted, so a channel appearing between finding the row and the click would shift the row under
+ * the pointer and open another channel's viewer.
  */
 public final class SpyProbe {
     private static boolean clicked;
+    private static String previousChannels = "";
 
     public static void premain(String args, Instrumentation inst) {
         String[] a = args.split(",", 2);
@@ -36,15 +40,18 @@ public final class SpyProbe {
             try {
                 Thread.sleep(500);
                 StringWriter text = new StringWriter();
+                StringBuilder channels = new StringBuilder();
                 Point[] click = new Point[1];
-                SwingUtilities.invokeAndWait(() -> dump(new PrintWriter(text), channel, click));
+                SwingUtilities.invokeAndWait(() -> dump(new PrintWriter(text), channel, click, channels));
                 try (PrintWriter w = new PrintWriter(tmp, "UTF-8")) {
                     w.print(text);
                 }
                 if (!tmp.renameTo(out)) {
                     throw new IllegalStateException("cannot write " + out);
                 }
-                if (click[0] != null && !clicked) {
+                boolean steady = channels.toString().equals(previousChannels);
+                previousChannels = channels.toString();
+                if (click[0] != null && steady && !clicked) {
                     clicked = true;
                     Robot robot = new Robot();
                     robot.mouseMove(click[0].x, click[0].y);
@@ -60,7 +67,7 @@ public final class SpyProbe {
         }
     }
 
-    private static void dump(PrintWriter w, String channel, Point[] click) {
+    private static void dump(PrintWriter w, String channel, Point[] click, StringBuilder channels) {
         for (Frame f : Frame.getFrames()) {
             if (!f.isShowing()) {
                 continue;
@@ -69,12 +76,13 @@ public final class SpyProbe {
             if (f.getTitle().equals(channel) && f.getX() == 0) {
                 f.setLocation(810, 0);  // beside the Spy window (no window manager places it)
             }
-            tables(w, f, channel, click);
+            tables(w, f, channel, click, channels);
         }
         w.flush();
     }
 
-    private static void tables(PrintWriter w, Container c, String channel, Point[] click) {
+    private static void tables(PrintWriter w, Container c, String channel, Point[] click,
+                               StringBuilder channels) {
         for (Component k : c.getComponents()) {
             if (k instanceof JTable) {
                 JTable t = (JTable) k;
@@ -84,6 +92,7 @@ public final class SpyProbe {
                         line.append('\t').append(t.getValueAt(r, col));
                     }
                     w.println(line);
+                    channels.append(t.getValueAt(r, 0)).append('\n');
                     Object messages = t.getColumnCount() > 2 ? t.getValueAt(r, 2) : null;
                     if (channel.equals(String.valueOf(t.getValueAt(r, 0))) && messages != null
                         && !"0".equals(messages.toString().trim())) {
@@ -93,7 +102,7 @@ public final class SpyProbe {
                     }
                 }
             } else if (k instanceof Container) {
-                tables(w, (Container) k, channel, click);
+                tables(w, (Container) k, channel, click, channels);
             }
         }
     }
