@@ -1,7 +1,8 @@
 /* The grasp path: graspable objects on a table seen from above.
  *
- *   grey -> Gaussian blur -> binary image (Otsu, a fixed threshold, or
- *   Canny + morphological close for objects whose boundary is the only
+ *   grey -> Gaussian blur -> binary image (the difference from the table's
+ *   estimated brightness thresholded both ways, Otsu, a fixed threshold,
+ *   or Canny + morphological close for objects whose boundary is the only
  *   reliable cue) -> external contours -> area filter -> features
  *   (centroid from moments, minimum-area box, shape class, solidity)
  *   -> grasp: the point at the centroid, the gripper closing across the
@@ -35,11 +36,15 @@ typedef enum rte_grasp_binarize {
     RTE_GRASP_OTSU = 0,        /* Otsu's threshold of each frame */
     RTE_GRASP_FIXED = 1,       /* params.threshold */
     RTE_GRASP_CANNY_CLOSE = 2, /* Canny edges closed by an ellipse: the object's outline */
+    RTE_GRASP_BACKGROUND = 3,  /* |frame - table| beyond a contrast (rtedge/background.h):
+                                * uneven light, objects lighter and darker than the table */
 } rte_grasp_binarize;
 
-/* Which side of the threshold the objects are (Otsu and fixed modes). */
+/* Which side of the threshold the objects are (background, Otsu and fixed
+ * modes). */
 typedef enum rte_grasp_polarity {
-    RTE_GRASP_AUTO = 0,   /* the side the image border is not on (the border is table) */
+    RTE_GRASP_AUTO = 0,   /* background mode: both sides; Otsu and fixed: the side the
+                           * image border is not on (the border is table) */
     RTE_GRASP_DARK = 1,   /* objects darker than the table: pixel <= threshold */
     RTE_GRASP_BRIGHT = 2, /* objects brighter: pixel > threshold */
 } rte_grasp_polarity;
@@ -52,10 +57,14 @@ typedef struct rte_grasp_params {
     int32_t threshold; /* RTE_GRASP_FIXED: 0..255 */
     rte_grasp_polarity polarity;
     int32_t canny_low, canny_high; /* RTE_GRASP_CANNY_CLOSE: L1 magnitude thresholds, 0..2040 */
-    int32_t min_area;              /* pixels; smaller objects are dropped (>= 0) */
-    int32_t max_area;              /* pixels; larger ones are dropped; 0 = no limit */
-    int32_t skip_border;           /* 1: drop objects touching the image or workspace border */
-    int32_t max_objects;           /* 1..config.max_objects: objects reported */
+    int32_t contrast;        /* RTE_GRASP_BACKGROUND: least |frame - table| of an object, 1..255
+                              * (the threshold is Otsu's of |frame - table|, at least this) */
+    int32_t background_cell; /* RTE_GRASP_BACKGROUND: the table estimate's cell side in px,
+                              * 2..255, or 0: a 40th of the frame's width (at least 4) */
+    int32_t min_area;        /* pixels; smaller objects are dropped (>= 0) */
+    int32_t max_area;        /* pixels; larger ones are dropped; 0 = no limit */
+    int32_t skip_border;     /* 1: drop objects touching the image or workspace border */
+    int32_t max_objects;     /* 1..config.max_objects: objects reported */
     /* The workspace: a polygon in fractions of width and height (Q16, as
      * rte_polygon_from_fractions takes them), 3..RTE_GRASP_MAX_ROI_VERTICES
      * vertices; objects are looked for inside it only, and one that reaches
@@ -76,8 +85,9 @@ typedef struct rte_grasp_config {
 } rte_grasp_config;
 
 /* Defaults: 1280x720, 4096 contours, 262144 points, 64 objects, blur 5,
- * Otsu with automatic polarity, Canny 50/150 closed by a 5x5 ellipse twice,
- * min area 100 px, no max area, border objects kept. */
+ * background mode (contrast 20, automatic cells) with automatic polarity,
+ * Canny 50/150 closed by a 5x5 ellipse twice, min area 100 px, no max
+ * area, objects touching the border dropped. */
 RTE_API void rte_grasp_config_default(rte_grasp_config *config);
 
 typedef struct rte_grasp_object {
@@ -106,9 +116,11 @@ typedef struct rte_grasp_result {
     bool truncated;               /* objects, contours or points were dropped for room */
     int32_t dropped_objects;      /* objects that passed the filters but exceeded max_objects */
     int32_t dropped_contours;     /* contours beyond max_contours / max_points */
-    int32_t threshold;            /* the threshold used (-1 in canny-close mode) */
+    int32_t threshold;            /* the threshold used (background mode: on |frame - table|;
+                                   * -1 in canny-close mode) */
     rte_grasp_polarity polarity;  /* DARK or BRIGHT as applied (AUTO resolved; BRIGHT for
-                                  * canny-close, where the closed edges are the objects) */
+                                  * canny-close, where the closed edges are the objects;
+                                  * AUTO in background mode: both) */
     const rte_contours *contours; /* the external contours of the frame */
     const rte_image_u8 *binary;   /* the binary image the contours came from */
     rte_grasp_timing timing;

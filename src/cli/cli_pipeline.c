@@ -10,12 +10,12 @@
 
 const char *const cli_polarities[] = {"auto", "dark", "bright", NULL};
 
-void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area)
+void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area, bool tutorial)
 {
     rte_grasp_config c;
     rte_grasp_config_default(&c);
     *o = (cli_pipeline_options){
-        .binarize = "otsu",
+        .binarize = tutorial ? "otsu" : "background",
         .polarity = 0,
         .blur = blur,
         .min_area = min_area,
@@ -25,7 +25,8 @@ void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area)
         .canny_high = c.params.canny_high,
         .close = c.close_ksize,
         .close_iterations = c.close_iterations,
-        .skip_border = false,
+        .contrast = c.params.contrast,
+        .skip_border = !tutorial && c.params.skip_border,
     };
 }
 
@@ -38,17 +39,26 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                           0,
                           0,
                           NULL,
-                          "otsu, canny (edges closed by an ellipse) or a fixed threshold 0..255",
+                          "background (|image - table| both ways), otsu, canny (edges closed "
+                          "by an ellipse) or a fixed threshold 0..255",
                           NULL};
-    t[n++] =
-        (cli_option){"polarity",
-                     CLI_CHOICE,
-                     &o->polarity,
-                     0,
-                     0,
-                     cli_polarities,
-                     "objects darker or brighter than the table; auto: the image border is table",
-                     NULL};
+    t[n++] = (cli_option){"contrast",
+                          CLI_INT,
+                          &o->contrast,
+                          1,
+                          255,
+                          NULL,
+                          "background: the least |image - table| of an object",
+                          NULL};
+    t[n++] = (cli_option){"polarity",
+                          CLI_CHOICE,
+                          &o->polarity,
+                          0,
+                          0,
+                          cli_polarities,
+                          "objects darker or brighter than the table; auto: both (background), "
+                          "else the image border is table",
+                          NULL};
     t[n++] = (cli_option){"blur",
                           CLI_INT,
                           &o->blur,
@@ -90,6 +100,14 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                               NULL,
                               "drop objects touching the image border (or the workspace's)",
                               NULL};
+        t[n++] = (cli_option){"keep-border",
+                              CLI_FLAG,
+                              &o->keep_border,
+                              0,
+                              0,
+                              NULL,
+                              "keep them (flagged touches_border)",
+                              NULL};
         t[n++] = (cli_option){"roi",
                               CLI_STRING,
                               &o->roi,
@@ -117,7 +135,9 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
 {
     rte_grasp_config_default(c);
     rte_grasp_params *p = &c->params;
-    if (strcmp(o->binarize, "otsu") == 0) {
+    if (strcmp(o->binarize, "background") == 0) {
+        p->binarize = RTE_GRASP_BACKGROUND;
+    } else if (strcmp(o->binarize, "otsu") == 0) {
         p->binarize = RTE_GRASP_OTSU;
     } else if (strcmp(o->binarize, "canny") == 0) {
         p->binarize = RTE_GRASP_CANNY_CLOSE;
@@ -125,7 +145,9 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
         char *end;
         long t = strtol(o->binarize, &end, 10);
         if (end == o->binarize || *end || t < 0 || t > 255) {
-            cli_error(command, "--binarize must be otsu, canny or a threshold 0..255, not \"%s\"",
+            cli_error(command,
+                      "--binarize must be background, otsu, canny or a threshold 0..255, not "
+                      "\"%s\"",
                       o->binarize);
             return CLI_EXIT_USAGE;
         }
@@ -150,7 +172,8 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     p->canny_high = o->canny_high;
     p->min_area = o->min_area;
     p->max_area = o->max_area;
-    p->skip_border = o->skip_border;
+    p->skip_border = o->skip_border && !o->keep_border;
+    p->contrast = o->contrast;
     p->max_objects = o->max_objects;
     p->roi_count = o->roi ? rte_parse_fractions(o->roi, p->roi, RTE_GRASP_MAX_ROI_VERTICES) : 0;
     if (p->roi_count < 0) {

@@ -12,26 +12,30 @@
 
 /* The grasp options of shapes and grasp (and the binarisation of contours). */
 typedef struct cli_pipeline_options {
-    const char *binarize; /* "otsu", "canny" or a threshold 0..255 */
+    const char *binarize; /* "background", "otsu", "canny" or a threshold 0..255 */
     int polarity;         /* index in cli_polarities: auto, dark, bright */
     int blur, min_area, max_area, max_objects, canny_low, canny_high, close, close_iterations;
-    bool skip_border;
+    int contrast;
+    bool skip_border, keep_border;
     const char *roi; /* the workspace, "x,y;..." fractions; NULL: the whole image */
 } cli_pipeline_options;
 
 extern const char *const cli_polarities[];
 
-/* Defaults (blur: the default Gaussian size of the command). */
-void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area);
+/* Defaults (blur: the default Gaussian size of the command). `tutorial`:
+ * Otsu, objects on the border kept, as the OpenCV tutorial's shape
+ * analysis; otherwise the grasp path's defaults (background, border
+ * objects dropped). */
+void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area, bool tutorial);
 
 /* Fills options[] (room for CLI_PIPELINE_OPTIONS entries) with the table
  * entries of `o`; `grasp` adds the object options (areas, border, count). */
-#define CLI_PIPELINE_OPTIONS 13
+#define CLI_PIPELINE_OPTIONS 15
 int cli_pipeline_option_table(cli_option *options, cli_pipeline_options *o, bool grasp);
 
 /* The grasp configuration for an image of w x h. CLI_EXIT_USAGE after a
- * message when --binarize is not otsu, canny or 0..255, or --roi is not a
- * polygon. */
+ * message when --binarize is not background, otsu, canny or 0..255, or
+ * --roi is not a polygon. */
 int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int32_t w, int32_t h,
                         rte_grasp_config *config);
 

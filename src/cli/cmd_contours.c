@@ -178,7 +178,7 @@ int cmd_contours(const cli_entry *self, int argc, char **argv)
     static const char *const modes[] = {"external", "list", "ccomp", "tree", NULL};
     static const char *const methods[] = {"none", "simple", NULL};
     cli_pipeline_options o;
-    cli_pipeline_defaults(&o, 1, 0);
+    cli_pipeline_defaults(&o, 1, 0, true);
     int mode = RTE_CONTOURS_LIST, method = 1;
     cli_option options[CLI_PIPELINE_OPTIONS + 3];
     int n = cli_pipeline_option_table(options, &o, false);

@@ -12,8 +12,10 @@
 
 #define PIPELINE_DETAILS                                                                          \
     "IN: PGM/PPM, PNG or JPEG (colour becomes grey as cv2.cvtColor(cv2.imread(IN), BGR2GRAY)).\n" \
-    "grey -> Gaussian blur -> Otsu, a fixed threshold or Canny + close -> external contours\n"    \
-    "-> area filter -> features (moments, minimum-area box, hull, shape class)."
+    "grey -> Gaussian blur -> |grey - table| both ways (background), Otsu, a fixed threshold\n"   \
+    "or Canny + close -> external contours -> area and border filters -> features (moments,\n"    \
+    "minimum-area box, hull, shape class). grasp: background, border objects dropped;\n"          \
+    "shapes: Otsu, border objects kept (the OpenCV tutorial's shape analysis)."
 
 typedef struct grasp_run {
     const char *name;
@@ -28,10 +30,10 @@ typedef struct grasp_run {
 /* Parses, loads and runs the pipeline. Returns CLI_EXIT_OK to go on, -1
  * after --help, or an exit code (everything freed then). */
 static int grasp_start(grasp_run *run, const cli_entry *self, int argc, char **argv,
-                       const char *details, int default_min_area)
+                       const char *details, int default_min_area, bool tutorial)
 {
     *run = (grasp_run){.name = self->name};
-    cli_pipeline_defaults(&run->opts, 5, default_min_area);
+    cli_pipeline_defaults(&run->opts, 5, default_min_area, tutorial);
     cli_option options[CLI_PIPELINE_OPTIONS + 2];
     int n = cli_pipeline_option_table(options, &run->opts, true);
     options[n] = (cli_option){"overlay",
@@ -120,7 +122,7 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
         "minimum-area box (angle in degrees, image axes, y down), opened to that side.\n"
         "Prints {\"objects\":[{\"center\",\"angle\",\"width\",\"area\",\"shape\",\"box\"}],...}\n"
         "largest first.",
-        100);
+        100, false);
     if (rc != CLI_EXIT_OK)
         return rc < 0 ? CLI_EXIT_OK : rc;
     const rte_grasp_result *r = &run.result;
@@ -173,7 +175,7 @@ int cmd_shapes(const cli_entry *self, int argc, char **argv)
     int rc = grasp_start(&run, self, argc, argv,
                          PIPELINE_DETAILS "\nPrints one line per object, largest first:\n"
                                           "  index shape area perimeter solidity aspect cx cy",
-                         100);
+                         100, true);
     if (rc != CLI_EXIT_OK)
         return rc < 0 ? CLI_EXIT_OK : rc;
     const rte_grasp_result *r = &run.result;

@@ -57,7 +57,7 @@ typedef struct rted_config {
     /* [grasp] */
     bool grasp_enabled;
     int32_t grasp_max_objects, grasp_max_contours, grasp_max_points, grasp_blur_ksize;
-    int32_t grasp_binarize, grasp_threshold, grasp_polarity;
+    int32_t grasp_binarize, grasp_threshold, grasp_polarity, grasp_contrast, grasp_background_cell;
     int32_t grasp_min_area, grasp_max_area;
     bool grasp_skip_border;
     char grasp_roi[RTED_TEXT]; /* "": the whole frame */

@@ -28,7 +28,7 @@ static const char *const source_kinds[] = {"auto", "y4m",  "images",    "raw", "
                                            "lcm",  "v4l2", "libcamera", NULL};
 static const char *const paces[] = {"recorded", "fps", "fast", NULL};
 static const char *const canny_modes[] = {"fixed", "median", "otsu", NULL};
-static const char *const binarizers[] = {"otsu", "fixed", "canny-close", NULL};
+static const char *const binarizers[] = {"otsu", "fixed", "canny-close", "background", NULL};
 static const char *const polarities[] = {"auto", "dark", "bright", NULL};
 
 #define OFF(f) offsetof(rted_config, f)
@@ -141,17 +141,26 @@ static const key_def keys[] = {
     INT("grasp", "max_points", grasp_max_points, "points", 16, 50000000, false, "262144",
         "contour points stored per frame"),
     INT("grasp", "blur_ksize", grasp_blur_ksize, "px", 1, 15, false, "5", "Gaussian size (odd)"),
-    ENUM("grasp", "binarize", grasp_binarize, binarizers, true, "otsu",
-         "object mask: Otsu, a fixed threshold, or closed Canny edges"),
+    ENUM("grasp", "binarize", grasp_binarize, binarizers, true, "background",
+         "object mask: Otsu, a fixed threshold, closed Canny edges, or the\n"
+         "difference from the table's estimated brightness, both ways (uneven\n"
+         "light, objects lighter and darker than the table)"),
+    INT("grasp", "contrast", grasp_contrast, "grey levels", 1, 255, true, "20",
+        "binarize = background: the least difference from the table of an object"),
+    INTU("grasp", "background_cell", grasp_background_cell, "px", 0, 2, 255, true, "0",
+         "binarize = background: cells of the table's estimate; objects\n"
+         "over about 9 cells across may join the table if as even as it; 0: a\n"
+         "40th of the frame's width"),
     INT("grasp", "threshold", grasp_threshold, "grey level", 0, 255, true, "128",
         "binarize = fixed"),
     ENUM("grasp", "polarity", grasp_polarity, polarities, true, "auto",
-         "objects darker or brighter than the table; auto: not the border's side"),
+         "objects darker or brighter than the table; auto: both (background),\n"
+         "else not the border's side"),
     INT("grasp", "min_area", grasp_min_area, "px²", 0, 67108864, true, "100",
         "smallest object, px; at most the frame's area"),
     INTU("grasp", "max_area", grasp_max_area, "px²", 0, 1, 67108864, true, "0",
          "largest object, px; 0: no limit"),
-    BOOL("grasp", "skip_border", grasp_skip_border, true, "false",
+    BOOL("grasp", "skip_border", grasp_skip_border, true, "true",
          "drop objects touching the image border (or the workspace's)"),
     TEXT("grasp", "roi", grasp_roi, true, "",
          "the workspace: 3..8 'x,y' fractions of width and height, ';'-separated\n"

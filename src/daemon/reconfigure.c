@@ -55,6 +55,8 @@ void rted_grasp_params(const rted_config *c, rte_grasp_params *p)
     p->binarize = (rte_grasp_binarize)c->grasp_binarize;
     p->threshold = c->grasp_threshold;
     p->polarity = (rte_grasp_polarity)c->grasp_polarity;
+    p->contrast = c->grasp_contrast;
+    p->background_cell = c->grasp_background_cell;
     p->min_area = c->grasp_min_area;
     p->max_area = c->grasp_max_area;
     p->skip_border = c->grasp_skip_border;

@@ -2,6 +2,7 @@
 #include <time.h>
 
 #include "grasp_ctx.h"
+#include "rtedge/background.h"
 #include "rtedge/canny.h"
 #include "rtedge/threshold.h"
 #include "core/clock.h"
@@ -17,14 +18,16 @@ rte_status rte_grasp_check_params(const rte_grasp_config *c, const rte_grasp_par
         return RTE_ERR_ARGUMENT;
     const int ok =
         (p->binarize == RTE_GRASP_OTSU || p->binarize == RTE_GRASP_FIXED ||
-         p->binarize == RTE_GRASP_CANNY_CLOSE) &&
+         p->binarize == RTE_GRASP_CANNY_CLOSE || p->binarize == RTE_GRASP_BACKGROUND) &&
         p->threshold >= 0 && p->threshold <= 255 &&
         (p->polarity == RTE_GRASP_AUTO || p->polarity == RTE_GRASP_DARK ||
          p->polarity == RTE_GRASP_BRIGHT) &&
         p->canny_low >= 0 && p->canny_low <= CANNY_MAX && p->canny_high >= 0 &&
-        p->canny_high <= CANNY_MAX && p->min_area >= 0 && p->max_area >= 0 &&
-        (p->skip_border == 0 || p->skip_border == 1) && p->max_objects >= 1 &&
-        p->max_objects <= c->max_objects &&
+        p->canny_high <= CANNY_MAX && p->contrast >= 1 && p->contrast <= 255 &&
+        (p->background_cell == 0 || (p->background_cell >= RTE_BACKGROUND_MIN_CELL &&
+                                     p->background_cell <= RTE_BACKGROUND_MAX_CELL)) &&
+        p->min_area >= 0 && p->max_area >= 0 && (p->skip_border == 0 || p->skip_border == 1) &&
+        p->max_objects >= 1 && p->max_objects <= c->max_objects &&
         (p->roi_count == 0 || (p->roi_count >= 3 && p->roi_count <= RTE_GRASP_MAX_ROI_VERTICES));
     if (!ok)
         return RTE_ERR_ARGUMENT;
@@ -102,6 +105,26 @@ static rte_status binarize(rte_grasp_ctx *ctx, const rte_image_u8 *src, rte_imag
                                    ctx->config.close_iterations, &ctx->arena);
         out->threshold = -1;
         out->polarity = RTE_GRASP_BRIGHT;
+        return st;
+    }
+    if (p->binarize == RTE_GRASP_BACKGROUND) {
+        /* the table's estimate goes where canny-close keeps its edges */
+        rte_image_u8 table = sub(&ctx->edges, src->width, src->height);
+        rte_background_params bp;
+        rte_background_params_default(&bp, src->width);
+        if (p->background_cell)
+            bp.cell = p->background_cell;
+        rte_background_threshold_params tp;
+        rte_background_threshold_params_default(&tp, src->width);
+        tp.min_contrast = p->contrast;
+        tp.bright = p->polarity != RTE_GRASP_DARK;
+        tp.dark = p->polarity != RTE_GRASP_BRIGHT;
+        rte_status st = rte_background_estimate_u8(src, &table, &bp, &ctx->arena);
+        rte_background_threshold_result tr = {0};
+        if (st == RTE_OK)
+            st = rte_background_threshold_u8(src, &table, bin, &tp, &ctx->arena, &tr);
+        out->threshold = tr.high;
+        out->polarity = p->polarity;
         return st;
     }
     int32_t t = p->threshold;

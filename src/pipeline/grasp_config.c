@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "grasp_ctx.h"
+#include "rtedge/background.h"
 #include "rtedge/canny.h"
 #include "rtedge/contours.h"
 #include "rtedge/shape.h"
@@ -23,14 +24,16 @@ void rte_grasp_config_default(rte_grasp_config *config)
         .close_iterations = 2,
         .params =
             {
-                .binarize = RTE_GRASP_OTSU,
+                .binarize = RTE_GRASP_BACKGROUND,
                 .threshold = 127,
                 .polarity = RTE_GRASP_AUTO,
                 .canny_low = 50,
                 .canny_high = 150,
+                .contrast = 20,
+                .background_cell = 0,
                 .min_area = 100,
                 .max_area = 0,
-                .skip_border = 0,
+                .skip_border = 1,
                 .max_objects = 64,
             },
     };
@@ -60,6 +63,8 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
     s = max_size(s, rte_morphology_scratch_size(w, h, e, c->close_iterations));
     s = max_size(s, rte_contours_scratch_size(w, h, c->max_contours));
     s = max_size(s, rte_polygon_mask_scratch_size(RTE_GRASP_MAX_ROI_VERTICES));
+    s = max_size(s, rte_background_scratch_size(w, h, RTE_BACKGROUND_MIN_CELL));
+    s = max_size(s, rte_background_threshold_scratch_size(w, h));
     return max_size(s, rte_shape_classify_scratch_size(c->max_points));
 }
 

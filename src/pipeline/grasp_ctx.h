@@ -18,7 +18,7 @@ struct rte_grasp_ctx {
     rte_grasp_params params; /* in force */
     rte_gaussian_kernel blur;
     rte_morph_element close;
-    rte_image_u8 blurred, edges, binary;
+    rte_image_u8 blurred, edges, binary; /* edges: also the table estimate (background mode) */
     rte_image_u8 workspace;           /* the ROI's mask (255 inside), built for workspace_w x _h */
     int32_t workspace_w, workspace_h; /* 0: to build (new parameters) */
     rte_contours contours;

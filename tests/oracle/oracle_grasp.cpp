@@ -103,6 +103,7 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
     p.threshold = m.threshold;
     p.polarity = m.polarity;
     p.min_area = kMinArea;
+    p.skip_border = 0; // the reference keeps objects on the border
     if (rte_grasp_set_params(ctx, &p) != RTE_OK) {
         t.call_failed(name + " set_params", -1);
         return;

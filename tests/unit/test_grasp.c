@@ -144,6 +144,7 @@ static rte_grasp_ctx *new_ctx_blur(int32_t w, int32_t h, rte_grasp_binarize mode
     c.max_width = w;
     c.max_height = h;
     c.params.binarize = mode;
+    c.params.skip_border = 0; /* the tests that drop border objects say so */
     c.blur_ksize = blur;
     rte_grasp_ctx *ctx = NULL;
     assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
@@ -452,7 +453,7 @@ static void sizes_and_errors(void **state)
     p.max_objects = 65;
     assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
     p = old;
-    p.binarize = (rte_grasp_binarize)3;
+    p.binarize = (rte_grasp_binarize)4;
     assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
     p = old;
     p.canny_high = 2041;

@@ -1,0 +1,544 @@
+/* The table's brightness and the two-sided threshold against it (see
+ * include/rtedge/background.h). Per frame, integer only. */
+#include "rtedge/background.h"
+
+#include <stdint.h>
+#include <string.h>
+
+#include "rtedge/threshold.h"
+
+/* Grid values carry 4 fractional bits; bilinear weights 8. */
+#define GRID_SHIFT 4
+#define WEIGHT_SHIFT 8
+
+/* A cell's histogram: 256 bins, then 16 coarse ones. */
+#define HIST_BINS (256 + 16)
+
+void rte_background_params_default(rte_background_params *params, int32_t width)
+{
+    int32_t cell = width / 40;
+    if (cell < 4)
+        cell = 4;
+    if (cell > RTE_BACKGROUND_MAX_CELL)
+        cell = RTE_BACKGROUND_MAX_CELL;
+    *params = (rte_background_params){.cell = cell, .radius = 4, .tolerance = 12, .step = 8};
+}
+
+void rte_background_threshold_params_default(rte_background_threshold_params *params, int32_t width)
+{
+    const int32_t gap = width / 200;
+    *params = (rte_background_threshold_params){.high = 0,
+                                                .min_contrast = 20,
+                                                .bright = true,
+                                                .dark = true,
+                                                .drop_shadows = true,
+                                                .shadow_gap = gap < 3 ? 3 : gap};
+}
+
+static int32_t cells(int32_t size, int32_t cell) { return (size + cell - 1) / cell; }
+
+/* The arena pieces of the estimate, in the order taken. */
+static size_t estimate_pieces(int32_t w, int32_t h, int32_t cell)
+{
+    const size_t gw = (size_t)cells(w, cell), gh = (size_t)cells(h, cell);
+    return rte_arena_piece_size(gw * gh) * 2 +                       /* medians, table flags */
+           rte_arena_piece_size(gw * gh * sizeof(int32_t)) * 3 +     /* queue, regions, grid */
+           rte_arena_piece_size(gw * HIST_BINS * sizeof(uint16_t)) + /* a row of histograms */
+           rte_arena_piece_size((size_t)w * 2 * sizeof(int32_t)) +   /* column cells, weights */
+           rte_arena_piece_size(gw * 2 * sizeof(int32_t));           /* a grid row, segment ends */
+}
+
+size_t rte_background_scratch_size(int32_t max_width, int32_t max_height, int32_t min_cell)
+{
+    if (max_width < 1 || max_height < 1 || min_cell < RTE_BACKGROUND_MIN_CELL ||
+        min_cell > RTE_BACKGROUND_MAX_CELL)
+        return 0;
+    return estimate_pieces(max_width, max_height, min_cell);
+}
+
+/* Each cell's median (the lower one for an even count), of every other row
+ * and column when cells are 8 px or larger: 16 samples or more, and a
+ * quarter of the histogram updates. Each cell's histogram has 256 bins and
+ * 16 coarse ones (16 levels each) that the search for the median skips
+ * along. */
+static void cell_medians(const rte_image_u8 *src, int32_t cell, int32_t gw, int32_t gh,
+                         uint8_t *med, uint16_t *hist)
+{
+    const int32_t w = src->width, h = src->height, step = cell >= 8 ? 2 : 1;
+    for (int32_t j = 0; j < gh; j++) {
+        const int32_t y0 = j * cell, y1 = y0 + cell < h ? y0 + cell : h;
+        memset(hist, 0, (size_t)gw * HIST_BINS * sizeof *hist);
+        for (int32_t y = y0; y < y1; y += step) {
+            const uint8_t *row = rte_u8_row(src, y);
+            for (int32_t i = 0; i < gw; i++) {
+                uint16_t *hc = hist + (size_t)i * HIST_BINS;
+                const int32_t x1 = (i + 1) * cell < w ? (i + 1) * cell : w;
+                for (int32_t x = i * cell; x < x1; x += step) {
+                    hc[row[x]]++;
+                    hc[256 + (row[x] >> 4)]++;
+                }
+            }
+        }
+        const int32_t rows = (y1 - y0 + step - 1) / step;
+        for (int32_t i = 0; i < gw; i++) {
+            const int32_t x0 = i * cell, x1 = (i + 1) * cell < w ? (i + 1) * cell : w;
+            const int32_t half = (rows * ((x1 - x0 + step - 1) / step) + 1) / 2;
+            const uint16_t *hc = hist + (size_t)i * HIST_BINS;
+            int32_t c = 0, sum = 0;
+            while (sum + hc[256 + c] < half)
+                sum += hc[256 + c++];
+            int32_t v = c * 16;
+            while ((sum += hc[v]) < half)
+                v++;
+            med[j * gw + i] = (uint8_t)v;
+        }
+    }
+}
+
+/* The table's cells. Seeds: the cells within tol of the most common cell
+ * value (the centre of the fullest 2 tol + 1 wide band of the cells'
+ * histogram). From each seed not yet reached, a region grows through
+ * 4-neighbours differing by at most step; the table is the region with the
+ * most cells. An object's edge is a step larger than that between two
+ * cells (a cell's median flips from table to object where the object
+ * covers half of it), light falling off across a table many small steps;
+ * a large even object can hold the most common value and seed a region of
+ * its own, smaller than the table's. table[] gets 1 on the table's cells;
+ * region[] and queue[] are scratch. */
+static void table_cells(const uint8_t *med, int32_t gw, int32_t gh, int32_t tol, int32_t step,
+                        uint8_t *table, int32_t *region, int32_t *queue)
+{
+    const int32_t n = gw * gh;
+    int32_t hist[256] = {0};
+    for (int32_t k = 0; k < n; k++)
+        hist[med[k]]++;
+    int32_t mode = 0, best = -1;
+    for (int32_t v = 0; v < 256; v++) {
+        int32_t band = 0;
+        for (int32_t u = v - tol; u <= v + tol; u++)
+            band += u >= 0 && u < 256 ? hist[u] : 0;
+        if (band > best) {
+            best = band;
+            mode = v;
+        }
+    }
+    for (int32_t k = 0; k < n; k++)
+        region[k] = -1;
+    int32_t largest = -1, largest_size = 0;
+    for (int32_t seed = 0; seed < n; seed++) {
+        const int32_t ds = (int32_t)med[seed] - mode;
+        if (region[seed] >= 0 || ds > tol || ds < -tol)
+            continue;
+        int32_t head = 0, tail = 0;
+        region[seed] = seed;
+        queue[tail++] = seed;
+        while (head < tail) {
+            const int32_t k = queue[head++], i = k % gw, j = k / gw;
+            const int32_t next[4] = {i > 0 ? k - 1 : -1, i + 1 < gw ? k + 1 : -1,
+                                     j > 0 ? k - gw : -1, j + 1 < gh ? k + gw : -1};
+            for (int32_t e = 0; e < 4; e++) {
+                const int32_t m = next[e];
+                if (m < 0 || region[m] >= 0)
+                    continue;
+                const int32_t d = (int32_t)med[m] - med[k];
+                if (d <= step && d >= -step) {
+                    region[m] = seed;
+                    queue[tail++] = m;
+                }
+            }
+        }
+        if (tail > largest_size) {
+            largest_size = tail;
+            largest = seed;
+        }
+    }
+    for (int32_t k = 0; k < n; k++)
+        table[k] = region[k] == largest;
+}
+
+/* The plane through the table cells of the window of radius r around
+ * cell (i, j), by least squares, evaluated at the cell (Q4); false when
+ * they are too few or in a line. Exact for light that changes linearly,
+ * also where the window is cut by the frame's edge (a mean is biased
+ * there, towards the frame's inside). Integer: with r <= 8 every sum and
+ * 3 x 3 determinant fits 64 bits. */
+static bool table_plane(const uint8_t *med, const uint8_t *table, int32_t gw, int32_t gh, int32_t i,
+                        int32_t j, int32_t r, int32_t tol, int32_t *value)
+{
+    const int32_t j0 = j > r ? j - r : 0, j1 = j + r < gh ? j + r : gh - 1;
+    const int32_t i0 = i > r ? i - r : 0, i1 = i + r < gw ? i + r : gw - 1;
+    int64_t n = 0, su = 0, sv = 0, suu = 0, suv = 0, svv = 0, sz = 0, suz = 0, svz = 0;
+    int32_t lo = 255, hi = 0;
+    for (int32_t jj = j0; jj <= j1; jj++)
+        for (int32_t ii = i0; ii <= i1; ii++) {
+            if (!table[jj * gw + ii])
+                continue;
+            const int64_t u = ii - i, v = jj - j, z = med[jj * gw + ii];
+            n++;
+            su += u;
+            sv += v;
+            suu += u * u;
+            suv += u * v;
+            svv += v * v;
+            sz += z;
+            suz += u * z;
+            svz += v * z;
+            lo = (int32_t)z < lo ? (int32_t)z : lo;
+            hi = (int32_t)z > hi ? (int32_t)z : hi;
+        }
+    if (n < 6)
+        return false;
+    /* Cramer's rule for the plane's value at (0, 0) */
+    const int64_t m11 = suu * svv - suv * suv, m12 = su * svv - suv * sv, m13 = su * suv - suu * sv;
+    const int64_t det = n * m11 - su * m12 + sv * m13;
+    if (det <= 0)
+        return false;
+    const int64_t num = sz * m11 - suz * m12 + svz * m13;
+    int64_t a = (num * (1 << GRID_SHIFT) + (num >= 0 ? det / 2 : -det / 2)) / det;
+    /* no further than tol beyond the cells it was fitted to */
+    const int64_t a_lo = (int64_t)(lo - tol) << GRID_SHIFT, a_hi = (int64_t)(hi + tol)
+                                                                   << GRID_SHIFT;
+    a = a < a_lo ? a_lo : a > a_hi ? a_hi : a;
+    a = a < 0 ? 0 : a > (255 << GRID_SHIFT) ? (255 << GRID_SHIFT) : a;
+    *value = (int32_t)a;
+    return true;
+}
+
+/* Each cell's estimate, Q4: the plane through the table cells of its
+ * window of radius r0; where there are too few, the mean of the table
+ * cells within 2, 4, ... times r0 (a cell inside a large object). */
+static void table_estimates(const uint8_t *med, const uint8_t *table, int32_t gw, int32_t gh,
+                            int32_t r0, int32_t tol, int32_t *grid)
+{
+    for (int32_t j = 0; j < gh; j++)
+        for (int32_t i = 0; i < gw; i++) {
+            if (table_plane(med, table, gw, gh, i, j, r0, tol, &grid[j * gw + i]))
+                continue;
+            int32_t sum = 0, n = 0;
+            for (int32_t r = r0; n == 0; r *= 2) {
+                const int32_t j0 = j > r ? j - r : 0, j1 = j + r < gh ? j + r : gh - 1;
+                const int32_t i0 = i > r ? i - r : 0, i1 = i + r < gw ? i + r : gw - 1;
+                for (int32_t jj = j0; jj <= j1; jj++)
+                    for (int32_t ii = i0; ii <= i1; ii++)
+                        if (table[jj * gw + ii]) {
+                            sum += med[jj * gw + ii];
+                            n++;
+                        }
+            }
+            grid[j * gw + i] = (sum * (1 << GRID_SHIFT) + n / 2) / n;
+        }
+}
+
+/* The cell below-left of pixel p's centre and p's weight towards the next
+ * cell (Q8): cell centres lie at (i + 1/2) cell, pixel centres at p + 1/2;
+ * outside the outermost centres the edge cell's value holds. */
+static void interpolation_point(int32_t p, int32_t cell, int32_t n, int32_t *i, int32_t *frac)
+{
+    const int32_t num = 2 * p + 1 - cell; /* (p + 1/2 - cell / 2) in half pixels */
+    *i = 0;
+    *frac = 0;
+    if (num <= 0)
+        return;
+    *i = num / (2 * cell);
+    *frac = ((num - *i * 2 * cell) << WEIGHT_SHIFT) / (2 * cell);
+    if (*i >= n - 1) {
+        *i = n - 1;
+        *frac = 0;
+    }
+}
+
+rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *background,
+                                      const rte_background_params *params, rte_arena *arena)
+{
+    rte_status st = rte_image_u8_check_pair(src, background);
+    if (st != RTE_OK)
+        return st;
+    if (!params || !arena || params->cell < RTE_BACKGROUND_MIN_CELL ||
+        params->cell > RTE_BACKGROUND_MAX_CELL || params->radius < 1 ||
+        params->radius > RTE_BACKGROUND_MAX_RADIUS || params->tolerance < 0 ||
+        params->tolerance > 255 || params->step < 0 || params->step > 255 ||
+        src->buf == background->buf)
+        return RTE_ERR_ARGUMENT;
+    const int32_t w = src->width, h = src->height, cell = params->cell;
+    const int32_t gw = cells(w, cell), gh = cells(h, cell);
+    const size_t mark = rte_arena_mark(arena);
+    uint8_t *med = rte_arena_alloc(arena, (size_t)gw * gh);
+    uint8_t *table = rte_arena_alloc(arena, (size_t)gw * gh);
+    int32_t *queue = rte_arena_alloc(arena, (size_t)gw * gh * sizeof *queue);
+    int32_t *region = rte_arena_alloc(arena, (size_t)gw * gh * sizeof *region);
+    int32_t *grid = rte_arena_alloc(arena, (size_t)gw * gh * sizeof *grid);
+    uint16_t *hist = rte_arena_alloc(arena, (size_t)gw * HIST_BINS * sizeof *hist);
+    int32_t *col = rte_arena_alloc(arena, (size_t)w * 2 * sizeof *col);
+    int32_t *gridrow = rte_arena_alloc(arena, (size_t)gw * 2 * sizeof *gridrow);
+    int32_t *seg_end = gridrow + gw; /* the columns interpolated from cell i end here */
+    if (!med || !table || !queue || !region || !grid || !hist || !col || !gridrow) {
+        rte_arena_reset(arena, mark);
+        return RTE_ERR_NO_MEMORY;
+    }
+    cell_medians(src, cell, gw, gh, med, hist);
+    table_cells(med, gw, gh, params->tolerance, params->step, table, region, queue);
+    table_estimates(med, table, gw, gh, params->radius, params->tolerance, grid);
+
+    int32_t *col_frac = col + w;
+    for (int32_t x = 0; x < w; x++) {
+        interpolation_point(x, cell, gw, &col[x], &col_frac[x]);
+        seg_end[col[x]] = x + 1; /* col[] never decreases */
+    }
+    const int32_t round = 1 << (GRID_SHIFT + 2 * WEIGHT_SHIFT - 1);
+    for (int32_t y = 0; y < h; y++) {
+        int32_t j, fy;
+        interpolation_point(y, cell, gh, &j, &fy);
+        const int32_t *g0 = grid + j * gw, *g1 = grid + (j + 1 < gh ? j + 1 : j) * gw;
+        for (int32_t i = 0; i < gw; i++) /* Q4 + Q8 */
+            gridrow[i] = g0[i] * ((1 << WEIGHT_SHIFT) - fy) + g1[i] * fy;
+        /* between two cell centres the value is base + delta * frac */
+        uint8_t *out = rte_u8_row(background, y);
+        for (int32_t x = 0; x < w;) {
+            const int32_t i = col[x], i1 = i + 1 < gw ? i + 1 : i;
+            const int32_t base = gridrow[i] * (1 << WEIGHT_SHIFT) + round;
+            const int32_t delta = gridrow[i1] - gridrow[i];
+            const int32_t end = seg_end[i];
+            /* at most 255 * 2^4 * 2^8 * 2^8 < 2^31 */
+            for (; x < end; x++)
+                out[x] = (uint8_t)((base + delta * col_frac[x]) >> (GRID_SHIFT + 2 * WEIGHT_SHIFT));
+        }
+    }
+    rte_arena_reset(arena, mark);
+    return RTE_OK;
+}
+
+/* Regions are labelled by runs: a run is a maximal horizontal stretch of
+ * pixels of one side; runs of one side that touch (8-connected) in
+ * consecutive rows are united (union-find over run indices). A region's
+ * root run holds its pixel count, sum of |d| and flags. */
+enum { REGION_STRONG = 1, REGION_DARK = 2, REGION_SHADOW = 4 };
+
+typedef struct run_table {
+    int32_t *x0, *x1, *parent, *count;
+    int64_t *sum;
+    uint8_t *flags;
+    int32_t *row_start; /* runs of row y: row_start[y] .. row_start[y + 1] - 1 */
+    int32_t capacity;
+} run_table;
+
+/* Runs the table holds for a w x h frame: an average of one per 4 pixels
+ * (every other pixel flipping side, all over the frame, exceeds it). */
+static int32_t run_capacity(int32_t w, int32_t h)
+{
+    const int64_t n = (int64_t)w * h / 4 + h;
+    return n > INT32_MAX ? INT32_MAX : (int32_t)n;
+}
+
+size_t rte_background_threshold_scratch_size(int32_t max_width, int32_t max_height)
+{
+    if (max_width < 1 || max_height < 1)
+        return 0;
+    const size_t runs = (size_t)run_capacity(max_width, max_height);
+    return rte_arena_piece_size(runs * sizeof(int32_t)) * 4 + /* x0, x1, parent, count */
+           rte_arena_piece_size(runs * sizeof(int64_t)) +     /* sum */
+           rte_arena_piece_size(runs) +                       /* flags */
+           rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t));
+}
+
+static int32_t find_root(int32_t *parent, int32_t a)
+{
+    while (parent[a] != a) {
+        parent[a] = parent[parent[a]];
+        a = parent[a];
+    }
+    return a;
+}
+
+/* Unites two trees under the smaller root index (roots precede their runs). */
+static void unite(int32_t *parent, int32_t a, int32_t b)
+{
+    a = find_root(parent, a);
+    b = find_root(parent, b);
+    if (a < b)
+        parent[b] = a;
+    else if (b < a)
+        parent[a] = b;
+}
+
+/* Whether any of the 8 bytes of v exceeds n (n <= 127). */
+static inline bool any_byte_above(uint64_t v, uint32_t n)
+{
+    const uint64_t ones = 0x0101010101010101u;
+    return (((v + ones * (127 - n)) | v) & ones * 0x80) != 0;
+}
+
+/* One row's runs, appended to the table; unites them with the touching runs
+ * of the previous row. a: |d| of the row; the side is s > b. Returns the
+ * pixels left out for want of room. */
+static int64_t label_row(run_table *t, int32_t y, const uint8_t *a, const uint8_t *s,
+                         const uint8_t *b, int32_t w, int32_t low, int32_t high, bool bright,
+                         bool dark, int32_t *n_runs)
+{
+    int64_t dropped = 0;
+    int32_t n = *n_runs;
+    t->row_start[y] = n;
+    for (int32_t x = 0; x < w;) {
+        if (x + 8 <= w) { /* the table: eight pixels at a time */
+            uint64_t v;
+            memcpy(&v, a + x, sizeof v);
+            if (!any_byte_above(v, (uint32_t)low)) {
+                x += 8;
+                continue;
+            }
+        }
+        const bool up = s[x] > b[x];
+        if (a[x] <= low || !(up ? bright : dark)) {
+            x++;
+            continue;
+        }
+        const int32_t x0 = x;
+        int64_t sum = 0;
+        int32_t peak = 0;
+        for (; x < w && a[x] > low && (s[x] > b[x]) == up; x++) {
+            sum += a[x];
+            peak = a[x] > peak ? a[x] : peak;
+        }
+        if (n == t->capacity) {
+            dropped += x - x0;
+            continue;
+        }
+        t->x0[n] = x0;
+        t->x1[n] = x - 1;
+        t->parent[n] = n;
+        t->count[n] = x - x0;
+        t->sum[n] = sum;
+        t->flags[n] = (uint8_t)((peak > high ? REGION_STRONG : 0) | (up ? 0 : REGION_DARK));
+        n++;
+    }
+    t->row_start[y + 1] = n;
+    if (y > 0) { /* 8-connected: runs overlapping or meeting at a corner */
+        int32_t p = t->row_start[y - 1];
+        const int32_t p_end = t->row_start[y];
+        for (int32_t r = t->row_start[y]; r < n; r++) {
+            while (p < p_end && t->x1[p] < t->x0[r] - 1)
+                p++;
+            for (int32_t q = p; q < p_end && t->x0[q] <= t->x1[r] + 1; q++)
+                if (((t->flags[q] ^ t->flags[r]) & REGION_DARK) == 0)
+                    unite(t->parent, q, r);
+        }
+    }
+    *n_runs = n;
+    return dropped;
+}
+
+/* Whether dark run r's region is the shadow of a bright region within
+ * `gap` px of it: one both larger and of higher mean contrast
+ * (compared as sum_b * count_d > sum_d * count_b). */
+static bool casts_shadow_on(const run_table *t, int32_t y, int32_t h, int32_t gap, int32_t rd,
+                            int32_t r)
+{
+    const int32_t y0 = y > gap ? y - gap : 0, y1 = y + gap < h ? y + gap : h - 1;
+    for (int32_t yy = y0; yy <= y1; yy++)
+        for (int32_t q = t->row_start[yy]; q < t->row_start[yy + 1]; q++) {
+            if (t->x0[q] > t->x1[r] + gap)
+                break;
+            const int32_t rb = t->parent[q];
+            if (t->x1[q] < t->x0[r] - gap ||
+                (t->flags[rb] & (REGION_DARK | REGION_STRONG)) != REGION_STRONG)
+                continue;
+            if (t->count[rb] > t->count[rd] &&
+                t->sum[rb] * t->count[rd] > t->sum[rd] * t->count[rb])
+                return true;
+        }
+    return false;
+}
+
+rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_u8 *background,
+                                       rte_image_u8 *dst,
+                                       const rte_background_threshold_params *params,
+                                       rte_arena *arena, rte_background_threshold_result *result)
+{
+    rte_status st = rte_image_u8_check_pair(src, background);
+    if (st == RTE_OK)
+        st = rte_image_u8_check_pair(src, dst);
+    if (st != RTE_OK)
+        return st;
+    if (!params || !arena || params->high < 0 || params->high > 255 || params->min_contrast < 1 ||
+        params->min_contrast > 255 || params->shadow_gap < 0 ||
+        params->shadow_gap > RTE_BACKGROUND_MAX_SHADOW_GAP || dst->buf == src->buf ||
+        dst->buf == background->buf)
+        return RTE_ERR_ARGUMENT;
+    const int32_t w = src->width, h = src->height;
+    const size_t mark = rte_arena_mark(arena);
+    run_table t = {.capacity = run_capacity(w, h)};
+    const size_t runs = (size_t)t.capacity;
+    t.x0 = rte_arena_alloc(arena, runs * sizeof *t.x0);
+    t.x1 = rte_arena_alloc(arena, runs * sizeof *t.x1);
+    t.parent = rte_arena_alloc(arena, runs * sizeof *t.parent);
+    t.count = rte_arena_alloc(arena, runs * sizeof *t.count);
+    t.sum = rte_arena_alloc(arena, runs * sizeof *t.sum);
+    t.flags = rte_arena_alloc(arena, runs);
+    t.row_start = rte_arena_alloc(arena, ((size_t)h + 1) * sizeof *t.row_start);
+    if (!t.x0 || !t.x1 || !t.parent || !t.count || !t.sum || !t.flags || !t.row_start) {
+        rte_arena_reset(arena, mark);
+        return RTE_ERR_NO_MEMORY;
+    }
+
+    /* |d| into dst first (the regions are painted over it at the end) */
+    for (int32_t y = 0; y < h; y++) {
+        const uint8_t *s = rte_u8_row(src, y), *b = rte_u8_row(background, y);
+        uint8_t *a = rte_u8_row(dst, y);
+        for (int32_t x = 0; x < w; x++)
+            a[x] = (uint8_t)(s[x] > b[x] ? s[x] - b[x] : b[x] - s[x]);
+    }
+    int32_t high = params->high;
+    if (high == 0) {
+        uint32_t hist[256];
+        rte_histogram_u8(dst, hist);
+        rte_threshold_otsu_histogram(hist, &high);
+    }
+    if (high < params->min_contrast)
+        high = params->min_contrast;
+    const int32_t low = high * 2 / 3; /* nearer half the contrast: the edge of a blurred step */
+
+    int32_t n = 0;
+    int64_t dropped = 0;
+    for (int32_t y = 0; y < h; y++)
+        dropped +=
+            label_row(&t, y, rte_u8_row(dst, y), rte_u8_row(src, y), rte_u8_row(background, y), w,
+                      low, high, params->bright, params->dark, &n);
+    /* Statistics to the roots; every run then points at its root. */
+    int32_t regions = 0, shadows = 0;
+    for (int32_t r = 0; r < n; r++) {
+        const int32_t root = find_root(t.parent, r);
+        t.parent[r] = root;
+        if (root == r) {
+            regions++;
+            continue;
+        }
+        t.count[root] += t.count[r];
+        t.sum[root] += t.sum[r];
+        t.flags[root] |= t.flags[r] & REGION_STRONG;
+    }
+    if (params->drop_shadows && params->bright && params->dark)
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t r = t.row_start[y]; r < t.row_start[y + 1]; r++) {
+                const int32_t rd = t.parent[r];
+                if ((t.flags[rd] & (REGION_DARK | REGION_SHADOW)) != REGION_DARK)
+                    continue;
+                if (casts_shadow_on(&t, y, h, params->shadow_gap, rd, r)) {
+                    t.flags[rd] |= REGION_SHADOW;
+                    shadows += (t.flags[rd] & REGION_STRONG) != 0;
+                }
+            }
+    for (int32_t y = 0; y < h; y++) {
+        uint8_t *out = rte_u8_row(dst, y);
+        memset(out, 0, (size_t)w);
+        for (int32_t r = t.row_start[y]; r < t.row_start[y + 1]; r++)
+            if ((t.flags[t.parent[r]] & (REGION_STRONG | REGION_SHADOW)) == REGION_STRONG)
+                memset(out + t.x0[r], 255, (size_t)(t.x1[r] - t.x0[r] + 1));
+    }
+    if (result)
+        *result = (rte_background_threshold_result){.high = high,
+                                                    .low = low,
+                                                    .regions = regions,
+                                                    .shadows = shadows,
+                                                    .dropped_pixels = dropped};
+    rte_arena_reset(arena, mark);
+    return RTE_OK;
+}

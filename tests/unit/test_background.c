@@ -1,0 +1,374 @@
+/* The table's brightness and the two-sided threshold against it, on
+ * synthetic tables whose light and objects are known: a vignette falling
+ * off 90 grey levels to the corners, objects lighter and darker than the
+ * table, one wider than the estimate's window, a shadow, a two-tone object,
+ * weak and strong regions, and the run table's bound. */
+#include "unit.h"
+
+#include "rtedge/background.h"
+
+#define W 320
+#define H 240
+
+/* 190 in the middle, 100 in the corners (quadratic in the distance). */
+static int32_t vignette(int32_t x, int32_t y)
+{
+    const int64_t dx = 2 * x + 1 - W, dy = 2 * y + 1 - H;
+    return 190 - (int32_t)(90 * (dx * dx + dy * dy) / ((int64_t)W * W + (int64_t)H * H));
+}
+
+static uint8_t *at(rte_image_u8 *img, int32_t x, int32_t y)
+{
+    return &img->buf[(size_t)y * img->stride + x];
+}
+
+/* Which object a pixel belongs to (0: table). */
+static int object_at(int32_t x, int32_t y)
+{
+    const int32_t dx = x - 70, dy = y - 60;
+    if (dx * dx + dy * dy <= 25 * 25)
+        return 1; /* a lighter disc */
+    if (x >= 200 && x < 240 && y >= 40 && y < 70)
+        return 2; /* a darker box */
+    if (x >= 110 && x < 280 && y >= 120 && y < 215)
+        return 3; /* a darker tray, wider than the 9 x 9 cell window */
+    if (x >= 20 && x < 60 && y >= 150 && y < 200)
+        return 4; /* a lighter box over the dark corner */
+    return 0;
+}
+
+static const int object_delta[5] = {0, 50, -60, -45, 40};
+
+/* The vignetted table with the objects, a 3 x 3 box blur's worth of soft
+ * edges left out (the objects are sharp), and +-3 of noise. */
+static rte_image_u8 table_scene(void)
+{
+    rte_image_u8 img = unit_image_u8(W, H, 7, 0);
+    uint32_t rng = 12345;
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++) {
+            int32_t v = vignette(x, y) + object_delta[object_at(x, y)];
+            v += (int32_t)(unit_rand(&rng) % 7) - 3;
+            *at(&img, x, y) = (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+        }
+    return img;
+}
+
+static rte_arena new_arena(void)
+{
+    size_t n = rte_background_scratch_size(W, H, RTE_BACKGROUND_MIN_CELL);
+    const size_t m = rte_background_threshold_scratch_size(W, H);
+    n = n > m ? n : m;
+    rte_arena a;
+    rte_arena_init(&a, test_malloc(n + RTE_ARENA_ALIGN), n + RTE_ARENA_ALIGN);
+    return a;
+}
+
+/* The arena's memory from its first RTE_ARENA_ALIGN-aligned byte: the
+ * scratch sizes are for aligned memory. */
+static uint8_t *aligned(const rte_arena *a)
+{
+    return (uint8_t *)(((uintptr_t)a->base + RTE_ARENA_ALIGN - 1) &
+                       ~(uintptr_t)(RTE_ARENA_ALIGN - 1));
+}
+
+static void estimate_follows_the_vignette_under_objects(void **state)
+{
+    (void)state;
+    rte_image_u8 img = table_scene(), bg = unit_image_u8(W, H, 3, 0);
+    rte_arena arena = new_arena();
+    rte_background_params p;
+    rte_background_params_default(&p, W);
+    assert_int_equal(p.cell, 8);
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &p, &arena), RTE_OK);
+    assert_int_equal(arena.used, 0);
+    unit_assert_padding_u8(&bg);
+    /* the estimate is the table's light within 6 grey levels on the table
+     * (the vignette's curvature over a window) and within 20 under the
+     * objects (under the tray, from the table cells around it) */
+    int32_t worst[2] = {0, 0};
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++) {
+            int32_t e = (int32_t)*at(&bg, x, y) - vignette(x, y);
+            e = e < 0 ? -e : e;
+            int32_t *wo = &worst[object_at(x, y) != 0];
+            *wo = e > *wo ? e : *wo;
+        }
+    print_message("background: worst error %d grey levels on the table, %d under objects\n",
+                  worst[0], worst[1]);
+    assert_true(worst[0] <= 6);
+    assert_true(worst[1] <= 20);
+
+    /* a flat table is its own estimate, exactly */
+    rte_image_u8 flat = unit_image_u8(W, H, 1, 137);
+    assert_int_equal(rte_background_estimate_u8(&flat, &bg, &p, &arena), RTE_OK);
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++)
+            assert_int_equal(*at(&bg, x, y), 137);
+    test_free(flat.buf);
+    test_free(img.buf);
+    test_free(bg.buf);
+    test_free(arena.base);
+}
+
+static void threshold_finds_lighter_and_darker_objects(void **state)
+{
+    (void)state;
+    rte_image_u8 img = table_scene(), bg = unit_image_u8(W, H, 0, 0);
+    rte_image_u8 bin = unit_image_u8(W, H, 5, 0);
+    rte_arena arena = new_arena();
+    rte_background_params p;
+    rte_background_params_default(&p, W);
+    rte_background_threshold_params tp;
+    rte_background_threshold_params_default(&tp, W);
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &p, &arena), RTE_OK);
+    rte_background_threshold_result r;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, &r), RTE_OK);
+    assert_int_equal(arena.used, 0);
+    unit_assert_padding_u8(&bin);
+    assert_true(r.high >= tp.min_contrast && r.high < 40);
+    assert_int_equal(r.low, r.high * 2 / 3);
+    assert_int_equal(r.dropped_pixels, 0);
+    /* every object pixel found, no table pixel taken */
+    int32_t wrong[5] = {0}, table_wrong = 0;
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++) {
+            const int o = object_at(x, y);
+            const bool is = *at(&bin, x, y) == 255;
+            assert_true(*at(&bin, x, y) == 0 || is);
+            if (o && !is)
+                wrong[o]++;
+            table_wrong += !o && is;
+        }
+    for (int o = 1; o <= 4; o++)
+        assert_int_equal(wrong[o], 0);
+    assert_int_equal(table_wrong, 0);
+
+    /* one side only */
+    tp.dark = false;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, NULL), RTE_OK);
+    assert_int_equal(*at(&bin, 70, 60), 255);
+    assert_int_equal(*at(&bin, 220, 55), 0);
+    assert_int_equal(*at(&bin, 200, 170), 0);
+    tp.dark = true;
+    tp.bright = false;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, NULL), RTE_OK);
+    assert_int_equal(*at(&bin, 70, 60), 0);
+    assert_int_equal(*at(&bin, 220, 55), 255);
+    assert_int_equal(*at(&bin, 200, 170), 255);
+    test_free(img.buf);
+    test_free(bg.buf);
+    test_free(bin.buf);
+    test_free(arena.base);
+}
+
+/* A flat table (150) with what `paint` draws; returns the binary image. */
+static rte_image_u8 threshold_of(void (*paint)(rte_image_u8 *), bool drop_shadows,
+                                 rte_background_threshold_result *r)
+{
+    rte_image_u8 img = unit_image_u8(W, H, 0, 150), bg = unit_image_u8(W, H, 0, 150);
+    rte_image_u8 bin = unit_image_u8(W, H, 0, 0);
+    paint(&img);
+    rte_arena arena = new_arena();
+    rte_background_threshold_params tp;
+    rte_background_threshold_params_default(&tp, W);
+    tp.high = 20; /* the shadow's 30 is strong too */
+    tp.drop_shadows = drop_shadows;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, r), RTE_OK);
+    test_free(img.buf);
+    test_free(bg.buf);
+    test_free(arena.base);
+    return bin;
+}
+
+/* A lit ball (+80) with its shadow (-30) beside it, 2 px of table between. */
+static void ball_and_shadow(rte_image_u8 *img)
+{
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++) {
+            const int32_t bx = x - 100, by = y - 100, sx = x - 130, sy = y - 115;
+            if (bx * bx + by * by <= 40 * 40)
+                *at(img, x, y) = 230;
+            else if (bx * bx + by * by > 42 * 42 && sx * sx + sy * sy <= 40 * 40)
+                *at(img, x, y) = 120;
+        }
+}
+
+/* A dark pen (-100) with a small bright metal tip (+60) touching it. */
+static void pen_with_tip(rte_image_u8 *img)
+{
+    for (int32_t y = 100; y < 110; y++)
+        for (int32_t x = 40; x < 200; x++)
+            *at(img, x, y) = x < 55 ? 210 : 50;
+}
+
+static void shadows_dropped_and_two_tone_objects_kept(void **state)
+{
+    (void)state;
+    rte_background_threshold_result r;
+    rte_image_u8 bin = threshold_of(ball_and_shadow, true, &r);
+    assert_int_equal(r.shadows, 1);
+    assert_int_equal(*at(&bin, 100, 100), 255); /* the ball */
+    assert_int_equal(*at(&bin, 150, 140), 0);   /* its shadow */
+    test_free(bin.buf);
+    bin = threshold_of(ball_and_shadow, false, &r);
+    assert_int_equal(r.shadows, 0);
+    assert_int_equal(*at(&bin, 150, 140), 255);
+    test_free(bin.buf);
+    /* the tip is brighter but smaller and of lower contrast than the pen:
+     * the pen is no shadow of it, and both stay */
+    bin = threshold_of(pen_with_tip, true, &r);
+    assert_int_equal(r.shadows, 0);
+    assert_int_equal(*at(&bin, 45, 105), 255);
+    assert_int_equal(*at(&bin, 150, 105), 255);
+    test_free(bin.buf);
+}
+
+/* Two faint patches (+18, beyond low but not high), one of them touching a
+ * strong object (+60). */
+static void faint_patches(rte_image_u8 *img)
+{
+    for (int32_t y = 20; y < 60; y++)
+        for (int32_t x = 20; x < 60; x++)
+            *at(img, x, y) = 168;
+    for (int32_t y = 100; y < 140; y++)
+        for (int32_t x = 100; x < 180; x++)
+            *at(img, x, y) = x < 140 ? 168 : 210;
+}
+
+static void hysteresis_keeps_faint_parts_of_strong_regions(void **state)
+{
+    (void)state;
+    /* fixed high 24: low 16; the patches' 18 lies between */
+    rte_image_u8 img = unit_image_u8(W, H, 0, 150), bg = unit_image_u8(W, H, 0, 150);
+    rte_image_u8 bin = unit_image_u8(W, H, 0, 0);
+    faint_patches(&img);
+    rte_arena arena = new_arena();
+    rte_background_threshold_params tp;
+    rte_background_threshold_params_default(&tp, W);
+    tp.high = 24;
+    rte_background_threshold_result r;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, &r), RTE_OK);
+    assert_int_equal(r.high, 24);
+    assert_int_equal(r.low, 16);
+    assert_int_equal(r.regions, 2);
+    assert_int_equal(*at(&bin, 40, 40), 0);     /* faint alone: dropped */
+    assert_int_equal(*at(&bin, 120, 120), 255); /* faint, touching the strong part */
+    assert_int_equal(*at(&bin, 160, 120), 255);
+    /* min_contrast raises a lower high threshold */
+    tp.high = 10;
+    tp.min_contrast = 30;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, &r), RTE_OK);
+    assert_int_equal(r.high, 30);
+    assert_int_equal(*at(&bin, 120, 120), 0);
+    assert_int_equal(*at(&bin, 160, 120), 255);
+    test_free(img.buf);
+    test_free(bg.buf);
+    test_free(bin.buf);
+    test_free(arena.base);
+}
+
+/* Every pixel flipping side: more runs than the table holds. */
+static void a_full_run_table_is_reported(void **state)
+{
+    (void)state;
+    rte_image_u8 img = unit_image_u8(W, H, 0, 0), bg = unit_image_u8(W, H, 0, 128);
+    rte_image_u8 bin = unit_image_u8(W, H, 2, 0);
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++)
+            *at(&img, x, y) = (x + y) % 2 ? 200 : 56;
+    rte_arena arena = new_arena();
+    rte_background_threshold_params tp;
+    rte_background_threshold_params_default(&tp, W);
+    rte_background_threshold_result r;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, &r), RTE_OK);
+    assert_true(r.dropped_pixels > 0);
+    assert_true(r.dropped_pixels < (int64_t)W * H);
+    unit_assert_padding_u8(&bin);
+    test_free(img.buf);
+    test_free(bg.buf);
+    test_free(bin.buf);
+    test_free(arena.base);
+}
+
+static void bad_arguments(void **state)
+{
+    (void)state;
+    rte_image_u8 img = unit_image_u8(W, H, 0, 100), bg = unit_image_u8(W, H, 0, 0);
+    rte_image_u8 small = unit_image_u8(W - 1, H, 0, 0);
+    rte_arena arena = new_arena();
+    rte_background_params p;
+    rte_background_params_default(&p, W);
+    const rte_background_params good = p;
+    assert_int_equal(rte_background_estimate_u8(&img, &small, &p, &arena), RTE_ERR_SIZE);
+    assert_int_equal(rte_background_estimate_u8(&img, &img, &p, &arena), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, NULL, &arena), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &p, NULL), RTE_ERR_ARGUMENT);
+    p.cell = 1;
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &p, &arena), RTE_ERR_ARGUMENT);
+    p = good;
+    p.radius = RTE_BACKGROUND_MAX_RADIUS + 1;
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &p, &arena), RTE_ERR_ARGUMENT);
+    p = good;
+    p.step = 256;
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &p, &arena), RTE_ERR_ARGUMENT);
+    p = good;
+    p.tolerance = -1;
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &p, &arena), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_background_scratch_size(0, H, 8), 0);
+    assert_int_equal(rte_background_scratch_size(W, H, 1), 0);
+    assert_int_equal(rte_background_threshold_scratch_size(W, 0), 0);
+
+    /* an arena short of the need fails cleanly and is left as it was */
+    const size_t need = rte_background_scratch_size(W, H, good.cell);
+    rte_arena tight;
+    rte_arena_init(&tight, aligned(&arena), need / 2);
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &good, &tight), RTE_ERR_NO_MEMORY);
+    assert_int_equal(tight.used, 0);
+    rte_arena_init(&tight, aligned(&arena), need);
+    assert_int_equal(rte_background_estimate_u8(&img, &bg, &good, &tight), RTE_OK);
+
+    rte_image_u8 bin = unit_image_u8(W, H, 0, 0);
+    rte_background_threshold_params tp;
+    rte_background_threshold_params_default(&tp, W);
+    const rte_background_threshold_params tgood = tp;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &small, &tp, &arena, NULL),
+                     RTE_ERR_SIZE);
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &img, &tp, &arena, NULL),
+                     RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bg, &tp, &arena, NULL),
+                     RTE_ERR_ARGUMENT);
+    tp.min_contrast = 0;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, NULL),
+                     RTE_ERR_ARGUMENT);
+    tp = tgood;
+    tp.high = 256;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, NULL),
+                     RTE_ERR_ARGUMENT);
+    tp = tgood;
+    tp.shadow_gap = RTE_BACKGROUND_MAX_SHADOW_GAP + 1;
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tp, &arena, NULL),
+                     RTE_ERR_ARGUMENT);
+    rte_arena_init(&tight, aligned(&arena), rte_background_threshold_scratch_size(W, H) / 2);
+    assert_int_equal(rte_background_threshold_u8(&img, &bg, &bin, &tgood, &tight, NULL),
+                     RTE_ERR_NO_MEMORY);
+    assert_int_equal(tight.used, 0);
+    test_free(img.buf);
+    test_free(bg.buf);
+    test_free(small.buf);
+    test_free(bin.buf);
+    test_free(arena.base);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(estimate_follows_the_vignette_under_objects),
+        cmocka_unit_test(threshold_finds_lighter_and_darker_objects),
+        cmocka_unit_test(shadows_dropped_and_two_tone_objects_kept),
+        cmocka_unit_test(hysteresis_keeps_faint_parts_of_strong_regions),
+        cmocka_unit_test(a_full_run_table_is_reported),
+        cmocka_unit_test(bad_arguments),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
