@@ -52,6 +52,7 @@ RTE_API rte_image_s16 rte_image_s16_view(void *buf, int32_t width, int32_t heigh
 /* RTE_OK when 1 <= width, height <= RTE_MAX_SIDE, stride >= width and buf is set. */
 RTE_API rte_status rte_image_u8_check(const rte_image_u8 *img);
 RTE_API rte_status rte_image_s16_check(const rte_image_s16 *img);
+RTE_API rte_status rte_image_u16_check(const rte_image_u16 *img);
 RTE_API rte_status rte_image_u8c3_check(const rte_image_u8c3 *img);
 
 /* RTE_OK when both are valid and have the same width and height. */
@@ -63,6 +64,11 @@ static inline uint8_t *rte_u8_row(const rte_image_u8 *img, int32_t y)
 }
 
 static inline int16_t *rte_s16_row(const rte_image_s16 *img, int32_t y)
+{
+    return img->buf + (ptrdiff_t)y * img->stride;
+}
+
+static inline uint16_t *rte_u16_row(const rte_image_u16 *img, int32_t y)
 {
     return img->buf + (ptrdiff_t)y * img->stride;
 }

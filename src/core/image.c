@@ -36,6 +36,12 @@ rte_status rte_image_s16_check(const rte_image_s16 *img)
                : RTE_ERR_ARGUMENT;
 }
 
+rte_status rte_image_u16_check(const rte_image_u16 *img)
+{
+    return img ? check_view(img->buf, img->width, img->height, img->stride, img->width)
+               : RTE_ERR_ARGUMENT;
+}
+
 rte_status rte_image_u8c3_check(const rte_image_u8c3 *img)
 {
     return img ? check_view(img->buf, img->width, img->height, img->stride, img->width * 3)
