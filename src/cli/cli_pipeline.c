@@ -26,6 +26,10 @@ void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area)
         .close = c.close_ksize,
         .close_iterations = c.close_iterations,
         .skip_border = false,
+        .gripper_min = c.params.gripper_min_px,
+        .gripper_max = c.params.gripper_max_px,
+        .margin = c.params.margin_px,
+        .finger = c.params.finger_px,
     };
 }
 
@@ -105,7 +109,39 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                               1,
                               4096,
                               NULL,
-                              "objects reported (the largest)",
+                              "objects reported (the best scores)",
+                              NULL};
+        t[n++] = (cli_option){"gripper-min",
+                              CLI_INT,
+                              &o->gripper_min,
+                              0,
+                              RTE_GRASP_MAX_OPENING_PX,
+                              NULL,
+                              "narrowest object the jaws can close on, px",
+                              NULL};
+        t[n++] = (cli_option){"gripper-max",
+                              CLI_INT,
+                              &o->gripper_max,
+                              0,
+                              RTE_GRASP_MAX_OPENING_PX,
+                              NULL,
+                              "widest opening of the jaws, px",
+                              NULL};
+        t[n++] = (cli_option){"margin",
+                              CLI_INT,
+                              &o->margin,
+                              0,
+                              RTE_GRASP_MAX_CLEARANCE_PX,
+                              NULL,
+                              "jaws open this much wider than the object on each side, px",
+                              NULL};
+        t[n++] = (cli_option){"finger",
+                              CLI_INT,
+                              &o->finger,
+                              0,
+                              RTE_GRASP_MAX_CLEARANCE_PX,
+                              NULL,
+                              "free room each finger needs beyond its opened jaw face, px",
                               NULL};
     }
     t[n] = (cli_option){0};
@@ -152,6 +188,15 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     p->max_area = o->max_area;
     p->skip_border = o->skip_border;
     p->max_objects = o->max_objects;
+    if (o->gripper_min > o->gripper_max) {
+        cli_error(command, "--gripper-min (%d) exceeds --gripper-max (%d)", o->gripper_min,
+                  o->gripper_max);
+        return CLI_EXIT_USAGE;
+    }
+    p->gripper_min_px = o->gripper_min;
+    p->gripper_max_px = o->gripper_max;
+    p->margin_px = o->margin;
+    p->finger_px = o->finger;
     p->roi_count = o->roi ? rte_parse_fractions(o->roi, p->roi, RTE_GRASP_MAX_ROI_VERTICES) : 0;
     if (p->roi_count < 0) {
         cli_error(command, "--roi takes 3 to %d 'x,y' fractions separated by ';', not '%s'",
