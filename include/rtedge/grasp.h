@@ -5,8 +5,10 @@
  *   or Canny + morphological close for objects whose boundary is the only
  *   reliable cue) -> external contours -> area filter -> features
  *   (centroid from moments, minimum-area box, shape class, solidity)
- *   -> grasp: the point at the centroid, the gripper closing across the
- *   box's short side, opened as wide as that side.
+ *   -> grasp (below, rte_grasp_object): the point at the centroid, the
+ *   gripper closing across the object's narrowest width, opened to that
+ *   width plus a margin on each side, and a graspability score; the
+ *   objects are reported best score first.
  *
  * A context is set up once for a maximum frame size and maximum counts: it
  * holds every buffer and the scratch arena, in one block of caller memory
@@ -51,6 +53,8 @@ typedef enum rte_grasp_polarity {
 
 /* Safe to change at run time (rte_grasp_set_params). */
 #define RTE_GRASP_MAX_ROI_VERTICES 8
+#define RTE_GRASP_MAX_OPENING_PX 65535  /* gripper_max_px */
+#define RTE_GRASP_MAX_CLEARANCE_PX 4096 /* margin_px, finger_px */
 
 typedef struct rte_grasp_params {
     rte_grasp_binarize binarize;
@@ -64,13 +68,21 @@ typedef struct rte_grasp_params {
     int32_t min_area;        /* pixels; smaller objects are dropped (>= 0) */
     int32_t max_area;        /* pixels; larger ones are dropped; 0 = no limit */
     int32_t skip_border;     /* 1: drop objects touching the image or workspace border */
-    int32_t max_objects;     /* 1..config.max_objects: objects reported */
+    int32_t max_objects;     /* 1..config.max_objects: objects reported (best scores) */
     /* The workspace: a polygon in fractions of width and height (Q16, as
      * rte_polygon_from_fractions takes them), 3..RTE_GRASP_MAX_ROI_VERTICES
      * vertices; objects are looked for inside it only, and one that reaches
      * its edge touches the border. roi_count 0: the whole frame. */
     rte_vertex roi[RTE_GRASP_MAX_ROI_VERTICES];
     int32_t roi_count;
+    /* The gripper, in image pixels: the jaws open from gripper_min_px to
+     * gripper_max_px (0 <= min <= max <= RTE_GRASP_MAX_OPENING_PX); they
+     * open margin_px wider than the object on each side, and each finger
+     * needs finger_px of free room beyond its jaw face (both
+     * 0..RTE_GRASP_MAX_CLEARANCE_PX). */
+    int32_t gripper_min_px, gripper_max_px;
+    int32_t margin_px;
+    int32_t finger_px;
 } rte_grasp_params;
 
 typedef struct rte_grasp_config {
@@ -90,15 +102,55 @@ typedef struct rte_grasp_config {
  * area, objects touching the border dropped. */
 RTE_API void rte_grasp_config_default(rte_grasp_config *config);
 
+/* The grasp of one object, for a parallel-jaw gripper seen from above.
+ *
+ * Point: the centroid (for an object of no area, a line or a dot, the
+ * centre of its bounding rectangle). Direction: the gripper closes across the object's
+ * narrowest width, measured on the convex hull of its contour by rotating
+ * calipers (rte_shape_calipers): the smallest extent of the object along
+ * any direction. A parallel-jaw gripper closing along a direction d must
+ * clear the object's whole extent along d, which is its hull's: so the
+ * width is the jaw opening the object needs wherever along the jaws it
+ * lies. For a convex object the jaws then touch it on both sides of the
+ * centroid. For a non-convex one (an L, a C) they close on its hull: the
+ * contacts are the hull's extreme points along d (an L's outer corner and
+ * the tips of both arms), which may be away from the centroid, and the
+ * centroid itself may lie outside the object; solidity (area / hull area)
+ * lowers such objects' score. Among the hull directions whose width is
+ * within 1/16 (+ 1 px) of the narrowest, the one with the best score is
+ * taken (a disc's or a square's neighbours choose the side to grasp from),
+ * ties to the narrowest.
+ *
+ * Jaws: on the line through the centroid along d, at the hull's two
+ * extreme positions along d moved margin_px outwards: the gripper opens
+ * to opening_q8 = width + 2 margin and its centre is the jaws' midpoint.
+ *
+ * Clearance: along that line beyond each extreme position, the free room
+ * (pixels of the binary image that are not object, inside the frame and
+ * the workspace) up to margin_px + finger_px; the smaller side's, Q8.
+ *
+ * Score (Q16, 0..65536 = 0..1): the product of
+ *   - solidity (area / hull area);
+ *   - width: 1 when gripper_min_px <= width and opening <= gripper_max_px;
+ *     falling linearly to 0 as the margin is used up (width from
+ *     gripper_max_px - 2 margin to gripper_max_px); 0 when the width is
+ *     below gripper_min_px or above gripper_max_px;
+ *   - clearance / (margin_px + finger_px) (1 when that sum is 0).
+ * A score of 0: the gripper cannot take it (too wide or narrow, no room for
+ * a finger, no area). */
 typedef struct rte_grasp_object {
-    /* Grasp: the point (centroid, Q8 px), the direction in which the
-     * gripper closes (across the short side of the minimum-area box, in
-     * degrees Q16 within (-90, 90], image coordinates, y down: positive
-     * turns clockwise on screen) and the opening (the short side, Q8 px). */
+    /* The point (Q8 px), the closing direction (degrees Q16 within
+     * (-90, 90], image coordinates, y down: positive turns clockwise on
+     * screen), the narrowest width and the jaw opening (Q8 px). */
     int32_t x_q8, y_q8;
     int32_t angle_q16;
     int32_t width_q8;
-    int32_t contour; /* index into rte_grasp_result.contours */
+    int32_t opening_q8;
+    /* the opened jaws' faces on the closing line: [0] behind, [1] ahead along angle_q16 */
+    int32_t jaws_q8[2][2];
+    int32_t clearance_q8; /* free room beyond the tighter jaw, up to margin + finger */
+    int32_t score_q16;    /* graspability, 0..65536 */
+    int32_t contour;      /* index into rte_grasp_result.contours */
     int32_t touches_border;
     rte_shape_info info; /* area, box, class, solidity, ... */
 } rte_grasp_object;
@@ -111,7 +163,7 @@ typedef struct rte_grasp_timing {
 /* Filled by rte_grasp_process; the pointers refer to the context's storage
  * and stay valid until the next call or rte_grasp_destroy. */
 typedef struct rte_grasp_result {
-    const rte_grasp_object *objects; /* sorted by area, largest first */
+    const rte_grasp_object *objects; /* best score first; equal scores largest first */
     int32_t n_objects;
     bool truncated;               /* objects, contours or points were dropped for room */
     int32_t dropped_objects;      /* objects that passed the filters but exceeded max_objects */

@@ -19,8 +19,8 @@ typedef enum rte_overlay_layer {
     RTE_OVERLAY_SEGMENTS = 1 << 2, /* Hough segments: used green, others grey */
     RTE_OVERLAY_LANES = 1 << 3,    /* the lanes' polylines: left blue, right red */
     RTE_OVERLAY_CONTOURS = 1 << 4, /* the objects' outlines */
-    RTE_OVERLAY_GRASP = 1 << 5,    /* box, closing line and grasp point */
-    RTE_OVERLAY_LABELS = 1 << 6,   /* object numbers and shapes, the lane offset */
+    RTE_OVERLAY_GRASP = 1 << 5,    /* grasp point, closing line, opened jaws */
+    RTE_OVERLAY_LABELS = 1 << 6,   /* object numbers, shapes, scores (%); lane offset */
 } rte_overlay_layer;
 #define RTE_OVERLAY_ALL 0x7f
 
@@ -44,8 +44,8 @@ RTE_API void rte_overlay_fill_gray(rte_overlay *o, const rte_image_u8 *gray);
 RTE_API void rte_overlay_roi(rte_overlay *o, const rte_point *roi, int32_t n);
 /* The lane result's layers (edges, segments, lanes, labels). */
 RTE_API void rte_overlay_lanes(rte_overlay *o, const rte_lane_result *r, uint32_t layers);
-/* The grasp result's layers (contours, grasp, labels), largest object
- * last so that small objects inside large ones stay visible. */
+/* The grasp result's layers (contours, grasp, labels), in reverse order:
+ * object 0, the best grasp, last, on top. */
 RTE_API void rte_overlay_grasp(rte_overlay *o, const rte_grasp_result *r, uint32_t layers);
 
 /* Text on a black band, moved inside the canvas where it would leave it. */

@@ -122,6 +122,29 @@ RTE_API size_t rte_shape_min_area_rect_scratch_size(int32_t max_points);
 RTE_API rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_rect *r,
                                            rte_arena *scratch);
 
+/* ---- calipers.c ---- */
+
+/* The widths of a convex polygon by rotating calipers, one per edge: the
+ * polygon's extent across that edge (the distance from the edge's line to
+ * the farthest vertex). The narrowest width of a shape is the smallest of
+ * its hull's: the minimum over all directions of its extent along one is
+ * reached across a hull edge. `hull`: distinct vertices in order, either
+ * orientation (rte_shape_convex_hull's output); `out` needs room for n
+ * entries. *n_out = n, or 1 for a point, a segment or collinear vertices
+ * (width 0, across the segment). RTE_ERR_ARGUMENT for a repeated vertex,
+ * RTE_ERR_TOO_LARGE beyond RTE_SHAPE_MAX_COORD. Width rounded to Q8, unit
+ * vector to Q16, angle within 0.001 degree. */
+typedef struct rte_caliper {
+    int32_t edge;           /* hull[edge] -> hull[(edge + 1) % n] */
+    int32_t far;            /* the vertex farthest from the edge's line (the first of equals) */
+    int32_t width_q8;       /* its distance from that line */
+    int32_t angle_q16;      /* that direction, normal to the edge: degrees within (-90, 90] */
+    int32_t ux_q16, uy_q16; /* its unit vector, pointing the way angle_q16 does */
+} rte_caliper;
+
+RTE_API rte_status rte_shape_calipers(const rte_point *hull, int32_t n, rte_caliper *out,
+                                      int32_t *n_out);
+
 /* ---- enclosing_circle.c ---- */
 
 /* The smallest circle holding every point (Welzl's incremental algorithm

@@ -58,6 +58,45 @@ static inline rte_i128 rte_div_round128(rte_i128 n, rte_i128 d)
     return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
 }
 
+/* 2^shift * w / sqrt(l), rounded to nearest (w^2 * 2^(2 shift + 2) below
+ * 2^127): a length in 1/2^shift px when w is a cross or dot product with
+ * a vector of squared length l. */
+static inline int32_t rte_scaled_len(int64_t w, int64_t l, int shift)
+{
+    rte_u128 v = ((rte_u128)((rte_u128)w * (rte_u128)w) << (2 * shift + 2)) / (rte_u128)l;
+    return (int32_t)((rte_isqrt128(v) + 1) / 2);
+}
+
+/* The angle of (x, y) in degrees Q16 for x > 0 (|angle| < 90) or x == 0
+ * (+-90), |x|, |y| below 2^26: an integer CORDIC, error below 0.001 degree. */
+static inline int32_t rte_atan2_deg_q16(int64_t x, int64_t y)
+{
+    /* atan(2^-i) in degrees, Q16 */
+    static const int32_t atan_q16[24] = {
+        2949120, 1740967, 919879, 466945, 234379, 117304, 58666, 29335, 14668, 7334, 3667, 1833,
+        917,     458,     229,    115,    57,     29,     14,    7,     4,     2,    1,    0,
+    };
+    if (x == 0)
+        return y >= 0 ? 90 * 65536 : -90 * 65536;
+    /* scale up for precision */
+    x *= (int64_t)1 << 20;
+    y *= (int64_t)1 << 20;
+    int64_t z = 0;
+    for (int i = 0; i < 24; i++) {
+        int64_t xs = x >> i, ys = y >> i;
+        if (y > 0) {
+            x += ys;
+            y -= xs;
+            z += atan_q16[i];
+        } else {
+            x -= ys;
+            y += xs;
+            z -= atan_q16[i];
+        }
+    }
+    return (int32_t)z;
+}
+
 /* The convex hull of pts as points, in a piece of `scratch` that stays
  * taken (the caller resets the arena to its own mark). */
 rte_status rte_shape_hull_in_arena(const rte_point *pts, int32_t n, rte_arena *scratch,

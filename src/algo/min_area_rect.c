@@ -1,40 +1,10 @@
 /* Minimum-area rotated rectangle: rotating calipers over the convex hull.
  * Each hull edge e defines a rectangle with one side along e; its area is
  * (dot_max - dot_min) * cross_max / |e|^2, compared exactly in 128 bits.
- * The angle comes from an integer CORDIC. */
+ * The angle comes from an integer CORDIC (geom_fixed.h). */
 #include "rtedge/shape.h"
 
 #include "geom_fixed.h"
-
-/* atan(2^-i) in degrees, Q16. */
-static const int32_t cordic_atan_q16[24] = {
-    2949120, 1740967, 919879, 466945, 234379, 117304, 58666, 29335, 14668, 7334, 3667, 1833,
-    917,     458,     229,    115,    57,     29,     14,    7,     4,     2,    1,    0,
-};
-
-/* Angle of (x, y) in degrees Q16 for x > 0 (|angle| < 90) or x == 0. */
-static int32_t atan2_deg_q16(int64_t x, int64_t y)
-{
-    if (x == 0)
-        return y >= 0 ? 90 * 65536 : -90 * 65536;
-    /* scale up for precision: inputs are below 2^26 */
-    x *= (int64_t)1 << 20;
-    y *= (int64_t)1 << 20;
-    int64_t z = 0;
-    for (int i = 0; i < 24; i++) {
-        int64_t xs = x >> i, ys = y >> i;
-        if (y > 0) {
-            x += ys;
-            y -= xs;
-            z += cordic_atan_q16[i];
-        } else {
-            x -= ys;
-            y += xs;
-            z -= cordic_atan_q16[i];
-        }
-    }
-    return (int32_t)z;
-}
 
 size_t rte_shape_min_area_rect_scratch_size(int32_t max_points)
 {
@@ -57,13 +27,6 @@ static int64_t crs(rte_point e, rte_point a, rte_point b)
 /* 256 * v / l rounded, for the corner offsets. */
 static int32_t q8_div(rte_i128 v, rte_i128 l) { return (int32_t)rte_div_round128(v * 256, l); }
 
-/* 256 * w / sqrt(l), rounded to nearest. */
-static int32_t q8_len(int64_t w, int64_t l)
-{
-    rte_u128 v = ((rte_u128)((rte_u128)w * (rte_u128)w) << 18) / (rte_u128)l;
-    return (int32_t)((rte_isqrt128(v) + 1) / 2);
-}
-
 static void fill_rect(rte_rotated_rect *r, rte_point p, rte_point e, int64_t dmin, int64_t dmax,
                       int64_t h, int64_t l)
 {
@@ -75,9 +38,9 @@ static void fill_rect(rte_rotated_rect *r, rte_point p, rte_point e, int64_t dmi
     int flip = u.x < 0 || (u.x == 0 && u.y < 0);
     if (flip)
         u = (rte_point){-u.x, -u.y};
-    r->angle_q16 = atan2_deg_q16(u.x, u.y);
-    r->length_q8 = q8_len(along_e ? w : h, l);
-    r->width_q8 = q8_len(along_e ? h : w, l);
+    r->angle_q16 = rte_atan2_deg_q16(u.x, u.y);
+    r->length_q8 = rte_scaled_len(along_e ? w : h, l, 8);
+    r->width_q8 = rte_scaled_len(along_e ? h : w, l, 8);
     r->cx_q8 =
         p.x * 256 + q8_div((rte_i128)e.x * (dmin + dmax) + (rte_i128)nrm.x * h, 2 * (rte_i128)l);
     r->cy_q8 =

@@ -27,7 +27,81 @@ void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area, bool
         .close_iterations = c.close_iterations,
         .contrast = c.params.contrast,
         .skip_border = !tutorial && c.params.skip_border,
+        .gripper_min = c.params.gripper_min_px,
+        .gripper_max = c.params.gripper_max_px,
+        .margin = c.params.margin_px,
+        .finger = c.params.finger_px,
     };
+}
+
+/* The object options of shapes and grasp: filters, workspace, gripper. */
+static int object_options(cli_option *t, cli_pipeline_options *o)
+{
+    int n = 0;
+    t[n++] = (cli_option){
+        "max-area", CLI_INT, &o->max_area, 0, 4194304, NULL, "largest object, px (0 = no limit)",
+        NULL};
+    t[n++] = (cli_option){"skip-border",
+                          CLI_FLAG,
+                          &o->skip_border,
+                          0,
+                          0,
+                          NULL,
+                          "drop objects touching the image border (or the workspace's)",
+                          NULL};
+    t[n++] = (cli_option){
+        "keep-border", CLI_FLAG, &o->keep_border, 0, 0, NULL, "keep them (flagged touches_border)",
+        NULL};
+    t[n++] = (cli_option){"roi",
+                          CLI_STRING,
+                          &o->roi,
+                          0,
+                          0,
+                          NULL,
+                          "the workspace: 3..8 'x,y' fractions of width and height, "
+                          "';'-separated; objects outside it are not looked for",
+                          NULL};
+    t[n++] = (cli_option){"max-objects",
+                          CLI_INT,
+                          &o->max_objects,
+                          1,
+                          4096,
+                          NULL,
+                          "objects reported (the best scores)",
+                          NULL};
+    t[n++] = (cli_option){"gripper-min",
+                          CLI_INT,
+                          &o->gripper_min,
+                          0,
+                          RTE_GRASP_MAX_OPENING_PX,
+                          NULL,
+                          "narrowest object the jaws can close on, px",
+                          NULL};
+    t[n++] = (cli_option){"gripper-max",
+                          CLI_INT,
+                          &o->gripper_max,
+                          0,
+                          RTE_GRASP_MAX_OPENING_PX,
+                          NULL,
+                          "widest opening of the jaws, px",
+                          NULL};
+    t[n++] = (cli_option){"margin",
+                          CLI_INT,
+                          &o->margin,
+                          0,
+                          RTE_GRASP_MAX_CLEARANCE_PX,
+                          NULL,
+                          "jaws open this much wider than the object on each side, px",
+                          NULL};
+    t[n++] = (cli_option){"finger",
+                          CLI_INT,
+                          &o->finger,
+                          0,
+                          RTE_GRASP_MAX_CLEARANCE_PX,
+                          NULL,
+                          "free room each finger needs beyond its opened jaw face, px",
+                          NULL};
+    return n;
 }
 
 int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp)
@@ -83,49 +157,8 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                           "canny: closing iterations", NULL};
     t[n++] = (cli_option){"min-area", CLI_INT, &o->min_area,          0,
                           4194304,    NULL,    "smallest object, px", NULL};
-    if (grasp) {
-        t[n++] = (cli_option){"max-area",
-                              CLI_INT,
-                              &o->max_area,
-                              0,
-                              4194304,
-                              NULL,
-                              "largest object, px (0 = no limit)",
-                              NULL};
-        t[n++] = (cli_option){"skip-border",
-                              CLI_FLAG,
-                              &o->skip_border,
-                              0,
-                              0,
-                              NULL,
-                              "drop objects touching the image border (or the workspace's)",
-                              NULL};
-        t[n++] = (cli_option){"keep-border",
-                              CLI_FLAG,
-                              &o->keep_border,
-                              0,
-                              0,
-                              NULL,
-                              "keep them (flagged touches_border)",
-                              NULL};
-        t[n++] = (cli_option){"roi",
-                              CLI_STRING,
-                              &o->roi,
-                              0,
-                              0,
-                              NULL,
-                              "the workspace: 3..8 'x,y' fractions of width and height, "
-                              "';'-separated; objects outside it are not looked for",
-                              NULL};
-        t[n++] = (cli_option){"max-objects",
-                              CLI_INT,
-                              &o->max_objects,
-                              1,
-                              4096,
-                              NULL,
-                              "objects reported (the largest)",
-                              NULL};
-    }
+    if (grasp)
+        n += object_options(t + n, o);
     t[n] = (cli_option){0};
     return n;
 }
@@ -175,6 +208,15 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     p->skip_border = o->skip_border && !o->keep_border;
     p->contrast = o->contrast;
     p->max_objects = o->max_objects;
+    if (o->gripper_min > o->gripper_max) {
+        cli_error(command, "--gripper-min (%d) exceeds --gripper-max (%d)", o->gripper_min,
+                  o->gripper_max);
+        return CLI_EXIT_USAGE;
+    }
+    p->gripper_min_px = o->gripper_min;
+    p->gripper_max_px = o->gripper_max;
+    p->margin_px = o->margin;
+    p->finger_px = o->finger;
     p->roi_count = o->roi ? rte_parse_fractions(o->roi, p->roi, RTE_GRASP_MAX_ROI_VERTICES) : 0;
     if (p->roi_count < 0) {
         cli_error(command, "--roi takes 3 to %d 'x,y' fractions separated by ';', not '%s'",

@@ -18,6 +18,7 @@ typedef struct cli_pipeline_options {
     int contrast;
     bool skip_border, keep_border;
     const char *roi; /* the workspace, "x,y;..." fractions; NULL: the whole image */
+    int gripper_min, gripper_max, margin, finger; /* px: rte_grasp_params */
 } cli_pipeline_options;
 
 extern const char *const cli_polarities[];
@@ -29,13 +30,14 @@ extern const char *const cli_polarities[];
 void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area, bool tutorial);
 
 /* Fills options[] (room for CLI_PIPELINE_OPTIONS entries) with the table
- * entries of `o`; `grasp` adds the object options (areas, border, count). */
-#define CLI_PIPELINE_OPTIONS 15
+ * entries of `o`; `grasp` adds the object options (areas, border, count,
+ * gripper). */
+#define CLI_PIPELINE_OPTIONS 19
 int cli_pipeline_option_table(cli_option *options, cli_pipeline_options *o, bool grasp);
 
 /* The grasp configuration for an image of w x h. CLI_EXIT_USAGE after a
- * message when --binarize is not background, otsu, canny or 0..255, or
- * --roi is not a polygon. */
+ * message when --binarize is not background, otsu, canny or 0..255, --roi
+ * is not a polygon or --gripper-min exceeds --gripper-max. */
 int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int32_t w, int32_t h,
                         rte_grasp_config *config);
 

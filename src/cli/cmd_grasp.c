@@ -118,10 +118,13 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
     int rc = grasp_start(
         &run, self, argc, argv,
         PIPELINE_DETAILS
-        "\nGrasp: the centroid, the gripper closing across the short side of the\n"
-        "minimum-area box (angle in degrees, image axes, y down), opened to that side.\n"
-        "Prints {\"objects\":[{\"center\",\"angle\",\"width\",\"area\",\"shape\",\"box\"}],...}\n"
-        "largest first.",
+        "\nGrasp: the centroid, the gripper closing across the narrowest width of the\n"
+        "object's convex hull (angle in degrees, image axes, y down), opened to that\n"
+        "width plus --margin on each side (the jaws' faces: jaws); score 0..1: solidity x\n"
+        "width within --gripper-min..--gripper-max x room for the fingers (clearance,\n"
+        "of --margin + --finger) on both sides. Prints {\"objects\":[{\"center\",\"angle\",\n"
+        "\"width\",\"opening\",\"jaws\",\"clearance\",\"score\",\"area\",\"shape\",\"box\"}],...}\n"
+        "best score first (equal scores: largest first).",
         100, false);
     if (rc != CLI_EXIT_OK)
         return rc < 0 ? CLI_EXIT_OK : rc;
@@ -135,6 +138,16 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
         cli_print_q16(o->angle_q16);
         printf(",\"width\":");
         cli_print_q8(o->width_q8);
+        printf(",\"opening\":");
+        cli_print_q8(o->opening_q8);
+        printf(",\"jaws\":[");
+        print_q8_pair(o->jaws_q8[0][0], o->jaws_q8[0][1]);
+        printf(",");
+        print_q8_pair(o->jaws_q8[1][0], o->jaws_q8[1][1]);
+        printf("],\"clearance\":");
+        cli_print_q8(o->clearance_q8);
+        printf(",\"score\":");
+        cli_print_q16(o->score_q16);
         printf(",\"area\":");
         cli_print_q8(o->info.area2 * 128);
         printf(",\"shape\":\"%s\",\"box\":[", rte_grasp_shape_name(o->info.shape));
@@ -158,7 +171,7 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
 
 static void draw_shapes(rte_overlay *o, const grasp_run *run)
 {
-    /* largest last, so small objects inside big ones stay visible */
+    /* the first (best) last, on top */
     rte_overlay_grasp(o, &run->result, RTE_OVERLAY_CONTOURS);
     for (int32_t i = run->result.n_objects - 1; i >= 0; i--) {
         const rte_grasp_object *g = &run->result.objects[i];
@@ -173,7 +186,7 @@ int cmd_shapes(const cli_entry *self, int argc, char **argv)
 {
     grasp_run run;
     int rc = grasp_start(&run, self, argc, argv,
-                         PIPELINE_DETAILS "\nPrints one line per object, largest first:\n"
+                         PIPELINE_DETAILS "\nPrints one line per object, best grasp score first:\n"
                                           "  index shape area perimeter solidity aspect cx cy",
                          100, true);
     if (rc != CLI_EXIT_OK)

@@ -61,6 +61,7 @@ typedef struct rted_config {
     int32_t grasp_min_area, grasp_max_area;
     bool grasp_skip_border;
     char grasp_roi[RTED_TEXT]; /* "": the whole frame */
+    int32_t grasp_gripper_min_px, grasp_gripper_max_px, grasp_margin_px, grasp_finger_px;
     /* [publish] */
     char lcm_url[RTED_TEXT];
     char lane_channel[64], grasp_channel[64], status_channel[64];

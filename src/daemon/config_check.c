@@ -170,6 +170,11 @@ bool rted_config_validate(const rted_config *c, char *msg, size_t msg_size)
         rted_msgf(msg, msg_size, "grasp.max_area is below grasp.min_area");
         return false;
     }
+    if (c->grasp_gripper_min_px > c->grasp_gripper_max_px) {
+        rted_msgf(msg, msg_size, "grasp.gripper_min_px (%d) exceeds grasp.gripper_max_px (%d)",
+                  c->grasp_gripper_min_px, c->grasp_gripper_max_px);
+        return false;
+    }
     if (!c->source_path[0]) {
         rted_msgf(msg, msg_size, "source.path is empty");
         return false;

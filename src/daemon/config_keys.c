@@ -12,6 +12,7 @@
 #include <strings.h>
 
 #include "log.h"
+#include "rtedge/grasp.h"
 #include "rtedge/lane.h"
 #include "rtedge/polygon_mask.h"
 #include "rtedge/shape.h"
@@ -167,6 +168,17 @@ static const key_def keys[] = {
          "(e.g. 0.1,0.1;0.9,0.1;0.9,0.9;0.1,0.9); objects are looked for inside\n"
          "it only, and one reaching its edge touches the border; empty: the\n"
          "whole frame"),
+    INT("grasp", "gripper_min_px", grasp_gripper_min_px, "px", 0, RTE_GRASP_MAX_OPENING_PX, true,
+        "4",
+        "narrowest object the jaws can close on (score 0 below); at most\n"
+        "gripper_max_px"),
+    INT("grasp", "gripper_max_px", grasp_gripper_max_px, "px", 0, RTE_GRASP_MAX_OPENING_PX, true,
+        "160", "widest opening of the jaws (score 0 for wider objects)"),
+    INT("grasp", "margin_px", grasp_margin_px, "px", 0, RTE_GRASP_MAX_CLEARANCE_PX, true, "8",
+        "the jaws open this much wider than the object on each side"),
+    INT("grasp", "finger_px", grasp_finger_px, "px", 0, RTE_GRASP_MAX_CLEARANCE_PX, true, "8",
+        "free room each finger needs beyond its opened jaw face; the score\n"
+        "falls with the room found on the closing line (docs/gripper.md)"),
 
     TEXT("publish", "url", lcm_url, false, "udpm://239.255.76.67:7667?ttl=0",
          "LCM URL: udpm://..., memq:// (tests), file://PATH[?mode=w|a] (a log)"),

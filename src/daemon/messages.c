@@ -125,7 +125,14 @@ static void fill_grasp_object(rtedge_grasp_object_t *g, const rte_grasp_object *
     g->grasp_x = (float)o->x_q8 / 256;
     g->grasp_y = (float)o->y_q8 / 256;
     g->approach_angle_deg = (float)o->angle_q16 / 65536;
-    g->opening_width_px = (float)o->width_q8 / 256;
+    g->opening_width_px = (float)o->opening_q8 / 256;
+    g->narrowest_width_px = (float)o->width_q8 / 256;
+    for (int k = 0; k < 2; k++) {
+        g->jaw_x[k] = (float)o->jaws_q8[k][0] / 256;
+        g->jaw_y[k] = (float)o->jaws_q8[k][1] / 256;
+    }
+    g->clearance_px = (float)o->clearance_q8 / 256;
+    g->score = (float)o->score_q16 / 65536;
 }
 
 void rted_publish_grasp(rted_daemon *d, const rte_source_frame *f, const rte_grasp_result *r)

@@ -61,6 +61,10 @@ void rted_grasp_params(const rted_config *c, rte_grasp_params *p)
     p->max_area = c->grasp_max_area;
     p->skip_border = c->grasp_skip_border;
     p->max_objects = c->grasp_max_objects;
+    p->gripper_min_px = c->grasp_gripper_min_px;
+    p->gripper_max_px = c->grasp_gripper_max_px;
+    p->margin_px = c->grasp_margin_px;
+    p->finger_px = c->grasp_finger_px;
     int32_t n =
         c->grasp_roi[0] ? rte_parse_fractions(c->grasp_roi, p->roi, RTE_GRASP_MAX_ROI_VERTICES) : 0;
     p->roi_count = n > 0 ? n : 0; /* (validated before: < 0 cannot come) */

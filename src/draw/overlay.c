@@ -7,7 +7,8 @@
 static const rte_draw_color ROI_COLOR = {0, 255, 255}, EDGE_COLOR = {255, 0, 255},
                             USED_COLOR = {0, 255, 0}, UNUSED_COLOR = {128, 128, 128},
                             LEFT_COLOR = {255, 0, 0}, RIGHT_COLOR = {0, 0, 255},
-                            WHITE = {255, 255, 255}, YELLOW = {0, 255, 255}, RED = {0, 0, 255};
+                            WHITE = {255, 255, 255}, YELLOW = {0, 255, 255}, RED = {0, 0, 255},
+                            GREY = {160, 160, 160};
 
 int32_t rte_overlay_layer_named(const char *name, size_t len)
 {
@@ -142,27 +143,29 @@ static void draw_object(rte_overlay *o, const rte_grasp_result *r, int32_t i, ui
         }
     }
     if (layers & RTE_OVERLAY_GRASP) {
-        const int32_t(*c)[2] = g->info.box.corners_q8;
-        rte_point box[4];
-        for (int k = 0; k < 4; k++)
-            box[k] = point_q8(o, c[k][0], c[k][1]);
-        rte_draw_polyline(&o->canvas, box, 4, 1, WHITE, 1);
-        /* The jaws' closing line: the box's short side, through the grasp point. */
-        int32_t ax = c[1][0] - c[0][0], ay = c[1][1] - c[0][1];
-        const int32_t bx = c[2][0] - c[1][0], by = c[2][1] - c[1][1];
-        if ((int64_t)bx * bx + (int64_t)by * by < (int64_t)ax * ax + (int64_t)ay * ay) {
-            ax = bx;
-            ay = by;
+        /* The closing line between the opened jaws, each jaw a bar across
+         * it (half the object's width long, at least 8 px); grey when the
+         * score is 0 (the gripper cannot take it). */
+        const rte_draw_color jaw = g->score_q16 > 0 ? YELLOW : GREY;
+        const int32_t(*j)[2] = g->jaws_q8;
+        const int32_t dx = j[1][0] - j[0][0], dy = j[1][1] - j[0][1];
+        const int64_t len = (int64_t)dx * dx + (int64_t)dy * dy > 0 ? g->opening_q8 : 1;
+        const int64_t half = g->width_q8 / 4 > 4 * 256 ? g->width_q8 / 4 : 4 * 256;
+        const int32_t bx = (int32_t)(-dy * half / len), by = (int32_t)(dx * half / len);
+        const rte_point a = point_q8(o, j[0][0], j[0][1]), b = point_q8(o, j[1][0], j[1][1]);
+        rte_draw_line(&o->canvas, a.x, a.y, b.x, b.y, jaw, 1);
+        for (int k = 0; k < 2; k++) {
+            const rte_point p0 = point_q8(o, j[k][0] - bx, j[k][1] - by);
+            const rte_point p1 = point_q8(o, j[k][0] + bx, j[k][1] + by);
+            rte_draw_line(&o->canvas, p0.x, p0.y, p1.x, p1.y, jaw, thick(o, 3));
         }
-        const rte_point p0 = point_q8(o, g->x_q8 - ax / 2, g->y_q8 - ay / 2);
-        const rte_point p1 = point_q8(o, g->x_q8 + ax / 2, g->y_q8 + ay / 2);
-        rte_draw_line(&o->canvas, p0.x, p0.y, p1.x, p1.y, YELLOW, thick(o, 2));
         const rte_point p = point_q8(o, g->x_q8, g->y_q8);
         rte_draw_dot(&o->canvas, p.x, p.y, thick(o, 3), RED);
     }
     if (layers & RTE_OVERLAY_LABELS) {
         char label[48];
-        snprintf(label, sizeof label, "%d %s", (int)i, rte_grasp_shape_name(g->info.shape));
+        snprintf(label, sizeof label, "%d %s %d%%", (int)i, rte_grasp_shape_name(g->info.shape),
+                 (int)(((int64_t)g->score_q16 * 100 + 32768) >> 16));
         rte_overlay_label(&o->canvas, px(o, g->info.bounds.x), px(o, g->info.bounds.y) - 10, label,
                           color);
     }

@@ -1,4 +1,5 @@
 /* The grasp path, per frame (see rtedge/grasp.h). Integer only. */
+#include <string.h>
 #include <time.h>
 
 #include "grasp_ctx.h"
@@ -6,8 +7,6 @@
 #include "rtedge/canny.h"
 #include "rtedge/threshold.h"
 #include "core/clock.h"
-
-#define DEG90_Q16 (90 * 65536)
 
 /* Largest L1 magnitude of the 3x3 Sobel pair on 8-bit images. */
 #define CANNY_MAX 2040
@@ -28,7 +27,11 @@ rte_status rte_grasp_check_params(const rte_grasp_config *c, const rte_grasp_par
                                      p->background_cell <= RTE_BACKGROUND_MAX_CELL)) &&
         p->min_area >= 0 && p->max_area >= 0 && (p->skip_border == 0 || p->skip_border == 1) &&
         p->max_objects >= 1 && p->max_objects <= c->max_objects &&
-        (p->roi_count == 0 || (p->roi_count >= 3 && p->roi_count <= RTE_GRASP_MAX_ROI_VERTICES));
+        (p->roi_count == 0 || (p->roi_count >= 3 && p->roi_count <= RTE_GRASP_MAX_ROI_VERTICES)) &&
+        p->gripper_min_px >= 0 && p->gripper_min_px <= p->gripper_max_px &&
+        p->gripper_max_px <= RTE_GRASP_MAX_OPENING_PX && p->margin_px >= 0 &&
+        p->margin_px <= RTE_GRASP_MAX_CLEARANCE_PX && p->finger_px >= 0 &&
+        p->finger_px <= RTE_GRASP_MAX_CLEARANCE_PX;
     if (!ok)
         return RTE_ERR_ARGUMENT;
     for (int32_t i = 0; i < p->roi_count; i++)
@@ -192,12 +195,19 @@ static bool touches_border(const rte_grasp_ctx *ctx, const rte_point *pts, int32
     return false;
 }
 
-/* Keeps the `cap` largest candidates in best[] (largest first; equal areas
- * in contour order). Returns the new count; *dropped counts the rest. */
-static int32_t keep_largest(grasp_candidate *best, int32_t n, int32_t cap, grasp_candidate c,
-                            int32_t *dropped)
+/* Whether candidate a goes before b: a better score, or an equal score
+ * and a larger area (equal both: contour order, the earlier first). */
+static bool before(const grasp_candidate *a, const grasp_candidate *b)
 {
-    if (n == cap && best[n - 1].area2 >= c.area2) {
+    return a->score_q16 > b->score_q16 || (a->score_q16 == b->score_q16 && a->area2 > b->area2);
+}
+
+/* Keeps the `cap` best candidates in best[] (best first). Returns the new
+ * count; *dropped counts the rest. */
+static int32_t keep_best(grasp_candidate *best, int32_t n, int32_t cap, const grasp_candidate *c,
+                         int32_t *dropped)
+{
+    if (n == cap && !before(c, &best[n - 1])) {
         (*dropped)++;
         return n;
     }
@@ -206,30 +216,136 @@ static int32_t keep_largest(grasp_candidate *best, int32_t n, int32_t cap, grasp
         n--;
     }
     int32_t i = n;
-    while (i > 0 && best[i - 1].area2 < c.area2) {
+    while (i > 0 && before(c, &best[i - 1])) {
         best[i] = best[i - 1];
         i--;
     }
-    best[i] = c;
+    best[i] = *c;
     return n + 1;
 }
 
-static void grasp_of(rte_grasp_object *o)
+/* a * b in Q16, rounded. */
+static int32_t mul_q16(int32_t a, int32_t b) { return (int32_t)(((int64_t)a * b + 32768) >> 16); }
+
+/* The point t (Q8 px) along the unit vector u (Q16) from c (Q16), in Q8. */
+static int32_t along_q8(int64_t c_q16, int32_t u_q16, int64_t t_q8)
 {
-    const rte_shape_info *s = &o->info;
-    if (s->area2 > 0) {
-        o->x_q8 = (int32_t)((s->cx_q16 + 128) >> 8);
-        o->y_q8 = (int32_t)((s->cy_q16 + 128) >> 8);
-    } else { /* a line or a dot: no area to take moments of */
-        o->x_q8 = s->box.cx_q8;
-        o->y_q8 = s->box.cy_q8;
+    return (int32_t)((c_q16 + (int64_t)u_q16 * t_q8 / 256 + 128) >> 8);
+}
+
+/* Free pixels beyond t0 (Q8, the hull's extreme) in the direction `sign`
+ * along the line through c along u, up to `need`: the walk stops at the
+ * first pixel of the binary image that is set (another object: this one
+ * has nothing beyond its hull) or outside the frame or the workspace. */
+static int32_t free_run(const rte_grasp_ctx *ctx, const rte_image_u8 *bin, int64_t cx, int64_t cy,
+                        int32_t ux, int32_t uy, int64_t t0, int sign, int32_t need)
+{
+    const rte_image_u8 mask = sub(&ctx->workspace, bin->width, bin->height);
+    for (int32_t k = 1; k <= need; k++) {
+        const int64_t t = t0 + (int64_t)sign * k * 256;
+        const int32_t x = (along_q8(cx, ux, t) + 128) >> 8, y = (along_q8(cy, uy, t) + 128) >> 8;
+        if (x < 0 || y < 0 || x >= bin->width || y >= bin->height || rte_u8_row(bin, y)[x] ||
+            (ctx->params.roi_count && !rte_u8_row(&mask, y)[x]))
+            return k - 1;
     }
-    /* the box angle is its long side: close across it */
-    int32_t a = s->box.angle_q16 + DEG90_Q16;
-    if (a > DEG90_Q16)
-        a -= 2 * DEG90_Q16;
-    o->angle_q16 = a;
-    o->width_q8 = s->box.width_q8;
+    return need;
+}
+
+/* The width factor of the score (see rte_grasp_object), Q16. */
+static int32_t width_factor(const rte_grasp_params *p, int32_t width_q8)
+{
+    const int64_t lo = (int64_t)p->gripper_min_px * 256, hi = (int64_t)p->gripper_max_px * 256;
+    const int64_t m2 = (int64_t)p->margin_px * 512;
+    if (width_q8 < lo || width_q8 > hi)
+        return 0;
+    if (width_q8 + m2 <= hi)
+        return 65536;
+    return (int32_t)((hi - width_q8) * 65536 / m2); /* m2 > 0 here */
+}
+
+/* The grasp and score of contour pts (twice its area a2) into c: the
+ * centroid, then over the hull's calipers within 1/16 + 1 px of the
+ * narrowest, the best score (see rte_grasp_object). */
+static rte_status grasp_of(rte_grasp_ctx *ctx, const rte_image_u8 *bin, const rte_point *pts,
+                           int32_t n, grasp_candidate *c)
+{
+    const rte_grasp_params *p = &ctx->params;
+    int64_t cx, cy;
+    if (c->area2 > 0) {
+        rte_moments m;
+        rte_status st = rte_shape_moments(pts, n, &m);
+        if (st != RTE_OK)
+            return st;
+        cx = m.cx_q16;
+        cy = m.cy_q16;
+    } else { /* a line or a dot: no area to take moments of */
+        const rte_rect r = rte_shape_bounding_rect(pts, n);
+        cx = (2 * (int64_t)r.x + r.width - 1) << 15;
+        cy = (2 * (int64_t)r.y + r.height - 1) << 15;
+    }
+    c->x_q8 = (int32_t)((cx + 128) >> 8);
+    c->y_q8 = (int32_t)((cy + 128) >> 8);
+
+    const size_t mark = rte_arena_mark(&ctx->arena);
+    rte_point *hull = rte_arena_alloc(&ctx->arena, ((size_t)n + 1) * sizeof *hull);
+    rte_caliper *cal = rte_arena_alloc(&ctx->arena, ((size_t)n + 1) * sizeof *cal);
+    int32_t nh = 0, nc = 0;
+    rte_status st = hull && cal ? RTE_OK : RTE_ERR_NO_MEMORY;
+    if (st == RTE_OK)
+        st = rte_shape_convex_hull(pts, n, NULL, hull, &nh, &ctx->arena);
+    if (st == RTE_OK)
+        st = rte_shape_calipers(hull, nh, cal, &nc);
+    if (st != RTE_OK) {
+        rte_arena_reset(&ctx->arena, mark);
+        return st;
+    }
+    int64_t hull2 = rte_shape_area2(hull, nh);
+    hull2 = hull2 < 0 ? -hull2 : hull2;
+    const int32_t solidity = hull2 ? (int32_t)((c->area2 * 65536 + hull2 / 2) / hull2) : 0;
+    const int32_t need = p->margin_px + p->finger_px;
+
+    int32_t narrowest = cal[0].width_q8;
+    for (int32_t i = 1; i < nc; i++)
+        narrowest = cal[i].width_q8 < narrowest ? cal[i].width_q8 : narrowest;
+    const int64_t near = narrowest + narrowest / 16 + 256;
+    int have = 0;
+    for (int32_t i = 0; i < nc; i++) {
+        const rte_caliper *k = &cal[i];
+        if (k->width_q8 > near)
+            continue;
+        /* the hull's extremes along u, from the centroid (Q8) */
+        int64_t t[2];
+        const rte_point v[2] = {hull[k->edge], hull[k->far]};
+        for (int j = 0; j < 2; j++) {
+            const int64_t d = (((int64_t)v[j].x << 16) - cx) * k->ux_q16 +
+                              (((int64_t)v[j].y << 16) - cy) * k->uy_q16;
+            t[j] = d >= 0 ? (d + (1 << 23)) >> 24 : -((-d + (1 << 23)) >> 24);
+        }
+        const int64_t lo = t[0] < t[1] ? t[0] : t[1], hi = t[0] < t[1] ? t[1] : t[0];
+        int32_t clear = need;
+        if (need) {
+            const int32_t a = free_run(ctx, bin, cx, cy, k->ux_q16, k->uy_q16, lo, -1, need);
+            const int32_t b = free_run(ctx, bin, cx, cy, k->ux_q16, k->uy_q16, hi, 1, need);
+            clear = a < b ? a : b;
+        }
+        const int32_t fc = need ? (int32_t)((int64_t)clear * 65536 / need) : 65536;
+        const int32_t score = mul_q16(mul_q16(solidity, width_factor(p, k->width_q8)), fc);
+        if (have && (score < c->score_q16 || (score == c->score_q16 && k->width_q8 >= c->width_q8)))
+            continue;
+        have = 1;
+        c->score_q16 = score;
+        c->angle_q16 = k->angle_q16;
+        c->width_q8 = k->width_q8;
+        c->opening_q8 = k->width_q8 + 2 * 256 * p->margin_px;
+        c->clearance_q8 = clear * 256;
+        const int64_t m = 256 * (int64_t)p->margin_px;
+        c->jaws_q8[0][0] = along_q8(cx, k->ux_q16, lo - m);
+        c->jaws_q8[0][1] = along_q8(cy, k->uy_q16, lo - m);
+        c->jaws_q8[1][0] = along_q8(cx, k->ux_q16, hi + m);
+        c->jaws_q8[1][1] = along_q8(cy, k->uy_q16, hi + m);
+    }
+    rte_arena_reset(&ctx->arena, mark);
+    return RTE_OK;
 }
 
 rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_grasp_result *out)
@@ -274,11 +390,11 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
         return st;
     }
 
-    /* filters, then the largest max_objects by area */
+    /* filters, a grasp and a score each, then the best max_objects */
     const rte_contours *cs = &ctx->contours;
     const int64_t min2 = 2 * (int64_t)p->min_area, max2 = 2 * (int64_t)p->max_area;
     int32_t n_best = 0, dropped = 0;
-    for (int32_t i = 0; i < cs->n_contours; i++) {
+    for (int32_t i = 0; i < cs->n_contours && st == RTE_OK; i++) {
         const rte_contour *c = &cs->contours[i];
         const rte_point *pts = cs->points + c->offset;
         int64_t a2 = rte_shape_area2(pts, c->count);
@@ -287,22 +403,32 @@ rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray, rte_g
             continue;
         if (p->skip_border && touches_border(ctx, pts, c->count, w, h))
             continue;
-        n_best =
-            keep_largest(ctx->best, n_best, p->max_objects, (grasp_candidate){a2, i}, &dropped);
+        grasp_candidate g = {.area2 = a2, .contour = i};
+        st = grasp_of(ctx, &bin, pts, c->count, &g);
+        if (st == RTE_OK)
+            n_best = keep_best(ctx->best, n_best, p->max_objects, &g, &dropped);
     }
 
     int32_t n = 0;
     for (int32_t k = 0; k < n_best && st == RTE_OK; k++) {
-        const rte_contour *c = &cs->contours[ctx->best[k].contour];
+        const grasp_candidate *g = &ctx->best[k];
+        const rte_contour *c = &cs->contours[g->contour];
         rte_grasp_object *o = &ctx->objects[n];
         st = rte_shape_classify(cs->points + c->offset, c->count, &o->info, &ctx->arena);
         if (st != RTE_OK)
             break;
-        o->contour = ctx->best[k].contour;
+        o->contour = g->contour;
         /* with skip_border the filter above has already ruled it out */
         o->touches_border =
             !p->skip_border && touches_border(ctx, cs->points + c->offset, c->count, w, h);
-        grasp_of(o);
+        o->x_q8 = g->x_q8;
+        o->y_q8 = g->y_q8;
+        o->angle_q16 = g->angle_q16;
+        o->width_q8 = g->width_q8;
+        o->opening_q8 = g->opening_q8;
+        memcpy(o->jaws_q8, g->jaws_q8, sizeof o->jaws_q8);
+        o->clearance_q8 = g->clearance_q8;
+        o->score_q16 = g->score_q16;
         n++;
     }
     const int64_t t4 = rte_clock_now_ns();

@@ -35,6 +35,10 @@ void rte_grasp_config_default(rte_grasp_config *config)
                 .max_area = 0,
                 .skip_border = 1,
                 .max_objects = 64,
+                .gripper_min_px = 4,
+                .gripper_max_px = 160,
+                .margin_px = 8,
+                .finger_px = 8,
             },
     };
 }
@@ -65,7 +69,12 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
     s = max_size(s, rte_polygon_mask_scratch_size(RTE_GRASP_MAX_ROI_VERTICES));
     s = max_size(s, rte_background_scratch_size(w, h, RTE_BACKGROUND_MIN_CELL));
     s = max_size(s, rte_background_threshold_scratch_size(w, h));
-    return max_size(s, rte_shape_classify_scratch_size(c->max_points));
+    s = max_size(s, rte_shape_classify_scratch_size(c->max_points));
+    /* the grasp of one contour: its hull, calipers and the hull's scratch */
+    const size_t n = (size_t)c->max_points + 1;
+    return max_size(s, rte_arena_piece_size(n * sizeof(rte_point)) +
+                           rte_arena_piece_size(n * sizeof(rte_caliper)) +
+                           rte_shape_hull_scratch_size(c->max_points));
 }
 
 /* The pieces of the block, in order; with base NULL only counts bytes. */

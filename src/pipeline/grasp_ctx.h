@@ -7,10 +7,14 @@
 #include "rtedge/grasp.h"
 #include "rtedge/morphology.h"
 
-/* A contour that passed the filters: its index and twice its area. */
+/* A contour that passed the filters: its index, twice its area, its
+ * score and grasp (the rte_grasp_object fields of the same names). */
 typedef struct grasp_candidate {
     int64_t area2;
     int32_t contour;
+    int32_t score_q16;
+    int32_t x_q8, y_q8, angle_q16, width_q8, opening_q8, clearance_q8;
+    int32_t jaws_q8[2][2];
 } grasp_candidate;
 
 struct rte_grasp_ctx {
@@ -22,7 +26,7 @@ struct rte_grasp_ctx {
     rte_image_u8 workspace;           /* the ROI's mask (255 inside), built for workspace_w x _h */
     int32_t workspace_w, workspace_h; /* 0: to build (new parameters) */
     rte_contours contours;
-    grasp_candidate *best; /* config.max_objects, sorted by area */
+    grasp_candidate *best; /* config.max_objects, best score first */
     rte_grasp_object *objects;
     rte_arena arena;
     void *memory; /* the block to free (rte_grasp_create), NULL after rte_grasp_init */

@@ -141,10 +141,17 @@ def grasp_json():
         d = json.loads(r.stdout)
         objs = d["objects"]
         check(len(objs) == 6 and d["truncated"] is False, f"grasp pic1: {len(objs)} objects")
-        areas = [o["area"] for o in objs]
-        check(areas == sorted(areas, reverse=True), "grasp: sorted by area")
-        # the wide rectangle: close vertically (90 degrees) to its 103 px height
-        o = objs[0]
+        keys = [(o["score"], o["area"]) for o in objs]
+        check(keys == sorted(keys, reverse=True), f"grasp: sorted by score, then area: {keys}")
+        for o in objs:
+            # opened 8 px (--margin's default) wider on each side; the jaws that far apart
+            jd = math.hypot(o["jaws"][1][0] - o["jaws"][0][0], o["jaws"][1][1] - o["jaws"][0][1])
+            check(0 <= o["score"] <= 1 and abs(o["opening"] - o["width"] - 16) < 0.02 and
+                  abs(jd - o["opening"]) < 0.1 and 0 <= o["clearance"] <= 16, f"grasp fields {o}")
+        # the wide rectangle: close vertically (90 degrees) to its 103 px height,
+        # the best grasp (convex, room all round)
+        o = min(objs, key=lambda o: math.hypot(o["center"][0] - 137, o["center"][1] - 76.5))
+        check(o is objs[0] and o["score"] == 1, f"grasp: the wide rectangle first, score 1: {objs[:1]}")
         check(abs(o["center"][0] - 137) < 1 and abs(o["center"][1] - 76.5) < 1, f"grasp centre {o['center']}")
         check(o["angle"] == 90 and abs(o["width"] - 103) < 1, f"grasp angle/width {o['angle']} {o['width']}")
         # the tilted rectangle: long side at about 57 degrees, close at about -33
@@ -174,8 +181,18 @@ def grasp_json():
               f"grasp --roi: objects outside the workspace: {[o['center'] for o in inside]}")
         t = [o for o in inside if math.hypot(o["center"][0] - 318, o["center"][1] - 112) < 3]
         check(len(t) == 1 and abs(t[0]["angle"] + 33) < 3, f"grasp --roi: tilted rectangle {t}")
+    # a gripper opening at most 100 px: the 103 px rectangle cannot be taken
+    r = run("grasp", os.path.join(OBJECTS, "pic1.png"), "--gripper-max", "100")
+    check(r.returncode == 0, f"grasp --gripper-max: exit {r.returncode} {r.stderr}")
+    if r.returncode == 0:
+        objs = json.loads(r.stdout)["objects"]
+        wide = [o for o in objs if math.hypot(o["center"][0] - 137, o["center"][1] - 76.5) < 1]
+        check(len(wide) == 1 and wide[0]["score"] == 0 and
+              all(o["score"] == 0 for o in objs[objs.index(wide[0]):]),
+              f"grasp --gripper-max 100: the wide rectangle {wide} among the last")
     for bad in (["--binarize", "foo"], ["--binarize", "300"], ["--blur", "4"], ["--polarity", "up"],
-                ["--roi", "0.5,0;1,0"], ["--roi", "a,b;c,d;e,f"]):
+                ["--roi", "0.5,0;1,0"], ["--roi", "a,b;c,d;e,f"], ["--gripper-min", "90", "--gripper-max", "80"],
+                ["--margin", "-1"], ["--finger", "5000"]):
         r = run("grasp", os.path.join(OBJECTS, "pic1.png"), *bad)
         check(r.returncode == 2, f"grasp {bad}: exit {r.returncode}, expected 2")
     r = run("grasp", "/nonexistent.png")

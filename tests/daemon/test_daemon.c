@@ -70,7 +70,9 @@ static void check_grasp(seen *s, const rtedge_grasp_detection_t *m)
             double short_side = r[j].w < r[j].h ? r[j].w : r[j].h;
             if (near(o->centroid_x, cx, 0.75) && near(o->centroid_y, cy, 0.75) &&
                 near(o->grasp_x, cx, 0.75) && near(o->grasp_y, cy, 0.75) &&
-                near(o->opening_width_px, short_side - 1, 2.5) && o->bbox_width >= r[j].w - 2 &&
+                near(o->narrowest_width_px, short_side - 1, 2.5) &&
+                near(o->opening_width_px, o->narrowest_width_px + 16, 0.01) && /* margin 8 */
+                o->score >= 0 && o->score <= 1 && o->bbox_width >= r[j].w - 2 &&
                 o->bbox_width <= r[j].w + 2)
                 ok++;
         }

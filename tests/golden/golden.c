@@ -956,6 +956,11 @@ static void run_grasp(golden *g, const input *in)
                 dg_int(&d, o->y_q8);
                 dg_int(&d, o->angle_q16);
                 dg_int(&d, o->width_q8);
+                dg_int(&d, o->opening_q8);
+                for (int k = 0; k < 4; k++)
+                    dg_int(&d, o->jaws_q8[k / 2][k % 2]);
+                dg_int(&d, o->clearance_q8);
+                dg_int(&d, o->score_q16);
                 dg_int(&d, o->contour);
                 dg_int(&d, o->touches_border);
                 dg_shape_info(&d, &o->info);

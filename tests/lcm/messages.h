@@ -106,14 +106,31 @@ static inline void samples_fill(samples *s, uint32_t seed)
     sample_header(&grasp->header, s, &r);
     for (int i = 0; i < SAMPLE_OBJECTS; i++) {
         rtedge_grasp_object_t *o = &s->objects[i];
-        float *fields[] = {&o->centroid_x,      &o->centroid_y,    &o->area,
-                           &o->perimeter,       &o->rect_centre_x, &o->rect_centre_y,
-                           &o->rect_width,      &o->rect_height,   &o->rect_angle_deg,
-                           &o->solidity,        &o->extent,        &o->aspect_ratio,
-                           &o->grasp_x,         &o->grasp_y,       &o->approach_angle_deg,
-                           &o->opening_width_px};
+        float *fields[] = {&o->centroid_x,
+                           &o->centroid_y,
+                           &o->area,
+                           &o->perimeter,
+                           &o->rect_centre_x,
+                           &o->rect_centre_y,
+                           &o->rect_width,
+                           &o->rect_height,
+                           &o->rect_angle_deg,
+                           &o->solidity,
+                           &o->extent,
+                           &o->aspect_ratio,
+                           &o->grasp_x,
+                           &o->grasp_y,
+                           &o->approach_angle_deg,
+                           &o->opening_width_px,
+                           &o->narrowest_width_px,
+                           &o->clearance_px};
         for (unsigned k = 0; k < sizeof fields / sizeof fields[0]; k++)
             *fields[k] = sample_f(&r);
+        for (int k = 0; k < 2; k++) {
+            o->jaw_x[k] = sample_f(&r);
+            o->jaw_y[k] = sample_f(&r);
+        }
+        o->score = 0.25f * (float)i;
         for (int k = 0; k < 4; k++) {
             o->rect_corners_x[k] = sample_f(&r);
             o->rect_corners_y[k] = sample_f(&r);

@@ -59,6 +59,8 @@ grasp = got["GRASP"]
 assert grasp.nobjects == 3
 assert grasp.objects[2].shape == rtedge.grasp_object_t.SHAPE_HEXAGON
 assert (grasp.objects[1].bbox_width, grasp.objects[1].bbox_height) == (11, 21)
+assert [o.score for o in grasp.objects] == [0.0, 0.25, 0.5]
+assert len(grasp.objects[0].jaw_x) == 2 and len(grasp.objects[0].jaw_y) == 2
 status = got["STATUS"]
 assert status.source_state == rtedge.status_t.SOURCE_ENDED
 assert (status.frames_received, status.frames_processed) == (1000, 990)

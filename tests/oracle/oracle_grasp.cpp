@@ -36,7 +36,7 @@ const Mode modes[] = {
     {"canny-close", RTE_GRASP_CANNY_CLOSE, 0, RTE_GRASP_AUTO},
 };
 
-const int kMinArea = 100, kMaxObjects = 64;
+const int kMinArea = 100, kMaxObjects = 4096; // every object kept: the order is by score
 
 // The border rule of grasp.c: the rounded mean of the outermost rows and
 // columns (a one-row image counts its row twice).
@@ -104,6 +104,7 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
     p.polarity = m.polarity;
     p.min_area = kMinArea;
     p.skip_border = 0; // the reference keeps objects on the border
+    p.max_objects = kMaxObjects;
     if (rte_grasp_set_params(ctx, &p) != RTE_OK) {
         t.call_failed(name + " set_params", -1);
         return;
@@ -142,7 +143,17 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
         e.push_back((int)k.area2);
         e.push_back(k.index);
     }
-    for (int i = 0; i < r.n_objects; i++) {
+    // rtedge orders its objects by grasp score: compare them in OpenCV's
+    // order (area, then contour)
+    std::vector<int> order(r.n_objects);
+    for (int i = 0; i < r.n_objects; i++)
+        order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&r](int x, int y) {
+        const rte_grasp_object &ox = r.objects[x], &oy = r.objects[y];
+        return ox.info.area2 != oy.info.area2 ? ox.info.area2 > oy.info.area2
+                                              : ox.contour < oy.contour;
+    });
+    for (int i : order) {
         a.push_back((int)r.objects[i].info.area2);
         a.push_back(r.objects[i].contour);
     }
@@ -152,7 +163,7 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
     if (e != a)
         return;
     for (int i = 0; i < r.n_objects; i++) {
-        const rte_grasp_object &o = r.objects[i];
+        const rte_grasp_object &o = r.objects[order[i]];
         const std::vector<cv::Point> &c = cs[kept[i].index];
         const std::string w = what + " #" + std::to_string(i);
         s.objects++;
@@ -171,19 +182,20 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
         // both sides are rounded to Q8 (OpenCV's are float): the product
         // moves by up to (length + width) / 256
         double area_diff = 0;
-        near(t, s, w + " box area", lo * hi, (o.info.box.length_q8 / 256.0) * (o.width_q8 / 256.0),
+        near(t, s, w + " box area", lo * hi,
+             (o.info.box.length_q8 / 256.0) * (o.info.box.width_q8 / 256.0),
              (lo + hi) / 256 + 1e-5 * lo * hi, area_diff);
         s.worst_area_rel = std::max(s.worst_area_rel, area_diff / std::max(1.0, lo * hi));
         if (hi < 1.05 * lo || lo < 4)
             continue;
-        near(t, s, w + " opening", lo, o.width_q8 / 256.0, 0.02, s.worst_width);
-        // OpenCV's long side direction, as the closing direction (+90), mod 180
+        near(t, s, w + " box width", lo, o.info.box.width_q8 / 256.0, 0.02, s.worst_width);
+        // OpenCV's long side direction against the box's, mod 180
         cv::Point2f pt[4];
         box.points(pt);
         cv::Point2f d1 = pt[1] - pt[0], d2 = pt[2] - pt[1];
         cv::Point2f longer = std::hypot(d1.x, d1.y) >= std::hypot(d2.x, d2.y) ? d1 : d2;
-        double close_deg = std::atan2(longer.y, longer.x) * 180 / CV_PI + 90;
-        double diff = std::fmod(std::fabs(close_deg - o.angle_q16 / 65536.0), 180.0);
+        double long_deg = std::atan2(longer.y, longer.x) * 180 / CV_PI;
+        double diff = std::fmod(std::fabs(long_deg - o.info.box.angle_q16 / 65536.0), 180.0);
         diff = std::min(diff, 180 - diff);
         near(t, s, w + " angle", 0, diff, 0.01, s.worst_angle);
     }
@@ -202,6 +214,7 @@ int main()
     c.max_height = 2048;
     c.max_contours = 1 << 20;
     c.max_points = 1 << 23;
+    c.max_objects = kMaxObjects;
     rte_grasp_ctx *ctx = nullptr;
     if (rte_grasp_create(&c, &ctx) != RTE_OK) {
         std::fprintf(stderr, "rte_grasp_create failed\n");

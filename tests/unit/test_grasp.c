@@ -201,8 +201,11 @@ static void check_scene(const scene *sc, const rte_grasp_result *r, double tol_p
             fail_msg("rectangle at %.1f,%.1f: angle %.2f, expected %.2f", t->cx, t->cy,
                      o->angle_q16 / 65536.0, t->angle);
     }
-    for (int k = 1; k < r->n_objects; k++) /* sorted by area */
-        assert_true(r->objects[k - 1].info.area2 >= r->objects[k].info.area2);
+    for (int k = 1; k < r->n_objects; k++) { /* by score, then area */
+        const rte_grasp_object *a = &r->objects[k - 1], *b = &r->objects[k];
+        assert_true(a->score_q16 > b->score_q16 ||
+                    (a->score_q16 == b->score_q16 && a->info.area2 >= b->info.area2));
+    }
 }
 
 static void synthetic_scenes(void **state)
@@ -298,10 +301,15 @@ static void border_and_area_filters(void **state)
     rte_grasp_result r;
     assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
     assert_int_equal(r.threshold, 120);
+    /* by score: the middle one (room all round), the small one (15 px to
+     * the right border: less than margin + finger), the one on the border */
     assert_int_equal(r.n_objects, 3);
     assert_int_equal(r.objects[0].touches_border, 0);
-    assert_int_equal(r.objects[1].touches_border, 1);
-    assert_int_equal(r.objects[2].info.area2, 2 * 25);
+    assert_int_equal(r.objects[0].score_q16, 65536);
+    assert_int_equal(r.objects[1].info.area2, 2 * 25);
+    assert_true(r.objects[1].score_q16 > 0 && r.objects[1].score_q16 < 65536);
+    assert_int_equal(r.objects[2].touches_border, 1);
+    assert_int_equal(r.objects[2].score_q16, 0);
 
     p.skip_border = 1;
     p.min_area = 26; /* the 6 x 6 square's contour encloses 5 x 5 */
@@ -393,7 +401,8 @@ static void workspace(void **state)
     test_free(img.buf);
 }
 
-/* More objects than room: the largest are kept, the rest counted. */
+/* More objects than room: the best are kept (equal scores: the largest),
+ * the rest counted. */
 static void object_bound(void **state)
 {
     (void)state;
@@ -410,6 +419,7 @@ static void object_bound(void **state)
     rte_grasp_get_params(ctx, &p);
     p.min_area = 0;
     p.max_objects = 3;
+    p.margin_px = p.finger_px = 0; /* (squares 10 px apart: every score 1) */
     assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
     rte_grasp_result r;
     assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);

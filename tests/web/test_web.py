@@ -178,7 +178,8 @@ try:
     rows = driver.execute_script(
         "return [...document.querySelectorAll('#objects tbody tr')]"
         ".map((r) => [...r.cells].map((c) => c.textContent))")
-    check(len(rows) > 0 and len(rows[0]) == 7, "the grasp objects as a table: %s" % rows[:2])
+    check(len(rows) > 0 and len(rows[0]) == 8 and 0 <= float(rows[0][7]) <= 1,
+          "the grasp objects as a table, a score 0..1 last: %s" % rows[:2])
 
     # Dragging the ROI's top-left corner on the image moves the daemon's lane.roi.
     roi_before = daemon_value("lane.roi")

@@ -254,7 +254,7 @@ function showGrasp(g) {
   g.objects.forEach((o, i) => {
     const tr = document.createElement("tr");
     for (const v of [i, o.shape, o.x.toFixed(1), o.y.toFixed(1), o.angle_deg.toFixed(1) + "°",
-                     o.opening_px.toFixed(1), o.area.toFixed(0)]) {
+                     o.opening_px.toFixed(1), o.area.toFixed(0), o.score.toFixed(2)]) {
       const td = document.createElement("td"); td.textContent = v; tr.append(td);
     }
     body.append(tr);

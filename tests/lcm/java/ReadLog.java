@@ -40,6 +40,11 @@ public class ReadLog {
                     left.points_y[1] != 690.0f)
                     throw new Exception("LANES: the lane's points are not the sample's");
             }
+            if (m instanceof rtedge.grasp_detection_t) {
+                rtedge.grasp_object_t o = ((rtedge.grasp_detection_t) m).objects[2];
+                if (o.jaw_x.length != 2 || o.jaw_y.length != 2 || o.score != 0.5f)
+                    throw new Exception("GRASP: the object's jaws and score are not the sample's");
+            }
             ByteArrayOutputStream bytes = new ByteArrayOutputStream();
             m.encode(new DataOutputStream(bytes));
             if (!Arrays.equals(bytes.toByteArray(), ev.data))
