@@ -51,6 +51,10 @@ typedef enum rte_grasp_polarity {
     RTE_GRASP_BRIGHT = 2, /* objects brighter: pixel > threshold */
 } rte_grasp_polarity;
 
+/* Parts of one contour the split tells apart by size (more are counted as
+ * the last). */
+#define RTE_GRASP_MAX_SPLIT_PARTS 64
+
 /* Safe to change at run time (rte_grasp_set_params). */
 #define RTE_GRASP_MAX_ROI_VERTICES 8
 #define RTE_GRASP_MAX_OPENING_PX 65535  /* gripper_max_px */
@@ -68,6 +72,9 @@ typedef struct rte_grasp_params {
     int32_t min_area;        /* pixels; smaller objects are dropped (>= 0) */
     int32_t max_area;        /* pixels; larger ones are dropped; 0 = no limit */
     int32_t skip_border;     /* 1: drop objects touching the image or workspace border */
+    int32_t split;           /* 1: split touching objects at their necks (rtedge/split.h):
+                              * contours of solidity below 0.95 and at least twice min_area,
+                              * by the chamfer distance of their own pixels */
     int32_t max_objects;     /* 1..config.max_objects: objects reported (best scores) */
     /* The workspace: a polygon in fractions of width and height (Q16, as
      * rte_polygon_from_fractions takes them), 3..RTE_GRASP_MAX_ROI_VERTICES
@@ -157,7 +164,7 @@ typedef struct rte_grasp_object {
 
 /* Nanoseconds spent per stage of the last frame (CLOCK_MONOTONIC). */
 typedef struct rte_grasp_timing {
-    int64_t blur_ns, binarize_ns, contours_ns, features_ns, total_ns;
+    int64_t blur_ns, binarize_ns, contours_ns, split_ns, features_ns, total_ns;
 } rte_grasp_timing;
 
 /* Filled by rte_grasp_process; the pointers refer to the context's storage
@@ -166,6 +173,7 @@ typedef struct rte_grasp_result {
     const rte_grasp_object *objects; /* best score first; equal scores largest first */
     int32_t n_objects;
     bool truncated;               /* objects, contours or points were dropped for room */
+    int32_t split_parts;          /* objects the split added (parts beyond the first) */
     int32_t dropped_objects;      /* objects that passed the filters but exceeded max_objects */
     int32_t dropped_contours;     /* contours beyond max_contours / max_points */
     int32_t threshold;            /* the threshold used (background mode: on |frame - table|;

@@ -27,6 +27,7 @@ void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area, bool
         .close_iterations = c.close_iterations,
         .contrast = c.params.contrast,
         .skip_border = !tutorial && c.params.skip_border,
+        .split = !tutorial && c.params.split,
         .gripper_min = c.params.gripper_min_px,
         .gripper_max = c.params.gripper_max_px,
         .margin = c.params.margin_px,
@@ -52,6 +53,16 @@ static int object_options(cli_option *t, cli_pipeline_options *o)
     t[n++] = (cli_option){
         "keep-border", CLI_FLAG, &o->keep_border, 0, 0, NULL, "keep them (flagged touches_border)",
         NULL};
+    t[n++] = (cli_option){"split",
+                          CLI_FLAG,
+                          &o->split,
+                          0,
+                          0,
+                          NULL,
+                          "split touching objects at their necks (chamfer distance)",
+                          NULL};
+    t[n++] = (cli_option){
+        "no-split", CLI_FLAG, &o->no_split, 0, 0, NULL, "keep touching objects as one", NULL};
     t[n++] = (cli_option){"roi",
                           CLI_STRING,
                           &o->roi,
@@ -206,6 +217,7 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     p->min_area = o->min_area;
     p->max_area = o->max_area;
     p->skip_border = o->skip_border && !o->keep_border;
+    p->split = o->split && !o->no_split;
     p->contrast = o->contrast;
     p->max_objects = o->max_objects;
     if (o->gripper_min > o->gripper_max) {

@@ -16,7 +16,7 @@ typedef struct cli_pipeline_options {
     int polarity;         /* index in cli_polarities: auto, dark, bright */
     int blur, min_area, max_area, max_objects, canny_low, canny_high, close, close_iterations;
     int contrast;
-    bool skip_border, keep_border;
+    bool skip_border, keep_border, split, no_split;
     const char *roi; /* the workspace, "x,y;..." fractions; NULL: the whole image */
     int gripper_min, gripper_max, margin, finger; /* px: rte_grasp_params */
 } cli_pipeline_options;
@@ -24,15 +24,15 @@ typedef struct cli_pipeline_options {
 extern const char *const cli_polarities[];
 
 /* Defaults (blur: the default Gaussian size of the command). `tutorial`:
- * Otsu, objects on the border kept, as the OpenCV tutorial's shape
- * analysis; otherwise the grasp path's defaults (background, border
- * objects dropped). */
+ * Otsu, objects on the border kept, no split, as the OpenCV tutorial's
+ * shape analysis; otherwise the grasp path's defaults (background, border
+ * objects dropped, touching objects split). */
 void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area, bool tutorial);
 
 /* Fills options[] (room for CLI_PIPELINE_OPTIONS entries) with the table
  * entries of `o`; `grasp` adds the object options (areas, border, count,
  * gripper). */
-#define CLI_PIPELINE_OPTIONS 19
+#define CLI_PIPELINE_OPTIONS 21
 int cli_pipeline_option_table(cli_option *options, cli_pipeline_options *o, bool grasp);
 
 /* The grasp configuration for an image of w x h. CLI_EXIT_USAGE after a

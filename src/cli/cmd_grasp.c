@@ -158,12 +158,13 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
         printf("]}");
     }
     const rte_grasp_timing *t = &r->timing;
-    printf("],\"threshold\":%d,\"truncated\":%s,\"dropped_objects\":%d,"
-           "\"timing_ns\":{\"blur\":%lld,\"binarize\":%lld,\"contours\":%lld,\"features\":%lld,"
-           "\"total\":%lld}}\n",
+    printf("],\"threshold\":%d,\"truncated\":%s,\"dropped_objects\":%d,\"split_parts\":%d,"
+           "\"timing_ns\":{\"blur\":%lld,\"binarize\":%lld,\"contours\":%lld,\"split\":%lld,"
+           "\"features\":%lld,\"total\":%lld}}\n",
            (int)r->threshold, r->truncated ? "true" : "false", (int)r->dropped_objects,
-           (long long)t->blur_ns, (long long)t->binarize_ns, (long long)t->contours_ns,
-           (long long)t->features_ns, (long long)t->total_ns);
+           (int)r->split_parts, (long long)t->blur_ns, (long long)t->binarize_ns,
+           (long long)t->contours_ns, (long long)t->split_ns, (long long)t->features_ns,
+           (long long)t->total_ns);
     rc = overlay(&run, draw_grasp);
     grasp_end(&run);
     return rc;

@@ -161,6 +161,9 @@ static const key_def keys[] = {
         "smallest object, px; at most the frame's area"),
     INTU("grasp", "max_area", grasp_max_area, "px²", 0, 1, 67108864, true, "0",
          "largest object, px; 0: no limit"),
+    BOOL("grasp", "split", grasp_split, true, "true",
+         "split touching objects at their necks (chamfer distance of each\n"
+         "contour of solidity below 0.95; parts alike in size only)"),
     BOOL("grasp", "skip_border", grasp_skip_border, true, "true",
          "drop objects touching the image border (or the workspace's)"),
     TEXT("grasp", "roi", grasp_roi, true, "",

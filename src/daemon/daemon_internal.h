@@ -40,10 +40,11 @@
 #define RTED_PARAMS_PER_STEP 16
 /* Runtime keys in param_state_t at most (checked at open). */
 #define RTED_STATE_MAX_KEYS 64
-/* Stages timed in status_t: the lane path's, the grasp path's four, the
+/* Stages timed in status_t: the lane path's, the grasp path's five, the
  * debug overlay. */
 #define RTED_GRASP_STAGE0 RTE_LANE_STAGES
-#define RTED_DEBUG_STAGE (RTED_GRASP_STAGE0 + 4)
+#define RTED_GRASP_STAGES 5
+#define RTED_DEBUG_STAGE (RTED_GRASP_STAGE0 + RTED_GRASP_STAGES)
 #define RTED_STAGES (RTED_DEBUG_STAGE + 1)
 
 struct rted_daemon {

@@ -65,8 +65,9 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
             if (st == RTE_OK) {
                 rted_publish_grasp(d, f, &gr);
                 const rte_grasp_timing *t = &gr.timing;
-                const int64_t ns[4] = {t->blur_ns, t->binarize_ns, t->contours_ns, t->features_ns};
-                for (int i = 0; i < 4; i++)
+                const int64_t ns[RTED_GRASP_STAGES] = {t->blur_ns, t->binarize_ns, t->contours_ns,
+                                                       t->split_ns, t->features_ns};
+                for (int i = 0; i < RTED_GRASP_STAGES; i++)
                     rted_record_stage(d, RTED_GRASP_STAGE0 + i, ns[i]);
             }
             have_grasp = st == RTE_OK;

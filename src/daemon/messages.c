@@ -16,13 +16,13 @@ void rted_messages_init(rted_daemon *d)
     d->grasp_msg.objects = d->objects;
     d->status_msg.source_id = d->source_id;
     /* the stages' names, as status_t lists them */
-    static const char *const grasp_stages[] = {"grasp.blur", "grasp.binarize", "grasp.contours",
-                                               "grasp.features"};
+    static const char *const grasp_stages[RTED_GRASP_STAGES] = {
+        "grasp.blur", "grasp.binarize", "grasp.contours", "grasp.split", "grasp.features"};
     static const char *const lane_stages[RTE_LANE_STAGES] = {"lane.gray", "lane.blur", "lane.canny",
                                                              "lane.hough", "lane.fit"};
     for (int i = 0; i < RTE_LANE_STAGES; i++)
         d->stage_names[i] = (char *)lane_stages[i];
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < RTED_GRASP_STAGES; i++)
         d->stage_names[RTED_GRASP_STAGE0 + i] = (char *)grasp_stages[i];
     d->stage_names[RTED_DEBUG_STAGE] = (char *)"debug";
     d->status_msg.nstages = RTED_STAGES;

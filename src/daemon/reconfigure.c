@@ -60,6 +60,7 @@ void rted_grasp_params(const rted_config *c, rte_grasp_params *p)
     p->min_area = c->grasp_min_area;
     p->max_area = c->grasp_max_area;
     p->skip_border = c->grasp_skip_border;
+    p->split = c->grasp_split;
     p->max_objects = c->grasp_max_objects;
     p->gripper_min_px = c->grasp_gripper_min_px;
     p->gripper_max_px = c->grasp_gripper_max_px;

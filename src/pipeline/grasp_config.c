@@ -6,6 +6,7 @@
 #include "grasp_ctx.h"
 #include "rtedge/background.h"
 #include "rtedge/canny.h"
+#include "rtedge/split.h"
 #include "rtedge/contours.h"
 #include "rtedge/shape.h"
 
@@ -34,6 +35,7 @@ void rte_grasp_config_default(rte_grasp_config *config)
                 .min_area = 100,
                 .max_area = 0,
                 .skip_border = 1,
+                .split = 1,
                 .max_objects = 64,
                 .gripper_min_px = 4,
                 .gripper_max_px = 160,
@@ -69,6 +71,17 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
     s = max_size(s, rte_polygon_mask_scratch_size(RTE_GRASP_MAX_ROI_VERTICES));
     s = max_size(s, rte_background_scratch_size(w, h, RTE_BACKGROUND_MIN_CELL));
     s = max_size(s, rte_background_threshold_scratch_size(w, h));
+    /* the split of one contour: the vertices, the crop's two masks, then
+     * the polygon fill's or the split's scratch; the gate's hull before */
+    const size_t pts = (size_t)c->max_points, image = (size_t)w * (size_t)h;
+    s = max_size(s, rte_arena_piece_size(pts * sizeof(rte_vertex)) +
+                        2 * rte_arena_piece_size(image) +
+                        rte_arena_piece_size(image * sizeof(int32_t)) +
+                        max_size(rte_polygon_mask_scratch_size(c->max_points),
+                                 rte_split_scratch_size(w, h)));
+    s = max_size(s, rte_arena_piece_size(pts * sizeof(int32_t)) +
+                        rte_arena_piece_size(pts * sizeof(rte_point)) +
+                        rte_shape_hull_scratch_size(c->max_points));
     s = max_size(s, rte_shape_classify_scratch_size(c->max_points));
     /* the grasp of one contour: its hull, calipers and the hull's scratch */
     const size_t n = (size_t)c->max_points + 1;
@@ -87,6 +100,7 @@ static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *
         image,
         image,
         image,
+        image * sizeof(uint16_t),
         (size_t)c->max_points * sizeof(rte_point),
         (size_t)c->max_contours * sizeof(rte_contour),
         (size_t)c->max_objects * sizeof(grasp_candidate),
@@ -104,13 +118,14 @@ static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *
         ctx->edges = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[1]};
         ctx->binary = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[2]};
         ctx->workspace = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[3]};
-        ctx->contours.points = (rte_point *)(void *)at[4];
-        ctx->contours.contours = (rte_contour *)(void *)at[5];
+        ctx->distance = (uint16_t *)(void *)at[4];
+        ctx->contours.points = (rte_point *)(void *)at[5];
+        ctx->contours.contours = (rte_contour *)(void *)at[6];
         ctx->contours.max_points = c->max_points;
         ctx->contours.max_contours = c->max_contours;
-        ctx->best = (grasp_candidate *)(void *)at[6];
-        ctx->objects = (rte_grasp_object *)(void *)at[7];
-        rte_arena_init(&ctx->arena, at[8], arena_bytes);
+        ctx->best = (grasp_candidate *)(void *)at[7];
+        ctx->objects = (rte_grasp_object *)(void *)at[8];
+        rte_arena_init(&ctx->arena, at[9], arena_bytes);
     }
     return off + RTE_ARENA_ALIGN; /* room to align the block's start */
 }

@@ -23,6 +23,7 @@ struct rte_grasp_ctx {
     rte_gaussian_kernel blur;
     rte_morph_element close;
     rte_image_u8 blurred, edges, binary; /* edges: also the table estimate (background mode) */
+    uint16_t *distance;                  /* the split's chamfer distances, max_width x max_height */
     rte_image_u8 workspace;           /* the ROI's mask (255 inside), built for workspace_w x _h */
     int32_t workspace_w, workspace_h; /* 0: to build (new parameters) */
     rte_contours contours;
@@ -31,6 +32,11 @@ struct rte_grasp_ctx {
     rte_arena arena;
     void *memory; /* the block to free (rte_grasp_create), NULL after rte_grasp_init */
 };
+
+/* Splits the contours of ctx->contours that may hold touching objects
+ * (grasp_split.c), clearing their cut pixels in bin, then finds the
+ * contours again when any was cut; adds the parts gained to *parts. */
+rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, rte_image_u8 *bin, int32_t *parts);
 
 /* Integer checks of run-time parameters against a configuration. */
 rte_status rte_grasp_check_params(const rte_grasp_config *config, const rte_grasp_params *params);

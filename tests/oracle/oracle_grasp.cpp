@@ -105,6 +105,7 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
     p.min_area = kMinArea;
     p.skip_border = 0; // the reference keeps objects on the border
     p.max_objects = kMaxObjects;
+    p.split = 0; // OpenCV's contours are of the binary image as it is
     if (rte_grasp_set_params(ctx, &p) != RTE_OK) {
         t.call_failed(name + " set_params", -1);
         return;

@@ -145,6 +145,7 @@ static rte_grasp_ctx *new_ctx_blur(int32_t w, int32_t h, rte_grasp_binarize mode
     c.max_height = h;
     c.params.binarize = mode;
     c.params.skip_border = 0; /* the tests that drop border objects say so */
+    c.params.split = 0;       /* and those that split */
     c.blur_ksize = blur;
     rte_grasp_ctx *ctx = NULL;
     assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
@@ -252,6 +253,112 @@ static void canny_close_scenes(void **state)
     print_message("canny-close: largest centroid error %.3f px, angle error %.3f deg\n", worst_px,
                   worst_deg);
     rte_grasp_destroy(ctx);
+}
+
+/* The synthetic scenes under a lamp: the table falls off from 200 in the
+ * middle to 110 in the corners, objects both darker and lighter than it.
+ * The default configuration (background, split, border rule) finds every
+ * object and nothing on the dark corners. */
+static void vignetted_scenes(void **state)
+{
+    (void)state;
+    const int32_t w = 640, h = 480;
+    rte_grasp_config c;
+    rte_grasp_config_default(&c);
+    c.max_width = w;
+    c.max_height = h;
+    rte_grasp_ctx *ctx = NULL;
+    assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
+    worst_px = worst_deg = 0;
+    int objects = 0;
+    for (uint32_t seed = 1; seed <= 8; seed++) {
+        const int dark = seed & 1; /* objects 100 below or 45 above the table */
+        scene sc = make_scene(seed * 2246822519u, w, h, 3, 128, dark ? 28 : 173);
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++) {
+                const double dx = (x - w / 2.0) / (w / 2.0), dy = (y - h / 2.0) / (h / 2.0);
+                uint8_t *px = &sc.img.buf[(size_t)y * sc.img.stride + x];
+                *px = (uint8_t)(*px + 72 - (int)lround(45 * (dx * dx + dy * dy)));
+            }
+        rte_grasp_result r;
+        assert_int_equal(rte_grasp_process(ctx, &sc.img, &r), RTE_OK);
+        check_scene(&sc, &r, 1.0, 1);
+        objects += sc.n;
+        test_free(sc.img.buf);
+    }
+    print_message("background: %d objects under a vignette, largest centroid error %.3f px, "
+                  "angle error %.3f deg\n",
+                  objects, worst_px, worst_deg);
+    rte_grasp_destroy(ctx);
+}
+
+/* Touching discs (a pair, a row of three, a triangle of three) come apart
+ * at their necks, each with its own grasp point near its centre; a bar with
+ * a bulging end, and two squares sharing a whole edge (no neck), stay one. */
+static void touching_objects_split(void **state)
+{
+    (void)state;
+    const int32_t w = 400, h = 300;
+    rte_grasp_config c;
+    rte_grasp_config_default(&c);
+    c.max_width = w;
+    c.max_height = h;
+    rte_grasp_ctx *ctx = NULL;
+    assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
+    static const struct {
+        int n;
+        int x[3], y[3], r[3];
+    } groups[] = {
+        {2, {100, 140}, {80, 80}, {22, 22}},
+        {2, {260, 297}, {90, 96}, {24, 18}},
+        {3, {80, 120, 160}, {200, 200, 200}, {22, 22, 22}},
+        {3, {270, 313, 292}, {200, 200, 237}, {22, 22, 22}}, /* just touching: packed
+                                                               * closer, three discs are one
+                                                               * round blob without necks */
+    };
+    rte_image_u8 img = unit_image_u8(w, h, 1, 190);
+    truth t[12];
+    int n = 0;
+    for (size_t g = 0; g < sizeof groups / sizeof groups[0]; g++)
+        for (int i = 0; i < groups[g].n; i++, n++)
+            fill_disc(&img, groups[g].x[i], groups[g].y[i], groups[g].r[i], 50, &t[n]);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, n);
+    assert_int_equal(r.split_parts, n - 4);
+    for (int i = 0; i < n; i++) {
+        double best = 1e9;
+        for (int k = 0; k < r.n_objects; k++) {
+            const double dx = r.objects[k].x_q8 / 256.0 - t[i].cx,
+                         dy = r.objects[k].y_q8 / 256.0 - t[i].cy;
+            best = fmin(best, sqrt(dx * dx + dy * dy));
+        }
+        print_message("split: disc at %.0f,%.0f found %.2f px from its centre\n", t[i].cx, t[i].cy,
+                      best);
+        assert_true(best < 2.0); /* the cut line takes a pixel or two off one side */
+    }
+
+    /* stays one: a pen with a bulging tip, two squares side by side */
+    rte_image_u8 one = unit_image_u8(w, h, 1, 190);
+    const rte_vertex pen[4] = {{60, 100}, {260, 100}, {260, 109}, {60, 109}};
+    const rte_vertex sq1[4] = {{100, 180}, {159, 180}, {159, 239}, {100, 239}};
+    const rte_vertex sq2[4] = {{160, 180}, {219, 180}, {219, 239}, {160, 239}};
+    fill_polygon(&one, pen, 4, 50, &t[0]);
+    fill_disc(&one, 266, 104, 9, 50, &t[1]);
+    fill_polygon(&one, sq1, 4, 50, &t[2]);
+    fill_polygon(&one, sq2, 4, 50, &t[3]);
+    assert_int_equal(rte_grasp_process(ctx, &one, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 2);
+    assert_int_equal(r.split_parts, 0);
+    rte_grasp_params p;
+    assert_int_equal(rte_grasp_get_params(ctx, &p), RTE_OK);
+    p.split = 0;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 4); /* without the split: one object per group */
+    rte_grasp_destroy(ctx);
+    test_free(img.buf);
+    test_free(one.buf);
 }
 
 /* Two squares sharing an edge are one blob: one object, no phantom. */
@@ -560,6 +667,8 @@ int main(void)
         cmocka_unit_test(synthetic_scenes),
         cmocka_unit_test(canny_close_scenes),
         cmocka_unit_test(touching_objects_merge),
+        cmocka_unit_test(vignetted_scenes),
+        cmocka_unit_test(touching_objects_split),
         cmocka_unit_test(border_and_area_filters),
         cmocka_unit_test(object_bound),
         cmocka_unit_test(sizes_and_errors),

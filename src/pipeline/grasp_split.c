@@ -1,0 +1,180 @@
+/* The grasp path's split of touching objects (see rtedge/grasp.h, .split),
+ * per frame, integer only: which contours may hold touching objects, the
+ * split of each on its own pixels, and whether its parts are objects. */
+#include <stdint.h>
+#include <string.h>
+
+#include "grasp_ctx.h"
+#include "rtedge/distance.h"
+#include "rtedge/polygon_mask.h"
+#include "rtedge/split.h"
+
+/* Solidity (area / hull area, per mille) under which a contour may be
+ * touching objects and the split is tried on it: two touching discs have
+ * 880, a single disc or box on a noisy binary image 970 or more. A gate
+ * for speed, not a decision: the split cuts only at necks. */
+#define SPLIT_SOLIDITY_PERMILLE 950
+
+/* Whether contour pts may hold touching objects: its solidity is below
+ * SPLIT_SOLIDITY_PERMILLE. */
+static rte_status needs_split(rte_grasp_ctx *ctx, const rte_point *pts, int32_t n, int64_t area2,
+                              bool *split)
+{
+    *split = false;
+    if (n < 4)
+        return RTE_OK;
+    const size_t mark = rte_arena_mark(&ctx->arena);
+    int32_t *idx = rte_arena_alloc(&ctx->arena, (size_t)n * sizeof *idx);
+    rte_point *hull = rte_arena_alloc(&ctx->arena, (size_t)n * sizeof *hull);
+    int32_t nh = 0;
+    rte_status st = idx && hull ? rte_shape_convex_hull(pts, n, idx, hull, &nh, &ctx->arena)
+                                : RTE_ERR_NO_MEMORY;
+    if (st == RTE_OK) {
+        int64_t hull2 = rte_shape_area2(hull, nh);
+        hull2 = hull2 < 0 ? -hull2 : hull2;
+        *split = area2 * 1000 < hull2 * SPLIT_SOLIDITY_PERMILLE;
+    }
+    rte_arena_reset(&ctx->arena, mark);
+    return st;
+}
+
+/* The split's parts must be alike in size: the smallest of those of at
+ * least min_area px at least this share (per mille) of the largest. Two to
+ * four touching sweets or boxes are; a pen's metal tip or a lighter's head,
+ * cut off at a narrowing, is not (and stays on its object). */
+#define SPLIT_PART_SHARE_PERMILLE 200
+
+/* The 8-connected parts of a w x h binary crop (255): their pixels are set
+ * to the part's number (1..), their areas go to areas[] (at most max
+ * parts; the rest are counted in the last). Returns the parts. stack[]
+ * holds w * h indices. */
+static int32_t part_areas(uint8_t *px, int32_t w, int32_t h, int32_t *areas, int32_t max,
+                          int32_t *stack)
+{
+    int32_t parts = 0;
+    for (int32_t start = 0; start < w * h; start++) {
+        if (px[start] != 255)
+            continue;
+        const int32_t id = parts < max ? parts : max - 1;
+        if (parts < max)
+            areas[parts++] = 0;
+        int32_t top = 0;
+        stack[top++] = start;
+        px[start] = (uint8_t)(id + 1);
+        while (top > 0) {
+            const int32_t k = stack[--top], x = k % w, y = k / w;
+            areas[id]++;
+            for (int32_t yy = y > 0 ? y - 1 : 0; yy <= y + 1 && yy < h; yy++)
+                for (int32_t xx = x > 0 ? x - 1 : 0; xx <= x + 1 && xx < w; xx++)
+                    if (px[yy * w + xx] == 255) {
+                        px[yy * w + xx] = (uint8_t)(id + 1);
+                        stack[top++] = yy * w + xx;
+                    }
+        }
+    }
+    return parts;
+}
+
+/* Whether the split parts of a crop are objects of their own: two or more
+ * of at least min_area px, alike in size (SPLIT_PART_SHARE_PERMILLE).
+ * Leaves the crop's object pixels at 255. */
+static bool parts_alike(uint8_t *px, int32_t w, int32_t h, int64_t min_area, int32_t *stack,
+                        int32_t *objects)
+{
+    int32_t areas[RTE_GRASP_MAX_SPLIT_PARTS];
+    const int32_t n = part_areas(px, w, h, areas, RTE_GRASP_MAX_SPLIT_PARTS, stack);
+    for (int32_t k = 0; k < w * h; k++)
+        px[k] = px[k] ? 255 : 0;
+    int64_t lo = INT64_MAX, hi = 0;
+    *objects = 0;
+    for (int32_t i = 0; i < n; i++)
+        if (areas[i] >= min_area) {
+            (*objects)++;
+            lo = areas[i] < lo ? areas[i] : lo;
+            hi = areas[i] > hi ? areas[i] : hi;
+        }
+    return *objects >= 2 && lo * 1000 >= hi * SPLIT_PART_SHARE_PERMILLE;
+}
+
+/* Splits touching objects within one contour (rtedge/split.h): on the
+ * contour's bounding box (and a pixel around it), the pixels of bin inside
+ * the contour (filled as cv::fillPoly fills it, so that other objects
+ * reaching into the box are left alone), their chamfer distance, the split;
+ * the cut pixels are cleared in bin. Adds the parts beyond the first to
+ * *parts. */
+static rte_status split_contour(rte_grasp_ctx *ctx, rte_image_u8 *bin, const rte_point *pts,
+                                int32_t n, int32_t *parts)
+{
+    const rte_rect r = rte_shape_bounding_rect(pts, n);
+    const int32_t x0 = r.x > 0 ? r.x - 1 : 0, y0 = r.y > 0 ? r.y - 1 : 0;
+    const int32_t x1 = r.x + r.width < bin->width ? r.x + r.width + 1 : bin->width;
+    const int32_t y1 = r.y + r.height < bin->height ? r.y + r.height + 1 : bin->height;
+    const int32_t cw = x1 - x0, ch = y1 - y0;
+    const size_t mark = rte_arena_mark(&ctx->arena);
+    rte_vertex *v = rte_arena_alloc(&ctx->arena, (size_t)n * sizeof *v);
+    uint8_t *inside = rte_arena_alloc(&ctx->arena, (size_t)cw * ch);
+    uint8_t *own = rte_arena_alloc(&ctx->arena, (size_t)cw * ch);
+    int32_t *stack = rte_arena_alloc(&ctx->arena, (size_t)cw * ch * sizeof *stack);
+    if (!v || !inside || !own || !stack) {
+        rte_arena_reset(&ctx->arena, mark);
+        return RTE_ERR_NO_MEMORY;
+    }
+    for (int32_t i = 0; i < n; i++)
+        v[i] = (rte_vertex){pts[i].x - x0, pts[i].y - y0};
+    rte_image_u8 mask = {cw, ch, cw, inside}, part = {cw, ch, cw, own};
+    const rte_polygon poly = {v, n};
+    rte_status st = rte_polygon_mask_build(&mask, &poly, 1, &ctx->arena);
+    rte_image_u8 box = {cw, ch, bin->stride, rte_u8_row(bin, y0) + x0};
+    if (st == RTE_OK)
+        st = rte_polygon_mask_apply(&box, &mask, &part);
+    rte_image_u16 dist = {cw, ch, cw, ctx->distance};
+    if (st == RTE_OK)
+        st = rte_distance_transform_u8(&part, &dist, RTE_DIST_CHAMFER34, RTE_DIST_BORDER_ZERO);
+    rte_split_params sp;
+    rte_split_params_default(&sp, RTE_DIST_CHAMFER34);
+    /* necks narrower than 75% of the smaller part's inscribed radius: the
+     * background binarisation keeps the shadow between two sweets, which
+     * widens their neck (250 lies in the range that splits the smarties and
+     * cuts none of the synthetic single shapes, docs/distance.md) */
+    sp.min_ratio_permille = 250;
+    rte_split_result sr = {0};
+    if (st == RTE_OK)
+        st = rte_split_u8(&part, &dist, &part, &sp, &ctx->arena, &sr);
+    int32_t objects = 0;
+    if (st == RTE_OK && sr.cut_pixels > 0 &&
+        parts_alike(own, cw, ch, ctx->params.min_area, stack, &objects)) {
+        /* inside the contour, bin becomes the split part */
+        for (int32_t y = 0; y < ch; y++) {
+            uint8_t *b = rte_u8_row(&box, y);
+            const uint8_t *in = inside + (size_t)y * cw, *o = own + (size_t)y * cw;
+            for (int32_t x = 0; x < cw; x++)
+                b[x] = in[x] ? o[x] : b[x];
+        }
+        *parts += objects - 1;
+    }
+    rte_arena_reset(&ctx->arena, mark);
+    return st;
+}
+
+rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, rte_image_u8 *bin, int32_t *parts)
+{
+    const rte_contours *cs = &ctx->contours;
+    const int64_t min2 = 2 * (int64_t)ctx->params.min_area;
+    const int32_t before = *parts;
+    rte_status st = RTE_OK;
+    for (int32_t i = 0; i < cs->n_contours && st == RTE_OK; i++) {
+        const rte_contour *c = &cs->contours[i];
+        const rte_point *pts = cs->points + c->offset;
+        int64_t a2 = rte_shape_area2(pts, c->count);
+        a2 = a2 < 0 ? -a2 : a2;
+        bool split = false;
+        if (a2 >= 2 * min2 && a2 > 0)
+            st = needs_split(ctx, pts, c->count, a2, &split);
+        if (st == RTE_OK && split)
+            st = split_contour(ctx, bin, pts, c->count, parts);
+    }
+    if (st == RTE_OK && *parts > before)
+        st = rte_contours_find(bin, RTE_CONTOURS_EXTERNAL, RTE_CONTOURS_APPROX_SIMPLE,
+                               &ctx->contours, &ctx->arena);
+    return st;
+}
