@@ -4,23 +4,22 @@
  * threshold takes a vignetted corner for an object.
  *
  * rte_background_estimate_u8: the frame is cut into cells of cell x cell
- * px and each cell's median taken. Regions grow from the cells within
- * `tolerance` grey levels of the most common cell value through
- * neighbours differing by at most `step`, and the largest is the table:
- * light falling off across a table is many small steps between cells, an
- * object's edge one large step (a cell's median flips from table to object
- * where the object covers half of it), so the table is followed into a
- * vignetted corner while objects of any size stay out (one as large as
- * the table and as even as it may be taken for it). Each cell's
- * estimate is the least-squares plane through the table cells within
- * `radius` cells of it, evaluated at the cell and kept within `tolerance`
- * of those cells' range (where there are fewer than 6 of them, inside a
- * large object: the mean of the table cells within 2, 4, ... times the
- * radius), in 1/16 grey levels, interpolated bilinearly between cell
- * centres to every pixel. An
- * object whose brightness meets the table's somewhere along a gradient
- * (a shaded or gradient-filled object) is joined to the table there; edges
- * (Canny) find those.
+ * px and each cell's median taken. The cells form regions, joined through
+ * neighbours whose medians differ by at most `step`: light falling off
+ * across a table is many small steps between cells, an object's edge one
+ * large step (a cell's median flips from table to object where the object
+ * covers half of it). The table is the region with the most cells on the
+ * frame's edge, then the most cells: it surrounds the objects and runs out
+ * of the view, while a sheet or a tray on it lies inside. So the table is
+ * followed into a vignetted corner while objects of any size stay out.
+ * Each cell's estimate is the least-squares plane through the table cells
+ * within `radius` cells of it, evaluated at the cell and kept within
+ * `tolerance` of those cells' range (where there are fewer than 6 of them,
+ * inside a large object: the mean of the table cells within 2, 4, ...
+ * times the radius), in 1/16 grey levels, interpolated bilinearly between
+ * cell centres to every pixel. An object whose brightness meets the
+ * table's somewhere along a gradient (a shaded or gradient-filled object)
+ * is joined to the table there; edges (Canny) find those.
  *
  * rte_background_threshold_u8: d = src - background per pixel; the high
  * threshold is params.high, or Otsu's threshold of the histogram of |d|,
@@ -56,8 +55,8 @@ extern "C" {
 typedef struct rte_background_params {
     int32_t cell;      /* cell side in px, RTE_BACKGROUND_MIN_CELL..MAX_CELL */
     int32_t radius;    /* window half-size in cells, 1..RTE_BACKGROUND_MAX_RADIUS */
-    int32_t tolerance; /* grey levels from the most common cell value of the first table cells,
-                        * 0..255 */
+    int32_t tolerance; /* grey levels a cell's plane may reach beyond the range of the table
+                        * cells it was fitted to, 0..255 */
     int32_t step;      /* grey levels between neighbouring table cells, 0..255 */
 } rte_background_params;
 

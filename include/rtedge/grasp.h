@@ -111,8 +111,12 @@ RTE_API void rte_grasp_config_default(rte_grasp_config *config);
 
 /* The grasp of one object, for a parallel-jaw gripper seen from above.
  *
- * Point: the centroid (for an object of no area, a line or a dot, the
- * centre of its bounding rectangle). Direction: the gripper closes across the object's
+ * Point: the centroid of the contour's convex hull, the shape the jaws
+ * close on (a convex object's own centroid; where part of an outline is
+ * lost against a table of the same shade, as a lighter's metal head, the
+ * hull bridges the notches that would pull the centroid away); for an
+ * object of no area, a line or a dot, the centre of its bounding
+ * rectangle. Direction: the gripper closes across the object's
  * narrowest width, measured on the convex hull of its contour by rotating
  * calipers (rte_shape_calipers): the smallest extent of the object along
  * any direction. A parallel-jaw gripper closing along a direction d must

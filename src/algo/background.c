@@ -95,45 +95,31 @@ static void cell_medians(const rte_image_u8 *src, int32_t cell, int32_t gw, int3
     }
 }
 
-/* The table's cells. Seeds: the cells within tol of the most common cell
- * value (the centre of the fullest 2 tol + 1 wide band of the cells'
- * histogram). From each seed not yet reached, a region grows through
- * 4-neighbours differing by at most step; the table is the region with the
- * most cells. An object's edge is a step larger than that between two
- * cells (a cell's median flips from table to object where the object
- * covers half of it), light falling off across a table many small steps;
- * a large even object can hold the most common value and seed a region of
- * its own, smaller than the table's. table[] gets 1 on the table's cells;
- * region[] and queue[] are scratch. */
-static void table_cells(const uint8_t *med, int32_t gw, int32_t gh, int32_t tol, int32_t step,
-                        uint8_t *table, int32_t *region, int32_t *queue)
+/* The table's cells. The grid is cut into regions: cells joined through
+ * 4-neighbours whose medians differ by at most step. An object's edge is a
+ * step larger than that between two cells (a cell's median flips from
+ * table to object where the object covers half of it), light falling off
+ * across a table is many small steps. The table is the region with the
+ * most cells on the frame's edge (a table surrounds the objects on it and
+ * runs out of the view; a sheet or tray on it, however large, lies
+ * inside), then the most cells. table[] gets 1 on its cells; region[] and
+ * queue[] are scratch. */
+static void table_cells(const uint8_t *med, int32_t gw, int32_t gh, int32_t step, uint8_t *table,
+                        int32_t *region, int32_t *queue)
 {
     const int32_t n = gw * gh;
-    int32_t hist[256] = {0};
-    for (int32_t k = 0; k < n; k++)
-        hist[med[k]]++;
-    int32_t mode = 0, best = -1;
-    for (int32_t v = 0; v < 256; v++) {
-        int32_t band = 0;
-        for (int32_t u = v - tol; u <= v + tol; u++)
-            band += u >= 0 && u < 256 ? hist[u] : 0;
-        if (band > best) {
-            best = band;
-            mode = v;
-        }
-    }
     for (int32_t k = 0; k < n; k++)
         region[k] = -1;
-    int32_t largest = -1, largest_size = 0;
+    int32_t best = 0, best_edge = -1, best_size = 0;
     for (int32_t seed = 0; seed < n; seed++) {
-        const int32_t ds = (int32_t)med[seed] - mode;
-        if (region[seed] >= 0 || ds > tol || ds < -tol)
+        if (region[seed] >= 0)
             continue;
-        int32_t head = 0, tail = 0;
+        int32_t head = 0, tail = 0, edge = 0;
         region[seed] = seed;
         queue[tail++] = seed;
         while (head < tail) {
             const int32_t k = queue[head++], i = k % gw, j = k / gw;
+            edge += i == 0 || j == 0 || i == gw - 1 || j == gh - 1;
             const int32_t next[4] = {i > 0 ? k - 1 : -1, i + 1 < gw ? k + 1 : -1,
                                      j > 0 ? k - gw : -1, j + 1 < gh ? k + gw : -1};
             for (int32_t e = 0; e < 4; e++) {
@@ -147,13 +133,14 @@ static void table_cells(const uint8_t *med, int32_t gw, int32_t gh, int32_t tol,
                 }
             }
         }
-        if (tail > largest_size) {
-            largest_size = tail;
-            largest = seed;
+        if (edge > best_edge || (edge == best_edge && tail > best_size)) {
+            best = seed;
+            best_edge = edge;
+            best_size = tail;
         }
     }
     for (int32_t k = 0; k < n; k++)
-        table[k] = region[k] == largest;
+        table[k] = region[k] == best;
 }
 
 /* The plane through the table cells of the window of radius r around
@@ -276,7 +263,7 @@ rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *bac
         return RTE_ERR_NO_MEMORY;
     }
     cell_medians(src, cell, gw, gh, med, hist);
-    table_cells(med, gw, gh, params->tolerance, params->step, table, region, queue);
+    table_cells(med, gw, gh, params->step, table, region, queue);
     table_estimates(med, table, gw, gh, params->radius, params->tolerance, grid);
 
     int32_t *col_frac = col + w;

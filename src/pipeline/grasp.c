@@ -265,28 +265,12 @@ static int32_t width_factor(const rte_grasp_params *p, int32_t width_q8)
 }
 
 /* The grasp and score of contour pts (twice its area a2) into c: the
- * centroid, then over the hull's calipers within 1/16 + 1 px of the
+ * hull's centroid, then over the hull's calipers within 1/16 + 1 px of the
  * narrowest, the best score (see rte_grasp_object). */
 static rte_status grasp_of(rte_grasp_ctx *ctx, const rte_image_u8 *bin, const rte_point *pts,
                            int32_t n, grasp_candidate *c)
 {
     const rte_grasp_params *p = &ctx->params;
-    int64_t cx, cy;
-    if (c->area2 > 0) {
-        rte_moments m;
-        rte_status st = rte_shape_moments(pts, n, &m);
-        if (st != RTE_OK)
-            return st;
-        cx = m.cx_q16;
-        cy = m.cy_q16;
-    } else { /* a line or a dot: no area to take moments of */
-        const rte_rect r = rte_shape_bounding_rect(pts, n);
-        cx = (2 * (int64_t)r.x + r.width - 1) << 15;
-        cy = (2 * (int64_t)r.y + r.height - 1) << 15;
-    }
-    c->x_q8 = (int32_t)((cx + 128) >> 8);
-    c->y_q8 = (int32_t)((cy + 128) >> 8);
-
     const size_t mark = rte_arena_mark(&ctx->arena);
     rte_point *hull = rte_arena_alloc(&ctx->arena, ((size_t)n + 1) * sizeof *hull);
     rte_caliper *cal = rte_arena_alloc(&ctx->arena, ((size_t)n + 1) * sizeof *cal);
@@ -302,6 +286,19 @@ static rte_status grasp_of(rte_grasp_ctx *ctx, const rte_image_u8 *bin, const rt
     }
     int64_t hull2 = rte_shape_area2(hull, nh);
     hull2 = hull2 < 0 ? -hull2 : hull2;
+    /* the point: the hull's centroid (see rte_grasp_object) */
+    int64_t cx, cy;
+    rte_moments hm;
+    if (c->area2 > 0 && hull2 > 0 && rte_shape_moments(hull, nh, &hm) == RTE_OK) {
+        cx = hm.cx_q16;
+        cy = hm.cy_q16;
+    } else { /* a line or a dot: no area to take moments of */
+        const rte_rect r = rte_shape_bounding_rect(pts, n);
+        cx = (2 * (int64_t)r.x + r.width - 1) << 15;
+        cy = (2 * (int64_t)r.y + r.height - 1) << 15;
+    }
+    c->x_q8 = (int32_t)((cx + 128) >> 8);
+    c->y_q8 = (int32_t)((cy + 128) >> 8);
     const int32_t solidity = hull2 ? (int32_t)((c->area2 * 65536 + hull2 / 2) / hull2) : 0;
     const int32_t need = p->margin_px + p->finger_px;
 

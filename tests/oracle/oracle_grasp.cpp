@@ -168,7 +168,10 @@ void run_case(oracle::Tally &t, Stats &s, const std::string &name, const cv::Mat
         const std::vector<cv::Point> &c = cs[kept[i].index];
         const std::string w = what + " #" + std::to_string(i);
         s.objects++;
-        cv::Moments mo = cv::moments(c);
+        // the grasp point is the centroid of the contour's convex hull
+        std::vector<cv::Point> hull;
+        cv::convexHull(c, hull);
+        cv::Moments mo = cv::moments(hull);
         // Q8 centroid: rounding 1/512 plus the Q16 step before it
         near(t, s, w + " cx", mo.m10 / mo.m00, o.x_q8 / 256.0, 0.5 / 256 + 1.0 / 65536,
              s.worst_centre);
