@@ -80,7 +80,10 @@ typedef struct rte_background_threshold_params {
     bool bright;          /* objects lighter than the table are found */
     bool dark;            /* objects darker than the table are found */
     bool drop_shadows;    /* dark regions that are a brighter object's shadow are dropped */
-    int32_t shadow_gap;   /* px between a shadow and its object (d crosses zero between
+    int32_t region_share_permille; /* a kept region's pixels with |d| at most this share of
+                                    * its mean |d| are left out (0..1000): a sweet's own
+                                    * soft shadow, weak beside its colour, is not the sweet */
+    int32_t shadow_gap;            /* px between a shadow and its object (d crosses zero between
                            * them, over about the blur's width), 0..RTE_BACKGROUND_MAX_SHADOW_GAP */
 } rte_background_threshold_params;
 

@@ -32,7 +32,8 @@ void rte_background_threshold_params_default(rte_background_threshold_params *pa
                                                 .bright = true,
                                                 .dark = true,
                                                 .drop_shadows = true,
-                                                .shadow_gap = gap < 3 ? 3 : gap};
+                                                .shadow_gap = gap < 3 ? 3 : gap,
+                                                .region_share_permille = 400};
 }
 
 static int32_t cells(int32_t size, int32_t cell) { return (size + cell - 1) / cell; }
@@ -435,6 +436,31 @@ static bool casts_shadow_on(const run_table *t, int32_t y, int32_t h, int32_t ga
     return false;
 }
 
+/* dst holds |d|: each kept region's pixels beyond its own floor (share per
+ * mille of its mean |d|) become 255, everything else 0. */
+static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share)
+{
+    for (int32_t y = 0; y < dst->height; y++) {
+        uint8_t *out = rte_u8_row(dst, y);
+        int32_t x = 0;
+        for (int32_t r = t->row_start[y]; r < t->row_start[y + 1]; r++) {
+            const int32_t root = t->parent[r];
+            memset(out + x, 0, (size_t)(t->x0[r] - x));
+            x = t->x1[r] + 1;
+            if ((t->flags[root] & (REGION_STRONG | REGION_SHADOW)) != REGION_STRONG) {
+                memset(out + t->x0[r], 0, (size_t)(x - t->x0[r]));
+                continue;
+            }
+            /* floor = share of the region's mean |d| (sum <= 255 count) */
+            const int32_t floor =
+                (int32_t)(t->sum[root] * share / ((int64_t)t->count[root] * 1000));
+            for (int32_t k = t->x0[r]; k < x; k++)
+                out[k] = out[k] > floor ? 255 : 0;
+        }
+        memset(out + x, 0, (size_t)(dst->width - x));
+    }
+}
+
 rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_u8 *background,
                                        rte_image_u8 *dst,
                                        const rte_background_threshold_params *params,
@@ -447,8 +473,8 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
         return st;
     if (!params || !arena || params->high < 0 || params->high > 255 || params->min_contrast < 1 ||
         params->min_contrast > 255 || params->shadow_gap < 0 ||
-        params->shadow_gap > RTE_BACKGROUND_MAX_SHADOW_GAP || dst->buf == src->buf ||
-        dst->buf == background->buf)
+        params->shadow_gap > RTE_BACKGROUND_MAX_SHADOW_GAP || params->region_share_permille < 0 ||
+        params->region_share_permille > 1000 || dst->buf == src->buf || dst->buf == background->buf)
         return RTE_ERR_ARGUMENT;
     const int32_t w = src->width, h = src->height;
     const size_t mark = rte_arena_mark(arena);
@@ -513,13 +539,7 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
                     shadows += (t.flags[rd] & REGION_STRONG) != 0;
                 }
             }
-    for (int32_t y = 0; y < h; y++) {
-        uint8_t *out = rte_u8_row(dst, y);
-        memset(out, 0, (size_t)w);
-        for (int32_t r = t.row_start[y]; r < t.row_start[y + 1]; r++)
-            if ((t.flags[t.parent[r]] & (REGION_STRONG | REGION_SHADOW)) == REGION_STRONG)
-                memset(out + t.x0[r], 255, (size_t)(t.x1[r] - t.x0[r] + 1));
-    }
+    paint_regions(&t, dst, params->region_share_permille);
     if (result)
         *result = (rte_background_threshold_result){.high = high,
                                                     .low = low,
