@@ -80,17 +80,23 @@ typedef struct rte_background_threshold_params {
     bool bright;          /* objects lighter than the table are found */
     bool dark;            /* objects darker than the table are found */
     bool drop_shadows;    /* dark regions that are a brighter object's shadow are dropped */
-    int32_t region_share_permille; /* a kept region's pixels with |d| at most this share of
-                                    * its mean |d| are left out (0..1000): a sweet's own
-                                    * soft shadow, weak beside its colour, is not the sweet */
-    int32_t shadow_gap;            /* px between a shadow and its object (d crosses zero between
-                           * them, over about the blur's width), 0..RTE_BACKGROUND_MAX_SHADOW_GAP */
+    /* A kept region's pixels with |d| at most this share of its mean |d| are
+     * left out (0..1000): a sweet's own soft shadow, weak beside its colour,
+     * is not the sweet. */
+    int32_t region_share_permille;
+    /* px: smaller dark regions are not looked at as shadows (left to an
+     * area filter). */
+    int32_t shadow_min_area;
+    /* px between a shadow and its object (d crosses zero between them, over
+     * about the blur's width), 0..RTE_BACKGROUND_MAX_SHADOW_GAP. */
+    int32_t shadow_gap;
 } rte_background_threshold_params;
 
 #define RTE_BACKGROUND_MAX_SHADOW_GAP 32
 
 /* For frames `width` px wide: high 0 (Otsu), min_contrast 20, both sides,
- * shadows dropped within width / 200 px (at least 3). */
+ * shadows of 64 px or more dropped within width / 200 px (at least 3), a
+ * region's pixels below 40% of its mean |d| left out. */
 RTE_API void rte_background_threshold_params_default(rte_background_threshold_params *params,
                                                      int32_t width);
 

@@ -73,8 +73,9 @@ typedef struct rte_grasp_params {
     int32_t max_area;        /* pixels; larger ones are dropped; 0 = no limit */
     int32_t skip_border;     /* 1: drop objects touching the image or workspace border */
     int32_t split;           /* 1: split touching objects at their necks (rtedge/split.h):
-                              * contours of solidity below 0.95 and at least twice min_area,
-                              * by the chamfer distance of their own pixels */
+                              * contours of solidity below 0.95, at least twice min_area,
+                              * at most twice gripper_max_px across and a quarter of the
+                              * frame, by the chamfer distance of their own pixels */
     int32_t max_objects;     /* 1..config.max_objects: objects reported (best scores) */
     /* The workspace: a polygon in fractions of width and height (Q16, as
      * rte_polygon_from_fractions takes them), 3..RTE_GRASP_MAX_ROI_VERTICES

@@ -33,7 +33,8 @@ void rte_background_threshold_params_default(rte_background_threshold_params *pa
                                                 .dark = true,
                                                 .drop_shadows = true,
                                                 .shadow_gap = gap < 3 ? 3 : gap,
-                                                .region_share_permille = 400};
+                                                .region_share_permille = 400,
+                                                .shadow_min_area = 64};
 }
 
 static int32_t cells(int32_t size, int32_t cell) { return (size + cell - 1) / cell; }
@@ -421,8 +422,17 @@ static bool casts_shadow_on(const run_table *t, int32_t y, int32_t h, int32_t ga
                             int32_t r)
 {
     const int32_t y0 = y > gap ? y - gap : 0, y1 = y + gap < h ? y + gap : h - 1;
-    for (int32_t yy = y0; yy <= y1; yy++)
-        for (int32_t q = t->row_start[yy]; q < t->row_start[yy + 1]; q++) {
+    for (int32_t yy = y0; yy <= y1; yy++) {
+        /* the row's runs are in x order: the first that may reach r */
+        int32_t lo = t->row_start[yy], hi = t->row_start[yy + 1];
+        while (lo < hi) {
+            const int32_t mid = lo + (hi - lo) / 2;
+            if (t->x1[mid] < t->x0[r] - gap)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        for (int32_t q = lo; q < t->row_start[yy + 1]; q++) {
             if (t->x0[q] > t->x1[r] + gap)
                 break;
             const int32_t rb = t->parent[q];
@@ -433,6 +443,7 @@ static bool casts_shadow_on(const run_table *t, int32_t y, int32_t h, int32_t ga
                 t->sum[rb] * t->count[rd] > t->sum[rd] * t->count[rb])
                 return true;
         }
+    }
     return false;
 }
 
@@ -474,7 +485,8 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     if (!params || !arena || params->high < 0 || params->high > 255 || params->min_contrast < 1 ||
         params->min_contrast > 255 || params->shadow_gap < 0 ||
         params->shadow_gap > RTE_BACKGROUND_MAX_SHADOW_GAP || params->region_share_permille < 0 ||
-        params->region_share_permille > 1000 || dst->buf == src->buf || dst->buf == background->buf)
+        params->region_share_permille > 1000 || params->shadow_min_area < 0 ||
+        dst->buf == src->buf || dst->buf == background->buf)
         return RTE_ERR_ARGUMENT;
     const int32_t w = src->width, h = src->height;
     const size_t mark = rte_arena_mark(arena);
@@ -496,8 +508,10 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     for (int32_t y = 0; y < h; y++) {
         const uint8_t *s = rte_u8_row(src, y), *b = rte_u8_row(background, y);
         uint8_t *a = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < w; x++)
-            a[x] = (uint8_t)(s[x] > b[x] ? s[x] - b[x] : b[x] - s[x]);
+        for (int32_t x = 0; x < w; x++) { /* max - min: vectorised */
+            const uint8_t hi = s[x] > b[x] ? s[x] : b[x], lo = s[x] > b[x] ? b[x] : s[x];
+            a[x] = (uint8_t)(hi - lo);
+        }
     }
     int32_t high = params->high;
     if (high == 0) {
@@ -528,15 +542,24 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
         t.sum[root] += t.sum[r];
         t.flags[root] |= t.flags[r] & REGION_STRONG;
     }
+    /* Only strong dark regions smaller than the largest strong bright one
+     * can be a shadow that matters (weak ones are not painted), and only
+     * those of shadow_min_area pixels or more are looked at. */
+    int32_t largest_bright = 0;
+    for (int32_t r = 0; r < n; r++)
+        if (t.parent[r] == r && (t.flags[r] & (REGION_DARK | REGION_STRONG)) == REGION_STRONG)
+            largest_bright = t.count[r] > largest_bright ? t.count[r] : largest_bright;
     if (params->drop_shadows && params->bright && params->dark)
         for (int32_t y = 0; y < h; y++)
             for (int32_t r = t.row_start[y]; r < t.row_start[y + 1]; r++) {
                 const int32_t rd = t.parent[r];
-                if ((t.flags[rd] & (REGION_DARK | REGION_SHADOW)) != REGION_DARK)
+                if ((t.flags[rd] & (REGION_DARK | REGION_STRONG | REGION_SHADOW)) !=
+                        (REGION_DARK | REGION_STRONG) ||
+                    t.count[rd] >= largest_bright || t.count[rd] < params->shadow_min_area)
                     continue;
                 if (casts_shadow_on(&t, y, h, params->shadow_gap, rd, r)) {
                     t.flags[rd] |= REGION_SHADOW;
-                    shadows += (t.flags[rd] & REGION_STRONG) != 0;
+                    shadows++;
                 }
             }
     paint_regions(&t, dst, params->region_share_permille);

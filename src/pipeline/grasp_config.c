@@ -80,7 +80,8 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
                         max_size(rte_polygon_mask_scratch_size(c->max_points),
                                  rte_split_scratch_size(w, h)));
     s = max_size(s, rte_arena_piece_size(pts * sizeof(int32_t)) +
-                        rte_arena_piece_size(pts * sizeof(rte_point)) +
+                        rte_arena_piece_size((pts + 1) * sizeof(rte_point)) +
+                        rte_arena_piece_size((pts + 1) * sizeof(rte_caliper)) +
                         rte_shape_hull_scratch_size(c->max_points));
     s = max_size(s, rte_shape_classify_scratch_size(c->max_points));
     /* the grasp of one contour: its hull, calipers and the hull's scratch */

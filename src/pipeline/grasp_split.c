@@ -15,24 +15,37 @@
  * for speed, not a decision: the split cuts only at necks. */
 #define SPLIT_SOLIDITY_PERMILLE 950
 
-/* Whether contour pts may hold touching objects: its solidity is below
- * SPLIT_SOLIDITY_PERMILLE. */
+/* Whether contour pts may hold touching objects the gripper could take
+ * apart: its solidity is below SPLIT_SOLIDITY_PERMILLE, its narrowest
+ * width (the hull's calipers) at most twice the gripper's widest opening
+ * (two objects side by side; a road, a sky or a wall is wider) and its
+ * bounding box at most a quarter of the frame. */
 static rte_status needs_split(rte_grasp_ctx *ctx, const rte_point *pts, int32_t n, int64_t area2,
-                              bool *split)
+                              int32_t w, int32_t h, bool *split)
 {
     *split = false;
-    if (n < 4)
+    const rte_rect box = rte_shape_bounding_rect(pts, n);
+    if (n < 4 || (int64_t)box.width * box.height * 4 > (int64_t)w * h)
         return RTE_OK;
     const size_t mark = rte_arena_mark(&ctx->arena);
     int32_t *idx = rte_arena_alloc(&ctx->arena, (size_t)n * sizeof *idx);
-    rte_point *hull = rte_arena_alloc(&ctx->arena, (size_t)n * sizeof *hull);
-    int32_t nh = 0;
-    rte_status st = idx && hull ? rte_shape_convex_hull(pts, n, idx, hull, &nh, &ctx->arena)
-                                : RTE_ERR_NO_MEMORY;
+    rte_point *hull = rte_arena_alloc(&ctx->arena, ((size_t)n + 1) * sizeof *hull);
+    rte_caliper *cal = rte_arena_alloc(&ctx->arena, ((size_t)n + 1) * sizeof *cal);
+    int32_t nh = 0, nc = 0;
+    rte_status st = idx && hull && cal ? rte_shape_convex_hull(pts, n, idx, hull, &nh, &ctx->arena)
+                                       : RTE_ERR_NO_MEMORY;
+    int64_t hull2 = 0;
     if (st == RTE_OK) {
-        int64_t hull2 = rte_shape_area2(hull, nh);
+        hull2 = rte_shape_area2(hull, nh);
         hull2 = hull2 < 0 ? -hull2 : hull2;
-        *split = area2 * 1000 < hull2 * SPLIT_SOLIDITY_PERMILLE;
+    }
+    if (st == RTE_OK && area2 * 1000 < hull2 * SPLIT_SOLIDITY_PERMILLE)
+        st = rte_shape_calipers(hull, nh, cal, &nc);
+    if (st == RTE_OK && nc > 0) {
+        int32_t narrowest = cal[0].width_q8;
+        for (int32_t i = 1; i < nc; i++)
+            narrowest = cal[i].width_q8 < narrowest ? cal[i].width_q8 : narrowest;
+        *split = narrowest <= 2 * 256 * ctx->params.gripper_max_px;
     }
     rte_arena_reset(&ctx->arena, mark);
     return st;
@@ -169,7 +182,7 @@ rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, rte_image_u8 *bin, int32
         a2 = a2 < 0 ? -a2 : a2;
         bool split = false;
         if (a2 >= 2 * min2 && a2 > 0)
-            st = needs_split(ctx, pts, c->count, a2, &split);
+            st = needs_split(ctx, pts, c->count, a2, bin->width, bin->height, &split);
         if (st == RTE_OK && split)
             st = split_contour(ctx, bin, pts, c->count, parts);
     }
