@@ -416,30 +416,24 @@ static int64_t label_row(run_table *t, int32_t y, const uint8_t *a, const uint8_
 }
 
 /* Whether dark run r's region is the shadow of a bright region within
- * `gap` px of it: one both larger and of higher mean contrast
- * (compared as sum_b * count_d > sum_d * count_b). */
+ * `gap` px of it: one both larger and of higher mean contrast (compared as
+ * sum_b * count_d > sum_d * count_b). cursor[k] is the first run of row
+ * y - gap + k that may reach r: runs of a row come in x order, so the
+ * cursors only move on along row y. */
 static bool casts_shadow_on(const run_table *t, int32_t y, int32_t h, int32_t gap, int32_t rd,
-                            int32_t r)
+                            int32_t r, int32_t *cursor)
 {
-    const int32_t y0 = y > gap ? y - gap : 0, y1 = y + gap < h ? y + gap : h - 1;
-    for (int32_t yy = y0; yy <= y1; yy++) {
-        /* the row's runs are in x order: the first that may reach r */
-        int32_t lo = t->row_start[yy], hi = t->row_start[yy + 1];
-        while (lo < hi) {
-            const int32_t mid = lo + (hi - lo) / 2;
-            if (t->x1[mid] < t->x0[r] - gap)
-                lo = mid + 1;
-            else
-                hi = mid;
-        }
-        for (int32_t q = lo; q < t->row_start[yy + 1]; q++) {
-            if (t->x0[q] > t->x1[r] + gap)
-                break;
+    for (int32_t k = 0; k <= 2 * gap; k++) {
+        const int32_t yy = y - gap + k;
+        if (yy < 0 || yy >= h)
+            continue;
+        const int32_t end = t->row_start[yy + 1];
+        while (cursor[k] < end && t->x1[cursor[k]] < t->x0[r] - gap)
+            cursor[k]++;
+        for (int32_t q = cursor[k]; q < end && t->x0[q] <= t->x1[r] + gap; q++) {
             const int32_t rb = t->parent[q];
-            if (t->x1[q] < t->x0[r] - gap ||
-                (t->flags[rb] & (REGION_DARK | REGION_STRONG)) != REGION_STRONG)
-                continue;
-            if (t->count[rb] > t->count[rd] &&
+            if ((t->flags[rb] & (REGION_DARK | REGION_STRONG)) == REGION_STRONG &&
+                t->count[rb] > t->count[rd] &&
                 t->sum[rb] * t->count[rd] > t->sum[rd] * t->count[rb])
                 return true;
         }
@@ -549,19 +543,25 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     for (int32_t r = 0; r < n; r++)
         if (t.parent[r] == r && (t.flags[r] & (REGION_DARK | REGION_STRONG)) == REGION_STRONG)
             largest_bright = t.count[r] > largest_bright ? t.count[r] : largest_bright;
+    int32_t cursor[2 * RTE_BACKGROUND_MAX_SHADOW_GAP + 1];
     if (params->drop_shadows && params->bright && params->dark)
-        for (int32_t y = 0; y < h; y++)
+        for (int32_t y = 0; y < h; y++) {
+            for (int32_t k = 0; k <= 2 * params->shadow_gap; k++) {
+                const int32_t yy = y - params->shadow_gap + k;
+                cursor[k] = yy >= 0 && yy < h ? t.row_start[yy] : 0;
+            }
             for (int32_t r = t.row_start[y]; r < t.row_start[y + 1]; r++) {
                 const int32_t rd = t.parent[r];
                 if ((t.flags[rd] & (REGION_DARK | REGION_STRONG | REGION_SHADOW)) !=
                         (REGION_DARK | REGION_STRONG) ||
                     t.count[rd] >= largest_bright || t.count[rd] < params->shadow_min_area)
                     continue;
-                if (casts_shadow_on(&t, y, h, params->shadow_gap, rd, r)) {
+                if (casts_shadow_on(&t, y, h, params->shadow_gap, rd, r, cursor)) {
                     t.flags[rd] |= REGION_SHADOW;
                     shadows++;
                 }
             }
+        }
     paint_regions(&t, dst, params->region_share_permille);
     if (result)
         *result = (rte_background_threshold_result){.high = high,
