@@ -466,6 +466,39 @@ static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share)
     }
 }
 
+/* Flags the shadows (see rte_background_threshold_u8) and counts them. */
+static int32_t mark_shadows(run_table *t, int32_t n, int32_t h,
+                            const rte_background_threshold_params *params)
+{
+    int32_t shadows = 0;
+    /* Only strong dark regions smaller than the largest strong bright one
+     * can be a shadow that matters (weak ones are not painted), and only
+     * those of shadow_min_area pixels or more are looked at. */
+    int32_t largest_bright = 0;
+    for (int32_t r = 0; r < n; r++)
+        if (t->parent[r] == r && (t->flags[r] & (REGION_DARK | REGION_STRONG)) == REGION_STRONG)
+            largest_bright = t->count[r] > largest_bright ? t->count[r] : largest_bright;
+    int32_t cursor[2 * RTE_BACKGROUND_MAX_SHADOW_GAP + 1];
+    for (int32_t y = 0; y < h; y++) {
+        for (int32_t k = 0; k <= 2 * params->shadow_gap; k++) {
+            const int32_t yy = y - params->shadow_gap + k;
+            cursor[k] = yy >= 0 && yy < h ? t->row_start[yy] : 0;
+        }
+        for (int32_t r = t->row_start[y]; r < t->row_start[y + 1]; r++) {
+            const int32_t rd = t->parent[r];
+            if ((t->flags[rd] & (REGION_DARK | REGION_STRONG | REGION_SHADOW)) !=
+                    (REGION_DARK | REGION_STRONG) ||
+                t->count[rd] >= largest_bright || t->count[rd] < params->shadow_min_area)
+                continue;
+            if (casts_shadow_on(t, y, h, params->shadow_gap, rd, r, cursor)) {
+                t->flags[rd] |= REGION_SHADOW;
+                shadows++;
+            }
+        }
+    }
+    return shadows;
+}
+
 rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_u8 *background,
                                        rte_image_u8 *dst,
                                        const rte_background_threshold_params *params,
@@ -536,32 +569,8 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
         t.sum[root] += t.sum[r];
         t.flags[root] |= t.flags[r] & REGION_STRONG;
     }
-    /* Only strong dark regions smaller than the largest strong bright one
-     * can be a shadow that matters (weak ones are not painted), and only
-     * those of shadow_min_area pixels or more are looked at. */
-    int32_t largest_bright = 0;
-    for (int32_t r = 0; r < n; r++)
-        if (t.parent[r] == r && (t.flags[r] & (REGION_DARK | REGION_STRONG)) == REGION_STRONG)
-            largest_bright = t.count[r] > largest_bright ? t.count[r] : largest_bright;
-    int32_t cursor[2 * RTE_BACKGROUND_MAX_SHADOW_GAP + 1];
     if (params->drop_shadows && params->bright && params->dark)
-        for (int32_t y = 0; y < h; y++) {
-            for (int32_t k = 0; k <= 2 * params->shadow_gap; k++) {
-                const int32_t yy = y - params->shadow_gap + k;
-                cursor[k] = yy >= 0 && yy < h ? t.row_start[yy] : 0;
-            }
-            for (int32_t r = t.row_start[y]; r < t.row_start[y + 1]; r++) {
-                const int32_t rd = t.parent[r];
-                if ((t.flags[rd] & (REGION_DARK | REGION_STRONG | REGION_SHADOW)) !=
-                        (REGION_DARK | REGION_STRONG) ||
-                    t.count[rd] >= largest_bright || t.count[rd] < params->shadow_min_area)
-                    continue;
-                if (casts_shadow_on(&t, y, h, params->shadow_gap, rd, r, cursor)) {
-                    t.flags[rd] |= REGION_SHADOW;
-                    shadows++;
-                }
-            }
-        }
+        shadows = mark_shadows(&t, n, h, params);
     paint_regions(&t, dst, params->region_share_permille);
     if (result)
         *result = (rte_background_threshold_result){.high = high,
