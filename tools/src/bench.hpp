@@ -1,9 +1,9 @@
 // tools/bench: rtedge against OpenCV 4.6 on the same frames, in one process.
 //
 // A benchmark case names a stage and gives two closures that process one
-// prepared frame: one with rtedge, one with OpenCV (single-threaded). The
-// driver runs them interleaved on every frame, many rounds, and reports the
-// median time of each and their ratio.
+// prepared frame: one with rtedge, one with OpenCV. The driver runs rtedge,
+// OpenCV on one thread and OpenCV with its default threads interleaved on
+// every frame, many rounds, and reports the median times and the ratios.
 #ifndef RTEDGE_TOOLS_BENCH_HPP
 #define RTEDGE_TOOLS_BENCH_HPP
 
