@@ -46,8 +46,10 @@
  * flood is on the distance itself, and only the object pixels are labelled.
  *
  * Memory: scratch from an arena sized with rte_split_scratch_size() (8
- * bytes per pixel plus a 256 KiB histogram), given back before returning.
- * Integer only. */
+ * bytes per pixel, plus a one-pixel frame and 8 bytes per row, plus a 256
+ * KiB histogram), given back before returning. Cost: a pass over the rows
+ * of src (runs of 8 and 32 bytes of background at a time) and work in
+ * proportion to the object pixels only. Integer only. */
 #ifndef RTEDGE_SPLIT_H
 #define RTEDGE_SPLIT_H
 

@@ -4,14 +4,10 @@
 #include "rtedge/split.h"
 
 #include <stdbool.h>
+#include <string.h>
 
-/* parent[i] of pixel i (y * width + x): another pixel of its basin, or one
- * of these marks. A root holds ROOT_BASE - peak, so finding a basin's root
- * also gives its peak. */
-#define UNSEEN (-1)
-#define CUT (-2)
-#define ROOT_BASE (-3)
 #define LEVELS (UINT16_MAX + 1)
+#define CUT_PIXEL 2 /* flood_meeting's answer for a cut pixel */
 
 rte_status rte_split_params_default(rte_split_params *params, rte_dist_metric metric)
 {
@@ -28,35 +24,56 @@ rte_status rte_split_params_default(rte_split_params *params, rte_dist_metric me
     return RTE_OK;
 }
 
+/* The union-find runs on the image framed by one pixel on each side:
+ * pixel (x, y) is i = (y + 1) * (width + 2) + x + 1, so every pixel has
+ * eight neighbours without bounds checks, and i still grows in raster
+ * order (which breaks ties between roots). parent[i] is 0 for a pixel in no
+ * basin (the frame, the background, an object pixel not flooded yet or
+ * cut), i for a basin's root, or another pixel of its basin. 0 is the
+ * frame's corner, never a pixel. The peak of a basin is the distance of its
+ * root, where the flood started it. */
+static size_t framed_pixels(int32_t width, int32_t height)
+{
+    return ((size_t)width + 2) * ((size_t)height + 2);
+}
+
+/* Room in order[] for the object pixels and, behind them, the list of runs
+ * that sort_pixels keeps between its passes: per row, pixels + runs <=
+ * width + 1, plus a header per row. */
+static size_t order_entries(int32_t width, int32_t height)
+{
+    return (size_t)width * (size_t)height + 2 * (size_t)height;
+}
+
 size_t rte_split_scratch_size(int32_t max_width, int32_t max_height)
 {
     if (max_width < 1 || max_height < 1 || max_width > RTE_MAX_SIDE || max_height > RTE_MAX_SIDE)
         return 0;
-    size_t pixels = (size_t)max_width * (size_t)max_height;
-    return 2 * rte_arena_piece_size(pixels * sizeof(int32_t)) +
+    return rte_arena_piece_size(framed_pixels(max_width, max_height) * sizeof(uint32_t)) +
+           rte_arena_piece_size(order_entries(max_width, max_height) * sizeof(uint32_t)) +
            rte_arena_piece_size((LEVELS + 1) * sizeof(uint32_t));
 }
 
 typedef struct split_ctx {
-    int32_t width, height;
-    int32_t *parent;
+    uint32_t *parent;
+    uint32_t stride; /* width + 2 */
+    const rte_image_u16 *dist;
     uint32_t min_dynamic, ratio;
 } split_ctx;
 
-static inline int32_t find_root(int32_t *parent, int32_t i)
+static inline uint32_t find_root(uint32_t *parent, uint32_t i)
 {
-    while (parent[i] >= 0) {
-        int32_t up = parent[i];
-        if (parent[up] >= 0)
-            parent[i] = parent[up]; /* path halving */
+    while (parent[i] != i) {
+        uint32_t up = parent[i];
+        parent[i] = parent[up]; /* path halving */
         i = up;
     }
     return i;
 }
 
-static inline uint32_t peak_of(const int32_t *parent, int32_t root)
+static inline uint32_t peak_of(const split_ctx *c, uint32_t root)
 {
-    return (uint32_t)(ROOT_BASE - parent[root]);
+    return rte_u16_row(c->dist, (int32_t)(root / c->stride) - 1)[root % c->stride - 1];
 }
 
 static inline bool significant(const split_ctx *c, uint32_t peak, uint32_t level)
@@ -65,113 +82,201 @@ static inline bool significant(const split_ctx *c, uint32_t peak, uint32_t level
     return dynamic >= c->min_dynamic && dynamic * 1000u >= c->ratio * peak;
 }
 
-/* The distinct basins among the flooded 8-neighbours of (x, y); returns
- * their number. Cut pixels belong to none. */
-static int32_t neighbour_roots(const split_ctx *c, int32_t x, int32_t y, int32_t roots[8])
+/* Adds the basin of neighbour j to roots[0..n) unless it is there already
+ * or j is in none; returns the new n. */
+static inline int32_t add_root(uint32_t *parent, uint32_t j, uint32_t roots[8], int32_t n)
 {
-    int32_t n = 0;
-    for (int32_t dy = -1; dy <= 1; dy++) {
-        int32_t ny = y + dy;
-        if (ny < 0 || ny >= c->height)
-            continue;
-        for (int32_t dx = -1; dx <= 1; dx++) {
-            int32_t nx = x + dx;
-            if ((dx == 0 && dy == 0) || nx < 0 || nx >= c->width)
-                continue;
-            int32_t j = ny * c->width + nx;
-            if (c->parent[j] == UNSEEN || c->parent[j] == CUT)
-                continue;
-            int32_t r = find_root(c->parent, j);
-            int32_t k = 0;
-            while (k < n && roots[k] != r)
-                k++;
-            if (k == n)
-                roots[n++] = r;
-        }
-    }
-    return n;
+    if (parent[j] == 0)
+        return n;
+    uint32_t r = find_root(parent, j);
+    for (int32_t k = 0; k < n; k++)
+        if (roots[k] == r)
+            return n;
+    roots[n] = r;
+    return n + 1;
 }
 
-/* Floods pixel i at `level`: a new basin, a member of its neighbours'
- * merged basin, or a cut pixel where two significant basins meet. */
-static void flood_pixel(split_ctx *c, int32_t i, int32_t x, int32_t y, uint32_t level)
+/* The distinct basins among the flooded 8-neighbours of framed pixel i;
+ * returns their number. Cut pixels belong to none. */
+static int32_t neighbour_roots(const split_ctx *c, uint32_t i, uint32_t roots[8])
 {
-    int32_t roots[8];
-    int32_t n = neighbour_roots(c, x, y, roots);
+    uint32_t *parent = c->parent;
+    const uint32_t up = i - c->stride, down = i + c->stride;
+    int32_t n = add_root(parent, up - 1, roots, 0);
+    n = add_root(parent, up, roots, n);
+    n = add_root(parent, up + 1, roots, n);
+    n = add_root(parent, i - 1, roots, n);
+    n = add_root(parent, i + 1, roots, n);
+    n = add_root(parent, down - 1, roots, n);
+    n = add_root(parent, down, roots, n);
+    return add_root(parent, down + 1, roots, n);
+}
+
+/* Floods framed pixel i at `level` in the general case: a new basin, a
+ * member of its neighbours' merged basin, or a cut pixel where two
+ * significant basins meet. Returns the change in the number of basins
+ * (-7..1), or CUT_PIXEL. Out of line: the common case (the flood loop)
+ * needs few registers. */
+static __attribute__((noinline)) int32_t flood_meeting(const split_ctx *c, uint32_t i,
+                                                       uint32_t level)
+{
+    uint32_t *parent = c->parent;
+    uint32_t roots[8];
+    int32_t n = neighbour_roots(c, i, roots);
     if (n == 0) {
-        c->parent[i] = ROOT_BASE - (int32_t)level;
-        return;
+        parent[i] = i;
+        return 1;
     }
-    int32_t best = roots[0];
-    int32_t n_significant = 0;
-    for (int32_t k = 0; k < n; k++) {
-        uint32_t peak = peak_of(c->parent, roots[k]);
-        uint32_t best_peak = peak_of(c->parent, best);
-        if (peak > best_peak || (peak == best_peak && roots[k] < best))
+    if (n == 1) {
+        parent[i] = roots[0];
+        return 0;
+    }
+    uint32_t best = roots[0];
+    uint32_t best_peak = peak_of(c, best);
+    int32_t n_significant = significant(c, best_peak, level);
+    for (int32_t k = 1; k < n; k++) {
+        uint32_t peak = peak_of(c, roots[k]);
+        if (peak > best_peak || (peak == best_peak && roots[k] < best)) {
             best = roots[k];
+            best_peak = peak;
+        }
         n_significant += significant(c, peak, level);
     }
-    if (n_significant >= 2) {
-        c->parent[i] = CUT;
-        return;
-    }
+    if (n_significant >= 2)
+        return CUT_PIXEL; /* parent[i] stays 0 */
     for (int32_t k = 0; k < n; k++)
         if (roots[k] != best)
-            c->parent[roots[k]] = best;
-    c->parent[i] = best;
+            parent[roots[k]] = best;
+    parent[i] = best;
+    return 1 - n;
 }
 
-/* order[] = the object pixels as (y << 16 | x), in decreasing distance
- * and raster order within a distance (a counting sort); returns their
- * number. */
-static uint32_t sort_pixels(const rte_image_u8 *src, const rte_image_u16 *dist, uint32_t *hist,
-                            uint32_t *order)
+/* Floods framed pixel i when every flooded neighbour is, or points straight
+ * at, one root: the common case, tested without branches on the
+ * neighbours (at the edge of a level, flooded and unflooded neighbours
+ * follow no pattern). With the neighbours' parents g (0 for no basin), the
+ * OR o of all g and the AND a of all g - 1 (where each g = 0 is all ones):
+ * a + 1 <= the least non-zero g <= the largest <= o, so a + 1 == o exactly
+ * when the non-zero g are all equal (o == 0: no flooded neighbour).
+ * Returns false, changing nothing, when the case is another. */
+static inline bool flood_common(uint32_t *parent, uint32_t stride, uint32_t i)
 {
-    uint32_t top = 0;
-    for (int32_t y = 0; y < src->height; y++) {
-        const uint8_t *s = rte_u8_row(src, y);
-        const uint16_t *d = rte_u16_row(dist, y);
-        for (int32_t x = 0; x < src->width; x++)
-            if (s[x] && d[x] > top)
-                top = d[x];
+    const uint32_t *up = parent + i - stride - 1, *mid = parent + i - 1,
+                   *down = parent + i + stride - 1;
+    const uint32_t g[8] = {up[0], up[1], up[2], mid[0], mid[2], down[0], down[1], down[2]};
+    uint32_t o = 0, a = UINT32_MAX;
+    for (int32_t k = 0; k < 8; k++) {
+        o |= g[k];
+        a &= g[k] - 1u;
     }
-    for (uint32_t v = 0; v <= top + 1; v++)
-        hist[v] = 0;
-    for (int32_t y = 0; y < src->height; y++) {
+    if (o == 0 || a + 1u != o || parent[o] != o)
+        return false;
+    parent[i] = o;
+    return true;
+}
+
+/* The first x1 >= x of row s with s[x1] != 0, or width: 32 bytes at a
+ * time (most of a row is background), then 8, then one. */
+static inline int32_t skip_background(const uint8_t *s, int32_t x, int32_t width)
+{
+    for (; x + 32 <= width; x += 32) {
+        uint64_t w[4];
+        memcpy(w, s + x, sizeof w);
+        if (w[0] | w[1] | w[2] | w[3])
+            break;
+    }
+    for (; x + 8 <= width; x += 8) {
+        uint64_t w;
+        memcpy(&w, s + x, sizeof w);
+        if (w)
+            break;
+    }
+    while (x < width && !s[x])
+        x++;
+    return x;
+}
+
+/* The first x1 >= x of row s with s[x1] == 0, or width: 8 bytes at a
+ * time while none is zero, then one. */
+static inline int32_t skip_object(const uint8_t *s, int32_t x, int32_t width)
+{
+    const uint64_t ones = 0x0101010101010101u;
+    for (; x + 8 <= width; x += 8) {
+        uint64_t w;
+        memcpy(&w, s + x, sizeof w);
+        if ((w - ones) & ~w & (ones << 7)) /* a zero byte */
+            break;
+    }
+    while (x < width && s[x])
+        x++;
+    return x;
+}
+
+#define RUN_ROW 0x80000000u /* a row header in the list of runs */
+
+/* order[] = the object pixels as framed indices, in decreasing distance
+ * and raster order within a distance (a counting sort); on return hist[v]
+ * is the end in order[] of level v, whose pixels start at hist[v + 1]
+ * (0 for the top level). Returns a level >= the top one (an OR of all, at
+ * most twice the top: the levels above the top are empty). Sets parent[]
+ * to 0 around each run of object pixels: the flood reads no other entry.
+ *
+ * The first pass (the histogram) finds the runs of object pixels and lists
+ * them at the end of order[], backwards: RUN_ROW | y before the runs of
+ * row y, x0 | x1 << 16 for the run [x0, x1). The second pass (the
+ * scatter) reads them back to front, in raster order, and writes below the
+ * list only: the P pixels need P entries and the list takes the rest. */
+static uint32_t sort_pixels(const rte_image_u8 *src, const rte_image_u16 *dist, uint32_t *parent,
+                            uint32_t stride, uint32_t *hist, uint32_t *order)
+{
+    const int32_t width = src->width, height = src->height;
+    const uint32_t entries = (uint32_t)order_entries(width, height);
+    uint32_t list = entries;
+    memset(hist, 0, LEVELS * sizeof(uint32_t));
+    uint32_t top = 0;
+    for (int32_t y = 0; y < height; y++) {
         const uint8_t *s = rte_u8_row(src, y);
         const uint16_t *d = rte_u16_row(dist, y);
-        for (int32_t x = 0; x < src->width; x++)
-            hist[d[x]] += s[x] != 0;
+        int32_t x = skip_background(s, 0, width);
+        if (x < width)
+            order[--list] = RUN_ROW | (uint32_t)y;
+        while (x < width) {
+            const int32_t end = skip_object(s, x, width);
+            order[--list] = (uint32_t)x | (uint32_t)end << 16;
+            for (; x < end; x++) {
+                const uint32_t v = d[x];
+                hist[v]++;
+                top |= v;
+            }
+            x = skip_background(s, x, width);
+        }
     }
     /* hist[v] becomes the first position of level v: higher levels first */
     uint32_t pos = 0;
     for (uint32_t v = top + 1; v-- > 0;) {
-        uint32_t count = hist[v];
+        const uint32_t count = hist[v];
         hist[v] = pos;
         pos += count;
     }
-    for (int32_t y = 0; y < src->height; y++) {
-        const uint8_t *s = rte_u8_row(src, y);
-        const uint16_t *d = rte_u16_row(dist, y);
-        for (int32_t x = 0; x < src->width; x++)
-            if (s[x])
-                order[hist[d[x]]++] = (uint32_t)y << 16 | (uint32_t)x;
-    }
-    return pos;
-}
-
-/* Gives back each cut pixel whose flooded neighbours lie in one basin. */
-static void thin_cuts(split_ctx *c, const uint32_t *order, uint32_t count)
-{
-    for (uint32_t k = 0; k < count; k++) {
-        int32_t x = (int32_t)(order[k] & 0xffffu), y = (int32_t)(order[k] >> 16);
-        int32_t i = y * c->width + x;
-        if (c->parent[i] != CUT)
+    const uint16_t *d = NULL;
+    uint32_t row = 0; /* the framed index of the row's x = 0 */
+    for (uint32_t k = entries; k-- > list;) {
+        const uint32_t run = order[k];
+        if (run & RUN_ROW) {
+            const int32_t y = (int32_t)(run & ~RUN_ROW);
+            d = rte_u16_row(dist, y);
+            row = (uint32_t)(y + 1) * stride + 1u;
             continue;
-        int32_t roots[8];
-        if (neighbour_roots(c, x, y, roots) == 1)
-            c->parent[i] = roots[0];
+        }
+        const uint32_t x0 = run & 0xffffu, x1 = run >> 16;
+        const size_t bytes = (size_t)(x1 - x0 + 2) * sizeof(uint32_t);
+        memset(parent + row - stride + x0 - 1, 0, bytes);
+        memset(parent + row + x0 - 1, 0, bytes);
+        memset(parent + row + stride + x0 - 1, 0, bytes);
+        for (uint32_t x = x0; x < x1; x++)
+            order[hist[d[x]]++] = row + x;
     }
+    return top;
 }
 
 static rte_status check_args(const rte_image_u8 *src, const rte_image_u16 *dist,
@@ -198,40 +303,60 @@ rte_status rte_split_u8(const rte_image_u8 *src, const rte_image_u16 *dist, rte_
     if (st != RTE_OK)
         return st;
     const int32_t width = src->width, height = src->height;
-    const size_t pixels = (size_t)width * (size_t)height;
+    const size_t framed = framed_pixels(width, height);
     const size_t mark = rte_arena_mark(arena);
-    int32_t *parent = (int32_t *)rte_arena_alloc(arena, pixels * sizeof(int32_t));
-    uint32_t *order = (uint32_t *)rte_arena_alloc(arena, pixels * sizeof(uint32_t));
+    uint32_t *parent = (uint32_t *)rte_arena_alloc(arena, framed * sizeof(uint32_t));
+    uint32_t *order =
+        (uint32_t *)rte_arena_alloc(arena, order_entries(width, height) * sizeof(uint32_t));
     uint32_t *hist = (uint32_t *)rte_arena_alloc(arena, (LEVELS + 1) * sizeof(uint32_t));
     if (!parent || !order || !hist) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
 
-    split_ctx c = {width, height, parent, (uint32_t)params->min_dynamic,
+    split_ctx c = {parent, (uint32_t)width + 2, dist, (uint32_t)params->min_dynamic,
                    (uint32_t)params->min_ratio_permille};
-    for (size_t i = 0; i < pixels; i++)
-        parent[i] = UNSEEN;
-    const uint32_t count = sort_pixels(src, dist, hist, order);
-    for (uint32_t k = 0; k < count; k++) {
-        int32_t x = (int32_t)(order[k] & 0xffffu), y = (int32_t)(order[k] >> 16);
-        flood_pixel(&c, y * width + x, x, y, rte_u16_row(dist, y)[x]);
-    }
-    thin_cuts(&c, order, count);
+    const uint32_t top = sort_pixels(src, dist, parent, c.stride, hist, order);
 
-    rte_split_result r = {0, 0};
-    for (int32_t y = 0; y < height; y++) {
-        const uint8_t *s = rte_u8_row(src, y);
-        uint8_t *d = rte_u8_row(dst, y);
-        const int32_t *p = parent + (size_t)y * (size_t)width;
-        for (int32_t x = 0; x < width; x++) {
-            r.parts += p[x] <= ROOT_BASE;
-            r.cut_pixels += p[x] == CUT;
-            d[x] = p[x] == CUT ? 0 : s[x];
+    /* the flood, level by level; the cut pixels are listed, in flood
+     * order, at the front of order[] (never past the pixel being read) */
+    int32_t parts = 0;
+    uint32_t n_cut = 0, begin = 0;
+    for (uint32_t v = top + 1; v-- > 0;) {
+        const uint32_t end = hist[v];
+        for (uint32_t k = begin; k < end; k++) {
+            const uint32_t i = order[k];
+            if (flood_common(parent, c.stride, i))
+                continue;
+            const int32_t change = flood_meeting(&c, i, v);
+            if (change == CUT_PIXEL)
+                order[n_cut++] = i;
+            else
+                parts += change;
         }
+        begin = end;
+    }
+    /* gives back each cut pixel whose flooded neighbours lie in one basin */
+    uint32_t n_kept = 0;
+    for (uint32_t k = 0; k < n_cut; k++) {
+        const uint32_t i = order[k];
+        uint32_t roots[8];
+        if (neighbour_roots(&c, i, roots) == 1)
+            parent[i] = roots[0];
+        else
+            order[n_kept++] = i;
+    }
+
+    if (dst->buf != src->buf || dst->stride != src->stride)
+        for (int32_t y = 0; y < height; y++)
+            memmove(rte_u8_row(dst, y), rte_u8_row(src, y), (size_t)width);
+    for (uint32_t k = 0; k < n_kept; k++) {
+        const int32_t y = (int32_t)(order[k] / c.stride) - 1;
+        const int32_t x = (int32_t)(order[k] % c.stride) - 1;
+        rte_u8_row(dst, y)[x] = 0;
     }
     if (result)
-        *result = r;
+        *result = (rte_split_result){parts, (int32_t)n_kept};
     rte_arena_reset(arena, mark);
     return RTE_OK;
 }
