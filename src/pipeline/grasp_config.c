@@ -76,7 +76,7 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
     const size_t pts = (size_t)c->max_points, image = (size_t)w * (size_t)h;
     s = max_size(s, rte_arena_piece_size(pts * sizeof(rte_vertex)) +
                         2 * rte_arena_piece_size(image) +
-                        rte_arena_piece_size(image * sizeof(int32_t)) +
+                        rte_arena_piece_size(rte_grasp_split_runs_bytes(w, h)) +
                         max_size(rte_polygon_mask_scratch_size(c->max_points),
                                  rte_split_scratch_size(w, h)));
     s = max_size(s, rte_arena_piece_size(pts * sizeof(int32_t)) +

@@ -33,6 +33,14 @@ struct rte_grasp_ctx {
     void *memory; /* the block to free (rte_grasp_create), NULL after rte_grasp_init */
 };
 
+/* Bytes of the run table that tells the parts of a w x h split crop apart
+ * (grasp_split.c): x0, x1, parent and area of at most (w + 1) / 2 runs a
+ * row. */
+static inline size_t rte_grasp_split_runs_bytes(int32_t w, int32_t h)
+{
+    return 4 * ((size_t)(w + 1) / 2 * (size_t)h + 1) * sizeof(int32_t);
+}
+
 /* Splits the contours of ctx->contours that may hold touching objects
  * (grasp_split.c), clearing their cut pixels in bin, then finds the
  * contours again when any was cut; adds the parts gained to *parts. */

@@ -57,47 +57,77 @@ static rte_status needs_split(rte_grasp_ctx *ctx, const rte_point *pts, int32_t 
  * cut off at a narrowing, is not (and stays on its object). */
 #define SPLIT_PART_SHARE_PERMILLE 200
 
-/* The 8-connected parts of a w x h binary crop (255): their pixels are set
- * to the part's number (1..), their areas go to areas[] (at most max
- * parts; the rest are counted in the last). Returns the parts. stack[]
- * holds w * h indices. */
-static int32_t part_areas(uint8_t *px, int32_t w, int32_t h, int32_t *areas, int32_t max,
-                          int32_t *stack)
+static int32_t run_root(int32_t *parent, int32_t a)
 {
-    int32_t parts = 0;
-    for (int32_t start = 0; start < w * h; start++) {
-        if (px[start] != 255)
-            continue;
-        const int32_t id = parts < max ? parts : max - 1;
-        if (parts < max)
-            areas[parts++] = 0;
-        int32_t top = 0;
-        stack[top++] = start;
-        px[start] = (uint8_t)(id + 1);
-        while (top > 0) {
-            const int32_t k = stack[--top], x = k % w, y = k / w;
-            areas[id]++;
-            for (int32_t yy = y > 0 ? y - 1 : 0; yy <= y + 1 && yy < h; yy++)
-                for (int32_t xx = x > 0 ? x - 1 : 0; xx <= x + 1 && xx < w; xx++)
-                    if (px[yy * w + xx] == 255) {
-                        px[yy * w + xx] = (uint8_t)(id + 1);
-                        stack[top++] = yy * w + xx;
-                    }
+    while (parent[a] != a)
+        a = parent[a] = parent[parent[a]];
+    return a;
+}
+
+/* The areas of the 8-connected parts of a w x h binary crop (nonzero), by
+ * runs united across rows: areas[] gets at most max (the rest are added to
+ * the last). Returns the parts. runs[] holds 4 (w + 1) h / 2 + 4 ints: x0,
+ * x1, parent and area of each run, at most (w + 1) / 2 a row. */
+static int32_t part_areas(const uint8_t *px, int32_t w, int32_t h, int32_t *areas, int32_t max,
+                          int32_t *runs)
+{
+    const int32_t cap = (w + 1) / 2 * h + 1;
+    int32_t *x0 = runs, *x1 = runs + cap, *parent = runs + 2 * cap, *area = runs + 3 * cap;
+    int32_t n = 0, prev = 0, prev_end = 0;
+    for (int32_t y = 0; y < h; y++) {
+        const uint8_t *row = px + (size_t)y * w;
+        const int32_t first = n;
+        for (int32_t x = 0; x < w;) {
+            if (!row[x]) {
+                x++;
+                continue;
+            }
+            x0[n] = x;
+            while (x < w && row[x])
+                x++;
+            x1[n] = x - 1;
+            parent[n] = n;
+            area[n] = x - x0[n];
+            /* 8-connected to the runs of the row above that overlap or touch
+             * at a corner */
+            while (prev < prev_end && x1[prev] < x0[n] - 1)
+                prev++;
+            for (int32_t q = prev; q < prev_end && x0[q] <= x1[n] + 1; q++) {
+                const int32_t ra = run_root(parent, q), rb = run_root(parent, n);
+                if (ra != rb)
+                    parent[ra > rb ? ra : rb] = ra < rb ? ra : rb;
+            }
+            n++;
         }
+        prev = first;
+        prev_end = n;
     }
+    int32_t parts = 0;
+    for (int32_t r = 0; r < n; r++) {
+        const int32_t root = run_root(parent, r);
+        if (root != r) {
+            area[root] += area[r];
+            continue;
+        }
+        parent[r] = r;
+    }
+    for (int32_t r = 0; r < n; r++)
+        if (parent[r] == r) {
+            if (parts < max)
+                areas[parts++] = area[r];
+            else
+                areas[max - 1] += area[r];
+        }
     return parts;
 }
 
 /* Whether the split parts of a crop are objects of their own: two or more
- * of at least min_area px, alike in size (SPLIT_PART_SHARE_PERMILLE).
- * Leaves the crop's object pixels at 255. */
-static bool parts_alike(uint8_t *px, int32_t w, int32_t h, int64_t min_area, int32_t *stack,
+ * of at least min_area px, alike in size (SPLIT_PART_SHARE_PERMILLE). */
+static bool parts_alike(const uint8_t *px, int32_t w, int32_t h, int64_t min_area, int32_t *runs,
                         int32_t *objects)
 {
     int32_t areas[RTE_GRASP_MAX_SPLIT_PARTS];
-    const int32_t n = part_areas(px, w, h, areas, RTE_GRASP_MAX_SPLIT_PARTS, stack);
-    for (int32_t k = 0; k < w * h; k++)
-        px[k] = px[k] ? 255 : 0;
+    const int32_t n = part_areas(px, w, h, areas, RTE_GRASP_MAX_SPLIT_PARTS, runs);
     int64_t lo = INT64_MAX, hi = 0;
     *objects = 0;
     for (int32_t i = 0; i < n; i++)
@@ -127,8 +157,8 @@ static rte_status split_contour(rte_grasp_ctx *ctx, rte_image_u8 *bin, const rte
     rte_vertex *v = rte_arena_alloc(&ctx->arena, (size_t)n * sizeof *v);
     uint8_t *inside = rte_arena_alloc(&ctx->arena, (size_t)cw * ch);
     uint8_t *own = rte_arena_alloc(&ctx->arena, (size_t)cw * ch);
-    int32_t *stack = rte_arena_alloc(&ctx->arena, (size_t)cw * ch * sizeof *stack);
-    if (!v || !inside || !own || !stack) {
+    int32_t *runs = rte_arena_alloc(&ctx->arena, rte_grasp_split_runs_bytes(cw, ch));
+    if (!v || !inside || !own || !runs) {
         rte_arena_reset(&ctx->arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
@@ -155,7 +185,7 @@ static rte_status split_contour(rte_grasp_ctx *ctx, rte_image_u8 *bin, const rte
         st = rte_split_u8(&part, &dist, &part, &sp, &ctx->arena, &sr);
     int32_t objects = 0;
     if (st == RTE_OK && sr.cut_pixels > 0 &&
-        parts_alike(own, cw, ch, ctx->params.min_area, stack, &objects)) {
+        parts_alike(own, cw, ch, ctx->params.min_area, runs, &objects)) {
         /* inside the contour, bin becomes the split part */
         for (int32_t y = 0; y < ch; y++) {
             uint8_t *b = rte_u8_row(&box, y);
