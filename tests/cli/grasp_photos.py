@@ -75,7 +75,8 @@ PHOTOS = {
     "pic5.png": ([], [
         (294.0, 80.5, 108, 64.9),    # orange box, its corner over the dark sheet
         (314.0, 207.0, 138, 90.0),   # yellow box with a blue diamond
-    ], [], "the dark sheet under the other shapes is cut into parts at its notches"),
+    ], [], "the orange box overlaps the dark sheet under the shapes: one outline, too large "
+        "for the split (score 0)"),
     "pic6.png": ([], [
         (165.5, 136.5, 225, 90.0),   # box shaded black to white
         (349.7, 81.7, 120, -5.0),    # black triangle
