@@ -33,10 +33,13 @@ usage: grasp_photos.py RTEDGE_EXE SHARED_DATA_DIR
 import json
 import math
 import os
+import shlex
 import subprocess
 import sys
 
 RTEDGE = sys.argv[1]
+# a cross build's exe_wrapper (e.g. qemu-aarch64), as meson test sets it
+WRAPPER = shlex.split(os.environ.get("MESON_EXE_WRAPPER", ""))
 OBJECTS = os.path.join(sys.argv[2], "objects")
 
 # name: (options, [(x, y, size, angle or None), ...], [(x, y, radius) ignored], known)
@@ -95,7 +98,7 @@ def angle_error(a, b):
 
 
 def evaluate(name, opts, labels, ignore):
-    r = subprocess.run([RTEDGE, "grasp", os.path.join(OBJECTS, name), *opts],
+    r = subprocess.run([*WRAPPER, RTEDGE, "grasp", os.path.join(OBJECTS, name), *opts],
                        capture_output=True, text=True)
     if r.returncode != 0:
         return None, f"exit {r.returncode}: {r.stderr.strip()}"

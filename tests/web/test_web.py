@@ -169,7 +169,8 @@ try:
     names = driver.execute_script(
         "return [...document.querySelectorAll('#stages .bar span:first-child')]"
         ".map((e) => e.textContent)")
-    check(len(names) == 10 and names[0] == "lane.gray" and names[-1] == "debug",
+    check(len(names) == 11 and names[0] == "lane.gray" and "grasp.split" in names and
+          names[-1] == "debug",
           "a bar per stage: %s" % names)
     check(driver.find_element(By.ID, "lane-offset").text.endswith("px") and
           driver.find_element(By.ID, "lane-right").text.startswith("seen"),
