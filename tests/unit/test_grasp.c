@@ -255,6 +255,18 @@ static void canny_close_scenes(void **state)
     rte_grasp_destroy(ctx);
 }
 
+/* A context with the library's defaults for w x h frames. */
+static rte_grasp_ctx *default_ctx(int32_t w, int32_t h)
+{
+    rte_grasp_config c;
+    rte_grasp_config_default(&c);
+    c.max_width = w;
+    c.max_height = h;
+    rte_grasp_ctx *ctx = NULL;
+    assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
+    return ctx;
+}
+
 /* The synthetic scenes under a lamp: the table falls off from 200 in the
  * middle to 110 in the corners, objects both darker and lighter than it.
  * The default configuration (background, split, border rule) finds every
@@ -263,12 +275,7 @@ static void vignetted_scenes(void **state)
 {
     (void)state;
     const int32_t w = 640, h = 480;
-    rte_grasp_config c;
-    rte_grasp_config_default(&c);
-    c.max_width = w;
-    c.max_height = h;
-    rte_grasp_ctx *ctx = NULL;
-    assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
+    rte_grasp_ctx *ctx = default_ctx(w, h);
     worst_px = worst_deg = 0;
     int objects = 0;
     for (uint32_t seed = 1; seed <= 8; seed++) {
@@ -299,12 +306,7 @@ static void touching_objects_split(void **state)
 {
     (void)state;
     const int32_t w = 400, h = 300;
-    rte_grasp_config c;
-    rte_grasp_config_default(&c);
-    c.max_width = w;
-    c.max_height = h;
-    rte_grasp_ctx *ctx = NULL;
-    assert_int_equal(rte_grasp_create(&c, &ctx), RTE_OK);
+    rte_grasp_ctx *ctx = default_ctx(w, h);
     static const struct {
         int n;
         int x[3], y[3], r[3];
