@@ -10,6 +10,7 @@ let pending = null;          // {id, what} of the request sent last
 let built = "";              // the key list the controls were built for
 let dragging = null;         // the ROI vertex being dragged
 let roiDraft = null;         // vertices while dragging, [[x, y], ...]
+let roiDrawn = null;         // what the ROI's SVG shows, rebuilt only on change
 
 function token() { return $("token").value || sessionStorage.getItem("rtedge-token") || ""; }
 
@@ -166,6 +167,11 @@ function drawRoi() {
   const svg = $("roi");
   const v = roiVertices();
   const k = keyOf("lane.roi");
+  // Rebuilding on every update would replace the vertex under a pointer
+  // that is about to press it.
+  const shown = JSON.stringify(v) + (k && k.settable ? " settable" : "");
+  if (shown === roiDrawn) return;
+  roiDrawn = shown;
   svg.textContent = "";
   if (!v.length) return;
   const ns = "http://www.w3.org/2000/svg";
