@@ -244,6 +244,10 @@ static const key_def keys[] = {
     INT("realtime", "cpu", rt_cpu, "", -1, 1023, false, "-1", "pin to this CPU; -1: no affinity"),
     BOOL("realtime", "mlockall", rt_mlockall, false, "false",
          "lock all memory (a warning if not permitted)"),
+    INT("realtime", "threads", rt_threads, "", 1, 2, false, "1",
+        "2: the grasp path runs on a second thread, made at start, beside the\n"
+        "lane path (the same results, published by the main thread), pinned to\n"
+        "the CPU after `cpu` when `cpu` is set; 1: one thread runs both in turn"),
 };
 #define N_KEYS (sizeof keys / sizeof keys[0])
 _Static_assert(N_KEYS <= RTED_CONFIG_MAX_KEYS, "raise RTED_CONFIG_MAX_KEYS");

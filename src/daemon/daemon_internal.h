@@ -8,11 +8,14 @@
  *   reconfigure.c  run-time configuration: SIGHUP, the params_t channel
  *   param_state.c  the param_state_t message: runtime keys, last outcome
  *   debug_stream.c debug.enabled: the overlay stream (JPEG image_t)
+ *   realtime.c     [realtime]: memory lock, affinity, SCHED_FIFO, the grasp thread
  *   status.c       the latency window and the status message
  *   notify.c       systemd's notifications (READY, STATUS, WATCHDOG, ...) */
 #ifndef RTEDGED_DAEMON_INTERNAL_H
 #define RTEDGED_DAEMON_INTERNAL_H
 
+#include <pthread.h>
+#include <semaphore.h>
 #include <stdint.h>
 
 #include "daemon.h"
@@ -46,6 +49,18 @@
 #define RTED_GRASP_STAGES 5
 #define RTED_DEBUG_STAGE (RTED_GRASP_STAGE0 + RTED_GRASP_STAGES)
 #define RTED_STAGES (RTED_DEBUG_STAGE + 1)
+
+/* One frame's grey image and grasp path (realtime.c): run in line, or on the
+ * grasp thread between rted_grasp_job_post() and rted_grasp_job_wait(). */
+typedef struct rted_grasp_job {
+    const rte_source_frame *frame;
+    bool need_gray; /* the grey image: the grasp path, publish.images or the overlay */
+    rte_image_u8 gray;
+    bool skipped; /* the budget left was short of deadline.grasp_min_budget_ms */
+    bool ran;     /* status and result are the grasp path's */
+    rte_status status;
+    rte_grasp_result result;
+} rted_grasp_job;
 
 struct rted_daemon {
     rted_config cfg;
@@ -137,6 +152,13 @@ struct rted_daemon {
     /* stderr lines that could repeat without end */
     rted_log_limit log_frames, log_params;
     rte_status path_said[2]; /* the lane's and grasp path's last failure said */
+
+    /* realtime.threads = 2 (and both paths): the grasp thread and its job */
+    bool threaded;
+    pthread_t job_thread;
+    sem_t job_go, job_done;
+    bool job_quit;
+    rted_grasp_job job;
 };
 
 /* source_open.c */
@@ -208,6 +230,21 @@ void rted_param_state_publish(rted_daemon *d);
  * published at once; saved: with d->config_text as saved_config. */
 void rted_param_state_outcome(rted_daemon *d, int64_t request_id, int8_t outcome,
                               const char *reason, bool saved);
+
+/* realtime.c */
+/* [realtime]: mlockall, the main thread's CPU and SCHED_FIFO priority
+ * (warnings where not permitted), then the grasp thread when
+ * realtime.threads = 2 and both paths run (false and *msg when it cannot
+ * be made). */
+bool rted_realtime_start(rted_daemon *d, char *msg, size_t msg_size);
+/* Joins the grasp thread (between frames). */
+void rted_realtime_stop(rted_daemon *d);
+/* The job's grey image, then the grasp path when d has one and the budget
+ * holds it; j->frame and j->need_gray set. */
+void rted_grasp_job_run(rted_daemon *d, rted_grasp_job *j);
+/* d->job to the grasp thread, and back. */
+void rted_grasp_job_post(rted_daemon *d);
+void rted_grasp_job_wait(rted_daemon *d);
 
 /* status.c */
 void rted_record_latency(rted_daemon *d, int64_t lat_ns);

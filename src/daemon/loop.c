@@ -1,7 +1,9 @@
 /* rtedged's loop: source -> pacer -> lane path -> grasp path -> LCM.
  *
  * A step reads one frame, waits for its time (the pacer), runs the paths
- * and publishes; a frame makes no heap call (everything was sized by
+ * (with realtime.threads = 2, the grasp path on the grasp thread beside the
+ * lane path: realtime.c) and publishes from this thread; a frame makes no
+ * heap call (everything was sized by
  * rted_daemon_open(), open.c). Latency is capture -> publish on
  * CLOCK_MONOTONIC; a frame whose budget runs short skips the grasp path
  * (counted). The loop pings systemd's watchdog (notify.h): a loop that
@@ -31,54 +33,64 @@ static void path_error(rted_daemon *d, int path, const rte_source_frame *f, rte_
              f->frame.height, rte_status_message(st));
 }
 
+/* The lane path's result published and its stages recorded (true: *lr holds it). */
+static bool lane_path(rted_daemon *d, const rte_source_frame *f, rte_lane_result *lr)
+{
+    rte_status st = rte_lane_process(d->lane, &f->frame, f->recorded_ns, lr);
+    if (st == RTE_OK) {
+        rted_publish_lane(d, f, lr);
+        for (int i = 0; i < RTE_LANE_STAGES; i++)
+            rted_record_stage(d, i, lr->stage_ns[i]);
+    }
+    path_error(d, 0, f, st);
+    return st == RTE_OK;
+}
+
+/* The grasp job's outcome, on the main thread: counted, published, its
+ * stages recorded (true: j->result holds it). */
+static bool grasp_outcome(rted_daemon *d, const rte_source_frame *f, const rted_grasp_job *j)
+{
+    if (j->skipped)
+        d->n.stages_skipped++;
+    if (!j->ran)
+        return false;
+    if (j->status == RTE_OK) {
+        rted_publish_grasp(d, f, &j->result);
+        const rte_grasp_timing *t = &j->result.timing;
+        const int64_t ns[RTED_GRASP_STAGES] = {t->blur_ns, t->binarize_ns, t->contours_ns,
+                                               t->split_ns, t->features_ns};
+        for (int i = 0; i < RTED_GRASP_STAGES; i++)
+            rted_record_stage(d, RTED_GRASP_STAGE0 + i, ns[i]);
+    }
+    path_error(d, 1, f, j->status);
+    return j->status == RTE_OK;
+}
+
 static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
 {
     const int64_t t0 = f->capture_ns;
     rte_lane_result lr;
-    bool have_lane = false, have_grasp = false;
-    if (d->lane) {
-        rte_status st = rte_lane_process(d->lane, &f->frame, f->recorded_ns, &lr);
-        if (st == RTE_OK) {
-            rted_publish_lane(d, f, &lr);
-            for (int i = 0; i < RTE_LANE_STAGES; i++)
-                rted_record_stage(d, i, lr.stage_ns[i]);
-        }
-        have_lane = st == RTE_OK;
-        path_error(d, 0, f, st);
-    }
+    bool have_lane = false;
     const bool debug = rted_debug_due(d, t0);
-    rte_image_u8 gray;
-    bool need_gray = d->grasp || d->cfg.publish_images || debug;
-    if (need_gray && rte_frame_gray_view(&f->frame, &gray) != RTE_OK) {
-        gray = d->gray;
-        gray.width = f->frame.width;
-        gray.height = f->frame.height;
-        rte_frame_to_gray(&f->frame, &gray);
+    rted_grasp_job *j = &d->job;
+    j->frame = f;
+    j->need_gray = d->grasp || d->cfg.publish_images || debug;
+    if (d->threaded) {
+        /* the grey image and the grasp path beside the lane path */
+        rted_grasp_job_post(d);
+        have_lane = lane_path(d, f, &lr);
+        rted_grasp_job_wait(d);
+    } else {
+        if (d->lane)
+            have_lane = lane_path(d, f, &lr);
+        rted_grasp_job_run(d, j);
     }
-    rte_grasp_result gr;
-    if (d->grasp) {
-        /* The optional stage: only when the budget still holds it. */
-        if (d->deadline_ns - (rte_clock_now_ns() - t0) < d->grasp_min_ns) {
-            d->n.stages_skipped++;
-        } else {
-            rte_status st = rte_grasp_process(d->grasp, &gray, &gr);
-            if (st == RTE_OK) {
-                rted_publish_grasp(d, f, &gr);
-                const rte_grasp_timing *t = &gr.timing;
-                const int64_t ns[RTED_GRASP_STAGES] = {t->blur_ns, t->binarize_ns, t->contours_ns,
-                                                       t->split_ns, t->features_ns};
-                for (int i = 0; i < RTED_GRASP_STAGES; i++)
-                    rted_record_stage(d, RTED_GRASP_STAGE0 + i, ns[i]);
-            }
-            have_grasp = st == RTE_OK;
-            path_error(d, 1, f, st);
-        }
-    }
+    const bool have_grasp = grasp_outcome(d, f, j);
     if (d->cfg.publish_images) {
         if (d->deadline_ns - (rte_clock_now_ns() - t0) < d->grasp_min_ns)
             d->n.stages_skipped++;
         else
-            rted_publish_image(d, f, &gray);
+            rted_publish_image(d, f, &j->gray);
     }
     /* The results are out: the latency is theirs. The overlay follows,
      * within what is left of the budget. */
@@ -91,7 +103,8 @@ static rted_step analyse(rted_daemon *d, const rte_source_frame *f)
             d->n.stages_skipped++;
         else {
             const int64_t t1 = rte_clock_now_ns();
-            rted_debug_publish(d, f, &gray, have_lane ? &lr : NULL, have_grasp ? &gr : NULL);
+            rted_debug_publish(d, f, &j->gray, have_lane ? &lr : NULL,
+                               have_grasp ? &j->result : NULL);
             rted_record_stage(d, RTED_DEBUG_STAGE, rte_clock_now_ns() - t1);
         }
     }

@@ -52,7 +52,8 @@ static void usage(FILE *f)
           "  --help-config       print every key with its help, range and default\n"
           "  --help-config=json  the same as JSON: type, range, unit, default, help\n"
           "  --version           print the version and the git revision, exit 0\n"
-          "  --bench             run, then print latency p50/p99/max and peak RSS\n"
+          "  --bench             run, then print latency p50/p99/max, peak RSS and CPU\n"
+          "                      time a frame (every thread's, user + system)\n"
           "Signals: SIGINT/SIGTERM finish the frame, publish a final status and exit 0;\n"
           "SIGHUP re-reads the configuration file (runtime keys only).\n"
           "Exit codes: 0 the recording ended (or a signal), 1 cannot start or the source\n"
@@ -236,8 +237,18 @@ static void handle_signals(void)
     signal(SIGPIPE, SIG_IGN);
 }
 
-/* --bench's line on stdout and the counters on stderr, after the run. */
-static void report(rted_daemon *d, bool bench)
+/* CPU time, user + system, of every thread so far (microseconds). */
+static int64_t cpu_us(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (int64_t)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) * 1000000 + ru.ru_utime.tv_usec +
+           ru.ru_stime.tv_usec;
+}
+
+/* --bench's line on stdout and the counters on stderr, after the run
+ * (run_cpu_us: the CPU time the run took). */
+static void report(rted_daemon *d, bool bench, int64_t run_cpu_us)
 {
     rted_counters n;
     rted_daemon_get_counters(d, &n);
@@ -247,8 +258,10 @@ static void report(rted_daemon *d, bool bench)
         rted_daemon_latency(d, &p50, &p99, &max);
         struct rusage ru;
         getrusage(RUSAGE_SELF, &ru);
-        printf("bench: %llu frames, latency p50 %d us, p99 %d us, max %d us, peak RSS %ld KiB\n",
-               (unsigned long long)n.processed, p50, p99, max, ru.ru_maxrss);
+        printf("bench: %llu frames, latency p50 %d us, p99 %d us, max %d us, peak RSS %ld KiB, "
+               "CPU %lld us a frame\n",
+               (unsigned long long)n.processed, p50, p99, max, ru.ru_maxrss,
+               (long long)(n.processed ? run_cpu_us / (int64_t)n.processed : 0));
     }
     rted_log("%llu frames received, %llu processed, %llu dropped, %llu bad, "
              "%llu deadline misses, %llu stages skipped, %llu messages, %llu publish errors, "
@@ -288,8 +301,9 @@ int main(int argc, char **argv)
     }
     rted_daemon_set_overrides(d, o.sets, o.n_sets);
     handle_signals();
+    const int64_t cpu0 = cpu_us();
     code = rted_daemon_run(d, &stop_flag, &reload_flag);
-    report(d, o.bench);
+    report(d, o.bench, cpu_us() - cpu0);
     rted_daemon_close(d);
     return code;
 }

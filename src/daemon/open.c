@@ -3,38 +3,15 @@
  * contexts, one arena for the grey buffer and the message arrays, the
  * param_state_t message, the debug stream's canvas and JPEG encoder, the
  * publisher (its encode buffer), the params
- * channel, the recording, then the real-time settings. A frame then makes
- * no heap call. */
-#define _GNU_SOURCE
-#include <errno.h>
+ * channel, the recording, then the real-time settings and the grasp thread
+ * (realtime.c). A frame then makes no heap call. */
 #include <math.h>
-#include <sched.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 #include "daemon_internal.h"
 #include "core/clock.h"
-
-static void realtime(const rted_config *c)
-{
-    if (c->rt_mlockall && mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
-        rted_warn("mlockall: %s (memory not locked)", strerror(errno));
-    if (c->rt_cpu >= 0) {
-        cpu_set_t set;
-        CPU_ZERO(&set);
-        CPU_SET(c->rt_cpu, &set);
-        if (sched_setaffinity(0, sizeof set, &set) != 0)
-            rted_warn("CPU affinity %d: %s (not pinned)", c->rt_cpu, strerror(errno));
-    }
-    if (c->rt_priority > 0) {
-        struct sched_param sp = {.sched_priority = c->rt_priority};
-        if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0)
-            rted_warn("SCHED_FIFO priority %d: %s (normal scheduling)", c->rt_priority,
-                      strerror(errno));
-    }
-}
 
 /* Pacing: recordings at their pace, live sources as they come. */
 static bool open_pacer(rted_daemon *d, char *msg, size_t msg_size)
@@ -195,7 +172,10 @@ bool rted_daemon_open(rted_daemon **out, const rted_config *cfg, const char *con
     }
     rted_messages_init(d);
     rted_derive(d);
-    realtime(&d->cfg);
+    if (!rted_realtime_start(d, msg, msg_size)) {
+        rted_daemon_close(d);
+        return false;
+    }
     d->window_start_ns = rte_clock_now_ns();
     rte_source_stats ss;
     rte_source_get_stats(&d->source, &ss);
@@ -214,6 +194,7 @@ void rted_daemon_close(rted_daemon *d)
 {
     if (!d)
         return;
+    rted_realtime_stop(d);
     rted_params_close(d);
     rted_notify_close(&d->notify);
     rte_publisher_destroy(d->pub);

@@ -2,9 +2,11 @@
  * publishing over memq:// (decoded by a subscriber in the same process) and
  * to file:// logs (read back with lcm_eventlog); deadline accounting;
  * damaged frames; run-time configuration (file reload, params_t); an LCM
- * log source round trip; a camera missing at start waited for; and the
- * heap-call count after the first frame (with systemd's notifications on).
- *   test_daemon BUILD_DIR   (BUILD_DIR holds road_straight.{y4m,csv}) */
+ * log source round trip; a camera missing at start waited for; the
+ * heap-call count after the first frame (with systemd's notifications on);
+ * realtime.threads = 2 against one thread on the recorded road clip.
+ *   test_daemon BUILD_DIR CLIP_Y4M
+ * (BUILD_DIR holds road_straight.{y4m,csv}; CLIP_Y4M is the recorded clip) */
 #include <math.h>
 #include <poll.h>
 #include <setjmp.h>
@@ -30,7 +32,7 @@
 #include "heapcount.h"
 #include "publish/publish.h"
 
-static const char *build_dir;
+static const char *build_dir, *clip_y4m;
 
 static void path(char *out, size_t size, const char *name)
 {
@@ -819,10 +821,11 @@ static int notify_count(int fd, const char *prefix)
     return n;
 }
 
-/* 1000 frames, looped, as fast as possible, lane and grasp paths, status
- * messages (and the frames recorded: record != NULL), systemd's
- * notifications: no heap call after the first frame. */
-static void heap_run(const char *url, bool images, const char *record)
+/* 1000 frames, looped, as fast as possible, lane and grasp paths (on
+ * `threads` threads), status messages (and the frames recorded: record !=
+ * NULL), systemd's notifications: no heap call after the first frame, in
+ * any thread. */
+static void heap_run(const char *url, bool images, const char *record, int threads)
 {
     char y4m[512];
     path(y4m, sizeof y4m, "objects_heap.y4m");
@@ -840,6 +843,7 @@ static void heap_run(const char *url, bool images, const char *record)
     c.debug_rate_hz = 100;
     c.params_enabled = true;
     c.params_state_period_ms = 100;
+    c.rt_threads = threads;
     if (record)
         snprintf(c.record_path, sizeof c.record_path, "%s", record);
     char sock[100], cwd[64] = "";
@@ -850,6 +854,7 @@ static void heap_run(const char *url, bool images, const char *record)
     const int notify_fd = notify_listen(sock);
     rted_daemon *d = open_daemon(&c, NULL);
     unsetenv("NOTIFY_SOCKET");
+    assert_int_equal(d->threaded, threads == 2);
     assert_int_equal(rted_daemon_step(d), RTED_STEP_FRAME);
     assert_int_equal(notify_count(notify_fd, "READY=1\nSTATUS=streaming"), 1);
     const uint64_t notified0 = d->notify.sent + d->notify.failed;
@@ -878,15 +883,15 @@ static void heap_run(const char *url, bool images, const char *record)
     assert_true(pings >= 1);
     assert_true(notified >= n.status_sent);
     assert_int_equal(n.processed, 1000);
-    print_message("%s: 999 frames, %llu messages (%llu debug overlays), %llu status, %llu "
-                  "param states, %llu rewinds: %llu heap calls (malloc %llu calloc %llu realloc "
-                  "%llu free %llu)\n",
-                  url, (unsigned long long)n.published, (unsigned long long)n.debug_frames,
-                  (unsigned long long)n.status_sent,
-                  (unsigned long long)(n.states_sent - n0.states_sent),
-                  (unsigned long long)n.rewinds, (unsigned long long)heapcount_calls(&hc),
-                  (unsigned long long)hc.malloc_calls, (unsigned long long)hc.calloc_calls,
-                  (unsigned long long)hc.realloc_calls, (unsigned long long)hc.free_calls);
+    print_message(
+        "%s, %d thread(s): 999 frames, %llu messages (%llu debug overlays), %llu status, %llu "
+        "param states, %llu rewinds: %llu heap calls (malloc %llu calloc %llu realloc "
+        "%llu free %llu)\n",
+        url, threads, (unsigned long long)n.published, (unsigned long long)n.debug_frames,
+        (unsigned long long)n.status_sent, (unsigned long long)(n.states_sent - n0.states_sent),
+        (unsigned long long)n.rewinds, (unsigned long long)heapcount_calls(&hc),
+        (unsigned long long)hc.malloc_calls, (unsigned long long)hc.calloc_calls,
+        (unsigned long long)hc.realloc_calls, (unsigned long long)hc.free_calls);
     /* Nothing allocates. The only calls allowed are glibc's fseeko()
      * calling free(NULL) (its backup read area) when the Y4M source seeks
      * back for a rewind: at most one per rewind, none per frame. */
@@ -905,7 +910,7 @@ static void test_no_heap_calls_file(void **state)
     path(log, sizeof log, "heap.lcm");
     path(record, sizeof record, "heap_record.lcm");
     snprintf(url, sizeof url, "file://%s", log);
-    heap_run(url, true, record);
+    heap_run(url, true, record, 1);
     /* Every frame was recorded. */
     FILE *f = fopen(record, "rb");
     assert_non_null(f);
@@ -920,12 +925,159 @@ static void test_no_heap_calls_memq(void **state)
 {
     if (!heapcount_active())
         skip();
-    heap_run("memq://", false, NULL);
+    heap_run("memq://", false, NULL, 1);
+}
+
+/* realtime.threads = 2: the grasp thread makes no heap call either (file://
+ * with images and the overlay, which read its grey image and result). */
+static void test_no_heap_calls_two_threads(void **state)
+{
+    if (!heapcount_active())
+        skip();
+    char log[512], url[600];
+    path(log, sizeof log, "heap2.lcm");
+    snprintf(url, sizeof url, "file://%s", log);
+    heap_run(url, true, NULL, 2);
+    heap_run("memq://", false, NULL, 2);
+}
+
+/* ---- realtime.threads = 2 publishes what one thread does ---- */
+
+#define CLIP_FRAMES 44 /* the recorded clip twice: the grasp defaults, then the tutorial's form */
+
+/* The next lane or grasp message of a log (NULL at its end). */
+static lcm_eventlog_event_t *next_result(lcm_eventlog_t *log)
+{
+    lcm_eventlog_event_t *e;
+    while ((e = lcm_eventlog_read_next_event(log)) && strcmp(e->channel, "RTEDGE_LANES") &&
+           strcmp(e->channel, "RTEDGE_GRASP"))
+        lcm_eventlog_free_event(e);
+    return e;
+}
+
+static void untimed(rtedge_header_t *h)
+{
+    h->utime = h->capture_utime = h->publish_utime = 0;
+    h->latency_us = 0;
+    h->deadline_met = 0;
+}
+
+/* e's message encoded again without its timing fields into buf (of
+ * e->datalen bytes): the encoded size. Counts lanes found and objects. */
+static int untimed_encoding(const lcm_eventlog_event_t *e, uint8_t *buf, int *lanes, int *objects)
+{
+    int n;
+    if (!strcmp(e->channel, "RTEDGE_LANES")) {
+        rtedge_lane_detection_t m;
+        assert_true(rtedge_lane_detection_t_decode(e->data, 0, e->datalen, &m) > 0);
+        untimed(&m.header);
+        *lanes += m.left.found + m.right.found;
+        n = rtedge_lane_detection_t_encode(buf, 0, e->datalen, &m);
+        rtedge_lane_detection_t_decode_cleanup(&m);
+    } else {
+        rtedge_grasp_detection_t m;
+        assert_true(rtedge_grasp_detection_t_decode(e->data, 0, e->datalen, &m) > 0);
+        untimed(&m.header);
+        *objects += m.nobjects;
+        n = rtedge_grasp_detection_t_encode(buf, 0, e->datalen, &m);
+        rtedge_grasp_detection_t_decode_cleanup(&m);
+    }
+    assert_true(n > 0);
+    return n;
+}
+
+/* The clip on `threads` threads into log; after its first pass the grasp
+ * path switches to the tutorial's form (binarize = otsu, split = false)
+ * between two frames, as params_t or SIGHUP would. */
+static void clip_run(int threads, const char *log)
+{
+    char url[600], msg[RTED_MSG];
+    snprintf(url, sizeof url, "file://%s", log);
+    remove(log);
+    rted_config c;
+    base_config(&c, clip_y4m, url);
+    c.loop = true;
+    c.max_frames = CLIP_FRAMES;
+    c.rt_threads = threads;
+    rted_daemon *d = open_daemon(&c, NULL);
+    assert_int_equal(d->threaded, threads == 2);
+    rted_step st;
+    int frames = 0;
+    while ((st = rted_daemon_step(d)) != RTED_STEP_END) {
+        assert_int_not_equal(st, RTED_STEP_FAILED);
+        if (st == RTED_STEP_FRAME && ++frames == CLIP_FRAMES / 2) {
+            rted_config next = *rted_daemon_config(d);
+            assert_true(rted_config_set_text(&next, rted_config_find_key("grasp.binarize"), "otsu",
+                                             msg, sizeof msg));
+            next.grasp_split = false;
+            assert_true(rted_daemon_apply(d, &next, msg, sizeof msg));
+        }
+    }
+    rted_counters n;
+    rted_daemon_get_counters(d, &n);
+    rted_daemon_close(d);
+    assert_int_equal(n.processed, CLIP_FRAMES);
+    assert_int_equal(n.stages_skipped, 0);
+    assert_int_equal(n.path_errors, 0);
+    assert_int_equal(n.reloads, 1);
+}
+
+static void test_two_threads_same_messages(void **state)
+{
+    char log1[512], log2[512];
+    path(log1, sizeof log1, "threads1.lcm");
+    path(log2, sizeof log2, "threads2.lcm");
+    clip_run(1, log1);
+    clip_run(2, log2);
+    lcm_eventlog_t *a = lcm_eventlog_create(log1, "r"), *b = lcm_eventlog_create(log2, "r");
+    assert_non_null(a);
+    assert_non_null(b);
+    int count[2] = {0, 0}, lanes[2] = {0, 0}, objects[2] = {0, 0};
+    lcm_eventlog_event_t *ea, *eb;
+    for (;;) {
+        ea = next_result(a);
+        eb = next_result(b);
+        if (!ea || !eb)
+            break;
+        assert_string_equal(ea->channel, eb->channel);
+        uint8_t *ba = malloc((size_t)ea->datalen), *bb = malloc((size_t)eb->datalen);
+        assert_true(ba && bb);
+        const int na = untimed_encoding(ea, ba, &lanes[0], &objects[0]);
+        const int nb = untimed_encoding(eb, bb, &lanes[1], &objects[1]);
+        const bool same = na == nb && !memcmp(ba, bb, (size_t)na);
+        if (!same)
+            print_error("%s message %d differs (%d and %d bytes)\n", ea->channel,
+                        count[ea->channel[7] == 'G'], na, nb);
+        assert_true(same);
+        count[ea->channel[7] == 'G']++;
+        free(ba);
+        free(bb);
+        lcm_eventlog_free_event(ea);
+        lcm_eventlog_free_event(eb);
+    }
+    const bool both_ended = !ea && !eb; /* the same number of messages */
+    if (ea)
+        lcm_eventlog_free_event(ea);
+    if (eb)
+        lcm_eventlog_free_event(eb);
+    lcm_eventlog_destroy(a);
+    lcm_eventlog_destroy(b);
+    print_message("two threads: %d lane and %d grasp messages as one thread's (%d lanes found, "
+                  "%d objects)\n",
+                  count[0], count[1], lanes[1], objects[1]);
+    assert_true(both_ended);
+    assert_int_equal(count[0], CLIP_FRAMES);
+    assert_int_equal(count[1], CLIP_FRAMES);
+    assert_true(lanes[1] > CLIP_FRAMES);
+    assert_true(objects[1] > 0);
+    remove(log1);
+    remove(log2);
 }
 
 int main(int argc, char **argv)
 {
     build_dir = argc > 1 ? argv[1] : ".";
+    clip_y4m = argc > 2 ? argv[2] : "fixtures/solidWhiteRight_clip.y4m";
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_memq_road_lanes),
         cmocka_unit_test(test_memq_objects),
@@ -944,6 +1096,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_camera_waited_for),
         cmocka_unit_test(test_no_heap_calls_file),
         cmocka_unit_test(test_no_heap_calls_memq),
+        cmocka_unit_test(test_no_heap_calls_two_threads),
+        cmocka_unit_test(test_two_threads_same_messages),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
