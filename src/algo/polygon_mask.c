@@ -12,6 +12,7 @@
  *     from ceil(left) to floor(right) are set.
  * Rows above the image are skipped by starting each edge at the first
  * visible row: x + (row - y0) * dx equals OpenCV's row-by-row sum. */
+#include <stdbool.h>
 #include <string.h>
 
 #include "rtedge/polygon_mask.h"
@@ -153,15 +154,24 @@ static void sort_edges_by_y0(poly_edge *e, int32_t n)
     }
 }
 
-/* Draws the polygon's outline and appends its non-horizontal edges. */
-static int32_t collect_edges(rte_image_u8 *img, const rte_polygon *poly, uint8_t value,
-                             poly_edge *edges, int32_t n)
+/* Draws the polygon's outline. */
+static void draw_outline(rte_image_u8 *img, const rte_polygon *poly, uint8_t value)
+{
+    rte_vertex p0 = poly->vertex[poly->count - 1];
+    for (int32_t i = 0; i < poly->count; i++) {
+        rte_vertex p1 = poly->vertex[i];
+        draw_line(img, p0.x, p0.y, p1.x, p1.y, value);
+        p0 = p1;
+    }
+}
+
+/* Appends the polygon's non-horizontal edges. */
+static int32_t collect_edges(const rte_polygon *poly, poly_edge *edges, int32_t n)
 {
     const rte_vertex *v = poly->vertex;
     rte_vertex p0 = v[poly->count - 1];
     for (int32_t i = 0; i < poly->count; i++) {
         rte_vertex p1 = v[i];
-        draw_line(img, p0.x, p0.y, p1.x, p1.y, value);
         if (p0.y != p1.y) {
             const rte_vertex *top = p0.y < p1.y ? &p0 : &p1;
             const rte_vertex *bottom = p0.y < p1.y ? &p1 : &p0;
@@ -188,9 +198,18 @@ static void fill_span(uint8_t *row, int32_t width, int64_t xl, int64_t xr, uint8
         memset(row + x1, value, (size_t)(x2 - x1 + 1));
 }
 
-/* Scanline fill of the edge table (even-odd over all edges). */
+/* Zeroes rows *done..y1 - 1 (none when y1 <= *done) and moves *done on. */
+static void clear_rows(rte_image_u8 *img, int32_t *done, int32_t y1)
+{
+    for (; *done < y1; (*done)++)
+        memset(rte_u8_row(img, *done), 0, (size_t)img->width);
+}
+
+/* Scanline fill of the edge table (even-odd over all edges). With `clear`
+ * every row is zeroed as the fill reaches it, while it is in cache: one
+ * pass over the image instead of a clear and then a fill. */
 static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *active,
-                       uint8_t value)
+                       uint8_t value, bool clear)
 {
     sort_edges_by_y0(edges, n);
     int32_t y_end = 0;
@@ -200,7 +219,7 @@ static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *
     if (y_end > img->height)
         y_end = img->height;
 
-    int32_t nact = 0, next = 0;
+    int32_t nact = 0, next = 0, cleared = clear ? 0 : img->height;
     for (int32_t y = edges[0].y0 > 0 ? edges[0].y0 : 0; y < y_end; y++) {
         int32_t k = 0;
         for (int32_t i = 0; i < nact; i++)
@@ -211,6 +230,7 @@ static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *
             y = edges[next].y0; /* skip empty rows */
         if (y >= y_end)
             break;
+        clear_rows(img, &cleared, y + 1);
         for (; next < n && edges[next].y0 <= y; next++) {
             poly_edge *e = &edges[next];
             if (e->y1 > y) { /* starts here, or above the image */
@@ -234,6 +254,7 @@ static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *
         for (int32_t i = 0; i < nact; i++)
             edges[active[i]].x += edges[active[i]].dx;
     }
+    clear_rows(img, &cleared, img->height);
 }
 
 static rte_status check_polygons(const rte_polygon *polygons, int32_t polygon_count, int32_t *total)
@@ -261,9 +282,11 @@ static rte_status check_polygons(const rte_polygon *polygons, int32_t polygon_co
 
 /* Shared by fill and mask_build: checks everything and takes the scratch
  * before touching the image, so a failing call leaves it as it was. With
- * `clear` the image is zeroed first. */
+ * `clear` the image is zeroed first. The outlines are drawn after the fill
+ * (OpenCV draws them first): both write the same value, so the order
+ * cannot show. */
 static rte_status fill_polygons(rte_image_u8 *img, const rte_polygon *polygons,
-                                int32_t polygon_count, uint8_t value, int clear, rte_arena *arena)
+                                int32_t polygon_count, uint8_t value, bool clear, rte_arena *arena)
 {
     rte_status st = rte_image_u8_check(img);
     if (st != RTE_OK)
@@ -286,15 +309,19 @@ static rte_status fill_polygons(rte_image_u8 *img, const rte_polygon *polygons,
             return RTE_ERR_NO_MEMORY;
         }
     }
-    if (clear)
-        for (int32_t y = 0; y < img->height; y++)
-            memset(rte_u8_row(img, y), 0, (size_t)img->width);
     int32_t n = 0;
     for (int32_t p = 0; p < polygon_count; p++)
         if (polygons[p].count > 0)
-            n = collect_edges(img, &polygons[p], value, edges, n);
-    if (n >= 2)
-        fill_edges(img, edges, n, active, value);
+            n = collect_edges(&polygons[p], edges, n);
+    if (n >= 2) {
+        fill_edges(img, edges, n, active, value, clear);
+    } else if (clear) {
+        int32_t cleared = 0;
+        clear_rows(img, &cleared, img->height);
+    }
+    for (int32_t p = 0; p < polygon_count; p++)
+        if (polygons[p].count > 0)
+            draw_outline(img, &polygons[p], value);
     rte_arena_reset(arena, mark);
     return RTE_OK;
 }
@@ -302,20 +329,36 @@ static rte_status fill_polygons(rte_image_u8 *img, const rte_polygon *polygons,
 rte_status rte_polygon_fill_u8(rte_image_u8 *img, const rte_polygon *polygons,
                                int32_t polygon_count, uint8_t value, rte_arena *arena)
 {
-    return fill_polygons(img, polygons, polygon_count, value, 0, arena);
+    return fill_polygons(img, polygons, polygon_count, value, false, arena);
 }
 
 rte_status rte_polygon_mask_build(rte_image_u8 *mask, const rte_polygon *polygons,
                                   int32_t polygon_count, rte_arena *arena)
 {
-    return fill_polygons(mask, polygons, polygon_count, 255, 1, arena);
+    return fill_polygons(mask, polygons, polygon_count, 255, true, arena);
 }
 
-/* d = s where m != 0, else 0. Not restrict: d may be s (element-wise, so
- * that is safe; the compiler checks overlap at run time). */
+enum { MASK_BLOCK = 64 };
+
+/* d = s where m != 0, else 0, block by block: a block the mask leaves out
+ * entirely is zeroed without reading s (most of a lane ROI's frame). Not
+ * restrict: d may be s (element-wise, so that is safe; the compiler checks
+ * overlap at run time). */
 static void mask_row(const uint8_t *s, const uint8_t *m, uint8_t *d, int32_t width)
 {
-    for (int32_t x = 0; x < width; x++)
+    int32_t x = 0;
+    for (; x + MASK_BLOCK <= width; x += MASK_BLOCK) {
+        uint8_t any = 0;
+        for (int32_t i = 0; i < MASK_BLOCK; i++)
+            any |= m[x + i];
+        if (!any) {
+            memset(d + x, 0, MASK_BLOCK);
+            continue;
+        }
+        for (int32_t i = 0; i < MASK_BLOCK; i++)
+            d[x + i] = (uint8_t)(s[x + i] & (uint8_t) - (m[x + i] != 0));
+    }
+    for (; x < width; x++)
         d[x] = (uint8_t)(s[x] & (uint8_t) - (m[x] != 0));
 }
 
