@@ -3,6 +3,7 @@
 #define RTEDGE_HOUGH_INTERNAL_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "rtedge/hough.h"
 
@@ -24,6 +25,43 @@ static inline int32_t rte_hough_rho_bias(const rte_hough_config *cfg, int32_t nu
 {
     const int32_t shift = cfg->trig_shift;
     return (int32_t)(((int64_t)((numrho - 1) / 2) << shift) + (shift ? (1 << (shift - 1)) : 0));
+}
+
+/* The edge pixels' packed coordinates y << 16 | x in raster order into
+ * pts and, when mask is not NULL, 1 for an edge pixel and 0 for another
+ * into the packed w x h mask; returns their number. Edge maps are sparse: 8
+ * empty pixels are skipped at a time. Inline, so that the copy without a
+ * mask has no mask code. */
+static inline int32_t rte_hough_list_points(const rte_image_u8 *edges, uint8_t *mask, uint32_t *pts)
+{
+    const int32_t w = edges->width, h = edges->height;
+    int32_t npts = 0;
+    for (int32_t y = 0; y < h; y++) {
+        const uint8_t *row = rte_u8_row(edges, y);
+        uint8_t *mrow = mask ? mask + (size_t)y * w : NULL;
+        int32_t x = 0;
+        for (;;) {
+            uint64_t word;
+            for (; x + 8 <= w; x += 8) {
+                memcpy(&word, row + x, sizeof word);
+                if (word)
+                    break;
+                if (mrow)
+                    memcpy(mrow + x, &word, sizeof word); /* 8 zeros */
+            }
+            const int32_t end = x + 8 <= w ? x + 8 : w;
+            if (x >= end)
+                break;
+            for (; x < end; x++) {
+                uint8_t e = row[x] != 0;
+                if (mrow)
+                    mrow[x] = e;
+                pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
+                npts += e; /* branch-free compaction */
+            }
+        }
+    }
+    return npts;
 }
 
 /* Keeps the `capacity` largest of a stream of distinct 64-bit keys in a

@@ -418,39 +418,6 @@ size_t rte_hough_segments_scratch_size(const rte_hough_config *cfg)
            rte_arena_piece_size((2 * side + 4) * sizeof(uint32_t));
 }
 
-/* The edge pixels into the mask (1 for an edge, 0 otherwise) and their
- * packed coordinates, in raster order, into pts; returns their number. */
-static int32_t collect_points(const rte_image_u8 *edges, uint8_t *mask, uint32_t *pts)
-{
-    const int32_t w = edges->width, h = edges->height;
-    int32_t npts = 0;
-    for (int32_t y = 0; y < h; y++) {
-        const uint8_t *row = rte_u8_row(edges, y);
-        uint8_t *mrow = mask + (size_t)y * w;
-        int32_t x = 0;
-        for (;;) {
-            /* edge maps are sparse: skip 8 empty pixels at a time */
-            uint64_t word;
-            for (; x + 8 <= w; x += 8) {
-                memcpy(&word, row + x, sizeof word);
-                if (word)
-                    break;
-                memcpy(mrow + x, &word, sizeof word); /* 8 zeros */
-            }
-            const int32_t end = x + 8 <= w ? x + 8 : w;
-            if (x >= end)
-                break;
-            for (; x < end; x++) {
-                uint8_t e = row[x] != 0;
-                mrow[x] = e;
-                pts[npts] = ((uint32_t)y << 16) | (uint32_t)x;
-                npts += e;
-            }
-        }
-    }
-    return npts;
-}
-
 /* Fisher-Yates with xorshift32 and a multiply-shift range reduction: the
  * same order everywhere for a seed. */
 static void shuffle_points(uint32_t *pts, int32_t npts, uint32_t seed)
@@ -504,7 +471,7 @@ rte_status rte_hough_segments(const rte_hough_config *cfg, const rte_image_u8 *e
         return RTE_ERR_NO_MEMORY;
     }
 
-    const int32_t npts = collect_points(edges, mask, pts);
+    const int32_t npts = rte_hough_list_points(edges, mask, pts);
     /* 16 bits: count + 32769 - threshold stays in [1, 65535] (counts up to
      * bound <= 32767, 1 <= threshold <= bound); 8 bits: count + 129 -
      * threshold in [1, 255] until a wrap widens the cells */

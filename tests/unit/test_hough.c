@@ -1,12 +1,16 @@
 /* Hough transforms: hand-checked geometry (a row, a column, a disc), bounds
  * and truncation on all-255 maps, sizes 1x1..67xN with stride > width,
- * argument errors, and that the arena is back at its mark afterwards. */
+ * standard lines against a plain one-accumulator vote (C path and
+ * dispatched), argument errors, and that the arena is back at its mark
+ * afterwards. */
 #include "unit.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 #include "rtedge/hough.h"
+
+#include "algo/hough_internal.h"
 
 #define PI 3.14159265358979323846
 
@@ -67,6 +71,126 @@ static void test_lines_row_and_column(void **state)
         test_free(e.buf);
     }
     test_free(a.base);
+}
+
+/* Standard lines the plain way: one 32-bit accumulator for every angle,
+ * each point voting cell by cell, every local maximum above the threshold
+ * collected and sorted by votes, then theta bin, then rho bin. */
+static int compare_lines(const void *pa, const void *pb)
+{
+    const rte_hough_line *a = pa, *b = pb;
+    if (a->votes != b->votes)
+        return a->votes > b->votes ? -1 : 1;
+    if (a->theta_bin != b->theta_bin)
+        return a->theta_bin < b->theta_bin ? -1 : 1;
+    return (a->rho_bin > b->rho_bin) - (a->rho_bin < b->rho_bin);
+}
+
+static int32_t plain_lines(const rte_hough_config *cfg, const rte_image_u8 *e, int32_t threshold,
+                           rte_hough_line *out)
+{
+    const int32_t numrho = rte_hough_rho_bins(cfg, e->width, e->height), astep = numrho + 2;
+    const int32_t bias = rte_hough_rho_bias(cfg, numrho), shift = cfg->trig_shift;
+    int32_t *acc = test_calloc((size_t)(cfg->num_angles + 2) * astep, sizeof(int32_t));
+    for (int32_t y = 0; y < e->height; y++)
+        for (int32_t x = 0; x < e->width; x++)
+            if (e->buf[(size_t)y * e->stride + x])
+                for (int32_t n = 0; n < cfg->num_angles; n++) {
+                    int32_t r = (x * cfg->rho_cos[n] + y * cfg->rho_sin[n] + bias) >> shift;
+                    assert_true(r >= 0 && r < numrho);
+                    acc[(n + 1) * astep + r + 1]++;
+                }
+    int32_t count = 0;
+    for (int32_t n = 0; n < cfg->num_angles; n++)
+        for (int32_t r = 0; r < numrho; r++) {
+            const int32_t *a = acc + (n + 1) * astep + r + 1, v = *a;
+            if (v > threshold && v > a[-1] && v >= a[1] && v > a[-astep] && v >= a[astep])
+                out[count++] = (rte_hough_line){r - (numrho - 1) / 2, n, v};
+        }
+    qsort(out, (size_t)count, sizeof *out, compare_lines);
+    test_free(acc);
+    return count;
+}
+
+/* rte_hough_lines against plain_lines, forced C and dispatched, for every
+ * output size up to all the lines. */
+static void check_lines_plain(const rte_hough_config *cfg, const rte_image_u8 *e, int32_t threshold)
+{
+    const int32_t cells = cfg->num_angles * rte_hough_rho_bins(cfg, e->width, e->height);
+    rte_hough_line *want = test_malloc((size_t)cells * sizeof *want);
+    const int32_t total = plain_lines(cfg, e, threshold, want);
+    const int32_t sizes[] = {0, 1, total / 2, total, total + 1};
+    rte_hough_line *got = test_malloc((size_t)(total + 1) * sizeof *got);
+    for (int forced = 0; forced < 2; forced++) {
+        if (forced)
+            assert_int_equal(setenv("RTE_FORCE_C", "1", 1), 0);
+        for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+            const int32_t max = sizes[k];
+            rte_arena a = arena_of(rte_hough_lines_scratch_size(cfg, max));
+            int32_t n = -1;
+            bool tr = false;
+            assert_int_equal(rte_hough_lines(cfg, e, threshold, &a, got, max, &n, &tr), RTE_OK);
+            assert_int_equal(n, max < total ? max : total);
+            assert_int_equal(tr, max < total);
+            for (int32_t i = 0; i < n; i++)
+                if (got[i].rho_bin != want[i].rho_bin || got[i].theta_bin != want[i].theta_bin ||
+                    got[i].votes != want[i].votes)
+                    fail_msg("%dx%d line %d: (%d, %d, %d), plain (%d, %d, %d)", (int)e->width,
+                             (int)e->height, (int)i, (int)got[i].rho_bin, (int)got[i].theta_bin,
+                             (int)got[i].votes, (int)want[i].rho_bin, (int)want[i].theta_bin,
+                             (int)want[i].votes);
+            assert_int_equal(a.used, 0);
+            test_free(a.base);
+        }
+        assert_int_equal(unsetenv("RTE_FORCE_C"), 0);
+    }
+    test_free(got);
+    test_free(want);
+}
+
+/* Random maps of straight runs (rows, columns, diagonals: long runs of
+ * points in one cell) and scattered pixels, on maps as large as the
+ * configuration and smaller, several rho and theta resolutions and angle
+ * ranges; then maps where one cell counts more than 65535 votes (rho 300,
+ * all 255, so several blocks of points are summed into it). */
+static void test_lines_match_plain_vote(void **state)
+{
+    (void)state;
+    static const double rhos[] = {1.0, 0.5, 3.0}, thetas[] = {PI / 180, PI / 45, PI / 1000};
+    uint32_t seed = 0x11E5u;
+    for (int k = 0; k < 9; k++) {
+        const int32_t w = 9 + (int32_t)(unit_rand(&seed) % 300),
+                      h = 5 + (int32_t)(unit_rand(&seed) % 200);
+        rte_hough_config cfg;
+        assert_int_equal(rte_hough_config_init(&cfg, w + k % 2 * 7, h, rhos[k % 3], thetas[k / 3],
+                                               k == 4 ? 0.5 : 0.0, PI),
+                         RTE_OK);
+        rte_image_u8 e = unit_image_u8(w, h, 3, 0);
+        for (int run = 0; run < 12; run++) {
+            int32_t x = (int32_t)(unit_rand(&seed) % (uint32_t)w),
+                    y = (int32_t)(unit_rand(&seed) % (uint32_t)h);
+            const int dir = (int)(unit_rand(&seed) % 4), len = (int)(unit_rand(&seed) % 150);
+            for (int i = 0; i < len && x >= 0 && x < w && y < h; i++) {
+                e.buf[(size_t)y * e.stride + x] = 255;
+                x += dir == 0 ? 1 : dir == 2 ? -1 : dir == 3 ? 1 : 0;
+                y += dir == 0 ? 0 : 1;
+            }
+        }
+        for (int i = 0; i < w * h / 50; i++)
+            e.buf[(unit_rand(&seed) % (uint32_t)h) * (size_t)e.stride +
+                  unit_rand(&seed) % (uint32_t)w] = (uint8_t)(1 + unit_rand(&seed) % 255);
+        check_lines_plain(&cfg, &e, k % 3 * 4);
+        unit_assert_padding_u8(&e);
+        test_free(e.buf);
+    }
+    for (int k = 0; k < 2; k++) {
+        const int32_t w = 700 + k, h = 400;
+        rte_hough_config cfg;
+        assert_int_equal(rte_hough_config_init(&cfg, w, h, 300.0, PI / 8, 0.0, PI), RTE_OK);
+        rte_image_u8 e = unit_image_u8(w, h, 1, 255);
+        check_lines_plain(&cfg, &e, 1000);
+        test_free(e.buf);
+    }
 }
 
 /* All-255 maps of every small size: results within bounds, truncation set
@@ -418,7 +542,7 @@ int main(void)
         cmocka_unit_test(test_sizes_and_truncation), cmocka_unit_test(test_segments_gap_and_length),
         cmocka_unit_test(test_segments_seed),        cmocka_unit_test(test_circle_disc),
         cmocka_unit_test(test_circle_on_border),     cmocka_unit_test(test_maximum_size_all_255),
-        cmocka_unit_test(test_argument_errors),
+        cmocka_unit_test(test_argument_errors),      cmocka_unit_test(test_lines_match_plain_vote),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -651,6 +651,28 @@ static void every_colour_matches_reference(void **state)
     test_free(want.buf);
 }
 
+/* A random Hough configuration for the kernel tests: w x h up to 4000 x
+ * 4000 (w below max_w + 1), rho and theta picked by k; its rho bins and
+ * rho bias. */
+typedef struct hough_case {
+    int32_t w, h, numrho, bias;
+} hough_case;
+
+static hough_case random_hough_config(rte_hough_config *cfg, int k, uint32_t max_w, uint32_t *seed)
+{
+    static const double rhos[] = {1.0, 0.5, 2.5},
+                        thetas[] = {PI_SIMD / 180, PI_SIMD / 360, PI_SIMD / 1024};
+    hough_case c;
+    c.w = 1 + (int32_t)(unit_rand(seed) % max_w);
+    c.h = 1 + (int32_t)(unit_rand(seed) % 4000);
+    assert_int_equal(
+        rte_hough_config_init(cfg, c.w, c.h, rhos[k % 3], thetas[(k / 3) % 3], 0.0, PI_SIMD),
+        RTE_OK);
+    c.numrho = rte_hough_rho_bins(cfg, c.w, c.h);
+    c.bias = rte_hough_rho_bias(cfg, c.numrho);
+    return c;
+}
+
 /* Hough segment bins: each variant against the C reference on the trig
  * tables of random configurations (sizes, rho, theta), random points of
  * the configured size, angle counts that end anywhere in a vector. */
@@ -669,19 +691,12 @@ static const hough_bins_variant hough_bins_variants[] = {
 static void hough_bins(const void *variant, uint32_t *seed)
 {
     const hough_bins_variant *v = variant;
-    static const double rhos[] = {1.0, 0.5, 2.5},
-                        thetas[] = {PI_SIMD / 180, PI_SIMD / 360, PI_SIMD / 1024};
     static rte_hough_config cfg;
     int32_t want[RTE_HOUGH_MAX_ANGLES + GUARD], got[RTE_HOUGH_MAX_ANGLES + GUARD],
         row_base[RTE_HOUGH_MAX_ANGLES];
     for (int k = 0; k < 60; k++) {
-        const int32_t w = 1 + (int32_t)(unit_rand(seed) % 4000),
-                      h = 1 + (int32_t)(unit_rand(seed) % 4000);
-        assert_int_equal(
-            rte_hough_config_init(&cfg, w, h, rhos[k % 3], thetas[(k / 3) % 3], 0.0, PI_SIMD),
-            RTE_OK);
-        const int32_t numrho = rte_hough_rho_bins(&cfg, w, h),
-                      bias = rte_hough_rho_bias(&cfg, numrho);
+        const hough_case hc = random_hough_config(&cfg, k, 4000, seed);
+        const int32_t w = hc.w, h = hc.h, numrho = hc.numrho, bias = hc.bias;
         for (int32_t a = 0; a < cfg.num_angles; a++)
             row_base[a] = a * numrho;
         for (int p = 0; p < 20; p++) {
@@ -705,6 +720,85 @@ static void hough_bins(const void *variant, uint32_t *seed)
 
 DEFINE_PICK(hough_bins, hough_bins_variants, hough_bins_variant, rte_hough_bins_fn,
             rte_hough_bins_select(features), v->bins == p)
+
+/* Hough line rows: each variant against the C reference. Bins on the trig
+ * tables of random configurations, blocks of random packed points of the
+ * configured size (every count 1..40 and random larger ones, so blocks end
+ * anywhere in a vector), every angle in turn; sums of random copies (up to
+ * 65535 each) into random cells, at every length 1..40 and random longer
+ * ones, with guard cells after the rows. */
+typedef struct hough_line_rows_variant {
+    variant_head head;
+    rte_hough_line_rows rows;
+} hough_line_rows_variant;
+
+static const hough_line_rows_variant hough_line_rows_variants[] = {
+#ifdef RTE_SIMD_X86
+    {{"hough_line_rows_avx2", RTE_CPU_X86_AVX2},
+     {rte_hough_point_bins_avx2, rte_hough_sum_copies_avx2}},
+#endif
+    {{"hough_line_rows_c", 0}, {rte_hough_point_bins_c, rte_hough_sum_copies_c}},
+};
+
+static void hough_line_sums(const hough_line_rows_variant *v, uint32_t *seed)
+{
+    enum { MAX_CELLS = 900, CSTEP = MAX_CELLS + GUARD };
+    static uint16_t want_copies[RTE_HOUGH_LINE_COPIES * CSTEP],
+        got_copies[RTE_HOUGH_LINE_COPIES * CSTEP];
+    static int32_t want[MAX_CELLS + GUARD], got[MAX_CELLS + GUARD];
+    for (int k = 0; k < 60; k++) {
+        const int32_t n = k < 40 ? k + 1 : 1 + (int32_t)(unit_rand(seed) % MAX_CELLS);
+        for (size_t i = 0; i < COUNT_OF(want_copies); i++)
+            want_copies[i] = (uint16_t)(k % 3 == 0 ? 65535 : unit_rand(seed));
+        for (size_t i = 0; i < COUNT_OF(want); i++)
+            want[i] = (int32_t)(unit_rand(seed) >> 2);
+        memcpy(got_copies, want_copies, sizeof got_copies);
+        memcpy(got, want, sizeof got);
+        rte_hough_sum_copies_c(want, want_copies, CSTEP, n);
+        v->rows.sum(got, got_copies, CSTEP, n);
+        if (memcmp(want, got, sizeof want) != 0 ||
+            memcmp(want_copies, got_copies, sizeof want_copies) != 0)
+            fail_msg("%s sum of %d cells differs", v->head.name, (int)n);
+        for (int32_t c = 0; c < RTE_HOUGH_LINE_COPIES; c++)
+            for (int32_t i = 0; i < n; i++)
+                assert_int_equal(got_copies[c * CSTEP + i], 0);
+    }
+}
+
+static void hough_line_rows(const void *variant, uint32_t *seed)
+{
+    const hough_line_rows_variant *v = variant;
+    enum { MAX_POINTS = 700 };
+    static rte_hough_config cfg;
+    uint32_t pts[MAX_POINTS];
+    int32_t want[MAX_POINTS + GUARD], got[MAX_POINTS + GUARD];
+    for (int k = 0; k < 60; k++) {
+        /* every 4th map at most 3 pixels wide: the largest trig values */
+        const hough_case hc = random_hough_config(&cfg, k, k % 4 ? 4000 : 3, seed);
+        const int32_t w = hc.w, h = hc.h, numrho = hc.numrho, bias = hc.bias;
+        const int32_t n = k < 40 ? k + 1 : 1 + (int32_t)(unit_rand(seed) % MAX_POINTS);
+        for (int32_t i = 0; i < n; i++)
+            pts[i] = (unit_rand(seed) % (uint32_t)h) << 16 | (unit_rand(seed) % (uint32_t)w);
+        if (k == 0)
+            pts[0] = (uint32_t)(h - 1) << 16 | (uint32_t)(w - 1); /* the far corner */
+        for (int32_t a = 0; a < cfg.num_angles; a++) {
+            const int32_t c = cfg.rho_cos[a], s = cfg.rho_sin[a];
+            memset(want, 0xEE, sizeof want);
+            memset(got, 0xEE, sizeof got);
+            rte_hough_point_bins_c(pts, n, c, s, bias, cfg.trig_shift, want);
+            v->rows.bins(pts, n, c, s, bias, cfg.trig_shift, got);
+            if (memcmp(want, got, sizeof want) != 0)
+                fail_msg("%s %dx%d angle %d n %d differs", v->head.name, (int)w, (int)h, (int)a,
+                         (int)n);
+            for (int32_t i = 0; i < n; i++)
+                assert_true(got[i] >= 0 && got[i] < numrho);
+        }
+    }
+    hough_line_sums(v, seed);
+}
+
+DEFINE_PICK(hough_line_rows, hough_line_rows_variants, hough_line_rows_variant, rte_hough_line_rows,
+            rte_hough_line_rows_select(features), v->rows.bins == p.bins && v->rows.sum == p.sum)
 
 /* A kernel family: its variants (structs that start with a variant_head),
  * which of them its *_select picks for a mask, and the comparison of one
@@ -733,6 +827,7 @@ static const kernel_family families[] = {
     FAMILY(lane_cue, lane_cue_variants, lane_cue_rows, 0xC0105u),
     FAMILY(grad, grad_variants, grad_rows, 0x6AD1u),
     FAMILY(hough_bins, hough_bins_variants, hough_bins, 0x4B0Fu),
+    FAMILY(hough_line_rows, hough_line_rows_variants, hough_line_rows, 0x11E5u),
 };
 
 enum { FAMILY_COUNT = COUNT_OF(families), MASK_COUNT = COUNT_OF(feature_masks) };
@@ -822,6 +917,7 @@ static void force_c_selects_the_reference(void **state)
         assert_true(rte_canny_rows_select(hw).sobel == rte_canny_sobel_row_avx2);
         assert_true(rte_threshold_row_select(hw) == rte_threshold_row_avx2);
         assert_true(rte_hough_bins_select(hw) == rte_hough_bins_avx2);
+        assert_true(rte_hough_line_rows_select(hw).bins == rte_hough_point_bins_avx2);
     }
 #endif
 #ifdef RTE_SIMD_NEON
@@ -842,6 +938,8 @@ static void force_c_selects_the_reference(void **state)
     assert_true(c.sobel == rte_canny_sobel_row_c && c.nms == rte_canny_nms_row_c);
     assert_true(rte_threshold_row_select(rte_cpu_features()) == rte_threshold_row_c);
     assert_true(rte_hough_bins_select(rte_cpu_features()) == rte_hough_bins_c);
+    rte_hough_line_rows hl = rte_hough_line_rows_select(rte_cpu_features());
+    assert_true(hl.bins == rte_hough_point_bins_c && hl.sum == rte_hough_sum_copies_c);
     assert_true(rte_lane_cue_row_select(rte_cpu_features()) == rte_lane_cue_row_c);
     rte_grad_rows gr = rte_grad_rows_select(rte_cpu_features());
     assert_true(gr.column == rte_grad_column_c && gr.row == rte_grad_row_c);

@@ -1,5 +1,6 @@
-/* The rho bins of a point for AVX2: the C reference's loop
- * (src/algo/hough_rows.h) with 32-bit multiplies on 8 angles.
+/* The rho bins of a point at many angles (segments, 32-bit multiplies on 8
+ * angles) and the sum of the lines' vote copies (8 cells at a time) for
+ * AVX2: the C references' loops (src/algo/hough_rows.h).
  * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
  * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
  * are integer only, so vectorising them only reorders exact operations and
@@ -16,6 +17,11 @@ void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t
                          int32_t *idx)
 {
     hough_bins_row(rho_cos, rho_sin, n, x, y, bias, shift, row_base, idx);
+}
+
+void rte_hough_sum_copies_avx2(int32_t *cells, uint16_t *copies, int32_t cstep, int32_t n)
+{
+    hough_sum_copies_row(cells, copies, cstep, n);
 }
 
 #endif

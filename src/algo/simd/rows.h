@@ -167,6 +167,30 @@ void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n,
                       int32_t *idx);
 rte_hough_bins_fn rte_hough_bins_select(uint32_t features);
 
+/* Hough lines (src/algo/hough_lines.c, hough_rows.h): `bins`, the rho bin
+ * of each of n packed points pts[i] = y << 16 | x at one angle,
+ * idx[i] = (x * rho_cos + y * rho_sin + bias) >> shift, the sum in
+ * [0, 2^31) and |rho_cos|, |rho_sin| < 2^30 (rte_hough_config_init keeps
+ * them below 2^31 / (4 (w + h + 2)) <= 2^27); `sum`, the RTE_HOUGH_LINE_COPIES rows of 16-bit votes at
+ * copies + k * cstep added into cells (cells[r] += every copy's [r] for
+ * r < n) and cleared. */
+enum { RTE_HOUGH_LINE_COPIES = 4 };
+typedef void (*rte_hough_point_bins_fn)(const uint32_t *pts, int32_t n, int32_t rho_cos,
+                                        int32_t rho_sin, int32_t bias, int32_t shift, int32_t *idx);
+typedef void (*rte_hough_sum_copies_fn)(int32_t *cells, uint16_t *copies, int32_t cstep, int32_t n);
+typedef struct rte_hough_line_rows {
+    rte_hough_point_bins_fn bins;
+    rte_hough_sum_copies_fn sum;
+} rte_hough_line_rows;
+
+/* rte_hough_point_bins_<isa> and rte_hough_sum_copies_<isa>, of the types above. */
+#define RTE_HOUGH_LINE_ROWS_DECLARE(isa)                                                         \
+    void rte_hough_point_bins_##isa(const uint32_t *pts, int32_t n, int32_t rho_cos,             \
+                                    int32_t rho_sin, int32_t bias, int32_t shift, int32_t *idx); \
+    void rte_hough_sum_copies_##isa(int32_t *cells, uint16_t *copies, int32_t cstep, int32_t n);
+RTE_HOUGH_LINE_ROWS_DECLARE(c)
+rte_hough_line_rows rte_hough_line_rows_select(uint32_t features);
+
 #ifdef RTE_SIMD_X86
 RTE_CANNY_ROWS_DECLARE(avx2)
 RTE_GRAD_ROWS_DECLARE(avx2)
@@ -188,6 +212,7 @@ void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x,
                          int32_t y, int32_t bias, int32_t shift, const int32_t *row_base,
                          int32_t *idx);
+RTE_HOUGH_LINE_ROWS_DECLARE(avx2)
 #endif
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
