@@ -104,12 +104,21 @@ rte_status rte_v4l2_start_streaming(v4l2_source *s, char *msg, size_t msg_size)
 
 /* ---- next() ---- */
 
+/* Frames lost between sequence numbers last and seq: a step back, a repeat
+ * (vivid repeats one when its thread wakes twice in a frame period) or a
+ * jump by 2^31 or more is a restart, not a loss; the 32-bit wrap is a step
+ * like any other. */
+static uint32_t sequence_gap(uint32_t last, uint32_t seq)
+{
+    uint32_t gap = seq - last - 1;
+    return gap < 0x80000000u ? gap : 0;
+}
+
 /* Counts the gap between the last sequence dequeued and this one. */
 static void note_sequence(v4l2_source *s, uint32_t seq)
 {
-    uint32_t gap = seq - s->last_seq - 1;
-    if (s->have_seq && gap != 0 && gap < 0x80000000u)
-        s->stats.driver_drops += gap;
+    if (s->have_seq)
+        s->stats.driver_drops += sequence_gap(s->last_seq, seq);
     s->have_seq = true;
     s->last_seq = seq;
 }
@@ -304,7 +313,7 @@ static void deliver(v4l2_source *s, const struct v4l2_buffer *b, const rte_frame
     out->capture_ns = capture_time(s, b);
     out->recorded_ns = out->capture_ns;
     out->sequence = b->sequence;
-    out->dropped = s->have_delivered ? b->sequence - s->last_delivered - 1 : 0;
+    out->dropped = s->have_delivered ? sequence_gap(s->last_delivered, b->sequence) : 0;
     s->have_delivered = true;
     s->last_delivered = b->sequence;
     s->stats.frames++;

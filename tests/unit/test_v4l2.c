@@ -866,11 +866,22 @@ static void test_sequence_gaps(void **state)
     assert_int_equal(fr.dropped, 1);
     assert_int_equal(stats_of(&src).driver_drops, 3);
 
-    /* A jump by 2^31 or more (or backwards) is a restart, not a loss; the
-     * 32-bit wrap is counted like any other step. */
+    /* A jump by 2^31 or more (or backwards, or a repeat) is a restart, not
+     * a loss; the 32-bit wrap is counted like any other step. */
+    fake_complete(F, 16, 0, 0); /* vivid repeats one now and then */
+    assert_int_equal(next(&src, &fr, 0), RTE_OK);
+    assert_int_equal(fr.sequence, 16);
+    assert_int_equal(fr.dropped, 0);
     fake_complete(F, 0xFFFFFFFEu, 0, 0);
     assert_int_equal(next(&src, &fr, 0), RTE_OK);
+    assert_int_equal(fr.dropped, 0);
     assert_int_equal(stats_of(&src).driver_drops, 3);
+    fake_complete(F, 0xFFFFFFF0u, 0, 0); /* backwards */
+    assert_int_equal(next(&src, &fr, 0), RTE_OK);
+    assert_int_equal(fr.dropped, 0);
+    fake_complete(F, 0xFFFFFFFEu, 0, 0); /* 0xFFFFFFF1 .. 0xFFFFFFFD lost */
+    assert_int_equal(next(&src, &fr, 0), RTE_OK);
+    assert_int_equal(fr.dropped, 13);
     fake_complete(F, 0xFFFFFFFFu, 0, 0);
     assert_int_equal(next(&src, &fr, 0), RTE_OK);
     fake_complete(F, 0, 0, 0);
@@ -880,7 +891,7 @@ static void test_sequence_gaps(void **state)
     assert_int_equal(next(&src, &fr, 0), RTE_OK);
     assert_int_equal(fr.dropped, 1);
     rte_source_stats s = stats_of(&src);
-    assert_int_equal(s.driver_drops, 4);
+    assert_int_equal(s.driver_drops, 17);
     assert_int_equal(s.skipped, 0);
     rte_source_close(&src);
 }
