@@ -143,7 +143,12 @@ typedef struct rte_hough_circles_params {
     int32_t acc_threshold; /* param2: votes a centre needs (>= 1) */
     int32_t min_radius;    /* pixels; < 0 is taken as 0 */
     int32_t max_radius;    /* pixels; <= 0: max(width, height); <= min_radius: min_radius + 2 */
+    int32_t max_centres;   /* budget: most candidate centres given a radius (the strongest);
+                              0: RTE_HOUGH_CIRCLES_MAX_CENTRES */
 } rte_hough_circles_params;
+
+/* The default budget of candidate centres (max_centres 0). */
+#define RTE_HOUGH_CIRCLES_MAX_CENTRES 512
 
 RTE_API size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
                                               const rte_hough_circles_params *params);
@@ -157,7 +162,10 @@ RTE_API size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_hei
  * gradient lines of the circle's edge pixels meet (least squares, within 2 dp
  * of the accumulator cell) and the radius to their mean distance; circles
  * are sorted by support and any centre closer than min_dist to a stronger
- * one is dropped. */
+ * one is dropped. With more candidate centres than the budget
+ * (params->max_centres), only the strongest (most votes, then raster order)
+ * get a radius, and *truncated is set, as when more than max_circles
+ * qualify. */
 RTE_API rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
                                      const rte_image_s16 *dy,
                                      const rte_hough_circles_params *params, rte_arena *arena,

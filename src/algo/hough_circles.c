@@ -4,7 +4,8 @@
  *    line, both ways, at every radius in [min_radius, max_radius]; the step
  *    is the unit gradient in Q10 (from an integer square root), as OpenCV.
  * 2. Centres: accumulator cells above acc_threshold that are local maxima
- *    (> left and up, >= right and down).
+ *    (> left and up, >= right and down); with more than the budget
+ *    (max_centres), only the strongest go on.
  * 3. Radius: a histogram of the distances (1/16 pixel bins) from the centre
  *    to all edge pixels in range; the densest window of dp pixels, with the
  *    count weighed against the radius as OpenCV does, gives the radius and
@@ -12,12 +13,15 @@
  *    centre refined to where the gradient lines of their edge pixels meet.
  * 4. Sorted by support, then raster order of the centre; a centre closer
  *    than min_dist to a kept one is dropped.
- * Edge pixels are kept in raster order with row starts, so step 3 only
- * visits the square within max_radius of the centre. */
+ * Steps 1 and 2 run together on a ring of accumulator rows (below); step 3
+ * only visits the edge pixels near the centre (blocks of each row). */
 #include "rtedge/hough.h"
+
+#include <string.h>
 
 #include "core/int_math.h"
 #include "hough_internal.h"
+#include "simd/rows.h"
 
 typedef struct circle_geom {
     int32_t acols, arows, min_r, max_r, nbins, window;
@@ -26,7 +30,8 @@ typedef struct circle_geom {
 static int params_ok(const rte_hough_circles_params *p)
 {
     return p && p->dp_q8 >= 256 && p->dp_q8 <= 256 * 64 && p->min_dist >= 1 &&
-           p->acc_threshold >= 1 && p->min_radius <= RTE_MAX_SIDE && p->max_radius <= RTE_MAX_SIDE;
+           p->acc_threshold >= 1 && p->min_radius <= RTE_MAX_SIDE &&
+           p->max_radius <= RTE_MAX_SIDE && p->max_centres >= 0;
 }
 
 static circle_geom geometry(int32_t w, int32_t h, const rte_hough_circles_params *p)
@@ -85,14 +90,56 @@ static inline int32_t radius_bin(const radius_table *t, int64_t d2)
     return k;
 }
 
-static size_t cells_of(const circle_geom *g)
+/* The accumulator is a ring of rows that slides down the image: an edge
+ * pixel's votes reach at most `reach` (Q10 accumulator units) above or
+ * below it, so once the pixels of a row are in, the accumulator rows above
+ * their reach are final; they are searched for centres and their memory is
+ * cleared for the rows below. Row a (-1 and arows are the zero borders)
+ * lives in ring row a & mask, of astep cells with a border cell at each
+ * end; the ring's row count (mask + 1, a power of two) exceeds the rows in
+ * use at any time, so no two of those share a ring row. */
+typedef struct circle_band {
+    int32_t *acc;
+    uint32_t mask, astep;
+    rte_circle_votes_fn votes;
+} circle_band;
+
+/* The largest |step| of a vote, Q10: the unit gradient / dp rounded. */
+static int32_t step_bound(int32_t dp_q8) { return (1 << 18) / dp_q8 + 1; }
+
+/* Rows in the ring: a power of two above the rows in use (those between
+ * the lowest row a pixel row votes in, less the two being searched, and the
+ * highest; or the whole accumulator with its borders). */
+static uint32_t band_rows(const circle_geom *g, int32_t dp_q8)
 {
-    return (size_t)(g->arows + 2) * (size_t)(g->acols + 2);
+    const int64_t reach = (int64_t)g->max_r * step_bound(dp_q8);
+    const int64_t need = ((2 * reach) >> 10) + 5;
+    const int64_t use = need < g->arows + 2 ? need : g->arows + 2;
+    uint32_t rows = 1;
+    while (rows < use)
+        rows *= 2;
+    return rows;
+}
+
+static inline int32_t *band_row(const circle_band *b, int32_t a)
+{
+    return b->acc + ((uint32_t)a & b->mask) * b->astep + 1;
 }
 
 static size_t candidates_of(const circle_geom *g)
 {
     return (size_t)g->arows * (size_t)(g->acols / 2 + 1) + 1;
+}
+
+/* Edge pixels are listed in raster order (packed y << 16 | x) with, for
+ * each row, where every BLOCK-pixel block of columns starts, so the scans
+ * around a centre go straight to the pixels near it. */
+#define BLOCK 16
+static int32_t blocks_of(int32_t w) { return (w + BLOCK - 1) / BLOCK + 1; }
+
+static int32_t budget_of(const rte_hough_circles_params *p)
+{
+    return p->max_centres > 0 ? p->max_centres : RTE_HOUGH_CIRCLES_MAX_CENTRES;
 }
 
 size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
@@ -103,90 +150,182 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
         return 0;
     circle_geom g = geometry(max_width, max_height, params);
     size_t pixels = (size_t)max_width * (size_t)max_height;
-    size_t cand = candidates_of(&g);
-    return rte_arena_piece_size(cells_of(&g) * sizeof(int32_t)) +
+    size_t cand = candidates_of(&g), budget = (size_t)budget_of(params);
+    size_t kept = budget < cand ? budget : cand;
+    return rte_arena_piece_size((size_t)band_rows(&g, params->dp_q8) * (size_t)(g.acols + 2) *
+                                sizeof(int32_t)) +
            rte_arena_piece_size(pixels * sizeof(uint32_t)) +
-           rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t)) +
-           rte_arena_piece_size(cand * sizeof(int32_t)) +
-           rte_arena_piece_size(cand * sizeof(uint64_t)) +
-           rte_arena_piece_size(cand * 3 * sizeof(int32_t)) +
+           rte_arena_piece_size((size_t)max_height * (size_t)blocks_of(max_width) *
+                                sizeof(int32_t)) +
+           rte_arena_piece_size(cand * 2 * sizeof(int32_t)) +
+           rte_arena_piece_size(kept * sizeof(uint64_t)) +
+           rte_arena_piece_size(kept * 3 * sizeof(int32_t)) +
            rte_arena_piece_size((size_t)g.nbins * sizeof(int32_t)) +
            rte_arena_piece_size(((size_t)g.nbins + 1) * sizeof(int64_t)) +
            rte_arena_piece_size(RADIUS_COARSE * sizeof(int32_t));
 }
 
-/* Step 1: votes; also lists the voting pixels (raster order) and row starts. */
-static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
-                          const rte_image_s16 *dy, const circle_geom *g, int32_t dp_q8,
-                          int32_t *acc, uint32_t *pts, int32_t *row_start)
+/* Accumulator coordinate of pixel coordinate v, Q10: v / dp rounded. */
+static inline int32_t acc_q10(int32_t v, int32_t dp_q8)
 {
-    const int32_t w = edges->width, h = edges->height, astep = g->acols + 2;
-    int32_t n = 0;
+    return dp_q8 == 256 ? v << 10 : (int32_t)rte_div_round64((int64_t)v << 18, dp_q8);
+}
+
+/* n + 1 votes from (ux, uy), Q10, in steps of (sx, sy) (two's complement),
+ * all inside the accumulator: step j adds 1 to cell (ux + j sx) >> 10 of
+ * ring row ((uy + j sy) >> 10) & mask, rows astep cells apart. The C
+ * reference of the kernel family in simd/rows.h. */
+void rte_circle_votes_c(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux, uint32_t uy,
+                        uint32_t sx, uint32_t sy, int32_t n)
+{
+    for (int32_t i = n; i >= 0; i--, ux += sx, uy += sy)
+        acc[((uy >> 10) & mask) * astep + (ux >> 10)]++;
+}
+
+rte_circle_votes_fn rte_circle_votes_select(uint32_t features)
+{
+    return RTE_SIMD_PICK(features, rte_circle_votes_c, rte_circle_votes_avx2, rte_circle_votes_c);
+}
+
+/* One pixel's votes along (sx, sy) from (x1, y1) = its position plus
+ * min_r steps, until the line leaves the accumulator or passes max_r. */
+static inline void vote_line(const circle_band *b, const circle_geom *g, int32_t x1, int32_t y1,
+                             int32_t sx, int32_t sy)
+{
+    const int32_t n = g->max_r - g->min_r;
+    const int32_t xe = x1 + n * sx, ye = y1 + n * sy;
+    if ((x1 | y1 | xe | ye) >= 0 && (x1 >> 10) < g->acols && (y1 >> 10) < g->arows &&
+        (xe >> 10) < g->acols && (ye >> 10) < g->arows) {
+        /* both ends inside, so every step between: no tests */
+        b->votes(b->acc + 1, b->mask, b->astep, (uint32_t)x1, (uint32_t)y1, (uint32_t)sx,
+                 (uint32_t)sy, n);
+        return;
+    }
+    for (int32_t i = 0; i <= n; i++, x1 += sx, y1 += sy) {
+        if (x1 < 0 || y1 < 0)
+            break;
+        int32_t x2 = x1 >> 10, y2 = y1 >> 10;
+        if (x2 >= g->acols || y2 >= g->arows)
+            break;
+        band_row(b, y2)[x2]++;
+    }
+}
+
+/* Step 2 on accumulator row a (rows a - 1 .. a + 1 in the ring): local
+ * maxima above the threshold (ties broken towards the right and below),
+ * appended as (a * acols + x, votes). Row a - 1 is not needed after this
+ * and is cleared on the way, for the row that reuses its memory. Four
+ * cells at a time are skipped
+ * when none is above the threshold: with v + 2^31 - 1 - thr in each 32-bit
+ * half of a word (no carry out: votes are below 2^31), bit 31 of a half is
+ * set exactly when v > thr. */
+static int32_t find_centres_row(const circle_band *b, const circle_geom *g, int32_t a, int32_t thr,
+                                int32_t *centres, int32_t ncent)
+{
+    const int32_t *r = band_row(b, a), *down = band_row(b, a + 1);
+    int32_t *up = band_row(b, a - 1);
+    const uint64_t zero = 0;
+    const uint64_t add = (uint64_t)(0x7FFFFFFFu - (uint32_t)thr) * 0x100000001u,
+                   top = 0x8000000080000000u;
+    int32_t x = 0;
+    for (;;) {
+        for (; x + 4 <= g->acols; x += 4) {
+            uint64_t w0, w1;
+            memcpy(&w0, r + x, sizeof w0);
+            memcpy(&w1, r + x + 2, sizeof w1);
+            if (((w0 + add) | (w1 + add)) & top)
+                break;
+            memcpy(up + x, &zero, sizeof zero);
+            memcpy(up + x + 2, &zero, sizeof zero);
+        }
+        const int32_t end = x + 4 < g->acols ? x + 4 : g->acols;
+        if (x >= end)
+            break;
+        for (; x < end; x++) {
+            int32_t v = r[x];
+            if (v > thr && v > r[x - 1] && v >= r[x + 1] && v > up[x] && v >= down[x]) {
+                centres[2 * ncent] = a * g->acols + x;
+                centres[2 * ncent + 1] = v;
+                ncent++;
+            }
+            up[x] = 0;
+        }
+    }
+    return ncent;
+}
+
+/* Steps 1 and 2: every edge pixel's votes, row by row, and the centres of
+ * the accumulator rows that no later pixel reaches. Also lists the voting
+ * pixels and their blocks. Returns the number of centres; *npts gets the
+ * number of pixels. */
+static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
+                          const rte_image_s16 *dy, const circle_geom *g, int32_t dp_q8, int32_t thr,
+                          circle_band *b, uint32_t *pts, int32_t *blk, int32_t *centres,
+                          int32_t *npts)
+{
+    const int32_t w = edges->width, h = edges->height, nblk = blocks_of(w);
+    const int32_t reach = g->max_r * step_bound(dp_q8);
+    int32_t n = 0, ncent = 0, next = 0; /* next: the first row not yet searched */
     for (int32_t y = 0; y < h; y++) {
         const uint8_t *e = rte_u8_row(edges, y);
         const int16_t *gx = rte_s16_row(dx, y), *gy = rte_s16_row(dy, y);
-        row_start[y] = n;
-        for (int32_t x = 0; x < w; x++) {
-            int32_t vx = gx[x], vy = gy[x];
-            if (!e[x] || (vx == 0 && vy == 0))
-                continue;
-            pts[n++] = ((uint32_t)y << 16) | (uint32_t)x;
-            /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
-            uint64_t mag_q10 = rte_isqrt64(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
-            int64_t den = (int64_t)mag_q10 * dp_q8;
-            int32_t sx = (int32_t)rte_div_round64((int64_t)vx * (1 << 28), den);
-            int32_t sy = (int32_t)rte_div_round64((int64_t)vy * (1 << 28), den);
-            int32_t x0 = (int32_t)rte_div_round64((int64_t)x << 18, dp_q8);
-            int32_t y0 = (int32_t)rte_div_round64((int64_t)y << 18, dp_q8);
-            for (int k = 0; k < 2; k++) {
-                int32_t x1 = x0 + g->min_r * sx, y1 = y0 + g->min_r * sy;
-                for (int32_t r = g->min_r; r <= g->max_r; r++, x1 += sx, y1 += sy) {
-                    if (x1 < 0 || y1 < 0)
-                        break;
-                    int32_t x2 = x1 >> 10, y2 = y1 >> 10;
-                    if (x2 >= g->acols || y2 >= g->arows)
-                        break;
-                    acc[(y2 + 1) * astep + x2 + 1]++; /* one cell of border */
-                }
-                sx = -sx;
-                sy = -sy;
+        const int32_t y0 = acc_q10(y, dp_q8);
+        int32_t *rb = blk + (size_t)y * nblk, nb = 0;
+        for (int32_t x8 = 0; x8 < w; x8 += 8) {
+            const int32_t x_end = x8 + 8 < w ? x8 + 8 : w;
+            if (x_end - x8 == 8) {
+                uint64_t word;
+                memcpy(&word, e + x8, sizeof word);
+                if (!word)
+                    continue;
+            }
+            for (int32_t x = x8; x < x_end; x++) {
+                int32_t vx = gx[x], vy = gy[x];
+                if (!e[x] || (vx == 0 && vy == 0))
+                    continue;
+                while (nb * BLOCK <= x)
+                    rb[nb++] = n;
+                pts[n++] = ((uint32_t)y << 16) | (uint32_t)x;
+                /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
+                uint64_t mag_q10 = rte_isqrt64(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
+                int64_t den = (int64_t)mag_q10 * dp_q8;
+                int32_t sx = (int32_t)rte_div_round64((int64_t)vx * (1 << 28), den);
+                int32_t sy = (int32_t)rte_div_round64((int64_t)vy * (1 << 28), den);
+                int32_t x0 = acc_q10(x, dp_q8);
+                vote_line(b, g, x0 + g->min_r * sx, y0 + g->min_r * sy, sx, sy);
+                vote_line(b, g, x0 - g->min_r * sx, y0 - g->min_r * sy, -sx, -sy);
             }
         }
+        while (nb < nblk)
+            rb[nb++] = n;
+        /* Rows the next pixel row cannot reach are final; a row is searched
+         * once the row below it is final too. */
+        int32_t final = g->arows + 1;
+        if (y + 1 < h) {
+            const int32_t lo = acc_q10(y + 1, dp_q8) - reach;
+            final = lo < 0 ? 0 : lo >> 10;
+        }
+        for (; next < g->arows && next + 1 < final; next++)
+            ncent = find_centres_row(b, g, next, thr, centres, ncent);
     }
-    row_start[h] = n;
-    return n;
-}
-
-static inline int32_t lower_bound(const uint32_t *pts, int32_t lo, int32_t hi, uint32_t key)
-{
-    while (lo < hi) {
-        int32_t mid = lo + (hi - lo) / 2;
-        if (pts[mid] < key)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
+    *npts = n;
+    return ncent;
 }
 
 /* The edge pixels of row y within `reach` (1/16 pixel, plus a pixel) of
- * column cx (1/16 pixel): pts[*first .. *end). pts is in raster order, so a
- * binary search in the row finds them; the scans around a centre then visit
- * the square around it, not whole rows. */
-static inline void ring_window(const uint32_t *pts, const int32_t *row_start, int32_t y, int32_t cx,
+ * column cx (1/16 pixel), and a few more in the same blocks (the callers
+ * skip those farther away): pts[*first .. *end). */
+static inline void ring_window(const int32_t *blk, int32_t nblk, int32_t y, int32_t cx,
                                int32_t reach, int32_t *first, int32_t *end)
 {
-    const uint32_t row = (uint32_t)y << 16;
-    int32_t x_lo = ((cx - reach) >> 4) - 1, x_hi = ((cx + reach) >> 4) + 1;
-    x_lo = x_lo < 0 ? 0 : x_lo;
-    x_hi = x_hi > RTE_MAX_SIDE ? RTE_MAX_SIDE : x_hi;
-    *first = lower_bound(pts, row_start[y], row_start[y + 1], row | (uint32_t)x_lo);
-    *end = x_hi < x_lo ? *first
-                       : lower_bound(pts, *first, row_start[y + 1], row | (uint32_t)(x_hi + 1));
+    const int32_t x_lo = ((cx - reach) >> 4) - 1, x_hi = ((cx + reach) >> 4) + 1;
+    const int32_t b_lo = x_lo < 0 ? 0 : x_lo / BLOCK, b_hi = x_hi < 0 ? 0 : x_hi / BLOCK + 1;
+    *first = blk[(size_t)y * nblk + (b_lo < nblk - 1 ? b_lo : nblk - 1)];
+    *end = blk[(size_t)y * nblk + (b_hi < nblk - 1 ? b_hi : nblk - 1)];
 }
 
 /* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. */
-static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, int32_t h,
+static int32_t estimate_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
                                const circle_geom *g, const radius_table *rt, int32_t cx, int32_t cy,
                                int32_t *bins, int32_t *radius_q4)
 {
@@ -199,7 +338,7 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
     int32_t any = 0;
     for (int32_t y = y_lo; y <= y_hi; y++) {
         int32_t i, end;
-        ring_window(pts, row_start, y, cx, g->max_r * 16, &i, &end);
+        ring_window(blk, nblk, y, cx, g->max_r * 16, &i, &end);
         for (; i < end; i++) {
             int64_t ddx = (int64_t)(pts[i] & 0xFFFF) * 16 - cx, ddy = (int64_t)y * 16 - cy;
             int64_t d2 = ddx * ddx + ddy * ddy;
@@ -243,7 +382,8 @@ static int32_t estimate_radius(const uint32_t *pts, const int32_t *row_start, in
  * than 2 dp, too few pixels or a degenerate system keep the grid centre;
  * radii over 1000 px (where the sums would need more than 64 bits) too. */
 /* The point p (packed y << 16 | x) relative to the centre (1/16 pixel) in
- * (*px, *py) and its distance; 1 when that is within `band` of r. */
+ * (*px, *py) and, when d is not NULL, its distance; 1 when that is within
+ * `band` of r. */
 static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t band, int64_t *px,
                           int64_t *py, int64_t *d)
 {
@@ -255,11 +395,12 @@ static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t
     const int64_t d2 = *px * *px + *py * *py, lo = r - band > 0 ? r - band : 0, hi = r + band + 1;
     if (d2 < lo * lo || d2 >= hi * hi)
         return 0;
-    *d = (int64_t)rte_isqrt64((uint64_t)d2);
+    if (d)
+        *d = (int64_t)rte_isqrt64((uint64_t)d2);
     return 1;
 }
 
-static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h,
+static void refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
                    const rte_image_s16 *dx, const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx,
                    int32_t *cy, int32_t *r_q4)
 {
@@ -273,11 +414,11 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h,
     int32_t n = 0;
     for (int32_t y = y_lo; y <= y_hi; y++) {
         int32_t i, end;
-        ring_window(pts, row_start, y, *cx, r + band, &i, &end);
+        ring_window(blk, nblk, y, *cx, r + band, &i, &end);
         for (; i < end; i++) {
             const int32_t x = (int32_t)(pts[i] & 0xFFFF);
-            int64_t px, py, d;
-            if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
+            int64_t px, py;
+            if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, NULL))
                 continue;
             if (x == 0 || y == 0 || x == dx->width - 1 || y == h - 1)
                 continue; /* derivatives there depend on the border rule */
@@ -323,7 +464,7 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h,
     int32_t m = 0;
     for (int32_t y = y_lo; y <= y_hi; y++) {
         int32_t i, end;
-        ring_window(pts, row_start, y, *cx, r + band, &i, &end);
+        ring_window(blk, nblk, y, *cx, r + band, &i, &end);
         for (; i < end; i++) {
             int64_t px, py, d;
             if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
@@ -334,23 +475,6 @@ static void refine(const uint32_t *pts, const int32_t *row_start, int32_t h,
     }
     if (m > 0)
         *r_q4 = (int32_t)rte_div_round64(sum, m);
-}
-
-/* Step 2: centres, in raster order of the accumulator: local maxima
- * above the threshold (ties broken towards the right and below). */
-static int32_t find_centres(const int32_t *acc, const circle_geom *g, int32_t thr, int32_t *centres)
-{
-    const int32_t astep = g->acols + 2;
-    int32_t ncent = 0;
-    for (int32_t y = 1; y < g->arows + 1; y++) {
-        const int32_t *a = acc + (size_t)y * astep;
-        for (int32_t x = 1; x < g->acols + 1; x++) {
-            int32_t v = a[x];
-            if (v > thr && v > a[x - 1] && v >= a[x + 1] && v > a[x - astep] && v >= a[x + astep])
-                centres[ncent++] = y * astep + x;
-        }
-    }
-    return ncent;
 }
 
 /* Step 4: greedy removal, best first, of centres closer than min_dist to
@@ -401,46 +525,64 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     *count = 0;
     *truncated = false;
 
-    const int32_t w = edges->width, h = edges->height;
+    const int32_t w = edges->width, h = edges->height, nblk = blocks_of(w);
     const circle_geom g = geometry(w, h, params);
-    const size_t cells = cells_of(&g), cand_cap = candidates_of(&g);
+    const size_t cand_cap = candidates_of(&g), budget = (size_t)budget_of(params);
+    const size_t kept_cap = budget < cand_cap ? budget : cand_cap;
     const size_t mark = rte_arena_mark(arena);
-    int32_t *acc = rte_arena_alloc(arena, cells * sizeof(int32_t));
+    circle_band band = {NULL, band_rows(&g, params->dp_q8) - 1, (uint32_t)g.acols + 2,
+                        rte_circle_votes_select(rte_cpu_features())};
+    const size_t band_cells = ((size_t)band.mask + 1) * band.astep;
+    band.acc = rte_arena_alloc(arena, band_cells * sizeof(int32_t));
     uint32_t *pts = rte_arena_alloc(arena, (size_t)w * h * sizeof(uint32_t));
-    int32_t *row_start = rte_arena_alloc(arena, ((size_t)h + 1) * sizeof(int32_t));
-    int32_t *centres = rte_arena_alloc(arena, cand_cap * sizeof(int32_t));
-    uint64_t *keys = rte_arena_alloc(arena, cand_cap * sizeof(uint64_t));
-    int32_t *est = rte_arena_alloc(arena, cand_cap * 3 * sizeof(int32_t));
+    int32_t *blk = rte_arena_alloc(arena, (size_t)h * (size_t)nblk * sizeof(int32_t));
+    int32_t *centres = rte_arena_alloc(arena, cand_cap * 2 * sizeof(int32_t));
+    uint64_t *keys = rte_arena_alloc(arena, kept_cap * sizeof(uint64_t));
+    int32_t *est = rte_arena_alloc(arena, kept_cap * 3 * sizeof(int32_t));
     int32_t *bins = rte_arena_alloc(arena, (size_t)g.nbins * sizeof(int32_t));
     radius_table rt = {rte_arena_alloc(arena, ((size_t)g.nbins + 1) * sizeof(int64_t)),
                        rte_arena_alloc(arena, RADIUS_COARSE * sizeof(int32_t)), 0, 0};
-    if (!acc || !pts || !row_start || !centres || !keys || !est || !bins || !rt.sq || !rt.coarse) {
+    if (!band.acc || !pts || !blk || !centres || !keys || !est || !bins || !rt.sq || !rt.coarse) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
-    for (size_t i = 0; i < cells; i++)
-        acc[i] = 0;
-    if (accumulate(edges, dx, dy, &g, params->dp_q8, acc, pts, row_start) == 0) {
+    memset(band.acc, 0, band_cells * sizeof(int32_t));
+    const int32_t thr = params->acc_threshold;
+    int32_t npts = 0;
+    const int32_t ncent =
+        accumulate(edges, dx, dy, &g, params->dp_q8, thr, &band, pts, blk, centres, &npts);
+    if (npts == 0) {
         rte_arena_reset(arena, mark);
         return RTE_OK;
     }
     radius_table_init(&rt, &g);
 
-    const int32_t astep = g.acols + 2, thr = params->acc_threshold;
-    const int32_t ncent = find_centres(acc, &g, thr, centres);
+    /* The budget: with more centres than it allows, only the strongest
+     * (most votes, then raster order) get a radius. */
+    rte_hough_topk top = {keys, (int32_t)kept_cap, 0, 0};
+    uint64_t cut = 0;
+    if ((size_t)ncent > kept_cap) {
+        for (int32_t i = 0; i < ncent; i++)
+            rte_hough_topk_push(&top, rte_hough_key(centres[2 * i + 1], (uint32_t)i));
+        cut = top.keys[0];
+        *truncated = true;
+        top.size = 0;
+        top.seen = 0;
+    }
 
     /* Step 3: radius and support of every centre. */
-    rte_hough_topk top = {keys, (int32_t)cand_cap, 0, 0};
     int32_t nest = 0;
     for (int32_t i = 0; i < ncent; i++) {
-        int32_t ay = centres[i] / astep - 1, ax = centres[i] % astep - 1;
+        if (cut && rte_hough_key(centres[2 * i + 1], (uint32_t)i) < cut)
+            continue;
+        int32_t ay = centres[2 * i] / g.acols, ax = centres[2 * i] % g.acols;
         /* (a + 0.5) * dp in 1/16 pixel */
         int32_t cx = (int32_t)(((int64_t)(2 * ax + 1) * params->dp_q8 + 16) / 32);
         int32_t cy = (int32_t)(((int64_t)(2 * ay + 1) * params->dp_q8 + 16) / 32);
         int32_t r = 0;
-        int32_t support = estimate_radius(pts, row_start, h, &g, &rt, cx, cy, bins, &r);
+        int32_t support = estimate_radius(pts, blk, nblk, h, &g, &rt, cx, cy, bins, &r);
         if (support > thr) {
-            refine(pts, row_start, h, dx, dy, params->dp_q8, &cx, &cy, &r);
+            refine(pts, blk, nblk, h, dx, dy, params->dp_q8, &cx, &cy, &r);
             est[3 * nest] = cx;
             est[3 * nest + 1] = cy;
             est[3 * nest + 2] = r;

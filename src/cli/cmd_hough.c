@@ -28,7 +28,7 @@ typedef struct hough_run {
     double rho, theta, min_theta, max_theta;
     int threshold, min_length, max_gap, seed;
     double dp;
-    int min_dist, votes, min_radius, max_radius;
+    int min_dist, votes, min_radius, max_radius, max_centres;
 } hough_run;
 
 /* Everything per run: the edge map (and for circles the gradients), then
@@ -213,8 +213,12 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
         return rc < 0 ? CLI_EXIT_OK : rc;
     if ((rc = cli_canny_prepare(self->name, &o->canny)) != CLI_EXIT_OK)
         return rc;
-    rte_hough_circles_params cp = {(int32_t)lround(o->dp * 256), o->min_dist, o->votes,
-                                   o->min_radius, o->max_radius};
+    rte_hough_circles_params cp = {(int32_t)lround(o->dp * 256),
+                                   o->min_dist,
+                                   o->votes,
+                                   o->min_radius,
+                                   o->max_radius,
+                                   o->max_centres};
 
     cli_image in;
     if ((rc = cli_load(self->name, path[0], &in)) != CLI_EXIT_OK)
@@ -346,6 +350,10 @@ int cmd_circles(const cli_entry *self, int argc, char **argv)
         {"min-radius", CLI_INT, &o.min_radius, 0, 65535, NULL, "smallest radius, pixels", NULL},
         {"max-radius", CLI_INT, &o.max_radius, 0, 65535, NULL,
          "largest radius, pixels; 0 = image size", NULL},
+        {"max-centres", CLI_INT, &o.max_centres, 0, 1 << 30, NULL,
+         "budget: most candidate centres given a radius, the strongest (then truncated: true); "
+         "0 = RTE_HOUGH_CIRCLES_MAX_CENTRES",
+         NULL},
         {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL,
          "most circles reported (then truncated: true)", NULL}};
     return hough_main(

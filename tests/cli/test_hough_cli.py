@@ -143,6 +143,12 @@ def main():
         check(len(got) == 12 and matched == 12 and len(ocv) == 12, "smarties.png: not the 12 sweets")
         img = cv2.imread(ov)
         check(img is not None and img.shape[:2] == g.shape, "circles overlay missing or of the wrong size")
+        check(a["truncated"] is False, "smarties.png: truncated at the default budget")
+        # a budget of 6 candidate centres: at most 6 circles, all of the 12, truncated
+        b = json_of("circles", smarties, "--blur", "5", "--min-dist", "20", "--votes", "30",
+                    "--min-radius", "10", "--max-radius", "40", "--max-centres", "6")
+        check(b is not None and b["truncated"] is True and 0 < len(b["circles"]) <= 6 and
+              all(c in got for c in b["circles"]), "smarties.png --max-centres 6: not a truncated subset")
 
     # overlays, truncation, errors
     ov = os.path.join(tmp, "segments.png")

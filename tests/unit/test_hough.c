@@ -369,7 +369,7 @@ static void test_circle_disc(void **state)
     rte_image_u8 e;
     rte_image_s16 gx, gy;
     disc_inputs(w, h, cx, cy, r, &e, &gx, &gy);
-    rte_hough_circles_params p = {256, 10, 8, 5, 30};
+    rte_hough_circles_params p = {256, 10, 8, 5, 30, 0};
     rte_hough_circle c[4];
     bool tr = true;
     assert_int_equal(circles_of(&e, &gx, &gy, &p, c, 4, &tr), 1);
@@ -411,7 +411,7 @@ static void test_circle_on_border(void **state)
         rte_image_u8 e;
         rte_image_s16 gx, gy;
         disc_inputs(w, h, centres[k][0], centres[k][1], r, &e, &gx, &gy);
-        rte_hough_circles_params p = {256, 10, 6, 5, 20};
+        rte_hough_circles_params p = {256, 10, 6, 5, 20, 0};
         rte_hough_circle c[4];
         bool tr = true;
         assert_true(circles_of(&e, &gx, &gy, &p, c, 4, &tr) >= 1);
@@ -423,6 +423,80 @@ static void test_circle_on_border(void **state)
         test_free(gx.buf);
         test_free(gy.buf);
     }
+}
+
+/* Discs of radius 9 on a 96 x 64 image (edges and 3x3 Sobel derivatives
+ * as disc_inputs makes them); the edges of the last `halves` discs are
+ * kept on their upper half only, so their centres get fewer votes. */
+static void discs_inputs(const int32_t (*c)[2], int32_t nd, int32_t halves, rte_image_u8 *e,
+                         rte_image_s16 *gx, rte_image_s16 *gy)
+{
+    enum { W = 96, H = 64, R = 9 };
+    static uint8_t img[H][W];
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++) {
+            img[y][x] = 40;
+            for (int32_t k = 0; k < nd; k++)
+                if ((x - c[k][0]) * (x - c[k][0]) + (y - c[k][1]) * (y - c[k][1]) <= R * R)
+                    img[y][x] = 200;
+        }
+    *e = unit_image_u8(W, H, 3, 0);
+    *gx = unit_image_s16(W, H, 2);
+    *gy = unit_image_s16(W, H, 2);
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++) {
+            int32_t xm = x > 0 ? x - 1 : 0, xp = x < W - 1 ? x + 1 : x, ym = y > 0 ? y - 1 : 0,
+                    yp = y < H - 1 ? y + 1 : y;
+            gx->buf[(size_t)y * gx->stride + x] =
+                (int16_t)(img[ym][xp] + 2 * img[y][xp] + img[yp][xp] - img[ym][xm] -
+                          2 * img[y][xm] - img[yp][xm]);
+            gy->buf[(size_t)y * gy->stride + x] =
+                (int16_t)(img[yp][xm] + 2 * img[yp][x] + img[yp][xp] - img[ym][xm] -
+                          2 * img[ym][x] - img[ym][xp]);
+            int v = img[y][x];
+            int border = img[ym][x] != v || img[yp][x] != v || img[y][xm] != v || img[y][xp] != v;
+            for (int32_t k = nd - halves; k < nd; k++)
+                if (abs(x - c[k][0]) <= R + 1 && abs(y - c[k][1]) <= R + 1 && y > c[k][1])
+                    border = 0;
+            e->buf[(size_t)y * e->stride + x] = border ? 255 : 0;
+        }
+}
+
+/* The budget of candidate centres: a map under it gives the same circles
+ * as an unlimited one, not truncated; a budget of six keeps the centres of
+ * the two whole discs (each has a few neighbouring accumulator maxima, the
+ * strongest of all) and so the two strongest circles, drops the two half
+ * discs and sets truncated. */
+static void test_circle_budget(void **state)
+{
+    (void)state;
+    const int32_t c[4][2] = {{16, 16}, {72, 44}, {44, 16}, {20, 46}};
+    rte_image_u8 e;
+    rte_image_s16 gx, gy;
+    discs_inputs(c, 4, 2, &e, &gx, &gy);
+    rte_hough_circles_params p = {256, 10, 6, 5, 20, 0};
+    rte_hough_circle all[16], some[16];
+    bool tr = true;
+    const int32_t n = circles_of(&e, &gx, &gy, &p, all, 16, &tr);
+    assert_false(tr);
+    assert_int_equal(n, 4);
+    for (int32_t k = 0; k < 4; k++) /* whole discs first, by support */
+        assert_true(abs(all[k].x_q4 - c[k][0] * 16) <= 24 && abs(all[k].y_q4 - c[k][1] * 16) <= 24);
+    p.max_centres = 1 << 20; /* under the budget: unchanged */
+    tr = true;
+    assert_int_equal(circles_of(&e, &gx, &gy, &p, some, 16, &tr), n);
+    assert_false(tr);
+    assert_memory_equal(some, all, (size_t)n * sizeof all[0]);
+    p.max_centres = 6;
+    assert_int_equal(circles_of(&e, &gx, &gy, &p, some, 16, &tr), 2);
+    assert_true(tr);
+    assert_memory_equal(some, all, 2 * sizeof all[0]);
+    p.max_centres = -1;
+    assert_int_equal(rte_hough_circles_scratch_size(96, 64, &p), 0);
+    unit_assert_padding_u8(&e);
+    test_free(e.buf);
+    test_free(gx.buf);
+    test_free(gy.buf);
 }
 
 /* The worst case at the configured maximum size (1920x1080, the largest
@@ -470,7 +544,7 @@ static void test_maximum_size_all_255(void **state)
             gx.buf[(size_t)y * gx.stride + x] = (int16_t)(vx ? vx * 16 : 1);
             gy.buf[(size_t)y * gy.stride + x] = (int16_t)(vy * 16);
         }
-    rte_hough_circles_params cp = {256, 20, 150, 35, 40};
+    rte_hough_circles_params cp = {256, 20, 150, 35, 40, 0};
     bytes = rte_hough_circles_scratch_size(w, h, &cp);
     rte_arena_init(&a, test_malloc(bytes), bytes);
     rte_hough_circle c[4];
@@ -538,11 +612,17 @@ static void test_argument_errors(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_config_errors),        cmocka_unit_test(test_lines_row_and_column),
-        cmocka_unit_test(test_sizes_and_truncation), cmocka_unit_test(test_segments_gap_and_length),
-        cmocka_unit_test(test_segments_seed),        cmocka_unit_test(test_circle_disc),
-        cmocka_unit_test(test_circle_on_border),     cmocka_unit_test(test_maximum_size_all_255),
-        cmocka_unit_test(test_argument_errors),      cmocka_unit_test(test_lines_match_plain_vote),
+        cmocka_unit_test(test_config_errors),
+        cmocka_unit_test(test_lines_row_and_column),
+        cmocka_unit_test(test_sizes_and_truncation),
+        cmocka_unit_test(test_segments_gap_and_length),
+        cmocka_unit_test(test_segments_seed),
+        cmocka_unit_test(test_circle_disc),
+        cmocka_unit_test(test_circle_on_border),
+        cmocka_unit_test(test_maximum_size_all_255),
+        cmocka_unit_test(test_circle_budget),
+        cmocka_unit_test(test_argument_errors),
+        cmocka_unit_test(test_lines_match_plain_vote),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

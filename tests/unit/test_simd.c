@@ -799,6 +799,57 @@ static void hough_line_rows(const void *variant, uint32_t *seed)
 
 DEFINE_PICK(hough_line_rows, hough_line_rows_variants, hough_line_rows_variant, rte_hough_line_rows,
             rte_hough_line_rows_select(features), v->rows.bins == p.bins && v->rows.sum == p.sum)
+/* Hough circle votes: each variant against the C reference on random
+ * steps (any direction, up to a pixel), run lengths that end anywhere in a
+ * vector and beyond a chunk, ring masks, from a start whose whole run stays
+ * inside the accumulator. */
+typedef struct circle_votes_variant {
+    variant_head head;
+    rte_circle_votes_fn votes;
+} circle_votes_variant;
+
+static const circle_votes_variant circle_votes_variants[] = {
+#ifdef RTE_SIMD_X86
+    {{"circle_votes_avx2", RTE_CPU_X86_AVX2}, rte_circle_votes_avx2},
+#endif
+    {{"circle_votes_c", 0}, rte_circle_votes_c},
+};
+
+static void circle_votes(const void *variant, uint32_t *seed)
+{
+    const circle_votes_variant *v = variant;
+    enum { ROWS = 256, STEP = 300 };
+    static int32_t want[ROWS * STEP], got[ROWS * STEP];
+    for (int k = 0; k < 400; k++) {
+        const int32_t n = (int32_t)(unit_rand(seed) % 140);
+        const int32_t sx = (int32_t)(unit_rand(seed) % 2049) - 1024,
+                      sy = (int32_t)(unit_rand(seed) % 2049) - 1024;
+        const uint32_t mask = k % 2 ? ROWS - 1 : 127;
+        /* columns 0 .. 290 and rows 0 .. mask at both ends of the run */
+        const int32_t span_x = n * abs(sx), span_y = n * abs(sy);
+        if (span_x > 290 * 1024 || span_y > (int32_t)mask * 1024)
+            continue;
+        const uint32_t ux =
+                           (uint32_t)((sx < 0 ? span_x : 0) +
+                                      (int32_t)(unit_rand(seed) % (uint32_t)(291 * 1024 - span_x))),
+                       uy = (uint32_t)((sy < 0 ? span_y : 0) +
+                                       (int32_t)(unit_rand(seed) % (uint32_t)(1024 + span_y)) +
+                                       (int32_t)(unit_rand(seed) % 4) * (int32_t)(mask + 1) * 1024);
+        memset(want, 0, sizeof want);
+        memset(got, 0, sizeof got);
+        rte_circle_votes_c(want, mask, STEP, ux, uy, (uint32_t)sx, (uint32_t)sy, n);
+        v->votes(got, mask, STEP, ux, uy, (uint32_t)sx, (uint32_t)sy, n);
+        if (memcmp(want, got, sizeof want) != 0)
+            fail_msg("%s n %d step (%d, %d) differs", v->head.name, (int)n, (int)sx, (int)sy);
+        int64_t total = 0;
+        for (int32_t i = 0; i < ROWS * STEP; i++)
+            total += got[i];
+        assert_int_equal(total, n + 1);
+    }
+}
+
+DEFINE_PICK(circle_votes, circle_votes_variants, circle_votes_variant, rte_circle_votes_fn,
+            rte_circle_votes_select(features), v->votes == p)
 
 /* A kernel family: its variants (structs that start with a variant_head),
  * which of them its *_select picks for a mask, and the comparison of one
@@ -828,6 +879,7 @@ static const kernel_family families[] = {
     FAMILY(grad, grad_variants, grad_rows, 0x6AD1u),
     FAMILY(hough_bins, hough_bins_variants, hough_bins, 0x4B0Fu),
     FAMILY(hough_line_rows, hough_line_rows_variants, hough_line_rows, 0x11E5u),
+    FAMILY(circle_votes, circle_votes_variants, circle_votes, 0xC1C1Eu),
 };
 
 enum { FAMILY_COUNT = COUNT_OF(families), MASK_COUNT = COUNT_OF(feature_masks) };
@@ -918,6 +970,7 @@ static void force_c_selects_the_reference(void **state)
         assert_true(rte_threshold_row_select(hw) == rte_threshold_row_avx2);
         assert_true(rte_hough_bins_select(hw) == rte_hough_bins_avx2);
         assert_true(rte_hough_line_rows_select(hw).bins == rte_hough_point_bins_avx2);
+        assert_true(rte_circle_votes_select(hw) == rte_circle_votes_avx2);
     }
 #endif
 #ifdef RTE_SIMD_NEON
@@ -940,6 +993,7 @@ static void force_c_selects_the_reference(void **state)
     assert_true(rte_hough_bins_select(rte_cpu_features()) == rte_hough_bins_c);
     rte_hough_line_rows hl = rte_hough_line_rows_select(rte_cpu_features());
     assert_true(hl.bins == rte_hough_point_bins_c && hl.sum == rte_hough_sum_copies_c);
+    assert_true(rte_circle_votes_select(rte_cpu_features()) == rte_circle_votes_c);
     assert_true(rte_lane_cue_row_select(rte_cpu_features()) == rte_lane_cue_row_c);
     rte_grad_rows gr = rte_grad_rows_select(rte_cpu_features());
     assert_true(gr.column == rte_grad_column_c && gr.row == rte_grad_row_c);

@@ -190,6 +190,14 @@ typedef struct rte_hough_line_rows {
     void rte_hough_sum_copies_##isa(int32_t *cells, uint16_t *copies, int32_t cstep, int32_t n);
 RTE_HOUGH_LINE_ROWS_DECLARE(c)
 rte_hough_line_rows rte_hough_line_rows_select(uint32_t features);
+/* Hough circles (src/algo/hough_circles.c; the AVX2 variant is its own
+ * loop, simd/hough_circles_x86.c): the n + 1 votes of an edge pixel along
+ * one direction, all inside the accumulator. */
+typedef void (*rte_circle_votes_fn)(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux,
+                                    uint32_t uy, uint32_t sx, uint32_t sy, int32_t n);
+void rte_circle_votes_c(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux, uint32_t uy,
+                        uint32_t sx, uint32_t sy, int32_t n);
+rte_circle_votes_fn rte_circle_votes_select(uint32_t features);
 
 #ifdef RTE_SIMD_X86
 RTE_CANNY_ROWS_DECLARE(avx2)
@@ -213,6 +221,8 @@ void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t
                          int32_t y, int32_t bias, int32_t shift, const int32_t *row_base,
                          int32_t *idx);
 RTE_HOUGH_LINE_ROWS_DECLARE(avx2)
+void rte_circle_votes_avx2(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux, uint32_t uy,
+                           uint32_t sx, uint32_t sy, int32_t n);
 #endif
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
