@@ -46,8 +46,8 @@ static size_t estimate_pieces(int32_t w, int32_t h, int32_t cell)
     return rte_arena_piece_size(gw * gh) * 2 +                       /* medians, table flags */
            rte_arena_piece_size(gw * gh * sizeof(int32_t)) * 3 +     /* queue, regions, grid */
            rte_arena_piece_size(gw * HIST_BINS * sizeof(uint16_t)) + /* a row of histograms */
-           rte_arena_piece_size((size_t)w * 2 * sizeof(int32_t)) +   /* column cells, weights */
-           rte_arena_piece_size(gw * 2 * sizeof(int32_t));           /* a grid row, segment ends */
+           rte_arena_piece_size((size_t)w * 6 *
+                                sizeof(int32_t)); /* columns' cells, weights, terms */
 }
 
 size_t rte_background_scratch_size(int32_t max_width, int32_t max_height, int32_t min_cell)
@@ -236,6 +236,38 @@ static void interpolation_point(int32_t p, int32_t cell, int32_t n, int32_t *i, 
     }
 }
 
+/* The bilinear value at column x and row weight fy (Q4 + 2 x Q8) is
+ * p[x] + q[x] * fy, with the terms of the cell rows g0 (above) and g1
+ * (below): the same integer as interpolating the cell rows to the row
+ * first (g0 * (2^8 - fy) + g1 * fy), then along it between cells i and i1
+ * with weight fx, expanded. Every term stays below 2^31. */
+static void column_terms(const int32_t *g0, const int32_t *g1, const int32_t *col,
+                         const int32_t *col_frac, int32_t w, int32_t gw, int32_t *restrict p,
+                         int32_t *restrict q)
+{
+    const int32_t round = 1 << (GRID_SHIFT + 2 * WEIGHT_SHIFT - 1);
+    for (int32_t x = 0; x < w; x++) {
+        const int32_t i = col[x], i1 = i + 1 < gw ? i + 1 : i, fx = col_frac[x];
+        p[x] =
+            g0[i] * (1 << 2 * WEIGHT_SHIFT) + round + (g0[i1] - g0[i]) * (1 << WEIGHT_SHIFT) * fx;
+        q[x] = (g1[i] - g0[i]) * (1 << WEIGHT_SHIFT) + ((g1[i1] - g0[i1]) - (g1[i] - g0[i])) * fx;
+    }
+}
+
+/* out[x] = the row's values (Q20) rounded down to grey levels. */
+static void store_row(const int32_t *restrict v, uint8_t *restrict out, int32_t w)
+{
+    for (int32_t x = 0; x < w; x++)
+        out[x] = (uint8_t)(v[x] >> (GRID_SHIFT + 2 * WEIGHT_SHIFT));
+}
+
+/* v[x] += add[x]: the next row's values (vectorised: no multiply). */
+static void add_row(int32_t *restrict v, const int32_t *restrict add, int32_t w)
+{
+    for (int32_t x = 0; x < w; x++)
+        v[x] += add[x];
+}
+
 rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *background,
                                       const rte_background_params *params, rte_arena *arena)
 {
@@ -257,10 +289,8 @@ rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *bac
     int32_t *region = rte_arena_alloc(arena, (size_t)gw * gh * sizeof *region);
     int32_t *grid = rte_arena_alloc(arena, (size_t)gw * gh * sizeof *grid);
     uint16_t *hist = rte_arena_alloc(arena, (size_t)gw * HIST_BINS * sizeof *hist);
-    int32_t *col = rte_arena_alloc(arena, (size_t)w * 2 * sizeof *col);
-    int32_t *gridrow = rte_arena_alloc(arena, (size_t)gw * 2 * sizeof *gridrow);
-    int32_t *seg_end = gridrow + gw; /* the columns interpolated from cell i end here */
-    if (!med || !table || !queue || !region || !grid || !hist || !col || !gridrow) {
+    int32_t *col = rte_arena_alloc(arena, (size_t)w * 6 * sizeof *col);
+    if (!med || !table || !queue || !region || !grid || !hist || !col) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
@@ -268,29 +298,36 @@ rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *bac
     table_cells(med, gw, gh, params->step, table, region, queue);
     table_estimates(med, table, gw, gh, params->radius, params->tolerance, grid);
 
-    int32_t *col_frac = col + w;
-    for (int32_t x = 0; x < w; x++) {
+    /* Per pixel, the value is p + q * fy between two cell rows (column_terms).
+     * fy grows by 2^8 / cell or one more from row to row: v += q * step
+     * is then two adds per pixel (qs = q * (2^8 / cell)); any other change
+     * of fy (none on frames this code knows of) is a multiply. */
+    int32_t *col_frac = col + w, *p = col + 2 * w, *q = col + 3 * w, *qs = col + 4 * w,
+            *v = col + 5 * w;
+    for (int32_t x = 0; x < w; x++)
         interpolation_point(x, cell, gw, &col[x], &col_frac[x]);
-        seg_end[col[x]] = x + 1; /* col[] never decreases */
-    }
-    const int32_t round = 1 << (GRID_SHIFT + 2 * WEIGHT_SHIFT - 1);
+    const int32_t step = (1 << WEIGHT_SHIFT) / cell;
+    int32_t row_j = -1, row_fy = 0;
     for (int32_t y = 0; y < h; y++) {
         int32_t j, fy;
         interpolation_point(y, cell, gh, &j, &fy);
-        const int32_t *g0 = grid + j * gw, *g1 = grid + (j + 1 < gh ? j + 1 : j) * gw;
-        for (int32_t i = 0; i < gw; i++) /* Q4 + Q8 */
-            gridrow[i] = g0[i] * ((1 << WEIGHT_SHIFT) - fy) + g1[i] * fy;
-        /* between two cell centres the value is base + delta * frac */
-        uint8_t *out = rte_u8_row(background, y);
-        for (int32_t x = 0; x < w;) {
-            const int32_t i = col[x], i1 = i + 1 < gw ? i + 1 : i;
-            const int32_t base = gridrow[i] * (1 << WEIGHT_SHIFT) + round;
-            const int32_t delta = gridrow[i1] - gridrow[i];
-            const int32_t end = seg_end[i];
-            /* at most 255 * 2^4 * 2^8 * 2^8 < 2^31 */
-            for (; x < end; x++)
-                out[x] = (uint8_t)((base + delta * col_frac[x]) >> (GRID_SHIFT + 2 * WEIGHT_SHIFT));
+        if (j != row_j) {
+            const int32_t *g0 = grid + j * gw, *g1 = grid + (j + 1 < gh ? j + 1 : j) * gw;
+            column_terms(g0, g1, col, col_frac, w, gw, p, q);
+            for (int32_t x = 0; x < w; x++)
+                qs[x] = q[x] * step;
         }
+        if (j != row_j || (fy != row_fy && fy - row_fy != step && fy - row_fy != step + 1)) {
+            for (int32_t x = 0; x < w; x++)
+                v[x] = p[x] + q[x] * fy;
+        } else if (fy != row_fy) {
+            add_row(v, qs, w);
+            if (fy - row_fy == step + 1)
+                add_row(v, q, w);
+        }
+        row_j = j;
+        row_fy = fy;
+        store_row(v, rte_u8_row(background, y), w);
     }
     rte_arena_reset(arena, mark);
     return RTE_OK;
@@ -307,6 +344,7 @@ typedef struct run_table {
     int64_t *sum;
     uint8_t *flags;
     int32_t *row_start; /* runs of row y: row_start[y] .. row_start[y + 1] - 1 */
+    uint8_t *row;       /* a row's classes, then its floors (paint_regions) */
     int32_t capacity;
 } run_table;
 
@@ -326,7 +364,8 @@ size_t rte_background_threshold_scratch_size(int32_t max_width, int32_t max_heig
     return rte_arena_piece_size(runs * sizeof(int32_t)) * 4 + /* x0, x1, parent, count */
            rte_arena_piece_size(runs * sizeof(int64_t)) +     /* sum */
            rte_arena_piece_size(runs) +                       /* flags */
-           rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t));
+           rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t)) +
+           rte_arena_piece_size((size_t)max_width); /* row */
 }
 
 static int32_t find_root(int32_t *parent, int32_t a)
@@ -349,44 +388,105 @@ static void unite(int32_t *parent, int32_t a, int32_t b)
         parent[a] = b;
 }
 
-/* Whether any of the 8 bytes of v exceeds n (n <= 127). */
-static inline bool any_byte_above(uint64_t v, uint32_t n)
+/* A pixel's class for the labelling (classify_row): its side where |d| >
+ * low and the side is looked for, else 0; the side again two bits up where
+ * |d| > high. */
+enum { CLASS_SIDE = 3, CLASS_STRONG = 12 };
+
+/* c[x] = the class of pixel x (a: |d|; the side is s > b, bright_class /
+ * dark_class 1 / 2 or 0 where not looked for): a loop the compiler
+ * vectorises. */
+static void classify_row(const uint8_t *restrict a, const uint8_t *restrict s,
+                         const uint8_t *restrict b, uint8_t *restrict c, int32_t w, uint8_t low,
+                         uint8_t high, uint8_t bright_class, uint8_t dark_class)
 {
-    const uint64_t ones = 0x0101010101010101u;
-    return (((v + ones * (127 - n)) | v) & ones * 0x80) != 0;
+    for (int32_t x = 0; x < w; x++) {
+        const uint8_t side = s[x] > b[x] ? bright_class : dark_class;
+        c[x] = (uint8_t)((a[x] > low ? side : 0) | (a[x] > high ? side << 2 : 0));
+    }
+}
+
+/* The first x1 >= x with c[x1] != 0, or w: eight bytes at a time. */
+static inline int32_t skip_zeros(const uint8_t *c, int32_t x, int32_t w)
+{
+    for (; x + 8 <= w; x += 8) {
+        uint64_t v;
+        memcpy(&v, c + x, sizeof v);
+        if (v) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+            return x + (__builtin_ctzll(v) >> 3);
+#else
+            break;
+#endif
+        }
+    }
+    while (x < w && !c[x])
+        x++;
+    return x;
+}
+
+/* The end of the run of side `side` that starts at x (the first x1 > x
+ * whose class has another side, or w); *classes gets the OR of the run's
+ * classes. Eight bytes at a time. */
+static inline int32_t run_end(const uint8_t *c, int32_t x, int32_t w, uint32_t side,
+                              uint32_t *classes)
+{
+    const uint64_t ones = 0x0101010101010101u, want = ones * side;
+    uint64_t seen = 0;
+    for (; x + 8 <= w; x += 8) {
+        uint64_t v;
+        memcpy(&v, c + x, sizeof v);
+        const uint64_t other = (v ^ want) & ones * CLASS_SIDE;
+        if (other) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+            const int32_t k = __builtin_ctzll(other) >> 3;
+            seen |= v & ((UINT64_C(1) << (8 * k)) - 1); /* k < 8 */
+            x += k;
+            seen |= seen >> 32;
+            seen |= seen >> 16;
+            seen |= seen >> 8;
+            *classes = (uint32_t)seen & 0xFF;
+            return x;
+#else
+            break;
+#endif
+        }
+        seen |= v;
+    }
+    seen |= seen >> 32;
+    seen |= seen >> 16;
+    seen |= seen >> 8;
+    uint32_t acc = (uint32_t)seen & 0xFF;
+    for (; x < w && (c[x] & CLASS_SIDE) == side; x++)
+        acc |= c[x];
+    *classes = acc;
+    return x;
+}
+
+/* The sum of a[0..n): a loop the compiler vectorises. */
+static inline int64_t sum_bytes(const uint8_t *a, int32_t n)
+{
+    uint32_t sum = 0; /* n <= 2^23 (RTE_MAX_SIDE) */
+    for (int32_t k = 0; k < n; k++)
+        sum += a[k];
+    return sum;
 }
 
 /* One row's runs, appended to the table; unites them with the touching runs
- * of the previous row. a: |d| of the row; the side is s > b. Returns the
- * pixels left out for want of room. */
-static int64_t label_row(run_table *t, int32_t y, const uint8_t *a, const uint8_t *s,
-                         const uint8_t *b, int32_t w, int32_t low, int32_t high, bool bright,
-                         bool dark, int32_t *n_runs)
+ * of the previous row. a: |d| of the row; c: the classes of its pixels
+ * (classify_row). A run is a maximal stretch of pixels of one side (class
+ * 1 or 2). Returns the pixels left out for want of room. */
+static int64_t label_row(run_table *t, int32_t y, const uint8_t *a, const uint8_t *c, int32_t w,
+                         int32_t *n_runs)
 {
     int64_t dropped = 0;
     int32_t n = *n_runs;
     t->row_start[y] = n;
-    for (int32_t x = 0; x < w;) {
-        if (x + 8 <= w) { /* the table: eight pixels at a time */
-            uint64_t v;
-            memcpy(&v, a + x, sizeof v);
-            if (!any_byte_above(v, (uint32_t)low)) {
-                x += 8;
-                continue;
-            }
-        }
-        const bool up = s[x] > b[x];
-        if (a[x] <= low || !(up ? bright : dark)) {
-            x++;
-            continue;
-        }
+    for (int32_t x = skip_zeros(c, 0, w); x < w; x = skip_zeros(c, x, w)) {
         const int32_t x0 = x;
-        int64_t sum = 0;
-        int32_t peak = 0;
-        for (; x < w && a[x] > low && (s[x] > b[x]) == up; x++) {
-            sum += a[x];
-            peak = a[x] > peak ? a[x] : peak;
-        }
+        const uint32_t side = c[x] & CLASS_SIDE;
+        uint32_t classes;
+        x = run_end(c, x, w, side, &classes);
         if (n == t->capacity) {
             dropped += x - x0;
             continue;
@@ -395,8 +495,9 @@ static int64_t label_row(run_table *t, int32_t y, const uint8_t *a, const uint8_
         t->x1[n] = x - 1;
         t->parent[n] = n;
         t->count[n] = x - x0;
-        t->sum[n] = sum;
-        t->flags[n] = (uint8_t)((peak > high ? REGION_STRONG : 0) | (up ? 0 : REGION_DARK));
+        t->sum[n] = sum_bytes(a + x0, x - x0);
+        t->flags[n] = (uint8_t)(((classes & CLASS_STRONG) ? REGION_STRONG : 0) |
+                                (side == 1 ? 0 : REGION_DARK));
         n++;
     }
     t->row_start[y + 1] = n;
@@ -441,28 +542,33 @@ static bool casts_shadow_on(const run_table *t, int32_t y, int32_t h, int32_t ga
     return false;
 }
 
+/* a[x] = 255 where a[x] > fl[x], else 0 (vectorised). */
+static void above_floor(uint8_t *restrict a, const uint8_t *restrict fl, int32_t w)
+{
+    for (int32_t x = 0; x < w; x++)
+        a[x] = a[x] > fl[x] ? 255 : 0;
+}
+
 /* dst holds |d|: each kept region's pixels beyond its own floor (share per
- * mille of its mean |d|) become 255, everything else 0. */
+ * mille of its mean |d|) become 255, everything else 0. Per row: the
+ * floors of the kept runs, 255 elsewhere (|d| is never above it), then one
+ * compare over the row. */
 static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share)
 {
+    uint8_t *fl = t->row;
     for (int32_t y = 0; y < dst->height; y++) {
         uint8_t *out = rte_u8_row(dst, y);
-        int32_t x = 0;
+        memset(fl, 255, (size_t)dst->width);
         for (int32_t r = t->row_start[y]; r < t->row_start[y + 1]; r++) {
             const int32_t root = t->parent[r];
-            memset(out + x, 0, (size_t)(t->x0[r] - x));
-            x = t->x1[r] + 1;
-            if ((t->flags[root] & (REGION_STRONG | REGION_SHADOW)) != REGION_STRONG) {
-                memset(out + t->x0[r], 0, (size_t)(x - t->x0[r]));
+            if ((t->flags[root] & (REGION_STRONG | REGION_SHADOW)) != REGION_STRONG)
                 continue;
-            }
             /* floor = share of the region's mean |d| (sum <= 255 count) */
             const int32_t floor =
                 (int32_t)(t->sum[root] * share / ((int64_t)t->count[root] * 1000));
-            for (int32_t k = t->x0[r]; k < x; k++)
-                out[k] = out[k] > floor ? 255 : 0;
+            memset(fl + t->x0[r], floor, (size_t)(t->x1[r] + 1 - t->x0[r]));
         }
-        memset(out + x, 0, (size_t)(dst->width - x));
+        above_floor(out, fl, dst->width);
     }
 }
 
@@ -526,7 +632,8 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     t.sum = rte_arena_alloc(arena, runs * sizeof *t.sum);
     t.flags = rte_arena_alloc(arena, runs);
     t.row_start = rte_arena_alloc(arena, ((size_t)h + 1) * sizeof *t.row_start);
-    if (!t.x0 || !t.x1 || !t.parent || !t.count || !t.sum || !t.flags || !t.row_start) {
+    t.row = rte_arena_alloc(arena, (size_t)w);
+    if (!t.x0 || !t.x1 || !t.parent || !t.count || !t.sum || !t.flags || !t.row_start || !t.row) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
@@ -552,10 +659,12 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
 
     int32_t n = 0;
     int64_t dropped = 0;
-    for (int32_t y = 0; y < h; y++)
-        dropped +=
-            label_row(&t, y, rte_u8_row(dst, y), rte_u8_row(src, y), rte_u8_row(background, y), w,
-                      low, high, params->bright, params->dark, &n);
+    for (int32_t y = 0; y < h; y++) {
+        const uint8_t *a = rte_u8_row(dst, y);
+        classify_row(a, rte_u8_row(src, y), rte_u8_row(background, y), t.row, w, (uint8_t)low,
+                     (uint8_t)high, params->bright ? 1 : 0, params->dark ? 2 : 0);
+        dropped += label_row(&t, y, a, t.row, w, &n);
+    }
     /* Statistics to the roots; every run then points at its root. */
     int32_t regions = 0, shadows = 0;
     for (int32_t r = 0; r < n; r++) {

@@ -221,10 +221,11 @@ static inline int32_t skip_object(const uint8_t *s, int32_t x, int32_t width)
  * most twice the top: the levels above the top are empty). Sets parent[]
  * to 0 around each run of object pixels: the flood reads no other entry.
  *
- * The first pass (the histogram) finds the runs of object pixels and lists
- * them at the end of order[], backwards: RUN_ROW | y before the runs of
- * row y, x0 | x1 << 16 for the run [x0, x1). The second pass (the
- * scatter) reads them back to front, in raster order, and writes below the
+ * The first pass finds the runs of object pixels and the top level, and
+ * lists the runs at the end of order[], backwards: RUN_ROW | y before the
+ * runs of row y, x0 | x1 << 16 for the run [x0, x1). The second (the
+ * histogram, of the levels up to the top only) and the third (the scatter)
+ * read them back to front, in raster order; the scatter writes below the
  * list only: the P pixels need P entries and the list takes the rest. */
 static uint32_t sort_pixels(const rte_image_u8 *src, const rte_image_u16 *dist, uint32_t *parent,
                             uint32_t stride, uint32_t *hist, uint32_t *order)
@@ -232,7 +233,6 @@ static uint32_t sort_pixels(const rte_image_u8 *src, const rte_image_u16 *dist, 
     const int32_t width = src->width, height = src->height;
     const uint32_t entries = (uint32_t)order_entries(width, height);
     uint32_t list = entries;
-    memset(hist, 0, LEVELS * sizeof(uint32_t));
     uint32_t top = 0;
     for (int32_t y = 0; y < height; y++) {
         const uint8_t *s = rte_u8_row(src, y);
@@ -243,12 +243,24 @@ static uint32_t sort_pixels(const rte_image_u8 *src, const rte_image_u16 *dist, 
         while (x < width) {
             const int32_t end = skip_object(s, x, width);
             order[--list] = (uint32_t)x | (uint32_t)end << 16;
-            for (; x < end; x++) {
-                const uint32_t v = d[x];
-                hist[v]++;
-                top |= v;
-            }
+            for (; x < end; x++)
+                top |= d[x];
             x = skip_background(s, x, width);
+        }
+    }
+    /* only the levels up to the top are cleared (an object's distances
+     * rarely reach a thousand; all LEVELS are 256 KiB) */
+    memset(hist, 0, ((size_t)top + 1) * sizeof(uint32_t));
+    {
+        const uint16_t *d = NULL;
+        for (uint32_t k = entries; k-- > list;) {
+            const uint32_t run = order[k];
+            if (run & RUN_ROW) {
+                d = rte_u16_row(dist, (int32_t)(run & ~RUN_ROW));
+                continue;
+            }
+            for (uint32_t x = run & 0xffffu; x < run >> 16; x++)
+                hist[d[x]]++;
         }
     }
     /* hist[v] becomes the first position of level v: higher levels first */
