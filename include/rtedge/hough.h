@@ -145,10 +145,15 @@ typedef struct rte_hough_circles_params {
     int32_t max_radius;    /* pixels; <= 0: max(width, height); <= min_radius: min_radius + 2 */
     int32_t max_centres;   /* budget: most candidate centres given a radius (the strongest);
                               0: RTE_HOUGH_CIRCLES_MAX_CENTRES */
+    int32_t max_votes;     /* budget: most accumulator votes, 2 (max_r - min_r + 1) per voting
+                              edge pixel, in raster order; 0: RTE_HOUGH_CIRCLES_VOTES_PER_PIXEL
+                              per image pixel */
 } rte_hough_circles_params;
 
 /* The default budget of candidate centres (max_centres 0). */
 #define RTE_HOUGH_CIRCLES_MAX_CENTRES 512
+/* The default vote budget (max_votes 0), per pixel of the image. */
+#define RTE_HOUGH_CIRCLES_VOTES_PER_PIXEL 8
 
 RTE_API size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
                                               const rte_hough_circles_params *params);
@@ -165,7 +170,9 @@ RTE_API size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_hei
  * one is dropped. With more candidate centres than the budget
  * (params->max_centres), only the strongest (most votes, then raster order)
  * get a radius, and *truncated is set, as when more than max_circles
- * qualify. */
+ * qualify. Only the edge pixels within the vote budget (params->max_votes,
+ * the first in raster order) vote; all count in the radius and its support;
+ * *truncated is set when an edge pixel did not vote. */
 RTE_API rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
                                      const rte_image_s16 *dy,
                                      const rte_hough_circles_params *params, rte_arena *arena,

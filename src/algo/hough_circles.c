@@ -3,6 +3,7 @@
  * 1. Every edge pixel with a non-zero gradient votes along its gradient
  *    line, both ways, at every radius in [min_radius, max_radius]; the step
  *    is the unit gradient in Q10 (from an integer square root), as OpenCV.
+ *    Past the vote budget (max_votes), the remaining edge pixels do not vote.
  * 2. Centres: accumulator cells above acc_threshold that are local maxima
  *    (> left and up, >= right and down); with more than the budget
  *    (max_centres), only the strongest go on.
@@ -14,24 +15,22 @@
  * 4. Sorted by support, then raster order of the centre; a centre closer
  *    than min_dist to a kept one is dropped.
  * Steps 1 and 2 run together on a ring of accumulator rows (below); step 3
- * only visits the edge pixels near the centre (blocks of each row). */
+ * (hough_circles_radius.c) only visits the edge pixels near the centre
+ * (blocks of each row). */
 #include "rtedge/hough.h"
 
 #include <string.h>
 
 #include "core/int_math.h"
+#include "hough_circles_internal.h"
 #include "hough_internal.h"
 #include "simd/rows.h"
-
-typedef struct circle_geom {
-    int32_t acols, arows, min_r, max_r, nbins, window;
-} circle_geom;
 
 static int params_ok(const rte_hough_circles_params *p)
 {
     return p && p->dp_q8 >= 256 && p->dp_q8 <= 256 * 64 && p->min_dist >= 1 &&
            p->acc_threshold >= 1 && p->min_radius <= RTE_MAX_SIDE &&
-           p->max_radius <= RTE_MAX_SIDE && p->max_centres >= 0;
+           p->max_radius <= RTE_MAX_SIDE && p->max_centres >= 0 && p->max_votes >= 0;
 }
 
 static circle_geom geometry(int32_t w, int32_t h, const rte_hough_circles_params *p)
@@ -48,46 +47,6 @@ static circle_geom geometry(int32_t w, int32_t h, const rte_hough_circles_params
     g.nbins = (g.max_r - g.min_r) * 16 + 1;
     g.window = (p->dp_q8 + 8) / 16; /* dp pixels in 1/16-pixel bins */
     return g;
-}
-
-/* Radius bins without a square root per pixel: floor(sqrt(d2)) - min_r * 16
- * for d2 in [rmin2, rmax2] is the last bin k with sq[k] <= d2. A coarse table
- * gives the bin at the start of each 2^shift-wide range of d2 (at most
- * RADIUS_COARSE entries), and a few steps up find it (the integer Newton
- * square root, with its divisions, took a third of the transform). */
-#define RADIUS_COARSE 4096
-typedef struct radius_table {
-    int64_t *sq;     /* sq[k] = (min_r * 16 + k)^2 for k <= nbins (sq[nbins] stops the steps) */
-    int32_t *coarse; /* the bin of rmin2 + (i << shift) */
-    int64_t rmin2;
-    int32_t shift;
-} radius_table;
-
-static void radius_table_init(radius_table *t, const circle_geom *g)
-{
-    const int64_t r0 = (int64_t)g->min_r * 16;
-    for (int32_t k = 0; k <= g->nbins; k++)
-        t->sq[k] = (r0 + k) * (r0 + k);
-    t->rmin2 = t->sq[0];
-    const int64_t span = t->sq[g->nbins - 1] - t->rmin2;
-    t->shift = 0;
-    while ((span >> t->shift) >= RADIUS_COARSE)
-        t->shift++;
-    int32_t k = 0;
-    for (int64_t i = 0; i <= span >> t->shift; i++) {
-        const int64_t d2 = t->rmin2 + (i << t->shift);
-        while (t->sq[k + 1] <= d2)
-            k++;
-        t->coarse[i] = k;
-    }
-}
-
-static inline int32_t radius_bin(const radius_table *t, int64_t d2)
-{
-    int32_t k = t->coarse[(d2 - t->rmin2) >> t->shift];
-    while (t->sq[k + 1] <= d2)
-        k++;
-    return k;
 }
 
 /* The accumulator is a ring of rows that slides down the image: an edge
@@ -131,15 +90,19 @@ static size_t candidates_of(const circle_geom *g)
     return (size_t)g->arows * (size_t)(g->acols / 2 + 1) + 1;
 }
 
-/* Edge pixels are listed in raster order (packed y << 16 | x) with, for
- * each row, where every BLOCK-pixel block of columns starts, so the scans
- * around a centre go straight to the pixels near it. */
-#define BLOCK 16
-static int32_t blocks_of(int32_t w) { return (w + BLOCK - 1) / BLOCK + 1; }
-
 static int32_t budget_of(const rte_hough_circles_params *p)
 {
     return p->max_centres > 0 ? p->max_centres : RTE_HOUGH_CIRCLES_MAX_CENTRES;
+}
+
+/* The vote budget as the number of edge pixels that vote: each casts at
+ * most 2 (max_r - min_r + 1) votes. */
+static int64_t voters_of(const rte_hough_circles_params *p, const circle_geom *g, int32_t w,
+                         int32_t h)
+{
+    const int64_t votes =
+        p->max_votes > 0 ? p->max_votes : (int64_t)RTE_HOUGH_CIRCLES_VOTES_PER_PIXEL * w * h;
+    return votes / (2 * ((int64_t)g->max_r - g->min_r + 1));
 }
 
 size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
@@ -169,6 +132,54 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
 static inline int32_t acc_q10(int32_t v, int32_t dp_q8)
 {
     return dp_q8 == 256 ? v << 10 : (int32_t)rte_div_round64((int64_t)v << 18, dp_q8);
+}
+
+/* floor(sqrt(v)) for 2^8 <= v < 2^62 with two divisions (rte_isqrt64 takes
+ * five or six, a third of the votes' time): a start above sqrt(v) within
+ * 2^-7 from a table of ceil(sqrt(i + 1) 2^16) for the leading bits i in
+ * [64, 256), two Newton steps from above (each stays >= floor(sqrt(v)) and
+ * squares the relative error) and a last step down. */
+static const uint32_t sqrt_start[192] = {
+    528369,  532417,  536436,  540424,  544383,  548314,  552217,  556092,  559940,  563762,
+    567559,  571330,  575077,  578799,  582497,  586172,  589824,  593454,  597062,  600648,
+    604213,  607756,  611280,  614783,  618266,  621730,  625174,  628600,  632007,  635396,
+    638766,  642120,  645455,  648774,  652075,  655360,  658629,  661882,  665118,  668339,
+    671545,  674735,  677910,  681071,  684216,  687348,  690465,  693568,  696658,  699734,
+    702796,  705845,  708881,  711904,  714914,  717911,  720896,  723869,  726830,  729779,
+    732715,  735640,  738554,  741456,  744346,  747226,  750094,  752952,  755799,  758635,
+    761460,  764275,  767080,  769874,  772659,  775433,  778197,  780952,  783697,  786432,
+    789158,  791875,  794582,  797280,  799969,  802649,  805320,  807983,  810636,  813281,
+    815917,  818545,  821164,  823775,  826378,  828973,  831559,  834138,  836708,  839271,
+    841826,  844373,  846912,  849444,  851968,  854485,  856995,  859497,  861992,  864480,
+    866960,  869434,  871900,  874360,  876812,  879258,  881697,  884129,  886555,  888974,
+    891386,  893792,  896192,  898585,  900972,  903352,  905726,  908094,  910456,  912811,
+    915161,  917504,  919842,  922174,  924500,  926820,  929134,  931442,  933745,  936042,
+    938333,  940619,  942899,  945174,  947443,  949707,  951966,  954219,  956467,  958710,
+    960947,  963179,  965406,  967628,  969845,  972056,  974263,  976465,  978662,  980854,
+    983040,  985223,  987400,  989572,  991740,  993903,  996061,  998215,  1000364, 1002509,
+    1004648, 1006784, 1008914, 1011041, 1013162, 1015280, 1017393, 1019501, 1021606, 1023706,
+    1025801, 1027892, 1029980, 1032062, 1034141, 1036216, 1038286, 1040352, 1042414, 1044472,
+    1046526, 1048576};
+
+static inline uint64_t isqrt_fast(uint64_t v)
+{
+    const int e = (63 - __builtin_clzll(v) - 6) & ~1; /* v >> e in [64, 256) */
+    uint64_t r = (((uint64_t)sqrt_start[(v >> e) - 64] << (e / 2)) >> 16) + 1;
+    r = (r + v / r) / 2;
+    r = (r + v / r) / 2;
+    r -= r * r > v; /* without a branch: r is often one above */
+    while (r * r > v)
+        r--;
+    return r;
+}
+
+/* round(v 2^28 / den), ties away from zero, for den > 0; the sign without
+ * a branch (it is a coin toss from one pixel to the next). */
+static inline int32_t unit_step(int32_t v, int64_t den)
+{
+    const int64_t a = (int64_t)(v < 0 ? -v : v) << 28;
+    const int32_t q = (int32_t)((a + den / 2) / den);
+    return v < 0 ? -q : q;
 }
 
 /* n + 1 votes from (ux, uy), Q10, in steps of (sx, sy) (two's complement),
@@ -254,14 +265,16 @@ static int32_t find_centres_row(const circle_band *b, const circle_geom *g, int3
     return ncent;
 }
 
-/* Steps 1 and 2: every edge pixel's votes, row by row, and the centres of
- * the accumulator rows that no later pixel reaches. Also lists the voting
- * pixels and their blocks. Returns the number of centres; *npts gets the
- * number of pixels. */
+/* Steps 1 and 2: the edge pixels' votes, row by row, and the centres of
+ * the accumulator rows that no later pixel reaches. Also lists the edge
+ * pixels (with a non-zero gradient) and their blocks. Only the first
+ * `voters` of them vote (the vote budget; *truncated is set when one more
+ * would have). Returns the number of centres; *npts gets the number of
+ * pixels. */
 static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
                           const rte_image_s16 *dy, const circle_geom *g, int32_t dp_q8, int32_t thr,
-                          circle_band *b, uint32_t *pts, int32_t *blk, int32_t *centres,
-                          int32_t *npts)
+                          circle_band *b, int64_t voters, uint32_t *pts, int32_t *blk,
+                          int32_t *centres, int32_t *npts, bool *truncated)
 {
     const int32_t w = edges->width, h = edges->height, nblk = blocks_of(w);
     const int32_t reach = g->max_r * step_bound(dp_q8);
@@ -279,18 +292,29 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
                 if (!word)
                     continue;
             }
-            for (int32_t x = x8; x < x_end; x++) {
+            /* bit k: pixel x8 + k is an edge (one branch per edge pixel,
+             * not one per pixel, which mispredicts) */
+            uint32_t bits = 0;
+            for (int32_t k = 0; k < x_end - x8; k++)
+                bits |= (uint32_t)(e[x8 + k] != 0) << k;
+            while (bits) {
+                const int32_t x = x8 + __builtin_ctz(bits);
+                bits &= bits - 1;
                 int32_t vx = gx[x], vy = gy[x];
-                if (!e[x] || (vx == 0 && vy == 0))
+                if (vx == 0 && vy == 0)
                     continue;
                 while (nb * BLOCK <= x)
                     rb[nb++] = n;
                 pts[n++] = ((uint32_t)y << 16) | (uint32_t)x;
+                if (voters == 0) {
+                    *truncated = true;
+                    continue;
+                }
+                voters--;
                 /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
-                uint64_t mag_q10 = rte_isqrt64(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
+                uint64_t mag_q10 = isqrt_fast(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
                 int64_t den = (int64_t)mag_q10 * dp_q8;
-                int32_t sx = (int32_t)rte_div_round64((int64_t)vx * (1 << 28), den);
-                int32_t sy = (int32_t)rte_div_round64((int64_t)vy * (1 << 28), den);
+                int32_t sx = unit_step(vx, den), sy = unit_step(vy, den);
                 int32_t x0 = acc_q10(x, dp_q8);
                 vote_line(b, g, x0 + g->min_r * sx, y0 + g->min_r * sy, sx, sy);
                 vote_line(b, g, x0 - g->min_r * sx, y0 - g->min_r * sy, -sx, -sy);
@@ -310,171 +334,6 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
     }
     *npts = n;
     return ncent;
-}
-
-/* The edge pixels of row y within `reach` (1/16 pixel, plus a pixel) of
- * column cx (1/16 pixel), and a few more in the same blocks (the callers
- * skip those farther away): pts[*first .. *end). */
-static inline void ring_window(const int32_t *blk, int32_t nblk, int32_t y, int32_t cx,
-                               int32_t reach, int32_t *first, int32_t *end)
-{
-    const int32_t x_lo = ((cx - reach) >> 4) - 1, x_hi = ((cx + reach) >> 4) + 1;
-    const int32_t b_lo = x_lo < 0 ? 0 : x_lo / BLOCK, b_hi = x_hi < 0 ? 0 : x_hi / BLOCK + 1;
-    *first = blk[(size_t)y * nblk + (b_lo < nblk - 1 ? b_lo : nblk - 1)];
-    *end = blk[(size_t)y * nblk + (b_hi < nblk - 1 ? b_hi : nblk - 1)];
-}
-
-/* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. */
-static int32_t estimate_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
-                               const circle_geom *g, const radius_table *rt, int32_t cx, int32_t cy,
-                               int32_t *bins, int32_t *radius_q4)
-{
-    const int64_t rmin2 = rt->rmin2, rmax2 = rt->sq[g->nbins - 1]; /* (min_r 16)^2, (max_r 16)^2 */
-    int32_t y_lo = (cy >> 4) - g->max_r - 1, y_hi = (cy >> 4) + g->max_r + 1;
-    y_lo = y_lo < 0 ? 0 : y_lo;
-    y_hi = y_hi > h - 1 ? h - 1 : y_hi;
-    for (int32_t i = 0; i < g->nbins; i++)
-        bins[i] = 0;
-    int32_t any = 0;
-    for (int32_t y = y_lo; y <= y_hi; y++) {
-        int32_t i, end;
-        ring_window(blk, nblk, y, cx, g->max_r * 16, &i, &end);
-        for (; i < end; i++) {
-            int64_t ddx = (int64_t)(pts[i] & 0xFFFF) * 16 - cx, ddy = (int64_t)y * 16 - cy;
-            int64_t d2 = ddx * ddx + ddy * ddy;
-            if (d2 < rmin2 || d2 > rmax2)
-                continue;
-            bins[radius_bin(rt, d2)]++;
-            any = 1;
-        }
-    }
-    int32_t best_count = 0, best_r = 0;
-    if (!any)
-        return 0;
-    /* From the largest radius down: each non-empty bin opens a window of
-     * `window` bins; a window wins when count / radius is at least the best
-     * so far (so ties go to the smaller radius). */
-    for (int32_t j = g->nbins - 1; j >= 0; j--) {
-        if (!bins[j])
-            continue;
-        int32_t up = j, cnt = 0;
-        for (; j > up - g->window && j >= 0; j--)
-            cnt += bins[j];
-        int32_t r = g->min_r * 16 + (up + j + 1) / 2;
-        if ((int64_t)cnt * best_r >= (int64_t)best_count * r ||
-            (best_r == 0 && cnt >= best_count)) {
-            best_r = r;
-            best_count = cnt;
-        }
-        j++; /* the loop's j-- moves to the first bin below the window */
-    }
-    *radius_q4 = best_r;
-    return best_count;
-}
-
-/* Step 3b: the centre refined to the point nearest to the gradient lines of
- * the circle's edge pixels (those within 1.5 px of the radius whose
- * gradient points within ~14 degrees of the centre, not on the image
- * border, where the derivatives depend on the border rule): the least-squares
- * intersection sum (I - u u^T) c = sum (I - u u^T) p with unit gradients u
- * in Q8. It works on arcs too, and is not held to the accumulator grid. The
- * radius becomes the mean distance to the refined centre. A move of more
- * than 2 dp, too few pixels or a degenerate system keep the grid centre;
- * radii over 1000 px (where the sums would need more than 64 bits) too. */
-/* The point p (packed y << 16 | x) relative to the centre (1/16 pixel) in
- * (*px, *py) and, when d is not NULL, its distance; 1 when that is within
- * `band` of r. */
-static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t band, int64_t *px,
-                          int64_t *py, int64_t *d)
-{
-    *px = (int64_t)(p & 0xFFFF) * 16 - cx;
-    *py = (int64_t)(p >> 16) * 16 - cy;
-    /* floor(sqrt(d2)) in [r - band, r + band] <=> (r - band)^2 <= d2 <
-     * (r + band + 1)^2: most pixels of the window are off the ring, and
-     * need no square root */
-    const int64_t d2 = *px * *px + *py * *py, lo = r - band > 0 ? r - band : 0, hi = r + band + 1;
-    if (d2 < lo * lo || d2 >= hi * hi)
-        return 0;
-    if (d)
-        *d = (int64_t)rte_isqrt64((uint64_t)d2);
-    return 1;
-}
-
-static void refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
-                   const rte_image_s16 *dx, const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx,
-                   int32_t *cy, int32_t *r_q4)
-{
-    const int32_t r = *r_q4, band = 24; /* 1.5 px */
-    if (r + band >= (1 << 14))
-        return;
-    int32_t y_lo = ((*cy - r - band) >> 4) - 1, y_hi = ((*cy + r + band) >> 4) + 1;
-    y_lo = y_lo < 0 ? 0 : y_lo;
-    y_hi = y_hi > h - 1 ? h - 1 : y_hi;
-    int64_t a00 = 0, a01 = 0, a11 = 0, b0 = 0, b1 = 0;
-    int32_t n = 0;
-    for (int32_t y = y_lo; y <= y_hi; y++) {
-        int32_t i, end;
-        ring_window(blk, nblk, y, *cx, r + band, &i, &end);
-        for (; i < end; i++) {
-            const int32_t x = (int32_t)(pts[i] & 0xFFFF);
-            int64_t px, py;
-            if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, NULL))
-                continue;
-            if (x == 0 || y == 0 || x == dx->width - 1 || y == h - 1)
-                continue; /* derivatives there depend on the border rule */
-            const int64_t gx = rte_s16_row(dx, y)[x], gy = rte_s16_row(dy, y)[x];
-            const int64_t dot = gx * px + gy * py, cross = gx * py - gy * px;
-            if ((cross < 0 ? -cross : cross) * 4 > (dot < 0 ? -dot : dot))
-                continue;
-            const int64_t gm = (int64_t)rte_isqrt64((uint64_t)(gx * gx + gy * gy));
-            const int64_t ux = gx * 256 / gm, uy = gy * 256 / gm; /* Q8 unit vector */
-            /* I - u u^T in Q16: [uy^2, -ux uy; -ux uy, ux^2] */
-            const int64_t m00 = uy * uy, m01 = -ux * uy, m11 = ux * ux;
-            a00 += m00;
-            a01 += m01;
-            a11 += m11;
-            b0 += m00 * px + m01 * py;
-            b1 += m01 * px + m11 * py;
-            n++;
-        }
-    }
-    if (n < 3)
-        return;
-    /* Common scale so the products below stay within 64 bits (the solution
-     * does not change): a00 + a11 <= 2^24, then |b| <= 2^24 * 2^14. */
-    while (a00 + a11 > (1 << 24)) {
-        a00 /= 2;
-        a01 /= 2;
-        a11 /= 2;
-        b0 /= 2;
-        b1 /= 2;
-    }
-    const int64_t det = a00 * a11 - a01 * a01;
-    if (det <= 0)
-        return;
-    const int64_t ox = rte_div_round64(a11 * b0 - a01 * b1, det),
-                  oy = rte_div_round64(a00 * b1 - a01 * b0, det);
-    const int64_t lim = (dp_q8 + 4) / 8; /* 2 dp in 1/16 pixel */
-    if (ox > lim || ox < -lim || oy > lim || oy < -lim)
-        return;
-    *cx += (int32_t)ox;
-    *cy += (int32_t)oy;
-    /* radius: mean distance of the same pixels to the new centre */
-    int64_t sum = 0;
-    int32_t m = 0;
-    for (int32_t y = y_lo; y <= y_hi; y++) {
-        int32_t i, end;
-        ring_window(blk, nblk, y, *cx, r + band, &i, &end);
-        for (; i < end; i++) {
-            int64_t px, py, d;
-            if (!on_ring(pts[i], *cx, *cy, r, band, &px, &py, &d))
-                continue;
-            sum += d;
-            m++;
-        }
-    }
-    if (m > 0)
-        *r_q4 = (int32_t)rte_div_round64(sum, m);
 }
 
 /* Step 4: greedy removal, best first, of centres closer than min_dist to
@@ -550,12 +409,13 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     const int32_t thr = params->acc_threshold;
     int32_t npts = 0;
     const int32_t ncent =
-        accumulate(edges, dx, dy, &g, params->dp_q8, thr, &band, pts, blk, centres, &npts);
+        accumulate(edges, dx, dy, &g, params->dp_q8, thr, &band, voters_of(params, &g, w, h), pts,
+                   blk, centres, &npts, truncated);
     if (npts == 0) {
         rte_arena_reset(arena, mark);
         return RTE_OK;
     }
-    radius_table_init(&rt, &g);
+    rte_circle_radius_table_init(&rt, &g);
 
     /* The budget: with more centres than it allows, only the strongest
      * (most votes, then raster order) get a radius. */
@@ -580,9 +440,9 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
         int32_t cx = (int32_t)(((int64_t)(2 * ax + 1) * params->dp_q8 + 16) / 32);
         int32_t cy = (int32_t)(((int64_t)(2 * ay + 1) * params->dp_q8 + 16) / 32);
         int32_t r = 0;
-        int32_t support = estimate_radius(pts, blk, nblk, h, &g, &rt, cx, cy, bins, &r);
+        int32_t support = rte_circle_radius(pts, blk, nblk, h, &g, &rt, cx, cy, bins, &r);
         if (support > thr) {
-            refine(pts, blk, nblk, h, dx, dy, params->dp_q8, &cx, &cy, &r);
+            rte_circle_refine(pts, blk, nblk, h, dx, dy, params->dp_q8, &cx, &cy, &r);
             est[3 * nest] = cx;
             est[3 * nest + 1] = cy;
             est[3 * nest + 2] = r;

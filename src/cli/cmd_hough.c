@@ -28,7 +28,7 @@ typedef struct hough_run {
     double rho, theta, min_theta, max_theta;
     int threshold, min_length, max_gap, seed;
     double dp;
-    int min_dist, votes, min_radius, max_radius, max_centres;
+    int min_dist, votes, min_radius, max_radius, max_centres, max_votes;
 } hough_run;
 
 /* Everything per run: the edge map (and for circles the gradients), then
@@ -218,7 +218,8 @@ static int hough_main(const cli_entry *self, int argc, char **argv, hough_run *o
                                    o->votes,
                                    o->min_radius,
                                    o->max_radius,
-                                   o->max_centres};
+                                   o->max_centres,
+                                   o->max_votes};
 
     cli_image in;
     if ((rc = cli_load(self->name, path[0], &in)) != CLI_EXIT_OK)
@@ -353,6 +354,10 @@ int cmd_circles(const cli_entry *self, int argc, char **argv)
         {"max-centres", CLI_INT, &o.max_centres, 0, 1 << 30, NULL,
          "budget: most candidate centres given a radius, the strongest (then truncated: true); "
          "0 = RTE_HOUGH_CIRCLES_MAX_CENTRES",
+         NULL},
+        {"max-votes", CLI_INT, &o.max_votes, 0, 2147483647, NULL,
+         "budget: most accumulator votes, the first edge pixels' in raster order (then "
+         "truncated: true); 0 = RTE_HOUGH_CIRCLES_VOTES_PER_PIXEL per image pixel",
          NULL},
         {"max", CLI_INT, &o.max_out, 0, 1 << 20, NULL,
          "most circles reported (then truncated: true)", NULL}};

@@ -149,6 +149,11 @@ def main():
                     "--min-radius", "10", "--max-radius", "40", "--max-centres", "6")
         check(b is not None and b["truncated"] is True and 0 < len(b["circles"]) <= 6 and
               all(c in got for c in b["circles"]), "smarties.png --max-centres 6: not a truncated subset")
+        # a vote budget below one edge pixel's votes: no circles, truncated
+        v = json_of("circles", smarties, "--blur", "5", "--min-dist", "20", "--votes", "30",
+                    "--min-radius", "10", "--max-radius", "40", "--max-votes", "61")
+        check(v is not None and v["truncated"] is True and v["circles"] == [],
+              "smarties.png --max-votes 61: not empty and truncated")
 
     # overlays, truncation, errors
     ov = os.path.join(tmp, "segments.png")

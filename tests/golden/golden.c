@@ -838,7 +838,7 @@ static void run_hough(golden *g, const input *in, rte_hough_config *cfg)
         rte_sobel_s16(&blurred, &dy, 0, 1, 3, &g->arena) != RTE_OK)
         die("%s: gradients for the Hough circles failed", g->input);
     static const rte_hough_circles_params circle_cases[] = {
-        {256, 20, 30, 5, 40, 0}, {384, 10, 20, 0, 24, 0}, {512, 40, 15, 20, 60, 0}};
+        {256, 20, 30, 5, 40, 0, 0}, {384, 10, 20, 0, 24, 0, 0}, {512, 40, 15, 20, 60, 0, 0}};
     for (size_t i = 0; i < sizeof circle_cases / sizeof circle_cases[0]; i++) {
         const rte_hough_circles_params *p = &circle_cases[i];
         snprintf(what, sizeof what, "hough.circles.dp%d.d%d.v%d.r%d-%d", p->dp_q8, p->min_dist,

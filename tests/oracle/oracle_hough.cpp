@@ -403,7 +403,7 @@ void synthetic_circles(Runner &run)
     std::mt19937 g(4242);
     auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(g); };
     const int W = 480, H = 360;
-    rte_hough_circles_params p = {256, 20, 25, 10, 60, 0};
+    rte_hough_circles_params p = {256, 20, 25, 10, 60, 0, 0};
     long truth = 0, found = 0, detections = 0, correct = 0;
     for (int img = 0; img < 15; img++) {
         cv::Mat gray(H, W, CV_8U, cv::Scalar(110));

@@ -369,7 +369,7 @@ static void test_circle_disc(void **state)
     rte_image_u8 e;
     rte_image_s16 gx, gy;
     disc_inputs(w, h, cx, cy, r, &e, &gx, &gy);
-    rte_hough_circles_params p = {256, 10, 8, 5, 30, 0};
+    rte_hough_circles_params p = {256, 10, 8, 5, 30, 0, 0};
     rte_hough_circle c[4];
     bool tr = true;
     assert_int_equal(circles_of(&e, &gx, &gy, &p, c, 4, &tr), 1);
@@ -411,7 +411,7 @@ static void test_circle_on_border(void **state)
         rte_image_u8 e;
         rte_image_s16 gx, gy;
         disc_inputs(w, h, centres[k][0], centres[k][1], r, &e, &gx, &gy);
-        rte_hough_circles_params p = {256, 10, 6, 5, 20, 0};
+        rte_hough_circles_params p = {256, 10, 6, 5, 20, 0, 0};
         rte_hough_circle c[4];
         bool tr = true;
         assert_true(circles_of(&e, &gx, &gy, &p, c, 4, &tr) >= 1);
@@ -462,6 +462,71 @@ static void discs_inputs(const int32_t (*c)[2], int32_t nd, int32_t halves, rte_
         }
 }
 
+/* The four discs of discs_inputs (the last `halves` on their upper half)
+ * and their circles at the default budgets (r 5..20, votes 6), not
+ * truncated; returns their number. */
+static int32_t discs_circles(const int32_t (*c)[2], int32_t halves, rte_image_u8 *e,
+                             rte_image_s16 *gx, rte_image_s16 *gy, rte_hough_circles_params *p,
+                             rte_hough_circle *all)
+{
+    discs_inputs(c, 4, halves, e, gx, gy);
+    const rte_hough_circles_params d = {256, 10, 6, 5, 20, 0, 0};
+    *p = d;
+    bool tr = true;
+    const int32_t n = circles_of(e, gx, gy, p, all, 16, &tr);
+    assert_false(tr);
+    return n;
+}
+
+/* The vote budget: one under which every edge pixel votes gives the
+ * default's circles (the four discs and more), not truncated; one for the
+ * pixels of the upper half finds the two upper discs and nothing below,
+ * truncated; one below a pixel's votes finds none. */
+static void test_circle_vote_budget(void **state)
+{
+    (void)state;
+    const int32_t c[4][2] = {{16, 16}, {44, 16}, {20, 46}, {72, 44}};
+    rte_image_u8 e;
+    rte_image_s16 gx, gy;
+    rte_hough_circles_params p;
+    rte_hough_circle all[16], some[16];
+    const int32_t n = discs_circles(c, 0, &e, &gx, &gy, &p, all);
+    bool tr = true;
+    assert_true(n >= 4);
+    int32_t upper = 0, every = 0; /* voting pixels: edges with a gradient */
+    for (int32_t y = 0; y < e.height; y++)
+        for (int32_t x = 0; x < e.width; x++) {
+            const size_t i = (size_t)y * e.stride + x, j = (size_t)y * gx.stride + x;
+            const int32_t votes = e.buf[i] && (gx.buf[j] || gy.buf[j]);
+            every += votes;
+            upper += votes && y < 32;
+        }
+    assert_true(upper > 0 && upper < every);
+    p.max_votes = every * 2 * 16; /* r 5..20: 16 steps each way */
+    assert_int_equal(circles_of(&e, &gx, &gy, &p, some, 16, &tr), n);
+    assert_false(tr);
+    assert_memory_equal(some, all, (size_t)n * sizeof all[0]);
+    p.max_votes = upper * 2 * 16;
+    const int32_t m = circles_of(&e, &gx, &gy, &p, some, 16, &tr);
+    assert_true(tr);
+    int found[2] = {0, 0};
+    for (int32_t i = 0; i < m; i++) {
+        assert_true(some[i].y_q4 < 32 * 16);
+        for (int32_t k = 0; k < 2; k++)
+            found[k] |=
+                abs(some[i].x_q4 - c[k][0] * 16) <= 24 && abs(some[i].y_q4 - c[k][1] * 16) <= 24;
+    }
+    assert_true(found[0] && found[1]);
+    p.max_votes = 31;
+    assert_int_equal(circles_of(&e, &gx, &gy, &p, some, 16, &tr), 0);
+    assert_true(tr);
+    p.max_votes = -1;
+    assert_int_equal(rte_hough_circles_scratch_size(96, 64, &p), 0);
+    test_free(e.buf);
+    test_free(gx.buf);
+    test_free(gy.buf);
+}
+
 /* The budget of candidate centres: a map under it gives the same circles
  * as an unlimited one, not truncated; a budget of six keeps the centres of
  * the two whole discs (each has a few neighbouring accumulator maxima, the
@@ -473,12 +538,10 @@ static void test_circle_budget(void **state)
     const int32_t c[4][2] = {{16, 16}, {72, 44}, {44, 16}, {20, 46}};
     rte_image_u8 e;
     rte_image_s16 gx, gy;
-    discs_inputs(c, 4, 2, &e, &gx, &gy);
-    rte_hough_circles_params p = {256, 10, 6, 5, 20, 0};
+    rte_hough_circles_params p;
     rte_hough_circle all[16], some[16];
+    const int32_t n = discs_circles(c, 2, &e, &gx, &gy, &p, all);
     bool tr = true;
-    const int32_t n = circles_of(&e, &gx, &gy, &p, all, 16, &tr);
-    assert_false(tr);
     assert_int_equal(n, 4);
     for (int32_t k = 0; k < 4; k++) /* whole discs first, by support */
         assert_true(abs(all[k].x_q4 - c[k][0] * 16) <= 24 && abs(all[k].y_q4 - c[k][1] * 16) <= 24);
@@ -544,7 +607,7 @@ static void test_maximum_size_all_255(void **state)
             gx.buf[(size_t)y * gx.stride + x] = (int16_t)(vx ? vx * 16 : 1);
             gy.buf[(size_t)y * gy.stride + x] = (int16_t)(vy * 16);
         }
-    rte_hough_circles_params cp = {256, 20, 150, 35, 40, 0};
+    rte_hough_circles_params cp = {256, 20, 150, 35, 40, 0, 0};
     bytes = rte_hough_circles_scratch_size(w, h, &cp);
     rte_arena_init(&a, test_malloc(bytes), bytes);
     rte_hough_circle c[4];
@@ -612,17 +675,12 @@ static void test_argument_errors(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_config_errors),
-        cmocka_unit_test(test_lines_row_and_column),
-        cmocka_unit_test(test_sizes_and_truncation),
-        cmocka_unit_test(test_segments_gap_and_length),
-        cmocka_unit_test(test_segments_seed),
-        cmocka_unit_test(test_circle_disc),
-        cmocka_unit_test(test_circle_on_border),
-        cmocka_unit_test(test_maximum_size_all_255),
-        cmocka_unit_test(test_circle_budget),
-        cmocka_unit_test(test_argument_errors),
-        cmocka_unit_test(test_lines_match_plain_vote),
+        cmocka_unit_test(test_config_errors),        cmocka_unit_test(test_lines_row_and_column),
+        cmocka_unit_test(test_sizes_and_truncation), cmocka_unit_test(test_segments_gap_and_length),
+        cmocka_unit_test(test_segments_seed),        cmocka_unit_test(test_circle_disc),
+        cmocka_unit_test(test_circle_on_border),     cmocka_unit_test(test_maximum_size_all_255),
+        cmocka_unit_test(test_circle_budget),        cmocka_unit_test(test_circle_vote_budget),
+        cmocka_unit_test(test_argument_errors),      cmocka_unit_test(test_lines_match_plain_vote),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -80,7 +80,7 @@ Register segments("hough", "segments (threshold 50, length 30, gap 10)", [](cons
                    [b] { cv::HoughLinesP(b->edges, b->cv_segments, 1, CV_PI / 180, 50, 30, 10); }};
 });
 
-const rte_hough_circles_params circle_params = {256, 20, 30, 10, 40, 0};
+const rte_hough_circles_params circle_params = {256, 20, 30, 10, 40, 0, 0};
 
 Register circles("hough", "circles (Sobel + Canny 50/100 + transform, r 10..40)",
                  [](const Frame &f) {

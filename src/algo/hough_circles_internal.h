@@ -1,0 +1,50 @@
+/* Hough circles (internal): what the votes (hough_circles.c) and the
+ * radius and refinement step (hough_circles_radius.c) share. */
+#ifndef RTEDGE_HOUGH_CIRCLES_INTERNAL_H
+#define RTEDGE_HOUGH_CIRCLES_INTERNAL_H
+
+#include <stdint.h>
+
+#include "rtedge/hough.h"
+
+typedef struct circle_geom {
+    int32_t acols, arows, min_r, max_r, nbins, window;
+} circle_geom;
+
+/* Edge pixels are listed in raster order (packed y << 16 | x) with, for
+ * each row, where every BLOCK-pixel block of columns starts, so the scans
+ * around a centre go straight to the pixels near it. */
+#define BLOCK 16
+static inline int32_t blocks_of(int32_t w) { return (w + BLOCK - 1) / BLOCK + 1; }
+
+/* Radius bins without a square root per pixel: floor(sqrt(d2)) - min_r * 16
+ * for d2 in [rmin2, rmax2] is the last bin k with sq[k] <= d2. A coarse table
+ * gives the bin at the start of each 2^shift-wide range of d2 (at most
+ * RADIUS_COARSE entries), and a few steps up find it (the integer Newton
+ * square root, with its divisions, took a third of the transform). */
+#define RADIUS_COARSE 4096
+typedef struct radius_table {
+    int64_t *sq;     /* sq[k] = (min_r * 16 + k)^2 for k <= nbins (sq[nbins] stops the steps) */
+    int32_t *coarse; /* the bin of rmin2 + (i << shift) */
+    int64_t rmin2;
+    int32_t shift;
+} radius_table;
+
+/* The tables of g's radii (t->sq and t->coarse allocated by the caller:
+ * nbins + 1 and RADIUS_COARSE entries). */
+void rte_circle_radius_table_init(radius_table *t, const circle_geom *g);
+
+/* Step 3 for one centre (cx, cy in 1/16 pixel) over the edge pixels pts
+ * with their row blocks blk (nblk a row): the support, and the radius in
+ * *radius_q4; bins has g->nbins entries. */
+int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
+                          const circle_geom *g, const radius_table *rt, int32_t cx, int32_t cy,
+                          int32_t *bins, int32_t *radius_q4);
+
+/* Step 3b: the centre (*cx, *cy) and radius *r_q4 refined to where the
+ * gradient lines of the circle's edge pixels meet. */
+void rte_circle_refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
+                       const rte_image_s16 *dx, const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx,
+                       int32_t *cy, int32_t *r_q4);
+
+#endif
