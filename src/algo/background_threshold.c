@@ -7,6 +7,8 @@
 #include "rtedge/background.h"
 #include "rtedge/threshold.h"
 
+#include "row_scan.h"
+
 void rte_background_threshold_params_default(rte_background_threshold_params *params, int32_t width)
 {
     const int32_t gap = width / 200;
@@ -93,25 +95,6 @@ static void classify_row(const uint8_t *restrict a, const uint8_t *restrict s,
     }
 }
 
-/* The first x1 >= x with c[x1] != 0, or w: eight bytes at a time. */
-static inline int32_t skip_zeros(const uint8_t *c, int32_t x, int32_t w)
-{
-    for (; x + 8 <= w; x += 8) {
-        uint64_t v;
-        memcpy(&v, c + x, sizeof v);
-        if (v) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-            return x + (__builtin_ctzll(v) >> 3);
-#else
-            break;
-#endif
-        }
-    }
-    while (x < w && !c[x])
-        x++;
-    return x;
-}
-
 /* The end of the run of side `side` that starts at x (the first x1 > x
  * whose class has another side, or w); *classes gets the OR of the run's
  * classes. Eight bytes at a time. */
@@ -169,7 +152,7 @@ static int64_t label_row(run_table *t, int32_t y, const uint8_t *a, const uint8_
     int64_t dropped = 0;
     int32_t n = *n_runs;
     t->row_start[y] = n;
-    for (int32_t x = skip_zeros(c, 0, w); x < w; x = skip_zeros(c, x, w)) {
+    for (int32_t x = rte_row_skip_run(c, 0, w, 0); x < w; x = rte_row_skip_run(c, x, w, 0)) {
         const int32_t x0 = x;
         const uint32_t side = c[x] & CLASS_SIDE;
         uint32_t classes;

@@ -11,6 +11,8 @@
 
 #include <string.h>
 
+#include "row_scan.h"
+
 /* Working record of one stored contour, in discovery order. */
 typedef struct node {
     int32_t ox, oy;         /* start pixel in label-map coordinates */
@@ -143,29 +145,6 @@ static int passes_through(const int32_t *d, const int8_t *i0, const int8_t *stop
         i3 = i4;
         s = (s + 4) & 7;
     }
-}
-
-/* First position in [x, end) whose value differs from prev, or end: eight
- * bytes at a time (the scan spends most of its time in runs). */
-static int32_t skip_run(const int8_t *row, int32_t x, int32_t end, int prev)
-{
-    const uint64_t pattern = (uint64_t)(uint8_t)prev * 0x0101010101010101u;
-    while (x + 8 <= end) {
-        uint64_t w;
-        memcpy(&w, row + x, 8);
-        w ^= pattern;
-        if (w) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-            return x + (__builtin_ctzll(w) >> 3);
-#else
-            break;
-#endif
-        }
-        x += 8;
-    }
-    while (x < end && row[x] == prev)
-        x++;
-    return x;
 }
 
 static size_t label_map_bytes(int32_t w, int32_t h) { return (size_t)(w + 2) * (size_t)(h + 2); }
@@ -319,7 +298,7 @@ static void scan_borders(finder *f, int8_t *map, int32_t ms, int32_t mh, rte_con
         int32_t lnbd = 0;
         int prev = 0;
         for (int32_t x = 1; x < ms - 1; x++) {
-            x = skip_run(row, x, ms - 1, prev);
+            x = rte_row_skip_run((const uint8_t *)row, x, ms - 1, (uint8_t)prev);
             if (x >= ms - 1)
                 break;
             int p = row[x];

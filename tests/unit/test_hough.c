@@ -462,6 +462,12 @@ static void discs_inputs(const int32_t (*c)[2], int32_t nd, int32_t halves, rte_
         }
 }
 
+/* Whether circle o's centre lies within 1.5 px (24 in q4) of disc c. */
+static bool near_disc(const rte_hough_circle *o, const int32_t c[2])
+{
+    return abs(o->x_q4 - c[0] * 16) <= 24 && abs(o->y_q4 - c[1] * 16) <= 24;
+}
+
 /* The four discs of discs_inputs (the last `halves` on their upper half)
  * and their circles at the default budgets (r 5..20, votes 6), not
  * truncated; returns their number. */
@@ -513,8 +519,7 @@ static void test_circle_vote_budget(void **state)
     for (int32_t i = 0; i < m; i++) {
         assert_true(some[i].y_q4 < 32 * 16);
         for (int32_t k = 0; k < 2; k++)
-            found[k] |=
-                abs(some[i].x_q4 - c[k][0] * 16) <= 24 && abs(some[i].y_q4 - c[k][1] * 16) <= 24;
+            found[k] |= near_disc(&some[i], c[k]);
     }
     assert_true(found[0] && found[1]);
     p.max_votes = 31;
@@ -544,7 +549,7 @@ static void test_circle_budget(void **state)
     bool tr = true;
     assert_int_equal(n, 4);
     for (int32_t k = 0; k < 4; k++) /* whole discs first, by support */
-        assert_true(abs(all[k].x_q4 - c[k][0] * 16) <= 24 && abs(all[k].y_q4 - c[k][1] * 16) <= 24);
+        assert_true(near_disc(&all[k], c[k]));
     p.max_centres = 1 << 20; /* under the budget: unchanged */
     tr = true;
     assert_int_equal(circles_of(&e, &gx, &gy, &p, some, 16, &tr), n);
