@@ -1,6 +1,8 @@
 /* Canny edge detector, bit-exact with OpenCV 4.6 for 8-bit input:
  *   rte_canny_u8               = cv::Canny(src, edges, low, high, aperture, l2_gradient)
  *   rte_canny_from_gradient_u8 = cv::Canny(dx, dy, edges, low, high, l2_gradient)
+ *   rte_canny_gradient_u8      = cv::Sobel(src, dx / dy, CV_16S, ..., BORDER_REPLICATE);
+ *                                cv::Canny(dx, dy, edges, low, high, l2_gradient)
  * for aperture 3 and 5, any thresholds (low > high are swapped, fractional and
  * negative values behave as in OpenCV). Output is 255 on edges, 0 elsewhere.
  *
@@ -79,6 +81,16 @@ RTE_API rte_status rte_canny_blurred_u8(const rte_image_u8 *src, rte_image_u8 *d
  * max_height with this kernel and aperture (0 for invalid arguments). */
 RTE_API size_t rte_canny_blurred_scratch_size(int32_t max_width, int32_t max_height,
                                               const rte_gaussian_kernel *kernel, int32_t aperture);
+
+/* rte_canny_u8 that also hands out the derivatives it computes: dx, dy =
+ * cv::Sobel(src, CV_16S, 1, 0 / 0, 1, aperture, 1, 0, BORDER_REPLICATE)
+ * (Canny's own), same size as src. One pass gives what cv::HoughCircles
+ * computes inside and rte_hough_circles takes beside the edges. Aperture 3
+ * or 5; aperture 7, whose derivatives Canny scales by 1/16, is rejected
+ * with RTE_ERR_ARGUMENT. Scratch: rte_canny_scratch_size. */
+RTE_API rte_status rte_canny_gradient_u8(const rte_image_u8 *src, rte_image_u8 *dst,
+                                         rte_image_s16 *dx, rte_image_s16 *dy,
+                                         const rte_canny_params *params, rte_arena *scratch);
 
 /* Edges from given derivatives dx and dy (same size as dst). params must come
  * from rte_canny_params_init with aperture 3 or 5 (both give the same

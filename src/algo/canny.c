@@ -157,10 +157,12 @@ static int32_t push_seeds(const uint8_t *mrow, int32_t w, int32_t base, int32_t 
 }
 
 /* Where the derivative rows come from: the Sobel of src, of its blur
- * (fused front end: blur != NULL), or the given gx, gy. */
+ * (fused front end: blur != NULL), or the given gx, gy. With out_dx and
+ * out_dy, the Sobel rows of src are written there instead of to scratch. */
 typedef struct canny_input {
     const rte_image_u8 *src;
     const rte_image_s16 *gx, *gy;
+    const rte_image_s16 *out_dx, *out_dy;
     const rte_gaussian_line *blur;
     uint8_t *ring; /* blurred row r in slot r % aperture */
     size_t ring_stride;
@@ -248,6 +250,17 @@ static bool alloc_buffers(canny_buffers *b, rte_arena *scratch, int32_t w, int32
     return ok;
 }
 
+/* Derivative row y (dx: which 0, dy: 1): the caller's, the scratch pair's,
+ * or the given gradient's. */
+static int16_t *deriv_row(const canny_input *in, const canny_buffers *b, int which, int32_t y)
+{
+    const rte_image_s16 *img =
+        which ? (in->src ? in->out_dy : in->gy) : (in->src ? in->out_dx : in->gx);
+    if (img)
+        return rte_s16_row(img, y);
+    return which ? b->dyb[y & 1] : b->dxb[y & 1];
+}
+
 static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_params *params,
                             rte_arena *scratch)
 {
@@ -262,7 +275,7 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
     }
     uint8_t *map = b.map;
     int32_t *stack = b.stack, **ring = b.ring;
-    int16_t *vs = b.vs, *vd = b.vd, **dxb = b.dxb, **dyb = b.dyb;
+    int16_t *vs = b.vs, *vd = b.vd;
 
     const int32_t ap = params->aperture;
     /* Apertures 3 and 5 stay inside int16 (|dx| <= 255 * 6 * 16); OpenCV
@@ -298,23 +311,18 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
             const uint8_t *rows[RTE_GRAD_MAX_TAPS];
             if (src)
                 input_rows(in, i, ap, rows);
+            int16_t *dxr = deriv_row(in, &b, 0, i), *dyr = deriv_row(in, &b, 1, i);
             if (fast) {
-                kernels.sobel(rows[0], rows[1], rows[2], dxb[i & 1], dyb[i & 1], next16, w);
+                kernels.sobel(rows[0], rows[1], rows[2], dxr, dyr, next16, w);
                 next16[-1] = next16[w] = 0;
             } else {
-                const int16_t *dxr, *dyr;
                 if (src) {
                     rte_grad_column_rows(&grad, rows, w, smooth, ap, RTE_BORDER_REPLICATE, vs,
                                          ap / 2);
                     rte_grad_column_rows(&grad, rows, w, deriv, ap, RTE_BORDER_REPLICATE, vd,
                                          ap / 2);
-                    grad.row(vs, deriv, ap, dxb[i & 1], w, (int)row_mode);
-                    grad.row(vd, smooth, ap, dyb[i & 1], w, (int)row_mode);
-                    dxr = dxb[i & 1];
-                    dyr = dyb[i & 1];
-                } else {
-                    dxr = rte_s16_row(in->gx, i);
-                    dyr = rte_s16_row(in->gy, i);
+                    grad.row(vs, deriv, ap, dxr, w, (int)row_mode);
+                    grad.row(vd, smooth, ap, dyr, w, (int)row_mode);
                 }
                 magnitude_row(dxr, dyr, next, w, params->l2_gradient);
             }
@@ -325,8 +333,7 @@ static rte_status canny_run(canny_input *in, rte_image_u8 *dst, const rte_canny_
             continue;
 
         const int32_t y = i - 1;
-        const int16_t *dxr = src ? dxb[y & 1] : rte_s16_row(in->gx, y);
-        const int16_t *dyr = src ? dyb[y & 1] : rte_s16_row(in->gy, y);
+        const int16_t *dxr = deriv_row(in, &b, 0, y), *dyr = deriv_row(in, &b, 1, y);
         uint8_t *mrow = map + (ptrdiff_t)(y + 1) * ms + 1;
         mrow[-1] = mrow[w] = 1;
         if (fast)
@@ -358,6 +365,29 @@ rte_status rte_canny_u8(const rte_image_u8 *src, rte_image_u8 *dst, const rte_ca
     if (st != RTE_OK)
         return st;
     canny_input in = {.src = src, .features = rte_cpu_features()};
+    return canny_run(&in, dst, params, scratch);
+}
+
+rte_status rte_canny_gradient_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte_image_s16 *dx,
+                                 rte_image_s16 *dy, const rte_canny_params *params,
+                                 rte_arena *scratch)
+{
+    /* Aperture 7's derivatives are scaled by 1/16 inside Canny: not cv::Sobel's. */
+    if (!params || !scratch || (params->aperture != 3 && params->aperture != 5))
+        return RTE_ERR_ARGUMENT;
+    rte_status st = rte_image_u8_check_pair(src, dst);
+    if (st == RTE_OK)
+        st = rte_image_s16_check(dx);
+    if (st == RTE_OK)
+        st = rte_image_s16_check(dy);
+    if (st != RTE_OK)
+        return st;
+    if (dx->width != src->width || dx->height != src->height || dy->width != src->width ||
+        dy->height != src->height)
+        return RTE_ERR_SIZE;
+    if (dx->buf == dy->buf)
+        return RTE_ERR_ARGUMENT;
+    canny_input in = {.src = src, .out_dx = dx, .out_dy = dy, .features = rte_cpu_features()};
     return canny_run(&in, dst, params, scratch);
 }
 

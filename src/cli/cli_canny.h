@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "rtedge/arena.h"
 #include "rtedge/blur.h"
+#include "rtedge/canny.h"
 #include "rtedge/image.h"
 #include "rtedge/status.h"
 
@@ -43,6 +44,9 @@ int cli_canny_option_rows(cli_option *rows, canny_options *o);
 /* Checks the options and builds the blur kernel; an exit code. */
 int cli_canny_prepare(const char *name, void *ctx);
 size_t cli_canny_scratch(void *ctx, int32_t w, int32_t h);
+/* The thresholds for `gray` (the auto rules read its histogram; blur it
+ * first when asked) into *params. */
+rte_status cli_canny_params(canny_options *o, const rte_image_u8 *gray, rte_canny_params *params);
 /* Blur (when asked) and Canny of `gray` into `out`. */
 rte_status cli_canny_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *out, rte_image_s16 *d,
                            rte_arena *arena);

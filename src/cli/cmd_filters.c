@@ -157,6 +157,14 @@ rte_status cli_canny_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *ou
             return st;
         gray = &blurred;
     }
+    rte_canny_params params;
+    st = cli_canny_params(o, gray, &params);
+    return st == RTE_OK ? rte_canny_u8(gray, out, &params, arena) : st;
+}
+
+rte_status cli_canny_params(canny_options *o, const rte_image_u8 *gray, rte_canny_params *params)
+{
+    rte_status st = RTE_OK;
     if (o->auto_rule) {
         uint32_t hist[256];
         int32_t low = 0, high = 0;
@@ -169,10 +177,7 @@ rte_status cli_canny_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *ou
         o->low = low;
         o->high = high;
     }
-    rte_canny_params params;
-    if (st == RTE_OK)
-        st = rte_canny_params_init(&params, o->low, o->high, o->aperture, o->l2);
-    return st == RTE_OK ? rte_canny_u8(gray, out, &params, arena) : st;
+    return st == RTE_OK ? rte_canny_params_init(params, o->low, o->high, o->aperture, o->l2) : st;
 }
 
 static void canny_report(void *ctx)

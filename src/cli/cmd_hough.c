@@ -63,7 +63,9 @@ static size_t transform_scratch(const hough_run *o, const rte_hough_config *cfg,
 }
 
 /* The edge map: IN itself with --edges, else blur (when asked) and Canny;
- * for circles also the 3x3 Sobel derivatives of the (blurred) image. */
+ * for circles also the 3x3 Sobel derivatives of the (blurred) image: with
+ * Canny's aperture 3 its own (BORDER_REPLICATE, as cv::HoughCircles), in
+ * the same pass. */
 static rte_status make_edges(hough_run *o, const rte_image_u8 *gray, hough_buffers *b)
 {
     rte_status st = RTE_OK;
@@ -73,6 +75,13 @@ static rte_status make_edges(hough_run *o, const rte_image_u8 *gray, hough_buffe
             RTE_OK)
             return st;
         src = &b->blurred;
+    }
+    if (o->kind == HOUGH_CIRCLES && !o->edges_given && o->canny.aperture == 3) {
+        rte_canny_params params;
+        st = cli_canny_params(&o->canny, src, &params);
+        return st == RTE_OK
+                   ? rte_canny_gradient_u8(src, &b->edges, &b->dx, &b->dy, &params, &b->arena)
+                   : st;
     }
     if (o->kind == HOUGH_CIRCLES) {
         if ((st = rte_sobel_s16(src, &b->dx, 1, 0, 3, &b->arena)) == RTE_OK)

@@ -2,7 +2,9 @@
 // (swapped, zero, negative, fractional, very high) on every file image;
 // random parameters on the random images; Canny from given dx/dy, including
 // full-range random derivatives; the fused front end (rte_canny_blurred_u8)
-// against cv::GaussianBlur then cv::Canny.
+// against cv::GaussianBlur then cv::Canny; Canny that hands out its
+// derivatives (rte_canny_gradient_u8) against cv::Sobel with BORDER_REPLICATE
+// then cv::Canny(dx, dy), all three outputs.
 #include "oracle.hpp"
 
 #include <cstdio>
@@ -89,6 +91,37 @@ void check_gradient(oracle::Tally &t, const std::string &name, const cv::Mat &dx
     t.add(what, expected, oracle::to_mat(dst));
 }
 
+// rte_canny_gradient_u8 against what cv::HoughCircles computes inside:
+// cv::Sobel (BORDER_REPLICATE) then cv::Canny(dx, dy); edges, dx and dy.
+void check_handing_out(oracle::Tally &t, const std::string &name, const cv::Mat &gray, double lo,
+                       double hi, int ap, bool l2, rte_arena *arena, std::mt19937 &rng)
+{
+    std::string what = name + " with its derivatives" + describe(lo, hi, ap, l2);
+    cv::Mat dx, dy, expected;
+    cv::Sobel(gray, dx, CV_16S, 1, 0, ap, 1, 0, cv::BORDER_REPLICATE);
+    cv::Sobel(gray, dy, CV_16S, 0, 1, ap, 1, 0, cv::BORDER_REPLICATE);
+    cv::Canny(dx, dy, expected, lo, hi, l2);
+    rte_canny_params p;
+    rte_status st = rte_canny_params_init(&p, lo, hi, ap, l2);
+    if (st != RTE_OK) {
+        t.call_failed(what + " (params)", st);
+        return;
+    }
+    std::vector<uint8_t> sbuf, dbuf;
+    std::vector<int16_t> xbuf, ybuf;
+    rte_image_u8 src = oracle::padded_u8(gray, sbuf, rng);
+    rte_image_u8 dst = oracle::blank_u8(gray.cols, gray.rows, dbuf, rng);
+    rte_image_s16 gx = oracle::blank_s16(gray.cols, gray.rows, xbuf, rng);
+    rte_image_s16 gy = oracle::blank_s16(gray.cols, gray.rows, ybuf, rng);
+    size_t mark = rte_arena_mark(arena);
+    st = rte_canny_gradient_u8(&src, &dst, &gx, &gy, &p, arena);
+    t.check(what, st, arena, mark, expected, dst);
+    if (st != RTE_OK)
+        return;
+    t.add(what + " dx", dx, oracle::to_mat(gx));
+    t.add(what + " dy", dy, oracle::to_mat(gy));
+}
+
 double random_threshold(std::mt19937 &rng)
 {
     switch (rng() % 6) {
@@ -140,6 +173,8 @@ int main()
         cv::Sobel(in.gray, dy, CV_16S, 0, 1, 3);
         check_gradient(t, in.name + " sobel3", dx, dy, 40, 120, false, &scratch.arena, rng);
         check_gradient(t, in.name + " sobel3", dx, dy, 120.5, 40, true, &scratch.arena, rng);
+        check_handing_out(t, in.name, in.gray, 50, 100, 3, false, &scratch.arena, rng);
+        check_handing_out(t, in.name, in.gray, 200, 60, 5, true, &scratch.arena, rng);
     }
 
     for (const oracle::Input &in : oracle::random_inputs(rng)) {
@@ -153,6 +188,8 @@ int main()
         check(t, in.name, in.gray, lo, hi, ap, l2, &scratch.arena, rng);
         check(t, in.name, in.gray, lo, hi, ap, l2, &scratch.arena, rng, 1 + 2 * (int)(rng() % 5),
               (rng() % 3) * 0.7);
+        if (ap < 7)
+            check_handing_out(t, in.name, in.gray, lo, hi, ap, l2, &scratch.arena, rng);
         // Full-range derivatives: the wrapped L2 sum and sector test.
         cv::Mat dx(in.gray.rows, in.gray.cols, CV_16S), dy(in.gray.rows, in.gray.cols, CV_16S);
         if (rng() & 1) {

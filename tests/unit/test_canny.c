@@ -1,6 +1,7 @@
 /* Canny: threshold conversion, hand-checked edges (steps, hysteresis,
  * 1xN / Nx1 / 1x1), arena sizing and argument errors; the fused front end
- * (rte_canny_blurred_u8) against blur-then-Canny. */
+ * (rte_canny_blurred_u8) against blur-then-Canny; the derivatives handed
+ * out by rte_canny_gradient_u8. */
 #include <math.h>
 
 #include "unit.h"
@@ -189,6 +190,69 @@ static void from_gradient(void **state)
     test_free(dst.buf);
 }
 
+/* rte_canny_gradient_u8: the edges of rte_canny_u8, and derivatives that
+ * are the 3x3 Sobel with BORDER_REPLICATE (a plain loop here) and give the
+ * same edges through rte_canny_from_gradient_u8 (aperture 5 too); the
+ * padding untouched; aperture 7, a missing, misfitting or shared
+ * derivative image refused. */
+static void handing_out_derivatives(void **state)
+{
+    enum { W = 37, H = 19 };
+    rte_arena a = make_arena();
+    uint32_t rng = 7;
+    rte_image_u8 src = unit_image_u8(W, H, 3, 0), want = unit_image_u8(W, H, 1, 0),
+                 got = unit_image_u8(W, H, 2, 0), again = unit_image_u8(W, H, 0, 0);
+    rte_image_s16 dx = unit_image_s16(W, H, 2), dy = unit_image_s16(W, H, 1);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            src.buf[y * src.stride + x] =
+                (uint8_t)((x / 6 + y / 5) % 2 ? 200 : 40) ^ (uint8_t)(unit_rand(&rng) % 16);
+    for (int ap = 3; ap <= 5; ap += 2)
+        for (int l2 = 0; l2 <= 1; l2++) {
+            rte_canny_params p;
+            assert_int_equal(rte_canny_params_init(&p, 60, 180, ap, l2), RTE_OK);
+            assert_int_equal(rte_canny_u8(&src, &want, &p, &a), RTE_OK);
+            assert_int_equal(rte_canny_gradient_u8(&src, &got, &dx, &dy, &p, &a), RTE_OK);
+            for (int y = 0; y < H; y++)
+                assert_memory_equal(got.buf + y * got.stride, want.buf + y * want.stride, W);
+            assert_int_equal(rte_canny_from_gradient_u8(&dx, &dy, &again, &p, &a), RTE_OK);
+            for (int y = 0; y < H; y++)
+                assert_memory_equal(again.buf + y * again.stride, want.buf + y * want.stride, W);
+            unit_assert_padding_u8(&got);
+            unit_assert_padding_s16(&dx);
+            unit_assert_padding_s16(&dy);
+        }
+    /* aperture 3, L1: the derivatives against the plain loop */
+    rte_canny_params p;
+    assert_int_equal(rte_canny_params_init(&p, 60, 180, 3, false), RTE_OK);
+    assert_int_equal(rte_canny_gradient_u8(&src, &got, &dx, &dy, &p, &a), RTE_OK);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const int ym = y > 0 ? y - 1 : 0, yp = y < H - 1 ? y + 1 : y;
+            const int xm = x > 0 ? x - 1 : 0, xp = x < W - 1 ? x + 1 : x;
+#define S(yy, xx) src.buf[(yy)*src.stride + (xx)]
+            assert_int_equal(dx.buf[y * dx.stride + x], S(ym, xp) + 2 * S(y, xp) + S(yp, xp) -
+                                                            S(ym, xm) - 2 * S(y, xm) - S(yp, xm));
+            assert_int_equal(dy.buf[y * dy.stride + x], S(yp, xm) + 2 * S(yp, x) + S(yp, xp) -
+                                                            S(ym, xm) - 2 * S(ym, x) - S(ym, xp));
+#undef S
+        }
+
+    rte_image_s16 narrow = unit_image_s16(W - 1, H, 0);
+    assert_int_equal(rte_canny_gradient_u8(&src, &got, &narrow, &dy, &p, &a), RTE_ERR_SIZE);
+    assert_int_equal(rte_canny_gradient_u8(&src, &got, &dx, NULL, &p, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_gradient_u8(&src, &got, &dx, &dx, &p, &a), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_canny_params_init(&p, 60, 180, 7, false), RTE_OK);
+    assert_int_equal(rte_canny_gradient_u8(&src, &got, &dx, &dy, &p, &a), RTE_ERR_ARGUMENT);
+    test_free(narrow.buf);
+    test_free(src.buf);
+    test_free(want.buf);
+    test_free(got.buf);
+    test_free(again.buf);
+    test_free(dx.buf);
+    test_free(dy.buf);
+}
+
 /* Noise: every edge pixel is 255, the rest 0, padding untouched, and the
  * stated arena size is enough at any alignment while half of it fails. */
 static void arena_size_and_arguments(void **state)
@@ -342,6 +406,7 @@ int main(void)
         cmocka_unit_test(hysteresis_follows_weak_edges_from_seeds),
         cmocka_unit_test(thin_images),
         cmocka_unit_test(from_gradient),
+        cmocka_unit_test(handing_out_derivatives),
         cmocka_unit_test(arena_size_and_arguments),
         cmocka_unit_test(blurred_equals_blur_then_canny),
         cmocka_unit_test(blurred_arena_size_and_arguments),

@@ -86,17 +86,14 @@ Register circles("hough", "circles (Sobel + Canny 50/100 + transform, r 10..40)"
                  [](const Frame &f) {
                      size_t scratch = std::max(
                          rte_hough_circles_scratch_size(f.gray.cols, f.gray.rows, &circle_params),
-                         std::max(rte_sobel_scratch_size(f.gray.cols, f.gray.rows, 3),
-                                  rte_canny_scratch_size(f.gray.cols, f.gray.rows, 3)));
+                         rte_canny_scratch_size(f.gray.cols, f.gray.rows, 3));
                      auto b = std::make_shared<HoughBuffers>(f, scratch);
                      return Runners{[b] {
                                         rte_image_u8 g = u8(b->gray), e = u8(b->cedges);
                                         rte_image_s16 gx = s16(b->dx), gy = s16(b->dy);
                                         rte_canny_params cp;
                                         rte_canny_params_init(&cp, 50, 100, 3, false);
-                                        rte_sobel_s16(&g, &gx, 1, 0, 3, &b->arena);
-                                        rte_sobel_s16(&g, &gy, 0, 1, 3, &b->arena);
-                                        rte_canny_u8(&g, &e, &cp, &b->arena);
+                                        rte_canny_gradient_u8(&g, &e, &gx, &gy, &cp, &b->arena);
                                         int32_t n;
                                         bool t;
                                         rte_hough_circles(&e, &gx, &gy, &circle_params, &b->arena,
