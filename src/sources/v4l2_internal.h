@@ -19,6 +19,7 @@
 #include <linux/videodev2.h>
 #include <turbojpeg.h>
 
+#include "retry.h"
 #include "rtedge/v4l2_source.h"
 
 /* Nodes looked at when a device is named by card or bus: /dev/video0..63. */
@@ -51,9 +52,8 @@ typedef struct v4l2_source {
     bool have_delivered;
     uint32_t last_delivered; /* last sequence handed out */
 
-    int64_t retry_at_ns;
-    int32_t backoff_ms, backoff_max_ms;
-    bool streamed; /* false while a device missing at open is waited for */
+    rte_retry retry; /* reconnection, or the wait at open */
+    bool streamed;   /* false while a device missing at open is waited for */
     rte_source_stats stats;
 
     tjhandle tj; /* MJPEG only */

@@ -16,9 +16,8 @@ rte_status rte_v4l2_device_lost(v4l2_source *s, const char *what, int err, char 
     rte_v4l2_stop_device(s);
     s->stats.state = RTE_SOURCE_RECONNECTING;
     s->stats.errors++;
-    s->backoff_ms = s->cfg.reconnect_min_ms;
-    s->backoff_max_ms = s->cfg.reconnect_max_ms;
-    s->retry_at_ns = s->ops->now_ns(s->ops->ctx) + (int64_t)s->backoff_ms * 1000000;
+    rte_retry_start(&s->retry, s->ops->now_ns(s->ops->ctx), s->cfg.reconnect_min_ms,
+                    s->cfg.reconnect_max_ms);
     rte_source_msgf(msg, msg_size, "%s: %s: %s; reconnecting", s->info.path, what,
                     err ? strerror(err) : "error condition");
     return RTE_ERR_DEVICE;
@@ -27,9 +26,7 @@ rte_status rte_v4l2_device_lost(v4l2_source *s, const char *what, int err, char 
 void rte_v4l2_wait_for_device(v4l2_source *s, int32_t min_ms, int32_t max_ms)
 {
     s->stats.state = RTE_SOURCE_RECONNECTING;
-    s->backoff_ms = min_ms;
-    s->backoff_max_ms = max_ms;
-    s->retry_at_ns = s->ops->now_ns(s->ops->ctx) + (int64_t)min_ms * 1000000;
+    rte_retry_start(&s->retry, s->ops->now_ns(s->ops->ctx), min_ms, max_ms);
 }
 
 /* Sleeps until the next attempt (within the caller's deadline), then tries
@@ -37,25 +34,23 @@ void rte_v4l2_wait_for_device(v4l2_source *s, int32_t min_ms, int32_t max_ms)
 rte_status rte_v4l2_reconnect(v4l2_source *s, int64_t deadline_ns, char *msg, size_t msg_size)
 {
     int64_t now = s->ops->now_ns(s->ops->ctx);
-    int64_t wake = s->retry_at_ns;
+    int64_t wake = s->retry.at_ns;
     if (deadline_ns >= 0 && deadline_ns < wake)
         wake = deadline_ns;
     if (wake > now)
         s->ops->poll(s->ops->ctx, NULL, 0, (int)((wake - now + 999999) / 1000000));
     now = s->ops->now_ns(s->ops->ctx);
-    if (now < s->retry_at_ns) {
+    if (now < s->retry.at_ns) {
         rte_source_msgf(msg, msg_size, "%s: %s, next attempt in %lld ms", s->info.path,
                         s->streamed ? "reconnecting" : "waiting for the camera",
-                        (long long)((s->retry_at_ns - now + 999999) / 1000000));
+                        (long long)rte_retry_wait_ms(&s->retry, now));
         return RTE_ERR_TIMEOUT;
     }
     rte_status st = rte_v4l2_setup_device(s, true, msg, msg_size);
     if (st != RTE_OK) {
         s->stats.errors++;
-        s->backoff_ms =
-            s->backoff_ms > s->backoff_max_ms / 2 ? s->backoff_max_ms : 2 * s->backoff_ms;
-        s->retry_at_ns = now + (int64_t)s->backoff_ms * 1000000;
-        rte_source_msg_append(msg, msg_size, "; retrying in %d ms", s->backoff_ms);
+        rte_retry_failed(&s->retry, now);
+        rte_source_msg_append(msg, msg_size, "; retrying in %d ms", s->retry.delay_ms);
         return RTE_ERR_DEVICE;
     }
     s->stats.state = RTE_SOURCE_STREAMING;

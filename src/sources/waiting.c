@@ -7,14 +7,14 @@
 #include <time.h>
 
 #include "core/clock.h"
+#include "retry.h"
 #include "source_msg.h"
 
 typedef struct waiting_source {
     rte_waiting_config cfg;
     rte_source camera; /* ops == NULL until it opens */
     rte_source_stats stats;
-    int32_t delay_ms;
-    int64_t retry_at_ns;
+    rte_retry retry;
 } waiting_source;
 
 static int64_t now_ns(const waiting_source *w)
@@ -50,15 +50,15 @@ static bool camera_fits(waiting_source *w, char *msg, size_t msg_size)
 static rte_status try_open(waiting_source *w, int32_t timeout_ms, char *msg, size_t msg_size)
 {
     int64_t now = now_ns(w);
-    if (now < w->retry_at_ns) {
-        int64_t wait_ms = (w->retry_at_ns - now + 999999) / 1000000;
+    int64_t wait_ms = rte_retry_wait_ms(&w->retry, now);
+    if (wait_ms > 0) {
         if (timeout_ms >= 0 && wait_ms > timeout_ms)
             wait_ms = timeout_ms;
         sleep_ms(w, (int32_t)wait_ms);
         now = now_ns(w);
-        if (now < w->retry_at_ns) {
+        if ((wait_ms = rte_retry_wait_ms(&w->retry, now)) > 0) {
             rte_source_msgf(msg, msg_size, "%s: waiting for the camera, next attempt in %lld ms",
-                            w->cfg.name, (long long)((w->retry_at_ns - now + 999999) / 1000000));
+                            w->cfg.name, (long long)wait_ms);
             return RTE_ERR_TIMEOUT;
         }
     }
@@ -70,10 +70,9 @@ static rte_status try_open(waiting_source *w, int32_t timeout_ms, char *msg, siz
     }
     w->camera = (rte_source){0};
     w->stats.errors++;
-    w->delay_ms = w->delay_ms > w->cfg.retry_max_ms / 2 ? w->cfg.retry_max_ms : 2 * w->delay_ms;
-    w->retry_at_ns = now + (int64_t)w->delay_ms * 1000000;
+    rte_retry_failed(&w->retry, now);
     rte_source_msgf(msg, msg_size, "%s: %s; retrying in %d ms", w->cfg.name,
-                    why[0] ? why : rte_status_message(st), w->delay_ms);
+                    why[0] ? why : rte_status_message(st), w->retry.delay_ms);
     return RTE_ERR_DEVICE;
 }
 
@@ -137,8 +136,7 @@ rte_status rte_waiting_source_open(rte_source *source, const rte_waiting_config 
         w->cfg.retry_max_ms = 8000;
     if (w->cfg.retry_max_ms < w->cfg.retry_min_ms)
         w->cfg.retry_max_ms = w->cfg.retry_min_ms;
-    w->delay_ms = w->cfg.retry_min_ms;
-    w->retry_at_ns = now_ns(w) + (int64_t)w->delay_ms * 1000000;
+    rte_retry_start(&w->retry, now_ns(w), w->cfg.retry_min_ms, w->cfg.retry_max_ms);
     w->stats.state = RTE_SOURCE_RECONNECTING;
     *source = (rte_source){&waiting_ops, w, config->max_width, config->max_height, config->format};
     return RTE_OK;
