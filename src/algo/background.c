@@ -5,9 +5,15 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "background_rows.h"
+#include "rtedge/cpu.h"
+#include "simd/rows.h"
+
 /* Grid values carry 4 fractional bits; bilinear weights 8. */
 #define GRID_SHIFT 4
 #define WEIGHT_SHIFT 8
+_Static_assert(GRID_SHIFT + 2 * WEIGHT_SHIFT == RTE_BACKGROUND_VALUE_SHIFT,
+               "background_rows.h stores values of this many fractional bits");
 
 /* A cell's histogram: 256 bins, then 16 coarse ones. */
 #define HIST_BINS (256 + 16)
@@ -239,18 +245,24 @@ static void column_terms(const int32_t *g0, const int32_t *g1, const int32_t *co
     }
 }
 
-/* out[x] = the row's values (Q20) rounded down to grey levels. */
-static void store_row(const int32_t *restrict v, uint8_t *restrict out, int32_t w)
-{
-    for (int32_t x = 0; x < w; x++)
-        out[x] = (uint8_t)(v[x] >> (GRID_SHIFT + 2 * WEIGHT_SHIFT));
-}
+/* The C references of the background row family (background_rows.h;
+ * the threshold's rows are used by background_threshold.c). */
+RTE_BACKGROUND_ROWS_DEFINE(c)
 
-/* v[x] += add[x]: the next row's values (vectorised: no multiply). */
-static void add_row(int32_t *restrict v, const int32_t *restrict add, int32_t w)
+rte_background_rows rte_background_rows_select(uint32_t features)
 {
-    for (int32_t x = 0; x < w; x++)
-        v[x] += add[x];
+#define RTE_BACKGROUND_ROWS_OF(isa)                                              \
+    {                                                                            \
+        rte_background_add_row_##isa, rte_background_store_row_##isa,            \
+            rte_background_absdiff_row_##isa, rte_background_classify_row_##isa, \
+            rte_background_above_floor_row_##isa                                 \
+    }
+    static const rte_background_rows c = RTE_BACKGROUND_ROWS_OF(c);
+#ifdef RTE_SIMD_X86
+    static const rte_background_rows avx2 = RTE_BACKGROUND_ROWS_OF(avx2);
+#endif
+#undef RTE_BACKGROUND_ROWS_OF
+    return RTE_SIMD_PICK(features, c, avx2, c);
 }
 
 rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *background,
@@ -292,6 +304,7 @@ rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *bac
     for (int32_t x = 0; x < w; x++)
         interpolation_point(x, cell, gw, &col[x], &col_frac[x]);
     const int32_t step = (1 << WEIGHT_SHIFT) / cell;
+    const rte_background_rows rows = rte_background_rows_select(rte_cpu_features());
     int32_t row_j = -1, row_fy = 0;
     for (int32_t y = 0; y < h; y++) {
         int32_t j, fy;
@@ -306,13 +319,13 @@ rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *bac
             for (int32_t x = 0; x < w; x++)
                 v[x] = p[x] + q[x] * fy;
         } else if (fy != row_fy) {
-            add_row(v, qs, w);
+            rows.add(v, qs, w);
             if (fy - row_fy == step + 1)
-                add_row(v, q, w);
+                rows.add(v, q, w);
         }
         row_j = j;
         row_fy = fy;
-        store_row(v, rte_u8_row(background, y), w);
+        rows.store(v, rte_u8_row(background, y), w);
     }
     rte_arena_reset(arena, mark);
     return RTE_OK;

@@ -8,6 +8,8 @@
 #include "rtedge/threshold.h"
 
 #include "row_scan.h"
+#include "rtedge/cpu.h"
+#include "simd/rows.h"
 
 void rte_background_threshold_params_default(rte_background_threshold_params *params, int32_t width)
 {
@@ -77,23 +79,11 @@ static void unite(int32_t *parent, int32_t a, int32_t b)
         parent[a] = b;
 }
 
-/* A pixel's class for the labelling (classify_row): its side where |d| >
+/* A pixel's class for the labelling (the family's classify row,
+ * background_rows.h): its side where |d| >
  * low and the side is looked for, else 0; the side again two bits up where
  * |d| > high. */
 enum { CLASS_SIDE = 3, CLASS_STRONG = 12 };
-
-/* c[x] = the class of pixel x (a: |d|; the side is s > b, bright_class /
- * dark_class 1 / 2 or 0 where not looked for): a loop the compiler
- * vectorises. */
-static void classify_row(const uint8_t *restrict a, const uint8_t *restrict s,
-                         const uint8_t *restrict b, uint8_t *restrict c, int32_t w, uint8_t low,
-                         uint8_t high, uint8_t bright_class, uint8_t dark_class)
-{
-    for (int32_t x = 0; x < w; x++) {
-        const uint8_t side = s[x] > b[x] ? bright_class : dark_class;
-        c[x] = (uint8_t)((a[x] > low ? side : 0) | (a[x] > high ? side << 2 : 0));
-    }
-}
 
 /* The end of the run of side `side` that starts at x (the first x1 > x
  * whose class has another side, or w); *classes gets the OR of the run's
@@ -212,18 +202,12 @@ static bool casts_shadow_on(const run_table *t, int32_t y, int32_t h, int32_t ga
     return false;
 }
 
-/* a[x] = 255 where a[x] > fl[x], else 0 (vectorised). */
-static void above_floor(uint8_t *restrict a, const uint8_t *restrict fl, int32_t w)
-{
-    for (int32_t x = 0; x < w; x++)
-        a[x] = a[x] > fl[x] ? 255 : 0;
-}
-
 /* dst holds |d|: each kept region's pixels beyond its own floor (share per
  * mille of its mean |d|) become 255, everything else 0. Per row: the
  * floors of the kept runs, 255 elsewhere (|d| is never above it), then one
  * compare over the row. */
-static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share)
+static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share,
+                          const rte_background_rows *rows)
 {
     uint8_t *fl = t->row;
     for (int32_t y = 0; y < dst->height; y++) {
@@ -238,7 +222,7 @@ static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share)
                 (int32_t)(t->sum[root] * share / ((int64_t)t->count[root] * 1000));
             memset(fl + t->x0[r], floor, (size_t)(t->x1[r] + 1 - t->x0[r]));
         }
-        above_floor(out, fl, dst->width);
+        rows->above_floor(out, fl, dst->width);
     }
 }
 
@@ -309,14 +293,9 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     }
 
     /* |d| into dst first (the regions are painted over it at the end) */
-    for (int32_t y = 0; y < h; y++) {
-        const uint8_t *s = rte_u8_row(src, y), *b = rte_u8_row(background, y);
-        uint8_t *a = rte_u8_row(dst, y);
-        for (int32_t x = 0; x < w; x++) { /* max - min: vectorised */
-            const uint8_t hi = s[x] > b[x] ? s[x] : b[x], lo = s[x] > b[x] ? b[x] : s[x];
-            a[x] = (uint8_t)(hi - lo);
-        }
-    }
+    const rte_background_rows rows = rte_background_rows_select(rte_cpu_features());
+    for (int32_t y = 0; y < h; y++)
+        rows.absdiff(rte_u8_row(src, y), rte_u8_row(background, y), rte_u8_row(dst, y), w);
     int32_t high = params->high;
     if (high == 0) {
         uint32_t hist[256];
@@ -331,8 +310,8 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     int64_t dropped = 0;
     for (int32_t y = 0; y < h; y++) {
         const uint8_t *a = rte_u8_row(dst, y);
-        classify_row(a, rte_u8_row(src, y), rte_u8_row(background, y), t.row, w, (uint8_t)low,
-                     (uint8_t)high, params->bright ? 1 : 0, params->dark ? 2 : 0);
+        rows.classify(a, rte_u8_row(src, y), rte_u8_row(background, y), t.row, w, (uint8_t)low,
+                      (uint8_t)high, params->bright ? 1 : 0, params->dark ? 2 : 0);
         dropped += label_row(&t, y, a, t.row, w, &n);
     }
     /* Statistics to the roots; every run then points at its root. */
@@ -350,7 +329,7 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     }
     if (params->drop_shadows && params->bright && params->dark)
         shadows = mark_shadows(&t, n, h, params);
-    paint_regions(&t, dst, params->region_share_permille);
+    paint_regions(&t, dst, params->region_share_permille, &rows);
     if (result)
         *result = (rte_background_threshold_result){.high = high,
                                                     .low = low,

@@ -851,6 +851,96 @@ static void circle_votes(const void *variant, uint32_t *seed)
 DEFINE_PICK(circle_votes, circle_votes_variants, circle_votes_variant, rte_circle_votes_fn,
             rte_circle_votes_select(features), v->votes == p)
 
+/* The background rows (table estimate and threshold): each kernel of each
+ * variant against the C reference on one random row, unaligned, with guard
+ * bytes after the outputs; values to add within +-2^29 (no overflow). */
+typedef struct background_variant {
+    variant_head head;
+    rte_background_rows rows;
+} background_variant;
+
+static const background_variant background_variants[] = {
+#ifdef RTE_SIMD_X86
+    {{"background_avx2", RTE_CPU_X86_AVX2},
+     {rte_background_add_row_avx2, rte_background_store_row_avx2, rte_background_absdiff_row_avx2,
+      rte_background_classify_row_avx2, rte_background_above_floor_row_avx2}},
+#endif
+    {{"background_c", 0},
+     {rte_background_add_row_c, rte_background_store_row_c, rte_background_absdiff_row_c,
+      rte_background_classify_row_c, rte_background_above_floor_row_c}},
+};
+
+static void random_values(int32_t *p, int32_t n, uint32_t *seed)
+{
+    for (int32_t i = 0; i < n; i++)
+        p[i] = (int32_t)(unit_rand(seed) % (1u << 30)) - (1 << 29);
+}
+
+static void check_background_row(const background_variant *v, int32_t w, uint32_t *seed)
+{
+    const rte_background_rows *c = &background_variants[COUNT_OF(background_variants) - 1].rows;
+    const size_t o = unit_rand(seed) % MAX_OFFSET, n = o + (size_t)w + GUARD;
+    uint8_t *s = test_malloc(n), *b = test_malloc(n), *t = test_malloc(n), *want = test_malloc(n),
+            *got = test_malloc(n);
+    int32_t *va = test_malloc(n * sizeof *va), *vb = test_malloc(n * sizeof *vb),
+            *add = test_malloc(n * sizeof *add);
+    fill_random(s, n, seed, w % 7 == 0);
+    fill_random(b, n, seed, w % 5 == 0);
+    fill_random(t, n, seed, w % 3 == 0);
+    random_values(va, (int32_t)n, seed);
+    random_values(add, (int32_t)n, seed);
+    memcpy(vb, va, n * sizeof *va);
+    c->add(va + o, add + o, w);
+    v->rows.add(vb + o, add + o, w);
+    if (memcmp(va, vb, n * sizeof *va) != 0)
+        fail_msg("%s add width %d differs", v->head.name, (int)w);
+    const struct {
+        const char *name;
+        int which;
+    } bytes[] = {{"store", 0}, {"absdiff", 1}, {"classify", 2}, {"above_floor", 3}};
+    const uint8_t low = (uint8_t)unit_rand(seed), high = (uint8_t)unit_rand(seed);
+    const uint8_t bright = (uint8_t)(unit_rand(seed) % 3), dark = (uint8_t)(unit_rand(seed) % 3);
+    for (size_t k = 0; k < COUNT_OF(bytes); k++) {
+        memset(want, 0xEE, n);
+        memset(got, 0xEE, n);
+        const rte_background_rows *r[2] = {c, &v->rows};
+        uint8_t *out[2] = {want, got};
+        for (int j = 0; j < 2; j++) {
+            switch (bytes[k].which) {
+            case 0: r[j]->store(va + o, out[j] + o, w); break;
+            case 1: r[j]->absdiff(s + o, b + o, out[j] + o, w); break;
+            case 2:
+                r[j]->classify(s + o, b + o, t + o, out[j] + o, w, low, high, bright, dark);
+                break;
+            default: memcpy(out[j] + o, s + o, (size_t)w); r[j]->above_floor(out[j] + o, b + o, w);
+            }
+        }
+        if (memcmp(want, got, n) != 0)
+            fail_msg("%s %s width %d differs", v->head.name, bytes[k].name, (int)w);
+    }
+    test_free(s);
+    test_free(b);
+    test_free(t);
+    test_free(want);
+    test_free(got);
+    test_free(va);
+    test_free(vb);
+    test_free(add);
+}
+
+static void background_rows(const void *variant, uint32_t *seed)
+{
+    const background_variant *v = variant;
+    for (int32_t w = 1; w <= 67; w++)
+        for (int k = 0; k < 4; k++)
+            check_background_row(v, w, seed);
+    for (int k = 0; k < 8; k++)
+        check_background_row(v, 68 + (int32_t)(unit_rand(seed) % 3000), seed);
+}
+
+DEFINE_PICK(background, background_variants, background_variant, rte_background_rows,
+            rte_background_rows_select(features), v->rows.add == p.add && v->rows.store == p.store)
+
 /* A kernel family: its variants (structs that start with a variant_head),
  * which of them its *_select picks for a mask, and the comparison of one
  * variant with the C reference. */
@@ -880,6 +970,7 @@ static const kernel_family families[] = {
     FAMILY(hough_bins, hough_bins_variants, hough_bins, 0x4B0Fu),
     FAMILY(hough_line_rows, hough_line_rows_variants, hough_line_rows, 0x11E5u),
     FAMILY(circle_votes, circle_votes_variants, circle_votes, 0xC1C1Eu),
+    FAMILY(background, background_variants, background_rows, 0xBAC6u),
 };
 
 enum { FAMILY_COUNT = COUNT_OF(families), MASK_COUNT = COUNT_OF(feature_masks) };
@@ -971,6 +1062,7 @@ static void force_c_selects_the_reference(void **state)
         assert_true(rte_hough_bins_select(hw) == rte_hough_bins_avx2);
         assert_true(rte_hough_line_rows_select(hw).bins == rte_hough_point_bins_avx2);
         assert_true(rte_circle_votes_select(hw) == rte_circle_votes_avx2);
+        assert_true(rte_background_rows_select(hw).classify == rte_background_classify_row_avx2);
     }
 #endif
 #ifdef RTE_SIMD_NEON
@@ -994,6 +1086,8 @@ static void force_c_selects_the_reference(void **state)
     rte_hough_line_rows hl = rte_hough_line_rows_select(rte_cpu_features());
     assert_true(hl.bins == rte_hough_point_bins_c && hl.sum == rte_hough_sum_copies_c);
     assert_true(rte_circle_votes_select(rte_cpu_features()) == rte_circle_votes_c);
+    assert_true(rte_background_rows_select(rte_cpu_features()).absdiff ==
+                rte_background_absdiff_row_c);
     assert_true(rte_lane_cue_row_select(rte_cpu_features()) == rte_lane_cue_row_c);
     rte_grad_rows gr = rte_grad_rows_select(rte_cpu_features());
     assert_true(gr.column == rte_grad_column_c && gr.row == rte_grad_row_c);

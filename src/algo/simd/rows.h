@@ -120,6 +120,57 @@ void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint
                          uint8_t maxval);
 rte_threshold_row_fn rte_threshold_row_select(uint32_t features);
 
+/* The table estimate and its threshold (src/algo/background.c and
+ * background_threshold.c, background_rows.h): the interpolated values'
+ * next row and their grey levels, |s - b|, the side classes and the
+ * floors. */
+typedef struct rte_background_rows {
+    void (*add)(int32_t *v, const int32_t *add, int32_t w);
+    void (*store)(const int32_t *v, uint8_t *out, int32_t w);
+    void (*absdiff)(const uint8_t *s, const uint8_t *b, uint8_t *a, int32_t w);
+    void (*classify)(const uint8_t *a, const uint8_t *s, const uint8_t *b, uint8_t *c, int32_t w,
+                     uint8_t low, uint8_t high, uint8_t bright_class, uint8_t dark_class);
+    void (*above_floor)(uint8_t *a, const uint8_t *fl, int32_t w);
+} rte_background_rows;
+
+/* rte_background_<kernel>_row_<isa> for every kernel of the family, and
+ * (DEFINE) their bodies from background_rows.h. */
+#define RTE_BACKGROUND_ROWS_DECLARE(isa)                                                         \
+    void rte_background_add_row_##isa(int32_t *v, const int32_t *add, int32_t w);                \
+    void rte_background_store_row_##isa(const int32_t *v, uint8_t *out, int32_t w);              \
+    void rte_background_absdiff_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *a,        \
+                                          int32_t w);                                            \
+    void rte_background_classify_row_##isa(const uint8_t *a, const uint8_t *s, const uint8_t *b, \
+                                           uint8_t *c, int32_t w, uint8_t low, uint8_t high,     \
+                                           uint8_t bright_class, uint8_t dark_class);            \
+    void rte_background_above_floor_row_##isa(uint8_t *a, const uint8_t *fl, int32_t w);
+#define RTE_BACKGROUND_ROWS_DEFINE(isa)                                                          \
+    void rte_background_add_row_##isa(int32_t *v, const int32_t *add, int32_t w)                 \
+    {                                                                                            \
+        background_add_row(v, add, w);                                                           \
+    }                                                                                            \
+    void rte_background_store_row_##isa(const int32_t *v, uint8_t *out, int32_t w)               \
+    {                                                                                            \
+        background_store_row(v, out, w);                                                         \
+    }                                                                                            \
+    void rte_background_absdiff_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *a,        \
+                                          int32_t w)                                             \
+    {                                                                                            \
+        background_absdiff_row(s, b, a, w);                                                      \
+    }                                                                                            \
+    void rte_background_classify_row_##isa(const uint8_t *a, const uint8_t *s, const uint8_t *b, \
+                                           uint8_t *c, int32_t w, uint8_t low, uint8_t high,     \
+                                           uint8_t bright_class, uint8_t dark_class)             \
+    {                                                                                            \
+        background_classify_row(a, s, b, c, w, low, high, bright_class, dark_class);             \
+    }                                                                                            \
+    void rte_background_above_floor_row_##isa(uint8_t *a, const uint8_t *fl, int32_t w)          \
+    {                                                                                            \
+        background_above_floor_row(a, fl, w);                                                    \
+    }
+RTE_BACKGROUND_ROWS_DECLARE(c)
+rte_background_rows rte_background_rows_select(uint32_t features);
+
 /* Separable integer filters of the gradient family (src/algo/gradient.c,
  * gradient_loops.h; also Canny's apertures 5 and 7 and L2): the column
  * pass of ny source rows into int16, and the row pass of a padded int16
@@ -223,6 +274,7 @@ void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t
 RTE_HOUGH_LINE_ROWS_DECLARE(avx2)
 void rte_circle_votes_avx2(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux, uint32_t uy,
                            uint32_t sx, uint32_t sy, int32_t n);
+RTE_BACKGROUND_ROWS_DECLARE(avx2)
 #endif
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);
