@@ -85,9 +85,10 @@ RTE_API size_t rte_canny_blurred_scratch_size(int32_t max_width, int32_t max_hei
 /* rte_canny_u8 that also hands out the derivatives it computes: dx, dy =
  * cv::Sobel(src, CV_16S, 1, 0 / 0, 1, aperture, 1, 0, BORDER_REPLICATE)
  * (Canny's own), same size as src. One pass gives what cv::HoughCircles
- * computes inside and rte_hough_circles takes beside the edges. Aperture 3
- * or 5; aperture 7, whose derivatives Canny scales by 1/16, is rejected
- * with RTE_ERR_ARGUMENT. Scratch: rte_canny_scratch_size. */
+ * computes inside and rte_hough_circles takes beside the edges. dx and dy
+ * are two images that overlap neither src nor dst. Aperture 3 or 5;
+ * aperture 7, whose derivatives Canny scales by 1/16, is rejected with
+ * RTE_ERR_ARGUMENT. Scratch: rte_canny_scratch_size. */
 RTE_API rte_status rte_canny_gradient_u8(const rte_image_u8 *src, rte_image_u8 *dst,
                                          rte_image_s16 *dx, rte_image_s16 *dy,
                                          const rte_canny_params *params, rte_arena *scratch);
