@@ -20,6 +20,7 @@
 #include "rtedge/cpu.h"
 
 #include "canny_rows.h"
+#include "core/image_checks.h"
 #include "gaussian_line.h"
 #include "gradient_rows.h"
 #include "simd/rows.h"
@@ -377,14 +378,9 @@ rte_status rte_canny_gradient_u8(const rte_image_u8 *src, rte_image_u8 *dst, rte
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_image_u8_check_pair(src, dst);
     if (st == RTE_OK)
-        st = rte_image_s16_check(dx);
-    if (st == RTE_OK)
-        st = rte_image_s16_check(dy);
+        st = rte_image_s16_check_gradient(dx, dy, src->width, src->height);
     if (st != RTE_OK)
         return st;
-    if (dx->width != src->width || dx->height != src->height || dy->width != src->width ||
-        dy->height != src->height)
-        return RTE_ERR_SIZE;
     if (dx->buf == dy->buf)
         return RTE_ERR_ARGUMENT;
     canny_input in = {.src = src, .out_dx = dx, .out_dy = dy, .features = rte_cpu_features()};

@@ -21,6 +21,7 @@
 
 #include <string.h>
 
+#include "core/image_checks.h"
 #include "core/int_math.h"
 #include "hough_circles_internal.h"
 #include "hough_internal.h"
@@ -373,14 +374,9 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
         return RTE_ERR_ARGUMENT;
     rte_status st = rte_image_u8_check(edges);
     if (st == RTE_OK)
-        st = rte_image_s16_check(dx);
-    if (st == RTE_OK)
-        st = rte_image_s16_check(dy);
+        st = rte_image_s16_check_gradient(dx, dy, edges->width, edges->height);
     if (st != RTE_OK)
         return st;
-    if (dx->width != edges->width || dy->width != edges->width || dx->height != edges->height ||
-        dy->height != edges->height)
-        return RTE_ERR_SIZE;
     *count = 0;
     *truncated = false;
 
