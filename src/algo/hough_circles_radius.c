@@ -94,15 +94,6 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
     return best_count;
 }
 
-/* Step 3b: the centre refined to the point nearest to the gradient lines of
- * the circle's edge pixels (those within 1.5 px of the radius whose
- * gradient points within ~14 degrees of the centre, not on the image
- * border, where the derivatives depend on the border rule): the least-squares
- * intersection sum (I - u u^T) c = sum (I - u u^T) p with unit gradients u
- * in Q8. It works on arcs too, and is not held to the accumulator grid. The
- * radius becomes the mean distance to the refined centre. A move of more
- * than 2 dp, too few pixels or a degenerate system keep the grid centre;
- * radii over 1000 px (where the sums would need more than 64 bits) too. */
 /* The point p (packed y << 16 | x) relative to the centre (1/16 pixel) in
  * (*px, *py) and, when d is not NULL, its distance; 1 when that is within
  * `band` of r. */
@@ -122,6 +113,15 @@ static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t
     return 1;
 }
 
+/* Step 3b: the centre refined to the point nearest to the gradient lines of
+ * the circle's edge pixels (those within 1.5 px of the radius whose
+ * gradient points within ~14 degrees of the centre, not on the image
+ * border, where the derivatives depend on the border rule): the least-squares
+ * intersection sum (I - u u^T) c = sum (I - u u^T) p with unit gradients u
+ * in Q8. It works on arcs too, and is not held to the accumulator grid. The
+ * radius becomes the mean distance to the refined centre. A move of more
+ * than 2 dp, too few pixels or a degenerate system keep the grid centre;
+ * radii over 1000 px (where the sums would need more than 64 bits) too. */
 void rte_circle_refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
                        const rte_image_s16 *dx, const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx,
                        int32_t *cy, int32_t *r_q4)
