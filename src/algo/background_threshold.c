@@ -79,10 +79,9 @@ static void unite(int32_t *parent, int32_t a, int32_t b)
         parent[a] = b;
 }
 
-/* A pixel's class for the labelling (the family's classify row,
- * background_rows.h): its side where |d| >
- * low and the side is looked for, else 0; the side again two bits up where
- * |d| > high. */
+/* A pixel's class for the labelling (background_rows.h's classify row):
+ * its side where |d| > low and the side is looked for, else 0; the side
+ * again two bits up where |d| > high. */
 enum { CLASS_SIDE = 3, CLASS_STRONG = 12 };
 
 /* The end of the run of side `side` that starts at x (the first x1 > x
