@@ -184,6 +184,17 @@ static void set_basis(curve_side *cs, const lane_fit_hint *h)
         cs->bs[i] = basis_at(h, cs->win[i].y);
 }
 
+/* The bow of the bend c under the horizon of *hint: the 1/d term's
+ * distance from its chord at mid-height (1/256 px). */
+static int64_t bow_of(const lane_fit_hint *hint, int64_t c)
+{
+    const int32_t span = hint->y_bottom - hint->y_top;
+    const curve_basis bottom = basis_at(hint, hint->y_bottom);
+    const curve_basis mid = basis_at(hint, hint->y_bottom - span / 2);
+    const int64_t sag_q16 = mid.q_q16 - (bottom.q_q16 + 65536) / 2;
+    return c * sag_q16 >> 16;
+}
+
 /* The horizon row under which the bend fits the windows of the sides in
  * use best (least squared residuals), into *h, and the windows' bases for
  * it; for a side bent alone. On a flat road the horizon is where the two
@@ -194,7 +205,11 @@ static void set_basis(curve_side *cs, const lane_fit_hint *h)
  * closer together near it, where the bend's shape changes fastest. (For
  * the joint fit the horizon stays where the lines meet: chosen freely
  * there, it fits an S-bend's reversal, which the model cannot follow, and
- * the tracked shape then leads a dashed side astray.) */
+ * the tracked shape then leads a dashed side astray.) A horizon whose bend
+ * bows by more than the lane's height is passed over: fit_bend refuses
+ * that bow, and a marking that turns sharply at its far end (a mountain
+ * road beyond a crest) would otherwise stay straight instead of taking
+ * the next best horizon's bend. */
 static void choose_horizon(curve_side cs[2], const bool use[2], lane_fit_hint *h)
 {
     static const int32_t steps_64[] = {0, 1, 2, 4, 8, 16, 32, 64}; /* of the span, /64 */
@@ -216,7 +231,8 @@ static void choose_horizon(curve_side cs[2], const bool use[2], lane_fit_hint *h
                 set_basis(&cs[side], &t);
         int64_t b, c;
         side_sums ss[2];
-        if (!joint_fit(cs, use, &b, &c, ss))
+        if (!joint_fit(cs, use, &b, &c, ss) ||
+            (k >= 0 && lane_abs64(bow_of(&t, c)) > (int64_t)span * 256))
             continue;
         rte_i128 sse = 0, w = 0;
         for (int side = 0; side < 2; side++)
@@ -244,10 +260,7 @@ static bool fit_bend(const curve_side cs[2], const bool use[2], const lane_fit_h
     const int32_t span = hint->y_bottom - hint->y_top;
     if (!joint_fit(cs, use, b, c, ss))
         return false;
-    const curve_basis bottom = basis_at(hint, hint->y_bottom);
-    const curve_basis mid = basis_at(hint, hint->y_bottom - span / 2);
-    const int64_t sag_q16 = mid.q_q16 - (bottom.q_q16 + 65536) / 2;
-    *bow = *c * sag_q16 >> 16;
+    *bow = bow_of(hint, *c);
     if (lane_abs64(*bow) < CURVE_MIN_BOW_Q8 || lane_abs64(*bow) > (int64_t)span * 256)
         return false;
     return bend_pays(cs, use, *b, *c, ss);
