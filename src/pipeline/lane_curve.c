@@ -277,9 +277,10 @@ typedef struct side_bend {
 
 /* When the joint fit fails (the markings disagree: paint of something
  * else, a worn line, a road that is not flat, so that the two do not
- * share one horizon): each side alone, with its own horizon, and a side
- * that does not bend alone takes the other's bend when its windows agree
- * with it (follows_bend). */
+ * share one horizon), or when only one side has windows and the default
+ * horizon does not suit its bend: each side alone, with its own horizon,
+ * and a side that does not bend alone takes the other's bend when its
+ * windows agree with it (follows_bend). */
 static void bend_each_side(curve_side cs[2], const bool supports[2], const int64_t weight[2],
                            side_sums ss[2], side_bend sb[2])
 {
@@ -379,7 +380,7 @@ void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const
             sb[side] = joint;
             sb[side].bent = seen[side];
         }
-    } else if (use[0] && use[1]) {
+    } else if (use[0] || use[1]) {
         bend_each_side(cs, supports, weight, ss, sb);
     }
     for (int side = 0; side < 2; side++)
