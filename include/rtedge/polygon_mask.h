@@ -62,6 +62,15 @@ RTE_API rte_status rte_polygon_mask_build(rte_image_u8 *mask, const rte_polygon 
 RTE_API rte_status rte_polygon_mask_apply(const rte_image_u8 *src, const rte_image_u8 *mask,
                                           rte_image_u8 *dst);
 
+/* dst = src inside or on the polygons, 0 elsewhere: rte_polygon_mask_build
+ * and rte_polygon_mask_apply in one pass without a mask image (the lane
+ * tutorial's fillPoly of a zero mask with 255, then bitwise_and), for a
+ * region that changes from frame to frame. dst must not overlap src
+ * (RTE_ERR_ARGUMENT). Scratch: rte_polygon_mask_scratch_size. On any error
+ * dst is left unchanged. */
+RTE_API rte_status rte_polygon_keep_u8(const rte_image_u8 *src, const rte_polygon *polygons,
+                                       int32_t polygon_count, rte_image_u8 *dst, rte_arena *arena);
+
 /* Fractions of the image size are Q16: 65536 = the full width or height. */
 #define RTE_POLYGON_FRACTION_ONE 65536
 

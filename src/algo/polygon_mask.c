@@ -83,9 +83,10 @@ static int clip_line(int64_t w, int64_t h, int64_t *x1, int64_t *y1, int64_t *x2
 
 /* OpenCV's 8-connected line (LineIterator, left to right): walk the major
  * axis from the left end point; step the minor axis when the error term is
- * negative, which rounds halves towards the start. */
-static void draw_line(rte_image_u8 *img, int64_t x1, int64_t y1, int64_t x2, int64_t y2,
-                      uint8_t value)
+ * negative, which rounds halves towards the start. Its pixels get `value`,
+ * or with `from` (an image of img's size) from's pixels there. */
+static void draw_line(rte_image_u8 *img, const rte_image_u8 *from, int64_t x1, int64_t y1,
+                      int64_t x2, int64_t y2, uint8_t value)
 {
     int64_t w = img->width, h = img->height;
     if (x1 < 0 || x1 >= w || x2 < 0 || x2 >= w || y1 < 0 || y1 >= h || y2 < 0 || y2 >= h) {
@@ -105,22 +106,27 @@ static void draw_line(rte_image_u8 *img, int64_t x1, int64_t y1, int64_t x2, int
         dy = -dy;
         ystep = -1;
     }
-    uint8_t *p = rte_u8_row(img, y) + x;
-    ptrdiff_t row_step = (ptrdiff_t)ystep * img->stride;
-    ptrdiff_t major_step = 1, minor_step = row_step;
+    /* offsets into img and into from: x + y * stride, for both strides */
+    ptrdiff_t p = (ptrdiff_t)y * img->stride + x, q = from ? (ptrdiff_t)y * from->stride + x : 0;
+    const ptrdiff_t row_step = (ptrdiff_t)ystep * img->stride;
+    const ptrdiff_t from_row_step = from ? (ptrdiff_t)ystep * from->stride : 0;
+    ptrdiff_t major_step = 1, minor_step = row_step, from_major = 1, from_minor = from_row_step;
     int32_t major = dx, minor = dy;
     if (dy > dx) {
         major = dy;
         minor = dx;
         major_step = row_step;
         minor_step = 1;
+        from_major = from_row_step;
+        from_minor = 1;
     }
     int32_t err = major - 2 * minor;
     for (int32_t i = 0; i <= major; i++) {
-        *p = value;
+        img->buf[p] = from ? from->buf[q] : value;
         int neg = err < 0;
         err += -2 * minor + (neg ? 2 * major : 0);
         p += major_step + (neg ? minor_step : 0);
+        q += from_major + (neg ? from_minor : 0);
     }
 }
 
@@ -154,13 +160,14 @@ static void sort_edges_by_y0(poly_edge *e, int32_t n)
     }
 }
 
-/* Draws the polygon's outline. */
-static void draw_outline(rte_image_u8 *img, const rte_polygon *poly, uint8_t value)
+/* Draws the polygon's outline (draw_line's value or from). */
+static void draw_outline(rte_image_u8 *img, const rte_image_u8 *from, const rte_polygon *poly,
+                         uint8_t value)
 {
     rte_vertex p0 = poly->vertex[poly->count - 1];
     for (int32_t i = 0; i < poly->count; i++) {
         rte_vertex p1 = poly->vertex[i];
-        draw_line(img, p0.x, p0.y, p1.x, p1.y, value);
+        draw_line(img, from, p0.x, p0.y, p1.x, p1.y, value);
         p0 = p1;
     }
 }
@@ -187,17 +194,6 @@ static int32_t collect_edges(const rte_polygon *poly, poly_edge *edges, int32_t 
     return n;
 }
 
-static void fill_span(uint8_t *row, int32_t width, int64_t xl, int64_t xr, uint8_t value)
-{
-    int64_t x1 = ceil_q16(xl), x2 = floor_q16(xr);
-    if (x1 < 0)
-        x1 = 0;
-    if (x2 > width - 1)
-        x2 = width - 1;
-    if (x1 <= x2)
-        memset(row + x1, value, (size_t)(x2 - x1 + 1));
-}
-
 /* Zeroes rows *done..y1 - 1 (none when y1 <= *done) and moves *done on. */
 static void clear_rows(rte_image_u8 *img, int32_t *done, int32_t y1)
 {
@@ -205,54 +201,104 @@ static void clear_rows(rte_image_u8 *img, int32_t *done, int32_t y1)
         memset(rte_u8_row(img, *done), 0, (size_t)img->width);
 }
 
-/* Scanline fill of the edge table (even-odd over all edges). With `clear`
- * every row is zeroed as the fill reaches it, while it is in cache: one
- * pass over the image instead of a clear and then a fill. */
-static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *active,
-                       uint8_t value, bool clear)
+/* The edge table walked row by row (even-odd over all edges): the rows
+ * that may hold spans, each with its active edges sorted by x. */
+typedef struct edge_walk {
+    poly_edge *edges;
+    int32_t *active;
+    int32_t n, nact, next;
+    int32_t y, y_end; /* the row, and the row past the last one with edges */
+} edge_walk;
+
+static void edge_walk_start(edge_walk *w, poly_edge *edges, int32_t n, int32_t *active,
+                            int32_t height)
 {
     sort_edges_by_y0(edges, n);
     int32_t y_end = 0;
     for (int32_t i = 0; i < n; i++)
         if (edges[i].y1 > y_end)
             y_end = edges[i].y1;
-    if (y_end > img->height)
-        y_end = img->height;
+    *w = (edge_walk){
+        edges, active, n, 0, 0, edges[0].y0 > 0 ? edges[0].y0 : 0, y_end < height ? y_end : height};
+}
 
-    int32_t nact = 0, next = 0, cleared = clear ? 0 : img->height;
-    for (int32_t y = edges[0].y0 > 0 ? edges[0].y0 : 0; y < y_end; y++) {
-        int32_t k = 0;
-        for (int32_t i = 0; i < nact; i++)
-            if (edges[active[i]].y1 > y)
-                active[k++] = active[i];
-        nact = k;
-        if (nact == 0 && next < n && edges[next].y0 > y)
-            y = edges[next].y0; /* skip empty rows */
-        if (y >= y_end)
-            break;
-        clear_rows(img, &cleared, y + 1);
-        for (; next < n && edges[next].y0 <= y; next++) {
-            poly_edge *e = &edges[next];
-            if (e->y1 > y) { /* starts here, or above the image */
-                e->x += (int64_t)(y - e->y0) * e->dx;
-                active[nact++] = next;
-            }
+/* Moves to the next row at or below w->y that may hold spans, with its
+ * active edges in active[0..nact) sorted by x; false past the last one. */
+static bool edge_walk_row(edge_walk *w)
+{
+    poly_edge *edges = w->edges;
+    int32_t *active = w->active;
+    int32_t y = w->y;
+    if (y >= w->y_end)
+        return false;
+    int32_t k = 0;
+    for (int32_t i = 0; i < w->nact; i++)
+        if (edges[active[i]].y1 > y)
+            active[k++] = active[i];
+    w->nact = k;
+    if (w->nact == 0 && w->next < w->n && edges[w->next].y0 > y)
+        y = edges[w->next].y0; /* skip empty rows */
+    if (y >= w->y_end)
+        return false;
+    for (; w->next < w->n && edges[w->next].y0 <= y; w->next++) {
+        poly_edge *e = &edges[w->next];
+        if (e->y1 > y) { /* starts here, or above the image */
+            e->x += (int64_t)(y - e->y0) * e->dx;
+            active[w->nact++] = w->next;
         }
-        /* Order by x. From row to row only crossing edges swap and new ones
-         * join at the end, so the list is nearly sorted: insertion sort. */
-        for (int32_t i = 1; i < nact; i++) {
-            int32_t a = active[i], j = i;
-            while (j > 0 && edges[active[j - 1]].x > edges[a].x) {
-                active[j] = active[j - 1];
-                j--;
-            }
-            active[j] = a;
+    }
+    /* Order by x. From row to row only crossing edges swap and new ones
+     * join at the end, so the list is nearly sorted: insertion sort. */
+    for (int32_t i = 1; i < w->nact; i++) {
+        int32_t a = active[i], j = i;
+        while (j > 0 && edges[active[j - 1]].x > edges[a].x) {
+            active[j] = active[j - 1];
+            j--;
         }
-        uint8_t *row = rte_u8_row(img, y);
-        for (int32_t i = 0; i + 1 < nact; i += 2)
-            fill_span(row, img->width, edges[active[i]].x, edges[active[i + 1]].x, value);
-        for (int32_t i = 0; i < nact; i++)
-            edges[active[i]].x += edges[active[i]].dx;
+        active[j] = a;
+    }
+    w->y = y;
+    return true;
+}
+
+/* On to the row below. */
+static void edge_walk_next(edge_walk *w)
+{
+    for (int32_t i = 0; i < w->nact; i++)
+        w->edges[w->active[i]].x += w->edges[w->active[i]].dx;
+    w->y++;
+}
+
+/* The pixels of span i of the walk's row: ceil(left) to floor(right),
+ * clipped to the row; false when it holds none. */
+static bool walk_span(const edge_walk *w, int32_t i, int32_t width, int32_t *x1, int32_t *x2)
+{
+    int64_t a = ceil_q16(w->edges[w->active[2 * i]].x);
+    int64_t b = floor_q16(w->edges[w->active[2 * i + 1]].x);
+    a = a < 0 ? 0 : a;
+    b = b > width - 1 ? width - 1 : b;
+    *x1 = (int32_t)a;
+    *x2 = (int32_t)b;
+    return a <= b;
+}
+
+/* Scanline fill of the edge table. With `clear` every row is zeroed as the
+ * fill reaches it, while it is in cache: one pass over the image instead
+ * of a clear and then a fill. */
+static void fill_edges(rte_image_u8 *img, poly_edge *edges, int32_t n, int32_t *active,
+                       uint8_t value, bool clear)
+{
+    edge_walk w;
+    edge_walk_start(&w, edges, n, active, img->height);
+    int32_t cleared = clear ? 0 : img->height;
+    while (edge_walk_row(&w)) {
+        clear_rows(img, &cleared, w.y + 1);
+        uint8_t *row = rte_u8_row(img, w.y);
+        int32_t x1, x2;
+        for (int32_t i = 0; 2 * i + 1 < w.nact; i++)
+            if (walk_span(&w, i, img->width, &x1, &x2))
+                memset(row + x1, value, (size_t)(x2 - x1 + 1));
+        edge_walk_next(&w);
     }
     clear_rows(img, &cleared, img->height);
 }
@@ -280,6 +326,36 @@ static rte_status check_polygons(const rte_polygon *polygons, int32_t polygon_co
     return RTE_OK;
 }
 
+/* The polygons' non-horizontal edges, in scratch from the arena (*mark:
+ * where to reset it), after checking them: *n edges. */
+static rte_status collect_polygon_edges(const rte_polygon *polygons, int32_t polygon_count,
+                                        rte_arena *arena, size_t *mark, poly_edge **edges,
+                                        int32_t **active, int32_t *n)
+{
+    int32_t total = 0;
+    rte_status st = check_polygons(polygons, polygon_count, &total);
+    if (st != RTE_OK)
+        return st;
+    if (!arena)
+        return RTE_ERR_ARGUMENT;
+    *mark = rte_arena_mark(arena);
+    *edges = NULL;
+    *active = NULL;
+    if (total > 0) {
+        *edges = rte_arena_alloc(arena, (size_t)total * sizeof(poly_edge));
+        *active = rte_arena_alloc(arena, (size_t)total * sizeof(int32_t));
+        if (!*edges || !*active) {
+            rte_arena_reset(arena, *mark);
+            return RTE_ERR_NO_MEMORY;
+        }
+    }
+    *n = 0;
+    for (int32_t p = 0; p < polygon_count; p++)
+        if (polygons[p].count > 0)
+            *n = collect_edges(&polygons[p], *edges, *n);
+    return RTE_OK;
+}
+
 /* Shared by fill and mask_build: checks everything and takes the scratch
  * before touching the image, so a failing call leaves it as it was. With
  * `clear` the image is zeroed first. The outlines are drawn after the fill
@@ -289,30 +365,12 @@ static rte_status fill_polygons(rte_image_u8 *img, const rte_polygon *polygons,
                                 int32_t polygon_count, uint8_t value, bool clear, rte_arena *arena)
 {
     rte_status st = rte_image_u8_check(img);
-    if (st != RTE_OK)
-        return st;
-    int32_t total = 0;
-    st = check_polygons(polygons, polygon_count, &total);
-    if (st != RTE_OK)
-        return st;
-    if (!arena)
-        return RTE_ERR_ARGUMENT;
-
-    size_t mark = rte_arena_mark(arena);
+    size_t mark = 0;
     poly_edge *edges = NULL;
-    int32_t *active = NULL;
-    if (total > 0) {
-        edges = rte_arena_alloc(arena, (size_t)total * sizeof(poly_edge));
-        active = rte_arena_alloc(arena, (size_t)total * sizeof(int32_t));
-        if (!edges || !active) {
-            rte_arena_reset(arena, mark);
-            return RTE_ERR_NO_MEMORY;
-        }
-    }
-    int32_t n = 0;
-    for (int32_t p = 0; p < polygon_count; p++)
-        if (polygons[p].count > 0)
-            n = collect_edges(&polygons[p], edges, n);
+    int32_t *active = NULL, n = 0;
+    if (st != RTE_OK || (st = collect_polygon_edges(polygons, polygon_count, arena, &mark, &edges,
+                                                    &active, &n)) != RTE_OK)
+        return st;
     if (n >= 2) {
         fill_edges(img, edges, n, active, value, clear);
     } else if (clear) {
@@ -321,7 +379,7 @@ static rte_status fill_polygons(rte_image_u8 *img, const rte_polygon *polygons,
     }
     for (int32_t p = 0; p < polygon_count; p++)
         if (polygons[p].count > 0)
-            draw_outline(img, &polygons[p], value);
+            draw_outline(img, NULL, &polygons[p], value);
     rte_arena_reset(arena, mark);
     return RTE_OK;
 }
@@ -372,6 +430,68 @@ rte_status rte_polygon_mask_apply(const rte_image_u8 *src, const rte_image_u8 *m
         return st;
     for (int32_t y = 0; y < dst->height; y++)
         mask_row(rte_u8_row(src, y), rte_u8_row(mask, y), rte_u8_row(dst, y), dst->width);
+    return RTE_OK;
+}
+
+/* One row of dst: src's pixels on the walk's spans, 0 between them. Spans
+ * come in order and may share their end pixel. */
+static void keep_spans(const edge_walk *w, const uint8_t *s, uint8_t *d, int32_t width)
+{
+    int32_t pos = 0, x1, x2;
+    for (int32_t i = 0; 2 * i + 1 < w->nact; i++) {
+        if (!walk_span(w, i, width, &x1, &x2) || x2 < pos)
+            continue;
+        if (x1 > pos)
+            memset(d + pos, 0, (size_t)(x1 - pos));
+        else
+            x1 = pos;
+        memcpy(d + x1, s + x1, (size_t)(x2 - x1 + 1));
+        pos = x2 + 1;
+    }
+    if (pos < width)
+        memset(d + pos, 0, (size_t)(width - pos));
+}
+
+static bool images_overlap(const rte_image_u8 *a, const rte_image_u8 *b)
+{
+    const uint8_t *a_end = a->buf + (size_t)(a->height - 1) * (size_t)a->stride + a->width;
+    const uint8_t *b_end = b->buf + (size_t)(b->height - 1) * (size_t)b->stride + b->width;
+    return a->buf < b_end && b->buf < a_end;
+}
+
+rte_status rte_polygon_keep_u8(const rte_image_u8 *src, const rte_polygon *polygons,
+                               int32_t polygon_count, rte_image_u8 *dst, rte_arena *arena)
+{
+    rte_status st = rte_image_u8_check_pair(src, dst);
+    if (st != RTE_OK)
+        return st;
+    if (images_overlap(src, dst))
+        return RTE_ERR_ARGUMENT;
+    size_t mark = 0;
+    poly_edge *edges = NULL;
+    int32_t *active = NULL, n = 0;
+    st = collect_polygon_edges(polygons, polygon_count, arena, &mark, &edges, &active, &n);
+    if (st != RTE_OK)
+        return st;
+    /* The fill's spans row by row, then the outlines, which may reach a
+     * pixel or a run beyond a span's rounded ends: their pixels from src
+     * (the mask is 255 there). */
+    int32_t cleared = 0;
+    if (n >= 2) {
+        edge_walk w;
+        edge_walk_start(&w, edges, n, active, dst->height);
+        while (edge_walk_row(&w)) {
+            clear_rows(dst, &cleared, w.y);
+            keep_spans(&w, rte_u8_row(src, w.y), rte_u8_row(dst, w.y), dst->width);
+            cleared = w.y + 1;
+            edge_walk_next(&w);
+        }
+    }
+    clear_rows(dst, &cleared, dst->height);
+    for (int32_t p = 0; p < polygon_count; p++)
+        if (polygons[p].count > 0)
+            draw_outline(dst, src, &polygons[p], 0);
+    rte_arena_reset(arena, mark);
     return RTE_OK;
 }
 

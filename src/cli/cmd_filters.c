@@ -410,8 +410,8 @@ static rte_status mask_apply(void *ctx, const rte_image_u8 *gray, rte_image_u8 *
 {
     mask_options *o = ctx;
     rte_polygon poly = {o->vertex, o->count};
-    rte_status st = rte_polygon_mask_build(out, &poly, 1, arena);
-    return st == RTE_OK && !o->mask_only ? rte_polygon_mask_apply(gray, out, out) : st;
+    return o->mask_only ? rte_polygon_mask_build(out, &poly, 1, arena)
+                        : rte_polygon_keep_u8(gray, &poly, 1, out, arena);
 }
 
 int cmd_mask(const cli_entry *self, int argc, char **argv)

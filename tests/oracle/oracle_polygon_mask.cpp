@@ -1,6 +1,7 @@
 // Polygon masks against OpenCV 4.6: cv::fillPoly (LINE_8, shift 0) on random
 // polygons of every kind, the lane tutorial's trapezoid on the photos, and
-// masking against cv::bitwise_and.
+// masking (with a mask, and rte_polygon_keep_u8 without one) against
+// cv::bitwise_and.
 #include "oracle.hpp"
 
 #include <cmath>
@@ -124,7 +125,28 @@ struct RtePolygons {
     int32_t count() const { return (int32_t)list.size(); }
 };
 
-// rte_polygon_mask_build against zeros + cv::fillPoly(mask, polys, 255).
+// rte_polygon_keep_u8 against cv::bitwise_and(src, mask) with that mask.
+void check_keep(oracle::Tally &t, const std::string &name, const cv::Mat &src, const cv::Mat &mask,
+                const std::vector<Poly> &polys, std::mt19937 &rng)
+{
+    cv::Mat expected;
+    cv::bitwise_and(src, mask, expected);
+    RtePolygons rp(polys);
+    std::vector<uint8_t> ss, ds;
+    rte_image_u8 in = oracle::padded_u8(src, ss, rng);
+    rte_image_u8 dst = oracle::blank_u8(src.cols, src.rows, ds, rng);
+    rte_status st = rte_polygon_keep_u8(&in, rp.list.data(), rp.count(), &dst, &rp.scratch.arena);
+    if (st != RTE_OK) {
+        t.call_failed(name + " keep", st);
+        return;
+    }
+    if (rp.scratch.arena.used != 0)
+        t.call_failed(name + " keep (arena not reset)", -1);
+    t.add(name + " keep", expected, oracle::to_mat(dst));
+}
+
+// rte_polygon_mask_build against zeros + cv::fillPoly(mask, polys, 255), and
+// rte_polygon_keep_u8 with the same polygons on a random image.
 void check_mask(oracle::Tally &t, const std::string &what, int w, int h,
                 const std::vector<Poly> &polys, std::mt19937 &rng)
 {
@@ -144,6 +166,10 @@ void check_mask(oracle::Tally &t, const std::string &what, int w, int h,
     if (rp.scratch.arena.used != 0)
         t.call_failed(name + " (arena not reset)", -1);
     t.add(name, expected, oracle::to_mat(mask));
+
+    cv::Mat src(h, w, CV_8UC1);
+    cv::RNG(rng()).fill(src, cv::RNG::UNIFORM, 1, 256); // no zeros: every kept pixel shows
+    check_keep(t, name, src, expected, polys, rng);
 }
 
 // The lane-finding tutorial's region: a trapezoid from the bottom corners to
@@ -197,6 +223,7 @@ void check_lane_trapezoids(oracle::Tally &t, const std::vector<oracle::Input> &f
             t.call_failed(in.name + " apply", st);
         else
             t.add(in.name + " apply trapezoid", expected, oracle::to_mat(dst));
+        check_keep(t, in.name + " trapezoid", in.gray, mask, {got}, rng);
     }
 }
 

@@ -269,6 +269,61 @@ static void apply_keeps_pixels_where_the_mask_is_set(void **state)
     assert_int_equal(rte_polygon_mask_apply(&si, NULL, &di), RTE_ERR_ARGUMENT);
 }
 
+/* keep = build + apply, in one pass; its argument errors leave dst as it was. */
+static void keep_is_build_then_apply(void **state)
+{
+    (void)state;
+    uint32_t seed = 7;
+    /* a bow tie whose crossing and slanted outline leave pixels beyond the
+     * spans' rounded ends, and a polygon partly off the image */
+    const rte_vertex tie[] = {{1, 1}, {40, 17}, {40, 2}, {2, 19}};
+    const rte_vertex off[] = {{-9, 12}, {30, -4}, {47, 25}, {12, 30}};
+    const rte_polygon polys[2] = {{tie, 4}, {off, 4}};
+    for (int32_t count = 1; count <= 2; count++) {
+        rte_image_u8 src = unit_image_u8(43, 23, 2, 0), mask = unit_image_u8(43, 23, 0, 0);
+        rte_image_u8 want = unit_image_u8(43, 23, 0, 0), dst = unit_image_u8(43, 23, 4, 0x42);
+        for (int32_t y = 0; y < src.height; y++)
+            for (int32_t x = 0; x < src.width; x++)
+                src.buf[y * src.stride + x] = (uint8_t)(1 + unit_rand(&seed) % 255);
+        rte_arena arena = make_arena();
+        assert_int_equal(rte_polygon_mask_build(&mask, polys, count, &arena), RTE_OK);
+        assert_int_equal(rte_polygon_mask_apply(&src, &mask, &want), RTE_OK);
+        assert_int_equal(rte_polygon_keep_u8(&src, polys, count, &dst, &arena), RTE_OK);
+        assert_int_equal(arena.used, 0);
+        for (int32_t y = 0; y < dst.height; y++)
+            assert_memory_equal(dst.buf + y * dst.stride, want.buf + y * want.stride, 43);
+        unit_assert_padding_u8(&dst);
+        test_free(src.buf);
+        test_free(mask.buf);
+        test_free(want.buf);
+        test_free(dst.buf);
+    }
+
+    uint8_t s[16], d[16];
+    memset(s, 5, sizeof s);
+    memset(d, 9, sizeof d);
+    rte_image_u8 si = {4, 4, 4, s}, di = {4, 4, 4, d};
+    rte_arena small;
+    rte_arena_init(&small, arena_memory, 64);
+    assert_int_equal(rte_polygon_keep_u8(&si, polys, 1, &di, &small), RTE_ERR_NO_MEMORY);
+    assert_int_equal(small.used, 0);
+    rte_arena arena = make_arena();
+    assert_int_equal(rte_polygon_keep_u8(&si, polys, 1, &di, NULL), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_polygon_keep_u8(&si, NULL, 1, &di, &arena), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_polygon_keep_u8(&si, polys, 1, &si, &arena), RTE_ERR_ARGUMENT);
+    rte_image_u8 lower_half = {4, 2, 4, s + 8};
+    rte_image_u8 upper_half = {4, 2, 4, s + 4}; /* overlaps it by a row */
+    assert_int_equal(rte_polygon_keep_u8(&lower_half, polys, 1, &upper_half, &arena),
+                     RTE_ERR_ARGUMENT);
+    rte_image_u8 narrow = {3, 4, 4, d};
+    assert_int_equal(rte_polygon_keep_u8(&si, polys, 1, &narrow, &arena), RTE_ERR_SIZE);
+    for (int i = 0; i < 16; i++)
+        assert_int_equal(d[i], 9); /* untouched by every refusal */
+    assert_int_equal(rte_polygon_keep_u8(&si, NULL, 0, &di, &arena), RTE_OK);
+    for (int i = 0; i < 16; i++)
+        assert_int_equal(d[i], 0); /* no polygon: nothing kept */
+}
+
 static void fractions_round_to_the_nearest_pixel(void **state)
 {
     rte_vertex frac[] = {
@@ -324,6 +379,7 @@ int main(void)
         cmocka_unit_test(fill_keeps_other_pixels_and_uses_the_value),
         cmocka_unit_test(arena_and_argument_errors),
         cmocka_unit_test(apply_keeps_pixels_where_the_mask_is_set),
+        cmocka_unit_test(keep_is_build_then_apply),
         cmocka_unit_test(fractions_round_to_the_nearest_pixel),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -162,9 +162,8 @@ Register roi_mask("kernels", "polygon mask + apply", [](const Frame &f) {
                        for (int i = 0; i < 4; i++)
                            v[i] = rte_vertex{(*pts)[i].x, (*pts)[i].y};
                        rte_polygon poly{v, 4};
-                       rte_image_u8 in = u8(b->src), mask = u8(b->mask), out = u8(b->out);
-                       rte_polygon_mask_build(&mask, &poly, 1, &b->arena);
-                       rte_polygon_mask_apply(&in, &mask, &out);
+                       rte_image_u8 in = u8(b->src), out = u8(b->out);
+                       rte_polygon_keep_u8(&in, &poly, 1, &out, &b->arena);
                    },
                    [b, pts] {
                        b->mask.setTo(0);
