@@ -228,7 +228,9 @@ RTE_API int32_t rte_lane_x_q8(const rte_lane *lane, int32_t y);
 #define RTE_LANE_POLYLINE_POINTS (RTE_LANE_MAX_SIDE / RTE_LANE_POINT_STEP + 2)
 /* A found lane as points from its bottom row up to the highest row its
  * markings were seen on (the ROI's top row for a straight or predicted
- * lane), every RTE_LANE_POINT_STEP rows and at that row, or, with a far
+ * lane), every RTE_LANE_POINT_STEP rows and at that row (which replaces
+ * a point less than half a step below it, so that the last piece is not a
+ * row or two long), or, with a far
  * trace, up to the trace's first row and then the trace's points: at most
  * max_points (>= 2) into x_q8[] (1/256 px) and y[], rows falling; returns
  * how many (0 for a lane not found). */

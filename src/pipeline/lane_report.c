@@ -30,7 +30,10 @@ int32_t rte_lane_polyline(const rte_lane *l, int32_t max_points, int32_t *x_q8, 
     int32_t n = 0;
     if (far == 0) {
         for (int32_t row = l->y_bottom; n < curve_points; row -= step) {
-            row = row < end ? end : row;
+            /* the end replaces a point less than half a step from it: a last
+             * piece of a row or two would hand a reader who extends the lane
+             * beyond its end the direction of a pixel's rounding */
+            row = row < end || (n > 0 && row - end < step / 2) ? end : row;
             x_q8[n] = rte_lane_x_q8(l, row);
             y[n++] = row;
             if (row == end)

@@ -1251,6 +1251,19 @@ static void test_far_trace_contract(void **state)
     assert_int_equal(ys[1], 250);
     assert_int_equal(ys[2], 244);
 
+    /* without a trace, up to the supported row: the end takes the place
+     * of a point within half a step of it (359 - 18 * 10 = 179 is one row
+     * below the end 178), one further away stays */
+    rte_lane seen = curve;
+    seen.y_top = 100;
+    for (int32_t end = 178; end >= 174; end -= 4) {
+        seen.y_supported = end;
+        n = rte_lane_polyline(&seen, 32, xs, ys);
+        assert_int_equal(ys[n - 1], end);
+        assert_int_equal(xs[n - 1], rte_lane_x_q8(&seen, end));
+        assert_int_equal(ys[n - 2], end == 178 ? 189 : 179);
+    }
+
     /* any values a caller fills in: no overflow, x clamped */
     rte_lane wild = l;
     wild.far_count = 2;
