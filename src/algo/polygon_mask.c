@@ -160,15 +160,20 @@ static void sort_edges_by_y0(poly_edge *e, int32_t n)
     }
 }
 
-/* Draws the polygon's outline (draw_line's value or from). */
-static void draw_outline(rte_image_u8 *img, const rte_image_u8 *from, const rte_polygon *poly,
-                         uint8_t value)
+/* Draws the polygons' outlines (draw_line's value or from). */
+static void draw_outlines(rte_image_u8 *img, const rte_image_u8 *from, const rte_polygon *polygons,
+                          int32_t polygon_count, uint8_t value)
 {
-    rte_vertex p0 = poly->vertex[poly->count - 1];
-    for (int32_t i = 0; i < poly->count; i++) {
-        rte_vertex p1 = poly->vertex[i];
-        draw_line(img, from, p0.x, p0.y, p1.x, p1.y, value);
-        p0 = p1;
+    for (int32_t p = 0; p < polygon_count; p++) {
+        const rte_polygon *poly = &polygons[p];
+        if (poly->count <= 0)
+            continue;
+        rte_vertex p0 = poly->vertex[poly->count - 1];
+        for (int32_t i = 0; i < poly->count; i++) {
+            rte_vertex p1 = poly->vertex[i];
+            draw_line(img, from, p0.x, p0.y, p1.x, p1.y, value);
+            p0 = p1;
+        }
     }
 }
 
@@ -377,9 +382,7 @@ static rte_status fill_polygons(rte_image_u8 *img, const rte_polygon *polygons,
         int32_t cleared = 0;
         clear_rows(img, &cleared, img->height);
     }
-    for (int32_t p = 0; p < polygon_count; p++)
-        if (polygons[p].count > 0)
-            draw_outline(img, NULL, &polygons[p], value);
+    draw_outlines(img, NULL, polygons, polygon_count, value);
     rte_arena_reset(arena, mark);
     return RTE_OK;
 }
@@ -488,9 +491,7 @@ rte_status rte_polygon_keep_u8(const rte_image_u8 *src, const rte_polygon *polyg
         }
     }
     clear_rows(dst, &cleared, dst->height);
-    for (int32_t p = 0; p < polygon_count; p++)
-        if (polygons[p].count > 0)
-            draw_outline(dst, src, &polygons[p], 0);
+    draw_outlines(dst, src, polygons, polygon_count, 0);
     rte_arena_reset(arena, mark);
     return RTE_OK;
 }

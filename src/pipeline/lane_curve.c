@@ -195,6 +195,12 @@ static int64_t bow_of(const lane_fit_hint *hint, int64_t c)
     return c * sag_q16 >> 16;
 }
 
+/* A bow beyond the lane's height is no bend of a road. */
+static bool bow_beyond_lane(const lane_fit_hint *hint, int64_t bow)
+{
+    return lane_abs64(bow) > (int64_t)(hint->y_bottom - hint->y_top) * 256;
+}
+
 /* The horizon row under which the bend fits the windows of the sides in
  * use best (least squared residuals), into *h, and the windows' bases for
  * it; for a side bent alone. On a flat road the horizon is where the two
@@ -231,8 +237,7 @@ static void choose_horizon(curve_side cs[2], const bool use[2], lane_fit_hint *h
                 set_basis(&cs[side], &t);
         int64_t b, c;
         side_sums ss[2];
-        if (!joint_fit(cs, use, &b, &c, ss) ||
-            (k >= 0 && lane_abs64(bow_of(&t, c)) > (int64_t)span * 256))
+        if (!joint_fit(cs, use, &b, &c, ss) || (k >= 0 && bow_beyond_lane(&t, bow_of(&t, c))))
             continue;
         rte_i128 sse = 0, w = 0;
         for (int side = 0; side < 2; side++)
@@ -257,11 +262,10 @@ static void choose_horizon(curve_side cs[2], const bool use[2], lane_fit_hint *h
 static bool fit_bend(const curve_side cs[2], const bool use[2], const lane_fit_hint *hint,
                      int64_t *b, int64_t *c, int64_t *bow, side_sums ss[2])
 {
-    const int32_t span = hint->y_bottom - hint->y_top;
     if (!joint_fit(cs, use, b, c, ss))
         return false;
     *bow = bow_of(hint, *c);
-    if (lane_abs64(*bow) < CURVE_MIN_BOW_Q8 || lane_abs64(*bow) > (int64_t)span * 256)
+    if (lane_abs64(*bow) < CURVE_MIN_BOW_Q8 || bow_beyond_lane(hint, *bow))
         return false;
     return bend_pays(cs, use, *b, *c, ss);
 }
