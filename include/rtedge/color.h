@@ -78,6 +78,14 @@ RTE_API rte_status rte_frame_to_gray(const rte_frame *src, rte_image_u8 *dst);
  * to it without copying (RTE_ERR_UNSUPPORTED for the other formats). */
 RTE_API rte_status rte_frame_gray_view(const rte_frame *src, rte_image_u8 *view);
 
+/* The frame's colour as two chroma planes at half its size (cb and cr
+ * both ((width + 1) / 2) x ((height + 1) / 2), 128 = no colour): NV12's
+ * U and V as they are; YUYV's and UYVY's averaged over each block's two
+ * rows; BGR24's and RGB24's as BT.601 full-range (JPEG) Cb and Cr of each
+ * 2x2 block's mean colour. Rows and columns past an odd size repeat the
+ * last. RTE_ERR_UNSUPPORTED for GREY frames (no colour). */
+RTE_API rte_status rte_frame_chroma_half(const rte_frame *src, rte_image_u8 *cb, rte_image_u8 *cr);
+
 /* The conversions one by one. src and dst have the same width and height. */
 RTE_API rte_status rte_color_bgr_to_gray(const rte_image_u8c3 *src, rte_image_u8 *dst);
 RTE_API rte_status rte_color_rgb_to_gray(const rte_image_u8c3 *src, rte_image_u8 *dst);

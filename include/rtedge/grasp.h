@@ -69,6 +69,11 @@ typedef struct rte_grasp_params {
                               * (the threshold is Otsu's of |frame - table|, at least this) */
     int32_t background_cell; /* RTE_GRASP_BACKGROUND: the table estimate's cell side in px,
                               * 2..255, or 0: a 40th of the frame's width (at least 4) */
+    int32_t chroma;          /* RTE_GRASP_BACKGROUND, 1: with rte_grasp_process_chroma, a
+                              * pixel whose colour differs from the table's (|cb - table's
+                              * cb| + |cr - table's cr|) more than its grey does counts
+                              * by that difference: an object as grey as the table but
+                              * of another colour is found */
     int32_t min_area;        /* pixels; smaller objects are dropped (>= 0) */
     int32_t max_area;        /* pixels; larger ones are dropped; 0 = no limit */
     int32_t skip_border;     /* 1: drop objects touching the image or workspace border */
@@ -217,6 +222,16 @@ RTE_API rte_status rte_grasp_get_params(const rte_grasp_ctx *ctx, rte_grasp_para
 /* One frame, at most max_width x max_height (RTE_ERR_SIZE otherwise). */
 RTE_API rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gray,
                                      rte_grasp_result *out);
+
+/* The same with the frame's colour: cb and cr are its chroma planes at
+ * half size, ((width + 1) / 2) x ((height + 1) / 2) (rte_frame_chroma_half
+ * makes them from any colour frame). With params.chroma in background mode
+ * the table's colour is estimated as its grey is, and colour differences
+ * count as contrast; otherwise they are not read. cb and cr NULL: as
+ * rte_grasp_process. */
+RTE_API rte_status rte_grasp_process_chroma(rte_grasp_ctx *ctx, const rte_image_u8 *gray,
+                                            const rte_image_u8 *cb, const rte_image_u8 *cr,
+                                            rte_grasp_result *out);
 
 /* Lower-case name of a shape class ("circle", "rectangle", ...). */
 RTE_API const char *rte_grasp_shape_name(rte_shape_class shape);

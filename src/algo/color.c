@@ -279,3 +279,76 @@ rte_status rte_frame_to_gray(const rte_frame *src, rte_image_u8 *dst)
     }
     return RTE_OK;
 }
+
+/* BT.601 full-range chroma (JPEG's Cb, Cr) of the sum s of four R, G, B
+ * samples, in Q16 with the division by 4 folded into the shift. */
+static inline uint8_t chroma_of_sum4(int32_t r4, int32_t g4, int32_t b4, bool cr)
+{
+    const int64_t v = cr ? 32768 * (int64_t)r4 - 27439 * (int64_t)g4 - 5329 * (int64_t)b4
+                         : -11059 * (int64_t)r4 - 21709 * (int64_t)g4 + 32768 * (int64_t)b4;
+    const int64_t q = (v + ((int64_t)128 << 18) + (1 << 17)) >> 18; /* >= 0: no sign shift */
+    return (uint8_t)(q > 255 ? 255 : q);
+}
+
+/* The chroma of one-plane frames: three-channel ones from the mean colour
+ * of each 2x2 block, packed 4:2:2 ones from the mean of the block's two
+ * rows' U and V (an odd width's last pixel has a U but no V of its own and
+ * takes the V before it, or 128 in a one-pixel row); the last row and
+ * column repeated at odd sizes. */
+static void packed_chroma_half(const rte_frame *f, rte_image_u8 *cb, rte_image_u8 *cr)
+{
+    const bool c3 = f->format == RTE_PIXEL_BGR24 || f->format == RTE_PIXEL_RGB24;
+    const int r = f->format == RTE_PIXEL_BGR24 ? 2 : 0, b = 2 - r; /* c3: byte offsets */
+    const int u = f->format == RTE_PIXEL_UYVY ? 0 : 1, v = u + 2;  /* 4:2:2: byte offsets */
+    for (int32_t y = 0; y < cb->height; y++) {
+        const uint8_t *s0 = f->plane[0] + (ptrdiff_t)(2 * y) * f->stride[0];
+        const uint8_t *s1 = 2 * y + 1 < f->height ? s0 + f->stride[0] : s0;
+        uint8_t *db = rte_u8_row(cb, y), *dr = rte_u8_row(cr, y);
+        for (int32_t x = 0; x < cb->width; x++) {
+            if (c3) {
+                const int32_t a = 6 * x, c = 2 * x + 1 < f->width ? a + 3 : a;
+                const int32_t rs = s0[a + r] + s0[c + r] + s1[a + r] + s1[c + r];
+                const int32_t gs = s0[a + 1] + s0[c + 1] + s1[a + 1] + s1[c + 1];
+                const int32_t bs = s0[a + b] + s0[c + b] + s1[a + b] + s1[c + b];
+                db[x] = chroma_of_sum4(rs, gs, bs, false);
+                dr[x] = chroma_of_sum4(rs, gs, bs, true);
+                continue;
+            }
+            const int32_t a = 4 * x;
+            db[x] = (uint8_t)((s0[a + u] + s1[a + u] + 1) >> 1);
+            if (4 * x + 4 <= 2 * f->width)
+                dr[x] = (uint8_t)((s0[a + v] + s1[a + v] + 1) >> 1);
+            else
+                dr[x] = x > 0 ? dr[x - 1] : 128;
+        }
+    }
+}
+
+rte_status rte_frame_chroma_half(const rte_frame *src, rte_image_u8 *cb, rte_image_u8 *cr)
+{
+    rte_status st = rte_frame_check(src);
+    if (st == RTE_OK)
+        st = rte_image_u8_check_pair(cb, cr);
+    if (st != RTE_OK)
+        return st;
+    if (cb->width != (src->width + 1) / 2 || cb->height != (src->height + 1) / 2)
+        return RTE_ERR_SIZE;
+    switch (src->format) {
+    case RTE_PIXEL_GREY: return RTE_ERR_UNSUPPORTED;
+    case RTE_PIXEL_BGR24:
+    case RTE_PIXEL_RGB24:
+    case RTE_PIXEL_YUYV:
+    case RTE_PIXEL_UYVY: packed_chroma_half(src, cb, cr); break;
+    case RTE_PIXEL_NV12:
+        for (int32_t y = 0; y < cb->height; y++) {
+            const uint8_t *s = src->plane[1] + (ptrdiff_t)y * src->stride[1];
+            uint8_t *db = rte_u8_row(cb, y), *dr = rte_u8_row(cr, y);
+            for (int32_t x = 0; x < cb->width; x++) {
+                db[x] = s[2 * x];
+                dr[x] = s[2 * x + 1];
+            }
+        }
+        break;
+    }
+    return RTE_OK;
+}

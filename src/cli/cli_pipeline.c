@@ -6,6 +6,7 @@
 
 #include "core/fractions.h"
 #include "rtedge/blur.h"
+#include "rtedge/color.h"
 #include "rtedge/morphology.h"
 
 const char *const cli_polarities[] = {"auto", "dark", "bright", NULL};
@@ -135,6 +136,15 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                           NULL,
                           "background: the least |image - table| of an object",
                           NULL};
+    t[n++] = (cli_option){"no-chroma",
+                          CLI_FLAG,
+                          &o->no_chroma,
+                          0,
+                          0,
+                          NULL,
+                          "background: grey only (colour differences from the table are not "
+                          "contrast)",
+                          NULL};
     t[n++] = (cli_option){"polarity",
                           CLI_CHOICE,
                           &o->polarity,
@@ -219,6 +229,7 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     p->skip_border = o->skip_border && !o->keep_border;
     p->split = o->split && !o->no_split;
     p->contrast = o->contrast;
+    p->chroma = !o->no_chroma;
     p->max_objects = o->max_objects;
     if (o->gripper_min > o->gripper_max) {
         cli_error(command, "--gripper-min (%d) exceeds --gripper-max (%d)", o->gripper_min,
@@ -290,4 +301,19 @@ void *cli_overlay_canvas(const char *command, const cli_image *in, rte_image_u8c
         }
     }
     return mem;
+}
+
+rte_status cli_grasp_process(rte_grasp_ctx *ctx, const cli_image *in, rte_grasp_result *out)
+{
+    if (!in->bgr.buf)
+        return rte_grasp_process(ctx, &in->gray, out);
+    const int32_t w = in->gray.width, h = in->gray.height, hw = (w + 1) / 2, hh = (h + 1) / 2;
+    const rte_frame f = {RTE_PIXEL_BGR24, w, h, {in->bgr.buf}, {in->bgr.stride}};
+    uint8_t *chroma = malloc(2 * (size_t)hw * (size_t)hh);
+    rte_image_u8 cb = {hw, hh, hw, chroma}, cr = {hw, hh, hw, chroma + (size_t)hw * (size_t)hh};
+    rte_status st = chroma ? rte_frame_chroma_half(&f, &cb, &cr) : RTE_ERR_NO_MEMORY;
+    if (st == RTE_OK)
+        st = rte_grasp_process_chroma(ctx, &in->gray, &cb, &cr, out);
+    free(chroma);
+    return st;
 }

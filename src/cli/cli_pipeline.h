@@ -16,6 +16,7 @@ typedef struct cli_pipeline_options {
     int polarity;         /* index in cli_polarities: auto, dark, bright */
     int blur, min_area, max_area, max_objects, canny_low, canny_high, close, close_iterations;
     int contrast;
+    bool no_chroma;
     bool skip_border, keep_border, split, no_split;
     const char *roi; /* the workspace, "x,y;..." fractions; NULL: the whole image */
     int gripper_min, gripper_max, margin, finger; /* px: rte_grasp_params */
@@ -32,7 +33,7 @@ void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area, bool
 /* Fills options[] (room for CLI_PIPELINE_OPTIONS entries) with the table
  * entries of `o`; `grasp` adds the object options (areas, border, count,
  * gripper). */
-#define CLI_PIPELINE_OPTIONS 21
+#define CLI_PIPELINE_OPTIONS 22
 int cli_pipeline_option_table(cli_option *options, cli_pipeline_options *o, bool grasp);
 
 /* The grasp configuration for an image of w x h. CLI_EXIT_USAGE after a
@@ -47,5 +48,9 @@ void cli_print_q16(int64_t v);
 
 /* A BGR copy of the input to draw on (grey replicated); NULL after a message. */
 void *cli_overlay_canvas(const char *command, const cli_image *in, rte_image_u8c3 *canvas);
+
+/* The grasp path on a loaded image: with its colour (half-size chroma,
+ * for the background mode) when it has any. */
+rte_status cli_grasp_process(rte_grasp_ctx *ctx, const cli_image *in, rte_grasp_result *out);
 
 #endif

@@ -230,7 +230,7 @@ int cmd_contours(const cli_entry *self, int argc, char **argv)
     rte_grasp_result r;
     rte_status st = rte_grasp_create(&config, &ctx);
     if (st == RTE_OK)
-        st = rte_grasp_process(ctx, &in.gray, &r);
+        st = cli_grasp_process(ctx, &in, &r);
 
     rte_contours cs = {0};
     feature_buffers b = {0};

@@ -10,11 +10,12 @@
 #include "rtedge/overlay.h"
 #include "rtedge/grasp.h"
 
-#define PIPELINE_DETAILS                                                                          \
-    "IN: PGM/PPM, PNG or JPEG (colour becomes grey as cv2.cvtColor(cv2.imread(IN), BGR2GRAY)).\n" \
-    "grey -> Gaussian blur -> |grey - table| both ways (background), Otsu, a fixed threshold\n"   \
-    "or Canny + close -> external contours -> area and border filters -> features (moments,\n"    \
-    "minimum-area box, hull, shape class). grasp: background, border objects dropped;\n"          \
+#define PIPELINE_DETAILS                                                                         \
+    "IN: PGM/PPM, PNG or JPEG (colour becomes grey as cv2.cvtColor(cv2.imread(IN), BGR2GRAY);\n" \
+    "background mode: its colour differences from the table count as contrast too).\n"           \
+    "grey -> Gaussian blur -> |grey - table| both ways (background), Otsu, a fixed threshold\n"  \
+    "or Canny + close -> external contours -> area and border filters -> features (moments,\n"   \
+    "minimum-area box, hull, shape class). grasp: background, border objects dropped;\n"         \
     "shapes: Otsu, border objects kept (the OpenCV tutorial's shape analysis)."
 
 typedef struct grasp_run {
@@ -64,7 +65,7 @@ static int grasp_start(grasp_run *run, const cli_entry *self, int argc, char **a
     cli_pipeline_config(self->name, &run->opts, w, h, &config);
     rte_status st = rte_grasp_create(&config, &run->ctx);
     if (st == RTE_OK)
-        st = rte_grasp_process(run->ctx, &run->in.gray, &run->result);
+        st = cli_grasp_process(run->ctx, &run->in, &run->result);
     if (st != RTE_OK) {
         cli_error(self->name, "%s", rte_status_message(st));
         rte_grasp_destroy(run->ctx);

@@ -152,6 +152,10 @@ static const key_def keys[] = {
          "binarize = background: cells of the table's estimate; objects\n"
          "over about 9 cells across may join the table if as even as it; 0: a\n"
          "40th of the frame's width"),
+    BOOL("grasp", "chroma", grasp_chroma, true, "true",
+         "binarize = background, colour frames: a pixel's colour difference\n"
+         "from the table's counts as contrast where it exceeds its grey one (an\n"
+         "object as grey as the table but of another colour is found)"),
     INT("grasp", "threshold", grasp_threshold, "grey level", 0, 255, true, "128",
         "binarize = fixed"),
     ENUM("grasp", "polarity", grasp_polarity, polarities, true, "auto",

@@ -120,6 +120,7 @@ struct rted_daemon {
     void *memory;
     rte_arena arena;
     rte_image_u8 gray;
+    rte_image_u8 cb, cr; /* the frame's chroma at half size, for grasp.chroma */
     rtedge_segment_t *segments;
     rtedge_grasp_object_t *objects;
     rtedge_point_t roi[RTE_LANE_MAX_ROI_VERTICES];

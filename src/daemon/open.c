@@ -91,10 +91,13 @@ static bool open_memory(rted_daemon *d, char *msg, size_t msg_size)
 {
     const rted_config *c = &d->cfg;
     size_t gray_bytes = (size_t)d->width * (size_t)d->height;
+    const int32_t hw = (d->width + 1) / 2, hh = (d->height + 1) / 2;
+    size_t chroma_bytes = (size_t)hw * (size_t)hh;
     size_t seg_bytes = (size_t)c->lane_max_segments * sizeof(rtedge_segment_t);
     size_t obj_bytes = (size_t)c->grasp_max_objects * sizeof(rtedge_grasp_object_t);
-    size_t total = rte_arena_piece_size(gray_bytes) + rte_arena_piece_size(seg_bytes) +
-                   rte_arena_piece_size(obj_bytes) + RTE_ARENA_ALIGN;
+    size_t total = rte_arena_piece_size(gray_bytes) + 2 * rte_arena_piece_size(chroma_bytes) +
+                   rte_arena_piece_size(seg_bytes) + rte_arena_piece_size(obj_bytes) +
+                   RTE_ARENA_ALIGN;
     d->memory = malloc(total);
     if (!d->memory) {
         rted_msgf(msg, msg_size, "out of memory");
@@ -102,6 +105,8 @@ static bool open_memory(rted_daemon *d, char *msg, size_t msg_size)
     }
     rte_arena_init(&d->arena, d->memory, total);
     d->gray = (rte_image_u8){d->width, d->height, d->width, rte_arena_alloc(&d->arena, gray_bytes)};
+    d->cb = (rte_image_u8){hw, hh, hw, rte_arena_alloc(&d->arena, chroma_bytes)};
+    d->cr = (rte_image_u8){hw, hh, hw, rte_arena_alloc(&d->arena, chroma_bytes)};
     d->segments = rte_arena_alloc(&d->arena, seg_bytes);
     d->objects = rte_arena_alloc(&d->arena, obj_bytes);
     memset(d->objects, 0, obj_bytes);

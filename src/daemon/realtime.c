@@ -9,7 +9,7 @@
  * handed over and back through two semaphores (futexes: no lock, no heap
  * call); between a post and the wait, the job (d->job) is the thread's
  * alone, and the thread touches nothing else of the daemon but the grasp
- * context and the grey buffer: counters, stage timings and publishing stay
+ * context and the grey and chroma buffers: counters, stage timings and publishing stay
  * on the main thread, which reads the job's result after the wait. Run-time
  * changes (SIGHUP, params_t) are applied between frames, when the thread
  * waits for the next one. */
@@ -45,7 +45,14 @@ void rted_grasp_job_run(rted_daemon *d, rted_grasp_job *j)
         j->skipped = true;
         return;
     }
-    j->status = rte_grasp_process(d->grasp, &j->gray, &j->result);
+    /* the colour, where the background mode reads it (a grey frame has none) */
+    rte_image_u8 cb = d->cb, cr = d->cr;
+    cb.width = cr.width = (frame->width + 1) / 2;
+    cb.height = cr.height = (frame->height + 1) / 2;
+    const bool chroma = d->cfg.grasp_chroma && d->cfg.grasp_binarize == RTE_GRASP_BACKGROUND &&
+                        rte_frame_chroma_half(frame, &cb, &cr) == RTE_OK;
+    j->status = rte_grasp_process_chroma(d->grasp, &j->gray, chroma ? &cb : NULL,
+                                         chroma ? &cr : NULL, &j->result);
     j->ran = true;
 }
 

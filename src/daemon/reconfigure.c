@@ -57,6 +57,7 @@ void rted_grasp_params(const rted_config *c, rte_grasp_params *p)
     p->polarity = (rte_grasp_polarity)c->grasp_polarity;
     p->contrast = c->grasp_contrast;
     p->background_cell = c->grasp_background_cell;
+    p->chroma = c->grasp_chroma;
     p->min_area = c->grasp_min_area;
     p->max_area = c->grasp_max_area;
     p->skip_border = c->grasp_skip_border;

@@ -32,6 +32,7 @@ void rte_grasp_config_default(rte_grasp_config *config)
                 .canny_high = 150,
                 .contrast = 20,
                 .background_cell = 0,
+                .chroma = 1,
                 .min_area = 100,
                 .max_area = 0,
                 .skip_border = 1,
@@ -96,12 +97,16 @@ static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *
                      size_t arena_bytes)
 {
     const size_t image = (size_t)c->max_width * (size_t)c->max_height;
+    const size_t half = (size_t)((c->max_width + 1) / 2) * (size_t)((c->max_height + 1) / 2);
     const size_t sizes[] = {
         image,
         image,
         image,
         image,
         image * sizeof(uint16_t),
+        image,
+        half,
+        half,
         (size_t)c->max_points * sizeof(rte_point),
         (size_t)c->max_contours * sizeof(rte_contour),
         (size_t)c->max_objects * sizeof(grasp_candidate),
@@ -120,13 +125,17 @@ static size_t layout(rte_grasp_ctx *ctx, uint8_t *base, const rte_grasp_config *
         ctx->binary = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[2]};
         ctx->workspace = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[3]};
         ctx->distance = (uint16_t *)(void *)at[4];
-        ctx->contours.points = (rte_point *)(void *)at[5];
-        ctx->contours.contours = (rte_contour *)(void *)at[6];
+        ctx->tinted = (rte_image_u8){c->max_width, c->max_height, c->max_width, at[5]};
+        const int32_t hw = (c->max_width + 1) / 2, hh = (c->max_height + 1) / 2;
+        ctx->cb_table = (rte_image_u8){hw, hh, hw, at[6]};
+        ctx->cr_table = (rte_image_u8){hw, hh, hw, at[7]};
+        ctx->contours.points = (rte_point *)(void *)at[8];
+        ctx->contours.contours = (rte_contour *)(void *)at[9];
         ctx->contours.max_points = c->max_points;
         ctx->contours.max_contours = c->max_contours;
-        ctx->best = (grasp_candidate *)(void *)at[7];
-        ctx->objects = (rte_grasp_object *)(void *)at[8];
-        rte_arena_init(&ctx->arena, at[9], arena_bytes);
+        ctx->best = (grasp_candidate *)(void *)at[10];
+        ctx->objects = (rte_grasp_object *)(void *)at[11];
+        rte_arena_init(&ctx->arena, at[12], arena_bytes);
     }
     return off + RTE_ARENA_ALIGN; /* room to align the block's start */
 }

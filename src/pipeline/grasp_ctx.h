@@ -24,6 +24,8 @@ struct rte_grasp_ctx {
     rte_morph_element close;
     rte_image_u8 blurred, edges, binary; /* edges: also the table estimate (background mode) */
     uint16_t *distance;                  /* the split's chamfer distances, max_width x max_height */
+    rte_image_u8 tinted;                 /* the grey with colour differences as contrast (chroma) */
+    rte_image_u8 cb_table, cr_table;     /* the table's chroma estimates, half size */
     rte_image_u8 workspace;           /* the ROI's mask (255 inside), built for workspace_w x _h */
     int32_t workspace_w, workspace_h; /* 0: to build (new parameters) */
     rte_contours contours;

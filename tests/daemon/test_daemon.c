@@ -43,9 +43,11 @@ static void path(char *out, size_t size, const char *name)
 
 typedef struct seen {
     int lanes, grasps, statuses, images;
-    int grasp_ok;     /* grasp messages whose objects match the drawn ones */
-    int workspace_ok; /* with grasp.roi: only the object inside, and the ROI in the header */
-    int lane_match;   /* lane messages within tolerance of the CSV */
+    int grasp_ok;          /* grasp messages whose objects match the drawn ones */
+    int last_objects;      /* objects in the last grasp message */
+    double last_x, last_y; /* its first object's centre */
+    int workspace_ok;      /* with grasp.roi: only the object inside, and the ROI in the header */
+    int lane_match;        /* lane messages within tolerance of the CSV */
     int lane_checked;
     int deadline_met;
     int64_t last_sequence;
@@ -145,6 +147,11 @@ static void on_message(const lcm_recv_buf_t *rb, const char *channel, void *user
         rtedge_grasp_detection_t m;
         assert_true(rtedge_grasp_detection_t_decode(rb->data, 0, (int)rb->data_size, &m) > 0);
         s->grasps++;
+        s->last_objects = m.nobjects;
+        if (m.nobjects > 0) {
+            s->last_x = m.objects[0].grasp_x;
+            s->last_y = m.objects[0].grasp_y;
+        }
         check_grasp(s, &m);
         check_workspace(s, &m);
         rtedge_grasp_detection_t_decode_cleanup(&m);
@@ -293,6 +300,60 @@ static void test_grasp_workspace(void **state)
     assert_int_equal(s.workspace_ok, 20);
     assert_int_equal(s.grasp_ok, 0); /* never both objects */
     rtedge_status_t_decode_cleanup(&s.last_status);
+}
+
+/* A 4:2:0 y4m of a red table with a green square as grey as it (Y 107 on
+ * 117, U and V far apart): `frames` frames. */
+static void write_colour_y4m(const char *file, int frames)
+{
+    enum { W = 160, H = 120 };
+    FILE *f = fopen(file, "wb");
+    assert_non_null(f);
+    fprintf(f, "YUV4MPEG2 W%d H%d F30:1 Ip A1:1 C420jpeg\n", W, H);
+    static uint8_t y[W * H], u[W * H / 4], v[W * H / 4];
+    for (int r = 0; r < H; r++)
+        for (int c = 0; c < W; c++) {
+            const bool in = c >= 60 && c < 100 && r >= 40 && r < 80;
+            y[r * W + c] = in ? 107 : 117;
+            if (!(r & 1) && !(c & 1)) {
+                u[(r / 2) * (W / 2) + c / 2] = in ? 133 : 88;
+                v[(r / 2) * (W / 2) + c / 2] = in ? 85 : 185;
+            }
+        }
+    for (int k = 0; k < frames; k++) {
+        fputs("FRAME\n", f);
+        fwrite(y, 1, sizeof y, f);
+        fwrite(u, 1, sizeof u, f);
+        fwrite(v, 1, sizeof v, f);
+    }
+    fclose(f);
+}
+
+/* grasp.chroma: the daemon reads the frame's colour, so the square as grey
+ * as the table is found by it, at its centre, on one thread and on two;
+ * with grasp.chroma = false it is not. */
+static void test_grasp_colour(void **state)
+{
+    char y4m[512];
+    path(y4m, sizeof y4m, "colour.y4m");
+    write_colour_y4m(y4m, 3);
+    for (int run = 0; run < 3; run++) {
+        static seen s;
+        memset(&s, 0, sizeof s);
+        rted_counters n;
+        rted_config c;
+        base_config(&c, y4m, "memq://");
+        c.grasp_chroma = run < 2;
+        c.rt_threads = run == 1 ? 2 : 1;
+        run_config(&c, &s, &n);
+        assert_int_equal(s.grasps, 3);
+        assert_int_equal(s.last_objects, run < 2 ? 1 : 0);
+        if (run < 2) {
+            assert_true(near(s.last_x, 79.5, 1.0));
+            assert_true(near(s.last_y, 59.5, 1.0));
+        }
+        rtedge_status_t_decode_cleanup(&s.last_status);
+    }
 }
 
 static void test_deadline_accounting(void **state)
@@ -1082,6 +1143,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_memq_road_lanes),
         cmocka_unit_test(test_memq_objects),
         cmocka_unit_test(test_grasp_workspace),
+        cmocka_unit_test(test_grasp_colour),
         cmocka_unit_test(test_deadline_accounting),
         cmocka_unit_test(test_damaged_frames),
         cmocka_unit_test(test_file_log),

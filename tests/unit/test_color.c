@@ -1,6 +1,8 @@
 /* Frames and their conversion to grey. */
 #include "unit.h"
 
+#include <math.h>
+
 #include "rtedge/color.h"
 
 /* The BT.601 Q15 weights, written out independently of the library. */
@@ -231,6 +233,120 @@ static void constant_frames_of_all_formats(void **state)
         }
 }
 
+/* JPEG's Cb and Cr, written out independently of the library (doubles,
+ * rounded half up: the library rounds its Q16 sums the same way). */
+static uint8_t ref_chroma(double r, double g, double b, int cr)
+{
+    double v = cr ? 128 + 0.5 * r - 0.418688 * g - 0.081312 * b
+                  : 128 - 0.168736 * r - 0.331264 * g + 0.5 * b;
+    v = floor(v + 0.5);
+    return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+}
+
+/* Chroma at half size from every colour format: NV12's plane as it is,
+ * 4:2:2 averaged over two rows, BGR and RGB from each block's mean, odd
+ * sizes repeating the last row and column; grey frames have none. */
+static void chroma_half_of_every_format(void **state)
+{
+    (void)state;
+    uint32_t seed = 7;
+    for (int32_t w = 1; w <= 6; w++)
+        for (int32_t h = 1; h <= 4; h++) {
+            const int32_t hw = (w + 1) / 2, hh = (h + 1) / 2;
+            rte_image_u8 cb = unit_image_u8(hw, hh, 3, 0), cr = unit_image_u8(hw, hh, 1, 0);
+            /* BGR24 and RGB24: the same colours in both byte orders */
+            uint8_t *bgr = random_bytes((size_t)3 * w * h, &seed);
+            uint8_t *rgb = test_malloc((size_t)3 * w * h);
+            for (int32_t i = 0; i < w * h; i++)
+                for (int k = 0; k < 3; k++)
+                    rgb[3 * i + k] = bgr[3 * i + 2 - k];
+            for (int order = 0; order < 2; order++) {
+                rte_frame f;
+                assert_int_equal(rte_frame_packed(&f, order ? RTE_PIXEL_RGB24 : RTE_PIXEL_BGR24, w,
+                                                  h, order ? rgb : bgr, (size_t)3 * w * h),
+                                 RTE_OK);
+                assert_int_equal(rte_frame_chroma_half(&f, &cb, &cr), RTE_OK);
+                for (int32_t y = 0; y < hh; y++)
+                    for (int32_t x = 0; x < hw; x++) {
+                        double s[3] = {0, 0, 0}; /* B, G, R */
+                        for (int32_t dy = 0; dy < 2; dy++)
+                            for (int32_t dx = 0; dx < 2; dx++) {
+                                const int32_t yy = 2 * y + dy < h ? 2 * y + dy : h - 1;
+                                const int32_t xx = 2 * x + dx < w ? 2 * x + dx : w - 1;
+                                for (int k = 0; k < 3; k++)
+                                    s[k] += bgr[3 * (yy * w + xx) + k] / 4.0;
+                            }
+                        assert_int_equal(cb.buf[y * cb.stride + x],
+                                         ref_chroma(s[2], s[1], s[0], 0));
+                        assert_int_equal(cr.buf[y * cr.stride + x],
+                                         ref_chroma(s[2], s[1], s[0], 1));
+                    }
+            }
+            /* YUYV and UYVY: U and V of each pair, rows averaged (rounded up) */
+            uint8_t *p422 = random_bytes((size_t)2 * w * h, &seed);
+            for (int uyvy = 0; uyvy < 2; uyvy++) {
+                rte_frame f;
+                assert_int_equal(rte_frame_packed(&f, uyvy ? RTE_PIXEL_UYVY : RTE_PIXEL_YUYV, w, h,
+                                                  p422, (size_t)2 * w * h),
+                                 RTE_OK);
+                assert_int_equal(rte_frame_chroma_half(&f, &cb, &cr), RTE_OK);
+                const int u = uyvy ? 0 : 1, v = uyvy ? 2 : 3;
+                for (int32_t y = 0; y < hh; y++)
+                    for (int32_t x = 0; x < hw; x++) {
+                        const uint8_t *r0 = p422 + (size_t)2 * w * (2 * y);
+                        const uint8_t *r1 = 2 * y + 1 < h ? r0 + 2 * w : r0;
+                        assert_int_equal(cb.buf[y * cb.stride + x],
+                                         (r0[4 * x + u] + r1[4 * x + u] + 1) / 2);
+                        /* an odd width's last pixel has no V: the one before, or 128 */
+                        const int32_t xv = 4 * x + 4 <= 2 * w ? x : x - 1;
+                        const int expect_v =
+                            xv < 0 ? 128 : (r0[4 * xv + v] + r1[4 * xv + v] + 1) / 2;
+                        assert_int_equal(cr.buf[y * cr.stride + x], expect_v);
+                    }
+            }
+            /* NV12: the interleaved plane */
+            const size_t nv = rte_frame_packed_size(RTE_PIXEL_NV12, w, h);
+            uint8_t *n12 = random_bytes(nv, &seed);
+            rte_frame f;
+            assert_int_equal(rte_frame_packed(&f, RTE_PIXEL_NV12, w, h, n12, nv), RTE_OK);
+            assert_int_equal(rte_frame_chroma_half(&f, &cb, &cr), RTE_OK);
+            for (int32_t y = 0; y < hh; y++)
+                for (int32_t x = 0; x < hw; x++) {
+                    assert_int_equal(cb.buf[y * cb.stride + x],
+                                     f.plane[1][y * f.stride[1] + 2 * x]);
+                    assert_int_equal(cr.buf[y * cr.stride + x],
+                                     f.plane[1][y * f.stride[1] + 2 * x + 1]);
+                }
+            unit_assert_padding_u8(&cb);
+            unit_assert_padding_u8(&cr);
+            /* no colour in a grey frame; planes of the wrong size; a NULL plane */
+            assert_int_equal(rte_frame_packed(&f, RTE_PIXEL_GREY, w, h, n12, nv), RTE_OK);
+            assert_int_equal(rte_frame_chroma_half(&f, &cb, &cr), RTE_ERR_UNSUPPORTED);
+            assert_int_equal(rte_frame_packed(&f, RTE_PIXEL_NV12, w, h, n12, nv), RTE_OK);
+            rte_image_u8 wide = cb;
+            wide.width = hw + 1;
+            wide.stride = hw + 3;
+            assert_int_equal(rte_frame_chroma_half(&f, &wide, &wide), RTE_ERR_SIZE);
+            assert_int_equal(rte_frame_chroma_half(&f, &cb, NULL), RTE_ERR_ARGUMENT);
+            assert_int_equal(rte_frame_chroma_half(NULL, &cb, &cr), RTE_ERR_ARGUMENT);
+            test_free(bgr);
+            test_free(rgb);
+            test_free(p422);
+            test_free(n12);
+            test_free(cb.buf);
+            test_free(cr.buf);
+        }
+    /* saturated colours: the Q16 sums reach the ends without wrapping */
+    uint8_t blue[12] = {255, 0, 0, 255, 0, 0, 255, 0, 0, 255, 0, 0};
+    rte_frame f;
+    assert_int_equal(rte_frame_packed(&f, RTE_PIXEL_BGR24, 2, 2, blue, sizeof blue), RTE_OK);
+    uint8_t b1 = 0, r1 = 0;
+    rte_image_u8 cb = {1, 1, 1, &b1}, cr = {1, 1, 1, &r1};
+    assert_int_equal(rte_frame_chroma_half(&f, &cb, &cr), RTE_OK);
+    assert_int_equal(b1, 255);
+    assert_int_equal(r1, ref_chroma(0, 0, 255, 1));
+}
+
 static void frame_checks_reject_bad_frames(void **state)
 {
     uint8_t px[64];
@@ -320,6 +436,7 @@ int main(void)
         cmocka_unit_test(nv12_and_grey_give_their_y_plane),
         cmocka_unit_test(one_pixel_frames),
         cmocka_unit_test(constant_frames_of_all_formats),
+        cmocka_unit_test(chroma_half_of_every_format),
         cmocka_unit_test(frame_checks_reject_bad_frames),
         cmocka_unit_test(format_names_round_trip),
     };

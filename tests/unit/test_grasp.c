@@ -6,6 +6,7 @@
 
 #include <math.h>
 
+#include "rtedge/color.h"
 #include "rtedge/grasp.h"
 #include "rtedge/polygon_mask.h"
 
@@ -602,6 +603,84 @@ static void sizes_and_errors(void **state)
     assert_string_equal(rte_grasp_shape_name((rte_shape_class)99), "other");
 }
 
+/* A w x h BGR frame of the colour `table` with the square [x0, x1) x
+ * [y0, y1) of `object`, as grey and half-size chroma (caller frees .buf). */
+static void colour_scene(int32_t w, int32_t h, const uint8_t table[3], const uint8_t object[3],
+                         int32_t x0, int32_t y0, int32_t x1, int32_t y1, rte_image_u8 *gray,
+                         rte_image_u8 *cb, rte_image_u8 *cr)
+{
+    uint8_t *bgr = test_malloc((size_t)3 * w * h);
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++) {
+            const bool in = x >= x0 && x < x1 && y >= y0 && y < y1;
+            memcpy(bgr + 3 * ((size_t)y * w + x), in ? object : table, 3);
+        }
+    rte_frame f;
+    assert_int_equal(rte_frame_packed(&f, RTE_PIXEL_BGR24, w, h, bgr, (size_t)3 * w * h), RTE_OK);
+    *gray = unit_image_u8(w, h, 1, 0);
+    *cb = unit_image_u8((w + 1) / 2, (h + 1) / 2, 2, 0);
+    *cr = unit_image_u8((w + 1) / 2, (h + 1) / 2, 0, 0);
+    assert_int_equal(rte_frame_to_gray(&f, gray), RTE_OK);
+    assert_int_equal(rte_frame_chroma_half(&f, cb, cr), RTE_OK);
+    test_free(bgr);
+}
+
+/* Background mode with colour: a green square as grey as the red table
+ * (grey 107 on 117, below the contrast of 20) is found by its colour, at
+ * its centre; not with grey alone or params.chroma off. A grey scene gives
+ * the same objects with its (neutral) chroma as without. */
+static void colour_contrast(void **state)
+{
+    (void)state;
+    const int32_t w = 97, h = 73;
+    rte_grasp_ctx *ctx = new_ctx(w, h, RTE_GRASP_BACKGROUND);
+    rte_grasp_result r;
+    rte_image_u8 gray, cb, cr;
+    const uint8_t red[3] = {40, 90, 200}, green[3] = {60, 150, 40};
+    colour_scene(w, h, red, green, 30, 20, 62, 48, &gray, &cb, &cr);
+    assert_int_equal(gray.buf[0], 117);
+    assert_int_equal(gray.buf[30 * gray.stride + 40], 107);
+    assert_int_equal(rte_grasp_process(ctx, &gray, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 0);
+    assert_int_equal(rte_grasp_process_chroma(ctx, &gray, &cb, &cr, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_true(fabs(r.objects[0].x_q8 / 256.0 - 45.5) <= 1.0);
+    assert_true(fabs(r.objects[0].y_q8 / 256.0 - 33.5) <= 1.0);
+    rte_grasp_params p;
+    rte_grasp_get_params(ctx, &p);
+    p.chroma = 0;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process_chroma(ctx, &gray, &cb, &cr, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 0);
+    p.chroma = 2;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+
+    /* the planes must come in pairs, at half the frame's size */
+    rte_image_u8 big = unit_image_u8(cb.width + 1, cb.height, 0, 128);
+    assert_int_equal(rte_grasp_process_chroma(ctx, &gray, &cb, NULL, &r), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_grasp_process_chroma(ctx, &gray, &big, &big, &r), RTE_ERR_SIZE);
+    test_free(big.buf);
+    test_free(gray.buf);
+    test_free(cb.buf);
+    test_free(cr.buf);
+
+    const uint8_t light[3] = {170, 170, 170}, dark[3] = {60, 60, 60};
+    colour_scene(w, h, light, dark, 30, 20, 62, 48, &gray, &cb, &cr);
+    rte_grasp_result plain;
+    assert_int_equal(rte_grasp_process(ctx, &gray, &plain), RTE_OK);
+    assert_int_equal(plain.n_objects, 1);
+    const rte_grasp_object first = plain.objects[0];
+    p.chroma = 1;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process_chroma(ctx, &gray, &cb, &cr, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_memory_equal(&r.objects[0], &first, sizeof first);
+    test_free(gray.buf);
+    test_free(cb.buf);
+    test_free(cr.buf);
+    rte_grasp_destroy(ctx);
+}
+
 /* Too few contour slots: the result says so instead of failing. */
 static void contour_bound(void **state)
 {
@@ -677,6 +756,7 @@ int main(void)
         cmocka_unit_test(contour_bound),
         cmocka_unit_test(caller_memory),
         cmocka_unit_test(workspace),
+        cmocka_unit_test(colour_contrast),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
