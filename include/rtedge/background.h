@@ -120,6 +120,28 @@ RTE_API rte_status rte_background_threshold_u8(const rte_image_u8 *src,
                                                rte_arena *arena,
                                                rte_background_threshold_result *result);
 
+/* Colour as contrast, for rte_background_threshold_u8: the frame's colour
+ * difference from the table's, c = |cb - cb_background| + |cr -
+ * cr_background| (chroma planes at half size, ((width + 1) / 2) x ((height
+ * + 1) / 2), each sample for its 2x2 block; at most 255), replaces its grey
+ * difference where it is larger and at least `least` (smaller ones are the
+ * sensor's noise): dst = background + c or background - c (clamped), on
+ * the side of src - background (where src equals background, the side
+ * with room: up below 128), or on the one side looked for; elsewhere dst =
+ * src. So an object as grey as the table but of another colour stands out.
+ * dst has src's size and may alias neither src nor background. */
+typedef struct rte_background_tint_params {
+    int32_t least; /* 1..255 */
+    bool bright;   /* objects lighter than the table are looked for */
+    bool dark;     /* objects darker than the table are looked for */
+} rte_background_tint_params;
+
+RTE_API rte_status rte_background_tint_u8(const rte_image_u8 *src, const rte_image_u8 *background,
+                                          const rte_image_u8 *cb, const rte_image_u8 *cb_background,
+                                          const rte_image_u8 *cr, const rte_image_u8 *cr_background,
+                                          rte_image_u8 *dst,
+                                          const rte_background_tint_params *params);
+
 #ifdef __cplusplus
 }
 #endif

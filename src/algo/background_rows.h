@@ -50,6 +50,43 @@ static inline void background_classify_row(const uint8_t *restrict a, const uint
     }
 }
 
+/* c2[2h] = c2[2h + 1] = |cb[h] - cbt[h]| + |cr[h] - crt[h]| (at most 255):
+ * the colour differences of a row of half-size chroma samples, each twice. */
+static inline void background_chroma_diff_row(const uint8_t *restrict cb,
+                                              const uint8_t *restrict cbt,
+                                              const uint8_t *restrict cr,
+                                              const uint8_t *restrict crt, uint8_t *restrict c2,
+                                              int32_t hw)
+{
+    for (int32_t h = 0; h < hw; h++) {
+        const uint8_t db = cb[h] > cbt[h] ? cb[h] - cbt[h] : cbt[h] - cb[h];
+        const uint8_t dr = cr[h] > crt[h] ? cr[h] - crt[h] : crt[h] - cr[h];
+        const uint8_t sum = (uint8_t)(db + dr), c = sum < db ? 255 : sum; /* saturated */
+        c2[2 * h] = c;
+        c2[2 * h + 1] = c;
+    }
+}
+
+/* cd[x] (the colour difference on entry) becomes the tinted pixel: s[x],
+ * or where cd[x] >= least and cd[x] > |s[x] - b[x]|, b[x] + cd[x] (up) or
+ * b[x] - cd[x], clamped; up where up_only, or with `either` where s > b,
+ * or s == b and b < 128 (the side with room). */
+static inline void background_tint_row(const uint8_t *restrict s, const uint8_t *restrict b,
+                                       uint8_t *restrict cd, int32_t w, uint8_t least,
+                                       uint8_t up_only, uint8_t either)
+{
+    /* all in bytes (no wider lanes): the sums saturate by their wrap */
+    for (int32_t x = 0; x < w; x++) {
+        const uint8_t c = cd[x], sv = s[x], bv = b[x];
+        const uint8_t ad = (uint8_t)((sv > bv ? sv : bv) - (sv > bv ? bv : sv));
+        const uint8_t sum = (uint8_t)(bv + c);
+        const uint8_t upv = sum < bv ? 255 : sum;
+        const uint8_t downv = bv > c ? (uint8_t)(bv - c) : 0;
+        const uint8_t up = up_only | (either & ((sv > bv) | ((sv == bv) & (bv < 128))));
+        cd[x] = (c >= least) & (c > ad) ? (up ? upv : downv) : sv;
+    }
+}
+
 /* a[x] = 255 where a[x] > fl[x], else 0. */
 static inline void background_above_floor_row(uint8_t *restrict a, const uint8_t *restrict fl,
                                               int32_t w)

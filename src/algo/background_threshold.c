@@ -338,3 +338,47 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     rte_arena_reset(arena, mark);
     return RTE_OK;
 }
+
+rte_status rte_background_tint_u8(const rte_image_u8 *src, const rte_image_u8 *background,
+                                  const rte_image_u8 *cb, const rte_image_u8 *cb_background,
+                                  const rte_image_u8 *cr, const rte_image_u8 *cr_background,
+                                  rte_image_u8 *dst, const rte_background_tint_params *params)
+{
+    rte_status st = rte_image_u8_check_pair(src, background);
+    if (st == RTE_OK)
+        st = rte_image_u8_check_pair(src, dst);
+    if (st == RTE_OK)
+        st = rte_image_u8_check_pair(cb, cb_background);
+    if (st == RTE_OK)
+        st = rte_image_u8_check_pair(cb, cr);
+    if (st == RTE_OK)
+        st = rte_image_u8_check_pair(cb, cr_background);
+    if (st != RTE_OK)
+        return st;
+    const int32_t w = src->width, h = src->height;
+    if (cb->width != (w + 1) / 2 || cb->height != (h + 1) / 2)
+        return RTE_ERR_SIZE;
+    if (!params || params->least < 1 || params->least > 255 || dst->buf == src->buf ||
+        dst->buf == background->buf)
+        return RTE_ERR_ARGUMENT;
+    const rte_background_rows rows = rte_background_rows_select(rte_cpu_features());
+    const uint8_t up_only = !params->dark, either = params->bright && params->dark;
+    for (int32_t y = 0; y < h; y++) {
+        /* the colour differences go into dst's row (an odd width's last
+         * sample through a pair of its own: the row has room for one),
+         * then become the pixels */
+        uint8_t *d = rte_u8_row(dst, y);
+        const int32_t hy = y >> 1, whole = w >> 1;
+        const uint8_t *b = rte_u8_row(cb, hy), *bt = rte_u8_row(cb_background, hy);
+        const uint8_t *r = rte_u8_row(cr, hy), *rt = rte_u8_row(cr_background, hy);
+        rows.chroma_diff(b, bt, r, rt, d, whole);
+        if (w & 1) {
+            uint8_t pair[2];
+            rows.chroma_diff(b + whole, bt + whole, r + whole, rt + whole, pair, 1);
+            d[w - 1] = pair[0];
+        }
+        rows.tint(rte_u8_row(src, y), rte_u8_row(background, y), d, w, (uint8_t)params->least,
+                  up_only, either);
+    }
+    return RTE_OK;
+}

@@ -95,20 +95,17 @@ static int32_t border_mean(const rte_image_u8 *img)
 }
 
 /* Colour as contrast (params.chroma): the table's cb and cr estimated as
- * its grey is (cells as wide in the frame, on the half-size planes), then per
- * pixel the colour difference c = |cb - table's| + |cr - table's| of its
- * chroma sample; where c exceeds |grey - table|, the pixel is written c
- * from the table instead, on the side of its grey difference (or of the
- * one side looked for; with no grey difference, the side with room), so
- * that the threshold sees the colour an object differs by. */
+ * its grey is, then the colour differences from them put in place of the
+ * grey ones where larger (rte_background_tint_u8), so that the threshold
+ * sees the colour an object differs by. */
 static rte_status tint(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_image_u8 *table,
                        const rte_image_u8 *cb, const rte_image_u8 *cr, bool bright, bool dark,
                        rte_image_u8 *dst)
 {
     const int32_t hw = cb->width, hh = cb->height;
     rte_image_u8 cbt = sub(&ctx->cb_table, hw, hh), crt = sub(&ctx->cr_table, hw, hh);
-    /* cells as many pixels of the frame across as the grey's: a fourth as
-     * many of them, as the table's colour changes slowly */
+    /* cells of the grey's side on the half-size planes: twice as wide in
+     * the frame and a fourth as many (the table's colour changes slowly) */
     rte_background_params bp;
     rte_background_params_default(&bp, src->width);
     if (ctx->params.background_cell)
@@ -118,51 +115,10 @@ static rte_status tint(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_im
         st = rte_background_estimate_u8(cr, &crt, &bp, &ctx->arena);
     if (st != RTE_OK)
         return st;
-    /* a row of colour differences, each chroma sample twice (then the
-     * loop below has no branch and vectorises) */
-    const size_t mark = rte_arena_mark(&ctx->arena);
-    uint8_t *cd = rte_arena_alloc(&ctx->arena, (size_t)2 * hw);
-    if (!cd)
-        return RTE_ERR_NO_MEMORY;
-    const int32_t up_only = !dark, either = bright && dark;
-    /* colour differences below half the contrast are the sensor's noise and
-     * are left out (which also skips most of a table's pixels at once):
-     * bit 7 of a byte of c8 & 0x7F.. + below is set when its low 7 bits
-     * reach `least` */
-    const int32_t least = (ctx->params.contrast + 1) / 2;
-    const uint64_t below = (uint64_t)(128 - least) * 0x0101010101010101u;
-    for (int32_t y = 0; y < src->height; y++) {
-        const uint8_t *b = rte_u8_row(cb, y >> 1), *bt = rte_u8_row(&cbt, y >> 1);
-        const uint8_t *r = rte_u8_row(cr, y >> 1), *rt = rte_u8_row(&crt, y >> 1);
-        if (!(y & 1))
-            for (int32_t h = 0; h < hw; h++) {
-                const int32_t c = abs(b[h] - bt[h]) + abs(r[h] - rt[h]);
-                cd[2 * h] = cd[2 * h + 1] = (uint8_t)(c > 255 ? 255 : c);
-            }
-        const uint8_t *g = rte_u8_row(src, y), *t = rte_u8_row(table, y);
-        uint8_t *d = rte_u8_row(dst, y);
-        memcpy(d, g, (size_t)src->width);
-        for (int32_t x0 = 0; x0 < src->width; x0 += 8) {
-            const int32_t x1 = x0 + 8 < src->width ? x0 + 8 : src->width;
-            if (x1 - x0 == 8) { /* eight differences below `least`: nothing to do */
-                uint64_t c8;
-                memcpy(&c8, cd + x0, sizeof c8);
-                if (!((((c8 & 0x7F7F7F7F7F7F7F7Fu) + below) | c8) & 0x8080808080808080u))
-                    continue;
-            }
-            for (int32_t x = x0; x < x1; x++) {
-                const int32_t diff = g[x] - t[x], ad = diff < 0 ? -diff : diff, c = cd[x];
-                if (c < least)
-                    continue;
-                const int32_t up = up_only | (either & ((diff > 0) | ((diff == 0) & (t[x] < 128))));
-                int32_t v = up ? t[x] + c : t[x] - c;
-                v = v < 0 ? 0 : v > 255 ? 255 : v;
-                d[x] = (uint8_t)(c > ad ? v : g[x]);
-            }
-        }
-    }
-    rte_arena_reset(&ctx->arena, mark);
-    return RTE_OK;
+    /* colour differences below half the contrast are the sensor's noise */
+    const rte_background_tint_params tp = {
+        .least = (ctx->params.contrast + 1) / 2, .bright = bright, .dark = dark};
+    return rte_background_tint_u8(src, table, cb, &cbt, cr, &crt, dst, &tp);
 }
 
 static rte_status binarize(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_image_u8 *cb,

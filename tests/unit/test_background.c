@@ -5,6 +5,8 @@
  * weak and strong regions, and the run table's bound. */
 #include "unit.h"
 
+#include <stdlib.h>
+
 #include "rtedge/background.h"
 
 #define W 320
@@ -291,6 +293,87 @@ static void a_full_run_table_is_reported(void **state)
     test_free(arena.base);
 }
 
+/* The tint written out per pixel, independently of the row kernels. */
+static uint8_t tint_ref(int s, int b, int c, int least, bool bright, bool dark)
+{
+    const int ad = s > b ? s - b : b - s;
+    if (c < least || c <= ad)
+        return (uint8_t)s;
+    const bool up = !dark || (bright && (s > b || (s == b && b < 128)));
+    const int v = up ? b + c : b - c;
+    return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+}
+
+/* rte_background_tint_u8 against tint_ref on random frames of odd and even
+ * sizes (padded rows), each side setting and threshold; then refusals. */
+static void tint_puts_colour_differences_in_place(void **state)
+{
+    (void)state;
+    uint32_t seed = 31;
+    for (int trial = 0; trial < 60; trial++) {
+        const int32_t w = 1 + (int32_t)(unit_rand(&seed) % 70),
+                      h = 1 + (int32_t)(unit_rand(&seed) % 9);
+        const int32_t hw = (w + 1) / 2, hh = (h + 1) / 2;
+        rte_image_u8 s = unit_image_u8(w, h, 3, 0), b = unit_image_u8(w, h, 0, 0);
+        rte_image_u8 d = unit_image_u8(w, h, 5, 0);
+        rte_image_u8 pl[4];
+        for (int k = 0; k < 4; k++)
+            pl[k] = unit_image_u8(hw, hh, k, 0);
+        /* small differences often, so that every branch is taken */
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++) {
+                const int base = (int)(unit_rand(&seed) % 256);
+                s.buf[y * s.stride + x] = (uint8_t)base;
+                const int off = (int)(unit_rand(&seed) % 61) - 30;
+                const int bv = unit_rand(&seed) % 4 ? base + off : base;
+                b.buf[y * b.stride + x] = (uint8_t)(bv < 0 ? 0 : bv > 255 ? 255 : bv);
+            }
+        for (int k = 0; k < 4; k++)
+            for (int32_t y = 0; y < hh; y++)
+                for (int32_t x = 0; x < hw; x++)
+                    pl[k].buf[y * pl[k].stride + x] =
+                        (uint8_t)(k & 1 ? pl[k - 1].buf[y * pl[k - 1].stride + x] +
+                                              (int)(unit_rand(&seed) % 41) - 20
+                                        : (int)(unit_rand(&seed) % 256));
+        const rte_background_tint_params p = {.least = 1 + (int32_t)(unit_rand(&seed) % 20),
+                                              .bright = trial % 3 != 1,
+                                              .dark = trial % 3 != 2};
+        assert_int_equal(rte_background_tint_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &d, &p),
+                         RTE_OK);
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++) {
+                const int32_t hx = x / 2;
+                const int db = abs(pl[0].buf[(y / 2) * pl[0].stride + hx] -
+                                   pl[1].buf[(y / 2) * pl[1].stride + hx]);
+                const int dr = abs(pl[2].buf[(y / 2) * pl[2].stride + hx] -
+                                   pl[3].buf[(y / 2) * pl[3].stride + hx]);
+                const int c = db + dr > 255 ? 255 : db + dr;
+                assert_int_equal(d.buf[y * d.stride + x],
+                                 tint_ref(s.buf[y * s.stride + x], b.buf[y * b.stride + x], c,
+                                          p.least, p.bright, p.dark));
+            }
+        unit_assert_padding_u8(&d);
+        /* refusals: planes of another size, dst on src, least out of range */
+        rte_image_u8 small = pl[1];
+        small.width = hw > 1 ? hw - 1 : 2;
+        assert_int_equal(rte_background_tint_u8(&s, &b, &pl[0], &small, &pl[2], &pl[3], &d, &p),
+                         RTE_ERR_SIZE);
+        assert_int_equal(rte_background_tint_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &s, &p),
+                         RTE_ERR_ARGUMENT);
+        rte_background_tint_params bad = p;
+        bad.least = 0;
+        assert_int_equal(rte_background_tint_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &d, &bad),
+                         RTE_ERR_ARGUMENT);
+        assert_int_equal(rte_background_tint_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &d, NULL),
+                         RTE_ERR_ARGUMENT);
+        test_free(s.buf);
+        test_free(b.buf);
+        test_free(d.buf);
+        for (int k = 0; k < 4; k++)
+            test_free(pl[k].buf);
+    }
+}
+
 static void bad_arguments(void **state)
 {
     (void)state;
@@ -368,6 +451,7 @@ int main(void)
         cmocka_unit_test(shadows_dropped_and_two_tone_objects_kept),
         cmocka_unit_test(hysteresis_keeps_faint_parts_of_strong_regions),
         cmocka_unit_test(a_full_run_table_is_reported),
+        cmocka_unit_test(tint_puts_colour_differences_in_place),
         cmocka_unit_test(bad_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -863,11 +863,13 @@ static const background_variant background_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"background_avx2", RTE_CPU_X86_AVX2},
      {rte_background_add_row_avx2, rte_background_store_row_avx2, rte_background_absdiff_row_avx2,
-      rte_background_classify_row_avx2, rte_background_above_floor_row_avx2}},
+      rte_background_classify_row_avx2, rte_background_above_floor_row_avx2,
+      rte_background_chroma_diff_row_avx2, rte_background_tint_row_avx2}},
 #endif
     {{"background_c", 0},
      {rte_background_add_row_c, rte_background_store_row_c, rte_background_absdiff_row_c,
-      rte_background_classify_row_c, rte_background_above_floor_row_c}},
+      rte_background_classify_row_c, rte_background_above_floor_row_c,
+      rte_background_chroma_diff_row_c, rte_background_tint_row_c}},
 };
 
 static void random_values(int32_t *p, int32_t n, uint32_t *seed)
@@ -897,7 +899,8 @@ static void check_background_row(const background_variant *v, int32_t w, uint32_
     const struct {
         const char *name;
         int which;
-    } bytes[] = {{"store", 0}, {"absdiff", 1}, {"classify", 2}, {"above_floor", 3}};
+    } bytes[] = {{"store", 0},       {"absdiff", 1}, {"classify", 2},
+                 {"above_floor", 3}, {"tint", 4},    {"chroma_diff", 5}};
     const uint8_t low = (uint8_t)unit_rand(seed), high = (uint8_t)unit_rand(seed);
     const uint8_t bright = (uint8_t)(unit_rand(seed) % 3), dark = (uint8_t)(unit_rand(seed) % 3);
     for (size_t k = 0; k < COUNT_OF(bytes); k++) {
@@ -912,7 +915,17 @@ static void check_background_row(const background_variant *v, int32_t w, uint32_
             case 2:
                 r[j]->classify(s + o, b + o, t + o, out[j] + o, w, low, high, bright, dark);
                 break;
-            default: memcpy(out[j] + o, s + o, (size_t)w); r[j]->above_floor(out[j] + o, b + o, w);
+            case 3:
+                memcpy(out[j] + o, s + o, (size_t)w);
+                r[j]->above_floor(out[j] + o, b + o, w);
+                break;
+            case 4:
+                memcpy(out[j] + o, t + o, (size_t)w);
+                r[j]->tint(s + o, b + o, out[j] + o, w, low, bright & 1, dark & 1);
+                break;
+            default: /* half as many samples, each written twice */
+                r[j]->chroma_diff(s + o, b + o, t + o, s + n - GUARD - (size_t)(w + 1) / 2,
+                                  out[j] + o, (w + 1) / 2);
             }
         }
         if (memcmp(want, got, n) != 0)

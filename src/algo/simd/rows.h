@@ -131,42 +131,62 @@ typedef struct rte_background_rows {
     void (*classify)(const uint8_t *a, const uint8_t *s, const uint8_t *b, uint8_t *c, int32_t w,
                      uint8_t low, uint8_t high, uint8_t bright_class, uint8_t dark_class);
     void (*above_floor)(uint8_t *a, const uint8_t *fl, int32_t w);
+    void (*chroma_diff)(const uint8_t *cb, const uint8_t *cbt, const uint8_t *cr,
+                        const uint8_t *crt, uint8_t *c2, int32_t hw);
+    void (*tint)(const uint8_t *s, const uint8_t *b, uint8_t *cd, int32_t w, uint8_t least,
+                 uint8_t up_only, uint8_t either);
 } rte_background_rows;
 
 /* rte_background_<kernel>_row_<isa> for every kernel of the family, and
  * (DEFINE) their bodies from background_rows.h. */
-#define RTE_BACKGROUND_ROWS_DECLARE(isa)                                                         \
-    void rte_background_add_row_##isa(int32_t *v, const int32_t *add, int32_t w);                \
-    void rte_background_store_row_##isa(const int32_t *v, uint8_t *out, int32_t w);              \
-    void rte_background_absdiff_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *a,        \
-                                          int32_t w);                                            \
-    void rte_background_classify_row_##isa(const uint8_t *a, const uint8_t *s, const uint8_t *b, \
-                                           uint8_t *c, int32_t w, uint8_t low, uint8_t high,     \
-                                           uint8_t bright_class, uint8_t dark_class);            \
-    void rte_background_above_floor_row_##isa(uint8_t *a, const uint8_t *fl, int32_t w);
-#define RTE_BACKGROUND_ROWS_DEFINE(isa)                                                          \
-    void rte_background_add_row_##isa(int32_t *v, const int32_t *add, int32_t w)                 \
-    {                                                                                            \
-        background_add_row(v, add, w);                                                           \
-    }                                                                                            \
-    void rte_background_store_row_##isa(const int32_t *v, uint8_t *out, int32_t w)               \
-    {                                                                                            \
-        background_store_row(v, out, w);                                                         \
-    }                                                                                            \
-    void rte_background_absdiff_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *a,        \
-                                          int32_t w)                                             \
-    {                                                                                            \
-        background_absdiff_row(s, b, a, w);                                                      \
-    }                                                                                            \
-    void rte_background_classify_row_##isa(const uint8_t *a, const uint8_t *s, const uint8_t *b, \
-                                           uint8_t *c, int32_t w, uint8_t low, uint8_t high,     \
-                                           uint8_t bright_class, uint8_t dark_class)             \
-    {                                                                                            \
-        background_classify_row(a, s, b, c, w, low, high, bright_class, dark_class);             \
-    }                                                                                            \
-    void rte_background_above_floor_row_##isa(uint8_t *a, const uint8_t *fl, int32_t w)          \
-    {                                                                                            \
-        background_above_floor_row(a, fl, w);                                                    \
+#define RTE_BACKGROUND_ROWS_DECLARE(isa)                                                           \
+    void rte_background_add_row_##isa(int32_t *v, const int32_t *add, int32_t w);                  \
+    void rte_background_store_row_##isa(const int32_t *v, uint8_t *out, int32_t w);                \
+    void rte_background_absdiff_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *a,          \
+                                          int32_t w);                                              \
+    void rte_background_classify_row_##isa(const uint8_t *a, const uint8_t *s, const uint8_t *b,   \
+                                           uint8_t *c, int32_t w, uint8_t low, uint8_t high,       \
+                                           uint8_t bright_class, uint8_t dark_class);              \
+    void rte_background_above_floor_row_##isa(uint8_t *a, const uint8_t *fl, int32_t w);           \
+    void rte_background_chroma_diff_row_##isa(const uint8_t *cb, const uint8_t *cbt,               \
+                                              const uint8_t *cr, const uint8_t *crt, uint8_t *c2,  \
+                                              int32_t hw);                                         \
+    void rte_background_tint_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *cd, int32_t w, \
+                                       uint8_t least, uint8_t up_only, uint8_t either);
+#define RTE_BACKGROUND_ROWS_DEFINE(isa)                                                            \
+    void rte_background_add_row_##isa(int32_t *v, const int32_t *add, int32_t w)                   \
+    {                                                                                              \
+        background_add_row(v, add, w);                                                             \
+    }                                                                                              \
+    void rte_background_store_row_##isa(const int32_t *v, uint8_t *out, int32_t w)                 \
+    {                                                                                              \
+        background_store_row(v, out, w);                                                           \
+    }                                                                                              \
+    void rte_background_absdiff_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *a,          \
+                                          int32_t w)                                               \
+    {                                                                                              \
+        background_absdiff_row(s, b, a, w);                                                        \
+    }                                                                                              \
+    void rte_background_classify_row_##isa(const uint8_t *a, const uint8_t *s, const uint8_t *b,   \
+                                           uint8_t *c, int32_t w, uint8_t low, uint8_t high,       \
+                                           uint8_t bright_class, uint8_t dark_class)               \
+    {                                                                                              \
+        background_classify_row(a, s, b, c, w, low, high, bright_class, dark_class);               \
+    }                                                                                              \
+    void rte_background_above_floor_row_##isa(uint8_t *a, const uint8_t *fl, int32_t w)            \
+    {                                                                                              \
+        background_above_floor_row(a, fl, w);                                                      \
+    }                                                                                              \
+    void rte_background_chroma_diff_row_##isa(const uint8_t *cb, const uint8_t *cbt,               \
+                                              const uint8_t *cr, const uint8_t *crt, uint8_t *c2,  \
+                                              int32_t hw)                                          \
+    {                                                                                              \
+        background_chroma_diff_row(cb, cbt, cr, crt, c2, hw);                                      \
+    }                                                                                              \
+    void rte_background_tint_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *cd, int32_t w, \
+                                       uint8_t least, uint8_t up_only, uint8_t either)             \
+    {                                                                                              \
+        background_tint_row(s, b, cd, w, least, up_only, either);                                  \
     }
 RTE_BACKGROUND_ROWS_DECLARE(c)
 rte_background_rows rte_background_rows_select(uint32_t features);
