@@ -83,7 +83,7 @@ static inline void background_tint_row(const uint8_t *restrict s, const uint8_t 
         const uint8_t upv = sum < bv ? 255 : sum;
         const uint8_t downv = bv > c ? (uint8_t)(bv - c) : 0;
         const uint8_t up = up_only | (either & ((sv > bv) | ((sv == bv) & (bv < 128))));
-        cd[x] = (c >= least) & (c > ad) ? (up ? upv : downv) : sv;
+        cd[x] = ((c >= least) & (c > ad)) ? (up ? upv : downv) : sv;
     }
 }
 
