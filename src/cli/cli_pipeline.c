@@ -305,8 +305,10 @@ void *cli_overlay_canvas(const char *command, const cli_image *in, rte_image_u8c
 
 rte_status cli_grasp_process(rte_grasp_ctx *ctx, const cli_image *in, rte_grasp_result *out)
 {
-    if (!in->bgr.buf)
-        return rte_grasp_process(ctx, &in->gray, out);
+    rte_grasp_params p;
+    rte_grasp_get_params(ctx, &p);
+    if (!in->bgr.buf || !p.chroma || p.binarize != RTE_GRASP_BACKGROUND)
+        return rte_grasp_process(ctx, &in->gray, out); /* no colour read */
     const int32_t w = in->gray.width, h = in->gray.height, hw = (w + 1) / 2, hh = (h + 1) / 2;
     const rte_frame f = {RTE_PIXEL_BGR24, w, h, {in->bgr.buf}, {in->bgr.stride}};
     uint8_t *chroma = malloc(2 * (size_t)hw * (size_t)hh);

@@ -9,10 +9,10 @@
  * handed over and back through two semaphores (futexes: no lock, no heap
  * call); between a post and the wait, the job (d->job) is the thread's
  * alone, and the thread touches nothing else of the daemon but the grasp
- * context and the grey and chroma buffers: counters, stage timings and publishing stay
- * on the main thread, which reads the job's result after the wait. Run-time
- * changes (SIGHUP, params_t) are applied between frames, when the thread
- * waits for the next one. */
+ * context and the grey and chroma buffers: counters, stage timings and
+ * publishing stay on the main thread, which reads the job's result after
+ * the wait. Run-time changes (SIGHUP, params_t) are applied between
+ * frames, when the thread waits for the next one. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <pthread.h>

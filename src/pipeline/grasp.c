@@ -1,5 +1,4 @@
 /* The grasp path, per frame (see rtedge/grasp.h). Integer only. */
-#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -99,20 +98,17 @@ static int32_t border_mean(const rte_image_u8 *img)
  * grey ones where larger (rte_background_tint_u8), so that the threshold
  * sees the colour an object differs by. */
 static rte_status tint(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_image_u8 *table,
-                       const rte_image_u8 *cb, const rte_image_u8 *cr, bool bright, bool dark,
-                       rte_image_u8 *dst)
+                       const rte_background_params *bp, const rte_image_u8 *cb,
+                       const rte_image_u8 *cr, bool bright, bool dark, rte_image_u8 *dst)
 {
     const int32_t hw = cb->width, hh = cb->height;
     rte_image_u8 cbt = sub(&ctx->cb_table, hw, hh), crt = sub(&ctx->cr_table, hw, hh);
-    /* cells of the grey's side on the half-size planes: twice as wide in
-     * the frame and a fourth as many (the table's colour changes slowly) */
-    rte_background_params bp;
-    rte_background_params_default(&bp, src->width);
-    if (ctx->params.background_cell)
-        bp.cell = ctx->params.background_cell;
-    rte_status st = rte_background_estimate_u8(cb, &cbt, &bp, &ctx->arena);
+    /* the grey's parameters (cell side) on the half-size planes: cells twice
+     * as wide in the frame and a fourth as many (the table's colour changes
+     * slowly) */
+    rte_status st = rte_background_estimate_u8(cb, &cbt, bp, &ctx->arena);
     if (st == RTE_OK)
-        st = rte_background_estimate_u8(cr, &crt, &bp, &ctx->arena);
+        st = rte_background_estimate_u8(cr, &crt, bp, &ctx->arena);
     if (st != RTE_OK)
         return st;
     /* colour differences below half the contrast are the sensor's noise */
@@ -154,7 +150,7 @@ static rte_status binarize(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rt
         rte_status st = rte_background_estimate_u8(src, &table, &bp, &ctx->arena);
         rte_image_u8 tinted = sub(&ctx->tinted, src->width, src->height);
         if (st == RTE_OK && cb && p->chroma) {
-            st = tint(ctx, src, &table, cb, cr, tp.bright, tp.dark, &tinted);
+            st = tint(ctx, src, &table, &bp, cb, cr, tp.bright, tp.dark, &tinted);
             src = &tinted;
         }
         rte_background_threshold_result tr = {0};
