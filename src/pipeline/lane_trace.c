@@ -29,7 +29,7 @@ static const int16_t trace_dir[TRACE_DIRS][2] = {
 #define TRACE_SEG 8        /* pixels of the segment scored per direction */
 #define TRACE_FAN 4        /* directions either side of the last one (22 degrees) */
 #define TRACE_MAX_STEPS 96 /* enough to cross a 1920-wide frame's lane */
-#define TRACE_MISSES 3     /* steps without paint bridged (worn paint, 12 px) */
+#define TRACE_MISSES 5     /* the trace stops at this many steps in a row without paint */
 #define TRACE_CENTRE 3     /* the middle is searched this far either side */
 #define TRACE_RUN_ROWS 16  /* the start: paint on a quarter of these rows */
 #define TRACE_MIN_STEPS 3  /* steps beyond the curve's band needed to replace it */

@@ -7,7 +7,7 @@
 # share of frames right (docs/lanes.md, "Accuracy": today's figures, less
 # a frame where that is below 100%), and the sides reported with
 # confidence >= 0.5 must be right in 90% of cases on these hard frames
-# (today 92%: the misses are the last rows below a crest where a mountain
+# (today 93%: the misses are the last rows below a crest where a mountain
 # road turns sharply, docs/lanes.md, "Accuracy").
 # In a cross build meson test sets MESON_EXE_WRAPPER (qemu-user).
 #   lane_frames.sh RTEDGE EVAL_LANES FIXTURES_LANES OUT_DIR
