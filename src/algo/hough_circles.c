@@ -10,10 +10,10 @@
  * 3. Radius: a histogram of the distances (1/16 pixel bins) from the centre
  *    to all edge pixels in range; the densest window of dp pixels, with the
  *    count weighed against the radius as OpenCV does, gives the radius and
- *    the support. Circles with support > acc_threshold are kept, their
- *    centre refined to where the gradient lines of their edge pixels meet.
- * 4. Sorted by support, then raster order of the centre; a centre closer
- *    than min_dist to a kept one is dropped.
+ *    the support. Circles with support > acc_threshold go on.
+ * 4. Sorted by support, then raster order of the centre; each centre is
+ *    refined to where the gradient lines of its edge pixels meet, and
+ *    dropped when closer than min_dist to a kept one.
  * Steps 1 and 2 run together on a ring of accumulator rows (below); step 3
  * (hough_circles_radius.c) only visits the edge pixels near the centre
  * (blocks of each row). */
@@ -26,6 +26,8 @@
 #include "hough_circles_internal.h"
 #include "hough_internal.h"
 #include "simd/rows.h"
+
+static inline int64_t abs64(int64_t v) { return v < 0 ? -v : v; }
 
 static int params_ok(const rte_hough_circles_params *p)
 {
@@ -337,19 +339,44 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
     return ncent;
 }
 
+/* What step 3b reads: the edge pixels, their row blocks and the gradient. */
+typedef struct circle_pixels {
+    const uint32_t *pts;
+    const int32_t *blk;
+    int32_t nblk, h, dp_q8;
+    const rte_image_s16 *dx, *dy;
+} circle_pixels;
+
 /* Step 4: greedy removal, best first, of centres closer than min_dist to
- * one already kept. Returns how many were kept. */
-static int32_t keep_separated(const rte_hough_topk *top, const int32_t *est, int32_t min_dist,
-                              rte_hough_circle *circles, int32_t max_circles, bool *truncated)
+ * one already kept. A centre is refined (step 3b) only when it may be
+ * kept: refining moves it at most `lim` along each axis, so one whose box
+ * of reachable positions lies within min_dist of a kept centre is dropped
+ * as it is (most candidates are neighbours of a circle's best centre, and
+ * refining them took a fifth of the transform). Returns how many were
+ * kept. */
+static int32_t keep_separated(const rte_hough_topk *top, int32_t *est, int32_t min_dist,
+                              const circle_pixels *px, rte_hough_circle *circles,
+                              int32_t max_circles, bool *truncated)
 {
     const int64_t min_d2 = (int64_t)min_dist * min_dist * 256;
+    const int64_t lim = circle_refine_limit(px->dp_q8);
     int32_t nout = 0;
     for (int32_t k = 0; k < top->size; k++) {
         int32_t e = (int32_t)rte_hough_key_index(top->keys[k]);
-        int32_t cx = est[3 * e], cy = est[3 * e + 1];
+        int32_t *c = est + 3 * e;
+        bool near = false;
+        for (int32_t j = 0; j < nout && !near; j++) {
+            const int64_t ddx = abs64(c[0] - circles[j].x_q4) + lim,
+                          ddy = abs64(c[1] - circles[j].y_q4) + lim;
+            near = ddx * ddx + ddy * ddy < min_d2;
+        }
+        if (near)
+            continue;
+        rte_circle_refine(px->pts, px->blk, px->nblk, px->h, px->dx, px->dy, px->dp_q8, &c[0],
+                          &c[1], &c[2]);
         bool ok = true;
         for (int32_t j = 0; j < nout && ok; j++) {
-            int64_t ddx = cx - circles[j].x_q4, ddy = cy - circles[j].y_q4;
+            int64_t ddx = c[0] - circles[j].x_q4, ddy = c[1] - circles[j].y_q4;
             ok = ddx * ddx + ddy * ddy >= min_d2;
         }
         if (!ok)
@@ -358,7 +385,7 @@ static int32_t keep_separated(const rte_hough_topk *top, const int32_t *est, int
             *truncated = true;
             break;
         }
-        rte_hough_circle out = {cx, cy, est[3 * e + 2], rte_hough_key_votes(top->keys[k])};
+        rte_hough_circle out = {c[0], c[1], c[2], rte_hough_key_votes(top->keys[k])};
         circles[nout++] = out;
     }
     return nout;
@@ -438,7 +465,6 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
         int32_t r = 0;
         int32_t support = rte_circle_radius(pts, blk, nblk, h, &g, &rt, cx, cy, bins, &r);
         if (support > thr) {
-            rte_circle_refine(pts, blk, nblk, h, dx, dy, params->dp_q8, &cx, &cy, &r);
             est[3 * nest] = cx;
             est[3 * nest + 1] = cy;
             est[3 * nest + 2] = r;
@@ -448,8 +474,9 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     }
     rte_hough_topk_sort(&top);
 
+    const circle_pixels px = {pts, blk, nblk, h, params->dp_q8, dx, dy};
     const int32_t nout =
-        keep_separated(&top, est, params->min_dist, circles, max_circles, truncated);
+        keep_separated(&top, est, params->min_dist, &px, circles, max_circles, truncated);
     *count = nout;
     rte_arena_reset(arena, mark);
     return RTE_OK;

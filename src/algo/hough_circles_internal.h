@@ -41,8 +41,12 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
                           const circle_geom *g, const radius_table *rt, int32_t cx, int32_t cy,
                           int32_t *bins, int32_t *radius_q4);
 
+/* Step 3b's largest move of a centre along each axis, 1/16 pixel: 2 dp. */
+static inline int32_t circle_refine_limit(int32_t dp_q8) { return (dp_q8 + 4) / 8; }
+
 /* Step 3b: the centre (*cx, *cy) and radius *r_q4 refined to where the
- * gradient lines of the circle's edge pixels meet. */
+ * gradient lines of the circle's edge pixels meet (moving the centre at
+ * most circle_refine_limit along each axis). */
 void rte_circle_refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
                        const rte_image_s16 *dx, const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx,
                        int32_t *cy, int32_t *r_q4);

@@ -176,7 +176,7 @@ void rte_circle_refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, in
         return;
     const int64_t ox = rte_div_round64(a11 * b0 - a01 * b1, det),
                   oy = rte_div_round64(a00 * b1 - a01 * b0, det);
-    const int64_t lim = (dp_q8 + 4) / 8; /* 2 dp in 1/16 pixel */
+    const int64_t lim = circle_refine_limit(dp_q8);
     if (ox > lim || ox < -lim || oy > lim || oy < -lim)
         return;
     *cx += (int32_t)ox;
