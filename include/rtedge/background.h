@@ -120,6 +120,43 @@ RTE_API rte_status rte_background_threshold_u8(const rte_image_u8 *src,
                                                rte_arena *arena,
                                                rte_background_threshold_result *result);
 
+/* As rte_background_threshold_u8, with shade: where shade (a half-size
+ * mask, ((width + 1) / 2) x ((height + 1) / 2), each sample for its 2x2
+ * block; NULL for none) is non-zero, a dark pixel may be a shadow on the
+ * table (rte_background_shade_u8). Those pixels form regions of their
+ * own. One of shadow_min_area px or more and at least a twentieth of the
+ * one region of other pixels it lies beside (of shadow_min_area px or
+ * more) is that object's cast shadow and is dropped (counted in
+ * result->shadows); beside two or more such regions it joins the dark ones
+ * into one object; smaller ones join their neighbour; beside none it is an
+ * object of its own (a grey one). */
+RTE_API rte_status rte_background_threshold_shaded_u8(const rte_image_u8 *src,
+                                                      const rte_image_u8 *background,
+                                                      const rte_image_u8 *shade, rte_image_u8 *dst,
+                                                      const rte_background_threshold_params *params,
+                                                      rte_arena *arena,
+                                                      rte_background_threshold_result *result);
+
+/* A shadow dims the table's light and leaves its colour: shade = 255 where
+ * src is between darkest and lightest (per mille) of the table's
+ * brightness and its chroma is the table's dimmed as much, within
+ * `chroma` (|cb - 128 - k (cb_background - 128)| + |cr - 128 - k
+ * (cr_background - 128)| with k = src / background; chroma planes as for
+ * rte_background_tint_u8), else 0. shade has the chroma planes' size: one
+ * decision per 2x2 block, on its top-left pixel. */
+typedef struct rte_background_shade_params {
+    int32_t darkest_permille;  /* 0..1000 */
+    int32_t lightest_permille; /* darkest..1000 */
+    int32_t chroma;            /* 0..255 */
+} rte_background_shade_params;
+
+RTE_API rte_status rte_background_shade_u8(const rte_image_u8 *src, const rte_image_u8 *background,
+                                           const rte_image_u8 *cb,
+                                           const rte_image_u8 *cb_background,
+                                           const rte_image_u8 *cr,
+                                           const rte_image_u8 *cr_background, rte_image_u8 *shade,
+                                           const rte_background_shade_params *params);
+
 /* Colour as contrast, for rte_background_threshold_u8: the frame's colour
  * difference from the table's, c = |cb - cb_background| + |cr -
  * cr_background| (chroma planes at half size, ((width + 1) / 2) x ((height

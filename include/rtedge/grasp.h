@@ -73,7 +73,9 @@ typedef struct rte_grasp_params {
                               * pixel whose colour differs from the table's (|cb - table's
                               * cb| + |cr - table's cr|) more than its grey does counts
                               * by that difference: an object as grey as the table but
-                              * of another colour is found */
+                              * of another colour is found; and a dark object's cast
+                              * shadow (the table dimmed, its colour kept) is told from
+                              * it and dropped */
     int32_t min_area;        /* pixels; smaller objects are dropped (>= 0) */
     int32_t max_area;        /* pixels; larger ones are dropped; 0 = no limit */
     int32_t skip_border;     /* 1: drop objects touching the image or workspace border */
@@ -226,8 +228,9 @@ RTE_API rte_status rte_grasp_process(rte_grasp_ctx *ctx, const rte_image_u8 *gra
 /* The same with the frame's colour: cb and cr are its chroma planes at
  * half size, ((width + 1) / 2) x ((height + 1) / 2) (rte_frame_chroma_half
  * makes them from any colour frame). With params.chroma in background mode
- * the table's colour is estimated as its grey is, and colour differences
- * count as contrast; otherwise they are not read. cb and cr NULL: as
+ * the table's colour is estimated as its grey is, colour differences
+ * count as contrast and cast shadows are dropped (params.chroma);
+ * otherwise they are not read. cb and cr NULL: as
  * rte_grasp_process. */
 RTE_API rte_status rte_grasp_process_chroma(rte_grasp_ctx *ctx, const rte_image_u8 *gray,
                                             const rte_image_u8 *cb, const rte_image_u8 *cr,

@@ -256,7 +256,8 @@ rte_background_rows rte_background_rows_select(uint32_t features)
         rte_background_add_row_##isa, rte_background_store_row_##isa,                   \
             rte_background_absdiff_row_##isa, rte_background_classify_row_##isa,        \
             rte_background_above_floor_row_##isa, rte_background_chroma_diff_row_##isa, \
-            rte_background_tint_row_##isa                                               \
+            rte_background_tint_row_##isa, rte_background_shade_row_##isa,              \
+            rte_background_shade_class_row_##isa                                        \
     }
     static const rte_background_rows c = RTE_BACKGROUND_ROWS_OF(c);
 #ifdef RTE_SIMD_X86

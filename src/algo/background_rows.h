@@ -8,6 +8,7 @@
 #define RTEDGE_ALGO_BACKGROUND_ROWS_H
 
 #include <stdint.h>
+#include <string.h>
 
 /* Interpolated values carry 4 + 2 x 8 fractional bits (background.c). */
 #define RTE_BACKGROUND_VALUE_SHIFT 20
@@ -85,6 +86,53 @@ static inline void background_tint_row(const uint8_t *restrict s, const uint8_t 
         const uint8_t up = up_only | (either & ((sv > bv) | ((sv == bv) & (bv < 128))));
         cd[x] = ((c >= least) & (c > ad)) ? (up ? upv : downv) : sv;
     }
+}
+
+/* out[h] = 255 where chroma sample h's 2x2 block may be the table in
+ * shadow, judged on its top-left pixel 2h, else 0: with k = s / t, s in
+ * [lo, hi] t / 1000 and the chroma, (cb, cr) - 128, within tol of the
+ * table's times k (|(cb - 128) t - s (cbt - 128)| + |(cr - 128) t - s (crt
+ * - 128)| <= tol t). Reads s and t up to pixel 2 hw - 1 (pairs, loaded as
+ * 16-bit words: they vectorise better than every other byte); 32-bit
+ * lanes: every product is below 2^17. */
+static inline void background_shade_row(const uint8_t *restrict s, const uint8_t *restrict t,
+                                        const uint8_t *restrict cb, const uint8_t *restrict cbt,
+                                        const uint8_t *restrict cr, const uint8_t *restrict crt,
+                                        uint8_t *restrict out, int32_t hw, int32_t lo, int32_t hi,
+                                        int32_t tol)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    const int first = 8; /* the pair's first byte in its 16-bit word */
+#else
+    const int first = 0;
+#endif
+    for (int32_t h = 0; h < hw; h++) {
+        uint16_t sp, tp;
+        memcpy(&sp, s + 2 * h, sizeof sp);
+        memcpy(&tp, t + 2 * h, sizeof tp);
+        const int32_t sv = (sp >> first) & 0xFF, tv = (tp >> first) & 0xFF;
+        const int32_t b = cb[h] - 128, bt = cbt[h] - 128, r = cr[h] - 128, rt = crt[h] - 128;
+        const int32_t eb = b * tv - sv * bt, er = r * tv - sv * rt;
+        const int32_t e = (eb < 0 ? -eb : eb) + (er < 0 ? -er : er);
+        out[h] =
+            (uint8_t)(((tv > 0) & (sv * 1000 >= lo * tv) & (sv * 1000 <= hi * tv) & (e <= tol * tv))
+                          ? 255
+                          : 0);
+    }
+}
+
+/* c[x] (a class of background_classify_row) becomes side 3 where it is
+ * dark (side 2) and the half-size shade mask m is set at x / 2. */
+static inline void background_shade_class_row(uint8_t *restrict c, const uint8_t *restrict m,
+                                              int32_t w)
+{
+    for (int32_t h = 0; h < w / 2; h++) {
+        const uint8_t set = m[h] != 0;
+        c[2 * h] |= (uint8_t)(((c[2 * h] & 3) == 2) & set);
+        c[2 * h + 1] |= (uint8_t)(((c[2 * h + 1] & 3) == 2) & set);
+    }
+    if (w & 1)
+        c[w - 1] |= (uint8_t)(((c[w - 1] & 3) == 2) & (m[w / 2] != 0));
 }
 
 /* a[x] = 255 where a[x] > fl[x], else 0. */

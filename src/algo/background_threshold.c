@@ -1,5 +1,6 @@
 /* The two-sided threshold of a frame against the table's brightness (see
- * include/rtedge/background.h; the brightness is background.c). Per
+ * include/rtedge/background.h; the brightness is background.c, the colour
+ * against the table background_colour.c). Per
  * frame, integer only. */
 #include <stdint.h>
 #include <string.h>
@@ -28,10 +29,20 @@ void rte_background_threshold_params_default(rte_background_threshold_params *pa
  * pixels of one side; runs of one side that touch (8-connected) in
  * consecutive rows are united (union-find over run indices). A region's
  * root run holds its pixel count, sum of |d| and flags. */
-enum { REGION_STRONG = 1, REGION_DARK = 2, REGION_SHADOW = 4 };
+enum {
+    REGION_STRONG = 1,
+    REGION_DARK = 2,
+    REGION_SHADOW = 4,
+    REGION_SHADE = 8,     /* side 3: dark and in the shade mask */
+    REGION_CANDIDATE = 16 /* settle_shade: a shade region that may be a cast shadow */
+};
 
 typedef struct run_table {
     int32_t *x0, *x1, *parent, *count;
+    /* with a shade mask: object[] unites dark and shade runs alike (the
+     * object, as without the mask); core[] and spare[] are settle_shade's */
+    int32_t *object, *core, *spare;
+    bool shade; /* runs of side 3 are labelled (objects[] is kept) */
     int64_t *sum;
     uint8_t *flags;
     int32_t *row_start; /* runs of row y: row_start[y] .. row_start[y + 1] - 1 */
@@ -52,11 +63,12 @@ size_t rte_background_threshold_scratch_size(int32_t max_width, int32_t max_heig
     if (max_width < 1 || max_height < 1)
         return 0;
     const size_t runs = (size_t)run_capacity(max_width, max_height);
-    return rte_arena_piece_size(runs * sizeof(int32_t)) * 4 + /* x0, x1, parent, count */
-           rte_arena_piece_size(runs * sizeof(int64_t)) +     /* sum */
-           rte_arena_piece_size(runs) +                       /* flags */
+    /* per run: x0, x1, parent, count, and the shade's object, core, spare */
+    return rte_arena_piece_size(runs * sizeof(int32_t)) * 7 +
+           rte_arena_piece_size(runs * sizeof(int64_t)) + /* sum */
+           rte_arena_piece_size(runs) +                   /* flags */
            rte_arena_piece_size(((size_t)max_height + 1) * sizeof(int32_t)) +
-           rte_arena_piece_size((size_t)max_width); /* row */
+           rte_arena_piece_size((size_t)max_width); /* a row's classes */
 }
 
 static int32_t find_root(int32_t *parent, int32_t a)
@@ -81,7 +93,8 @@ static void unite(int32_t *parent, int32_t a, int32_t b)
 
 /* A pixel's class for the labelling (background_rows.h's classify row):
  * its side where |d| > low and the side is looked for, else 0; the side
- * again two bits up where |d| > high. */
+ * again two bits up where |d| > high. Side 3 is a dark pixel that may be
+ * shade (rte_background_shade_u8). */
 enum { CLASS_SIDE = 3, CLASS_STRONG = 12 };
 
 /* The end of the run of side `side` that starts at x (the first x1 > x
@@ -153,22 +166,30 @@ static int64_t label_row(run_table *t, int32_t y, const uint8_t *a, const uint8_
         t->x0[n] = x0;
         t->x1[n] = x - 1;
         t->parent[n] = n;
+        t->object[n] = n;
         t->count[n] = x - x0;
         t->sum[n] = sum_bytes(a + x0, x - x0);
         t->flags[n] = (uint8_t)(((classes & CLASS_STRONG) ? REGION_STRONG : 0) |
-                                (side == 1 ? 0 : REGION_DARK));
+                                (side == 1 ? 0 : REGION_DARK) | (side == 3 ? REGION_SHADE : 0));
         n++;
     }
     t->row_start[y + 1] = n;
+    /* dark and shade runs side by side are one object */
+    for (int32_t r = t->row_start[y] + 1; r < n && t->shade; r++)
+        if ((t->flags[r] & t->flags[r - 1] & REGION_DARK) && t->x1[r - 1] + 1 == t->x0[r])
+            unite(t->object, r - 1, r);
     if (y > 0) { /* 8-connected: runs overlapping or meeting at a corner */
         int32_t p = t->row_start[y - 1];
         const int32_t p_end = t->row_start[y];
         for (int32_t r = t->row_start[y]; r < n; r++) {
             while (p < p_end && t->x1[p] < t->x0[r] - 1)
                 p++;
-            for (int32_t q = p; q < p_end && t->x0[q] <= t->x1[r] + 1; q++)
-                if (((t->flags[q] ^ t->flags[r]) & REGION_DARK) == 0)
+            for (int32_t q = p; q < p_end && t->x0[q] <= t->x1[r] + 1; q++) {
+                if (((t->flags[q] ^ t->flags[r]) & (REGION_DARK | REGION_SHADE)) == 0)
                     unite(t->parent, q, r);
+                if (t->shade && (t->flags[q] & t->flags[r] & REGION_DARK))
+                    unite(t->object, q, r);
+            }
         }
     }
     *n_runs = n;
@@ -214,7 +235,7 @@ static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share,
         memset(fl, 255, (size_t)dst->width);
         for (int32_t r = t->row_start[y]; r < t->row_start[y + 1]; r++) {
             const int32_t root = t->parent[r];
-            if ((t->flags[root] & (REGION_STRONG | REGION_SHADOW)) != REGION_STRONG)
+            if ((t->flags[root] & (REGION_STRONG | REGION_SHADOW | REGION_SHADE)) != REGION_STRONG)
                 continue;
             /* floor = share of the region's mean |d| (sum <= 255 count) */
             const int32_t floor =
@@ -223,6 +244,136 @@ static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share,
         }
         rows->above_floor(out, fl, dst->width);
     }
+}
+
+enum { NO_CORE = -1, CORES = -2 };
+
+/* A cast shadow is thick: SHADE_DEEP or more samples of the half-size mask
+ * under it have their 3 x 3 neighbourhood in the mask (about a 10 x 10 px
+ * square of shadow); the rim of a dark object's blurred edge, dimmed as a
+ * shadow is, is one or two pixels wide. */
+#define SHADE_DEEP 4
+
+/* The deep samples (see SHADE_DEEP) under the candidate regions, into
+ * their root's spare[] (a 2x2 block's sample at its top-left pixel: even
+ * rows and columns). */
+static void count_deep(run_table *t, int32_t h, const rte_image_u8 *shade)
+{
+    for (int32_t y = 0; y < h; y += 2) {
+        const int32_t sy = y >> 1;
+        if (sy < 1 || sy + 1 >= shade->height)
+            continue;
+        const uint8_t *up = rte_u8_row(shade, sy - 1), *mid = rte_u8_row(shade, sy),
+                      *down = rte_u8_row(shade, sy + 1);
+        for (int32_t r = t->row_start[y]; r < t->row_start[y + 1]; r++) {
+            const int32_t s = t->parent[r];
+            if (!(t->flags[s] & REGION_CANDIDATE))
+                continue;
+            int32_t x2 = (t->x0[r] + 1) >> 1;
+            x2 = x2 < 1 ? 1 : x2;
+            for (; 2 * x2 <= t->x1[r] && x2 + 1 < shade->width; x2++) {
+                uint8_t all = 255;
+                for (int32_t k = -1; k <= 1; k++)
+                    all &= (uint8_t)(up[x2 + k] & mid[x2 + k] & down[x2 + k]);
+                t->spare[s] += all != 0;
+            }
+        }
+    }
+}
+
+/* An object (dark and shade runs connected) whose dark pixels outside
+ * the shade mask form one core (a region of shadow_min_area px or more:
+ * specks of noise do not count) may lie beside its cast shadow: a shade
+ * region of min_area px or more, at least a twentieth of the core, lighter
+ * than it (mean |d|) and thick (SHADE_DEEP). Those are dropped (flagged
+ * REGION_SHADOW); the rest of every object becomes one region, as without
+ * the mask (an object with two or more cores keeps its shade: a grey band
+ * between a dark object and its bright end). Returns how many were
+ * dropped. */
+static int32_t settle_shade(run_table *t, int32_t n, int32_t h, int32_t min_area,
+                            const rte_image_u8 *shade)
+{
+    /* every run straight to its root in both (roots come first: parent[r]
+     * <= r), the areas and sums of |d| on the roots (the statistics pass
+     * after this adds what the unions below move) */
+    for (int32_t r = 0; r < n; r++) {
+        t->object[r] = t->object[t->object[r]];
+        t->core[r] = NO_CORE;
+        const int32_t root = t->parent[t->parent[r]];
+        t->parent[r] = root;
+        if (root == r)
+            continue;
+        t->count[root] += t->count[r];
+        t->sum[root] += t->sum[r];
+        t->count[r] = 0;
+        t->sum[r] = 0;
+    }
+    /* each object's core, on the object's root */
+    for (int32_t r = 0; r < n; r++) {
+        if ((t->flags[r] & (REGION_DARK | REGION_SHADE)) != REGION_DARK || t->parent[r] != r ||
+            t->count[r] < min_area)
+            continue;
+        int32_t *c = &t->core[t->object[r]];
+        *c = *c == NO_CORE ? r : CORES;
+    }
+    /* the candidates: beside their object's one core, large enough and
+     * lighter (sum_s / count_s < sum_c / count_c); then the thick ones */
+    for (int32_t r = 0; r < n; r++) {
+        if (!(t->flags[r] & REGION_SHADE) || t->parent[r] != r)
+            continue;
+        const int32_t c = t->core[t->object[r]];
+        if (c >= 0 && t->count[r] >= min_area && t->count[r] * 20 >= t->count[c] &&
+            t->sum[r] * t->count[c] < t->sum[c] * t->count[r]) {
+            t->flags[r] |= REGION_CANDIDATE;
+            t->spare[r] = 0;
+        }
+    }
+    count_deep(t, h, shade);
+    int32_t dropped = 0;
+    for (int32_t r = 0; r < n; r++) {
+        if (!(t->flags[r] & REGION_CANDIDATE))
+            continue;
+        t->flags[r] &= (uint8_t)~REGION_CANDIDATE;
+        if (t->spare[r] >= SHADE_DEEP) {
+            t->flags[r] |= REGION_SHADOW;
+            dropped++;
+        }
+    }
+    /* the rest of each object into one region, under its first run left */
+    for (int32_t r = 0; r < n; r++)
+        t->spare[r] = -1;
+    for (int32_t r = 0; r < n; r++) {
+        if (!(t->flags[r] & REGION_DARK) || (t->flags[t->parent[r]] & REGION_SHADOW))
+            continue;
+        t->flags[r] &= (uint8_t)~REGION_SHADE;
+        int32_t *first = &t->spare[t->object[r]];
+        if (*first < 0)
+            *first = r;
+        else
+            unite(t->parent, *first, r);
+    }
+    return dropped;
+}
+
+/* The runs of the frame's pixels beyond low (absd: |src - background|),
+ * of dark pixels in shade (a half-size mask) on a side of their own.
+ * Returns the pixels left out for want of room; *n_runs the runs. */
+static int64_t label_frame(run_table *t, const rte_image_u8 *src, const rte_image_u8 *background,
+                           const rte_image_u8 *shade, const rte_image_u8 *absd, int32_t low,
+                           int32_t high, const rte_background_threshold_params *params,
+                           const rte_background_rows *rows, int32_t *n_runs)
+{
+    const int32_t w = src->width;
+    int64_t dropped = 0;
+    for (int32_t y = 0; y < src->height; y++) {
+        const uint8_t *a = rte_u8_row(absd, y);
+        rows->classify(a, rte_u8_row(src, y), rte_u8_row(background, y), t->row, w, (uint8_t)low,
+                       (uint8_t)high, params->bright ? 1 : 0, params->dark ? 2 : 0);
+        if (shade)
+            rows->shade_class(t->row, rte_u8_row(shade, y >> 1), w);
+        dropped += label_row(t, y, a, t->row, w, n_runs);
+    }
+    return dropped;
 }
 
 /* Flags the shadows (see rte_background_threshold_u8) and counts them. */
@@ -245,7 +396,7 @@ static int32_t mark_shadows(run_table *t, int32_t n, int32_t h,
         }
         for (int32_t r = t->row_start[y]; r < t->row_start[y + 1]; r++) {
             const int32_t rd = t->parent[r];
-            if ((t->flags[rd] & (REGION_DARK | REGION_STRONG | REGION_SHADOW)) !=
+            if ((t->flags[rd] & (REGION_DARK | REGION_STRONG | REGION_SHADOW | REGION_SHADE)) !=
                     (REGION_DARK | REGION_STRONG) ||
                 t->count[rd] >= largest_bright || t->count[rd] < params->shadow_min_area)
                 continue;
@@ -263,30 +414,48 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
                                        const rte_background_threshold_params *params,
                                        rte_arena *arena, rte_background_threshold_result *result)
 {
+    return rte_background_threshold_shaded_u8(src, background, NULL, dst, params, arena, result);
+}
+
+rte_status rte_background_threshold_shaded_u8(const rte_image_u8 *src,
+                                              const rte_image_u8 *background,
+                                              const rte_image_u8 *shade, rte_image_u8 *dst,
+                                              const rte_background_threshold_params *params,
+                                              rte_arena *arena,
+                                              rte_background_threshold_result *result)
+{
     rte_status st = rte_image_u8_check_pair(src, background);
     if (st == RTE_OK)
         st = rte_image_u8_check_pair(src, dst);
+    if (st == RTE_OK && shade)
+        st = rte_image_u8_check(shade);
     if (st != RTE_OK)
         return st;
+    if (shade && (shade->width != (src->width + 1) / 2 || shade->height != (src->height + 1) / 2))
+        return RTE_ERR_SIZE;
     if (!params || !arena || params->high < 0 || params->high > 255 || params->min_contrast < 1 ||
         params->min_contrast > 255 || params->shadow_gap < 0 ||
         params->shadow_gap > RTE_BACKGROUND_MAX_SHADOW_GAP || params->region_share_permille < 0 ||
         params->region_share_permille > 1000 || params->shadow_min_area < 0 ||
-        dst->buf == src->buf || dst->buf == background->buf)
+        dst->buf == src->buf || dst->buf == background->buf || (shade && dst->buf == shade->buf))
         return RTE_ERR_ARGUMENT;
     const int32_t w = src->width, h = src->height;
     const size_t mark = rte_arena_mark(arena);
-    run_table t = {.capacity = run_capacity(w, h)};
+    run_table t = {.capacity = run_capacity(w, h), .shade = shade != NULL};
     const size_t runs = (size_t)t.capacity;
     t.x0 = rte_arena_alloc(arena, runs * sizeof *t.x0);
     t.x1 = rte_arena_alloc(arena, runs * sizeof *t.x1);
     t.parent = rte_arena_alloc(arena, runs * sizeof *t.parent);
     t.count = rte_arena_alloc(arena, runs * sizeof *t.count);
+    t.object = rte_arena_alloc(arena, runs * sizeof *t.object);
+    t.core = rte_arena_alloc(arena, runs * sizeof *t.core);
+    t.spare = rte_arena_alloc(arena, runs * sizeof *t.spare);
     t.sum = rte_arena_alloc(arena, runs * sizeof *t.sum);
     t.flags = rte_arena_alloc(arena, runs);
     t.row_start = rte_arena_alloc(arena, ((size_t)h + 1) * sizeof *t.row_start);
     t.row = rte_arena_alloc(arena, (size_t)w);
-    if (!t.x0 || !t.x1 || !t.parent || !t.count || !t.sum || !t.flags || !t.row_start || !t.row) {
+    if (!t.x0 || !t.x1 || !t.parent || !t.object || !t.count || !t.core || !t.spare || !t.sum ||
+        !t.flags || !t.row_start || !t.row) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }
@@ -306,15 +475,11 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
     const int32_t low = high * 2 / 3; /* nearer half the contrast: the edge of a blurred step */
 
     int32_t n = 0;
-    int64_t dropped = 0;
-    for (int32_t y = 0; y < h; y++) {
-        const uint8_t *a = rte_u8_row(dst, y);
-        rows.classify(a, rte_u8_row(src, y), rte_u8_row(background, y), t.row, w, (uint8_t)low,
-                      (uint8_t)high, params->bright ? 1 : 0, params->dark ? 2 : 0);
-        dropped += label_row(&t, y, a, t.row, w, &n);
-    }
+    const int64_t dropped =
+        label_frame(&t, src, background, shade, dst, low, high, params, &rows, &n);
+    int32_t shadows = shade ? settle_shade(&t, n, h, params->shadow_min_area, shade) : 0;
     /* Statistics to the roots; every run then points at its root. */
-    int32_t regions = 0, shadows = 0;
+    int32_t regions = 0;
     for (int32_t r = 0; r < n; r++) {
         const int32_t root = find_root(t.parent, r);
         t.parent[r] = root;
@@ -327,7 +492,7 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
         t.flags[root] |= t.flags[r] & REGION_STRONG;
     }
     if (params->drop_shadows && params->bright && params->dark)
-        shadows = mark_shadows(&t, n, h, params);
+        shadows += mark_shadows(&t, n, h, params);
     paint_regions(&t, dst, params->region_share_permille, &rows);
     if (result)
         *result = (rte_background_threshold_result){.high = high,
@@ -336,49 +501,5 @@ rte_status rte_background_threshold_u8(const rte_image_u8 *src, const rte_image_
                                                     .shadows = shadows,
                                                     .dropped_pixels = dropped};
     rte_arena_reset(arena, mark);
-    return RTE_OK;
-}
-
-rte_status rte_background_tint_u8(const rte_image_u8 *src, const rte_image_u8 *background,
-                                  const rte_image_u8 *cb, const rte_image_u8 *cb_background,
-                                  const rte_image_u8 *cr, const rte_image_u8 *cr_background,
-                                  rte_image_u8 *dst, const rte_background_tint_params *params)
-{
-    rte_status st = rte_image_u8_check_pair(src, background);
-    if (st == RTE_OK)
-        st = rte_image_u8_check_pair(src, dst);
-    if (st == RTE_OK)
-        st = rte_image_u8_check_pair(cb, cb_background);
-    if (st == RTE_OK)
-        st = rte_image_u8_check_pair(cb, cr);
-    if (st == RTE_OK)
-        st = rte_image_u8_check_pair(cb, cr_background);
-    if (st != RTE_OK)
-        return st;
-    const int32_t w = src->width, h = src->height;
-    if (cb->width != (w + 1) / 2 || cb->height != (h + 1) / 2)
-        return RTE_ERR_SIZE;
-    if (!params || params->least < 1 || params->least > 255 || dst->buf == src->buf ||
-        dst->buf == background->buf)
-        return RTE_ERR_ARGUMENT;
-    const rte_background_rows rows = rte_background_rows_select(rte_cpu_features());
-    const uint8_t up_only = !params->dark, either = params->bright && params->dark;
-    for (int32_t y = 0; y < h; y++) {
-        /* the colour differences go into dst's row (an odd width's last
-         * sample through a pair of its own: the row has room for one),
-         * then become the pixels */
-        uint8_t *d = rte_u8_row(dst, y);
-        const int32_t hy = y >> 1, whole = w >> 1;
-        const uint8_t *b = rte_u8_row(cb, hy), *bt = rte_u8_row(cb_background, hy);
-        const uint8_t *r = rte_u8_row(cr, hy), *rt = rte_u8_row(cr_background, hy);
-        rows.chroma_diff(b, bt, r, rt, d, whole);
-        if (w & 1) {
-            uint8_t pair[2];
-            rows.chroma_diff(b + whole, bt + whole, r + whole, rt + whole, pair, 1);
-            d[w - 1] = pair[0];
-        }
-        rows.tint(rte_u8_row(src, y), rte_u8_row(background, y), d, w, (uint8_t)params->least,
-                  up_only, either);
-    }
     return RTE_OK;
 }

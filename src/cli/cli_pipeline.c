@@ -143,7 +143,7 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                           0,
                           NULL,
                           "background: grey only (colour differences from the table are not "
-                          "contrast)",
+                          "contrast, cast shadows are not told apart)",
                           NULL};
     t[n++] = (cli_option){"polarity",
                           CLI_CHOICE,

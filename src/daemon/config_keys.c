@@ -155,7 +155,9 @@ static const key_def keys[] = {
     BOOL("grasp", "chroma", grasp_chroma, true, "true",
          "binarize = background, colour frames: a pixel's colour difference\n"
          "from the table's counts as contrast where it exceeds its grey one (an\n"
-         "object as grey as the table but of another colour is found)"),
+         "object as grey as the table but of another colour is found), and a\n"
+         "dark object's cast shadow (the table dimmed, its colour kept) is\n"
+         "dropped"),
     INT("grasp", "threshold", grasp_threshold, "grey level", 0, 255, true, "128",
         "binarize = fixed"),
     ENUM("grasp", "polarity", grasp_polarity, polarities, true, "auto",

@@ -96,10 +96,12 @@ static int32_t border_mean(const rte_image_u8 *img)
 /* Colour as contrast (params.chroma): the table's cb and cr estimated as
  * its grey is, then the colour differences from them put in place of the
  * grey ones where larger (rte_background_tint_u8), so that the threshold
- * sees the colour an object differs by. */
+ * sees the colour an object differs by; and the pixels a shadow may have
+ * dimmed (rte_background_shade_u8, at half size) into shade. */
 static rte_status tint(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_image_u8 *table,
                        const rte_background_params *bp, const rte_image_u8 *cb,
-                       const rte_image_u8 *cr, bool bright, bool dark, rte_image_u8 *dst)
+                       const rte_image_u8 *cr, bool bright, bool dark, rte_image_u8 *dst,
+                       rte_image_u8 *shade)
 {
     const int32_t hw = cb->width, hh = cb->height;
     rte_image_u8 cbt = sub(&ctx->cb_table, hw, hh), crt = sub(&ctx->cr_table, hw, hh);
@@ -114,7 +116,16 @@ static rte_status tint(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_im
     /* colour differences below half the contrast are the sensor's noise */
     const rte_background_tint_params tp = {
         .least = (ctx->params.contrast + 1) / 2, .bright = bright, .dark = dark};
-    return rte_background_tint_u8(src, table, cb, &cbt, cr, &crt, dst, &tp);
+    st = rte_background_tint_u8(src, table, cb, &cbt, cr, &crt, dst, &tp);
+    /* a shadow keeps 40-90% of the table's light (darker is an object's
+     * own shade, lighter the table's texture) and its colour within a
+     * little more than the tint's noise floor: half-size chroma (and JPEG's
+     * blur of it) put the object's colour on the shadow's first pixels */
+    const rte_background_shade_params sp = {
+        .darkest_permille = 400, .lightest_permille = 900, .chroma = tp.least * 6 / 5};
+    if (st == RTE_OK)
+        st = rte_background_shade_u8(src, table, cb, &cbt, cr, &crt, shade, &sp);
+    return st;
 }
 
 static rte_status binarize(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_image_u8 *cb,
@@ -149,13 +160,20 @@ static rte_status binarize(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rt
         tp.dark = p->polarity != RTE_GRASP_BRIGHT;
         rte_status st = rte_background_estimate_u8(src, &table, &bp, &ctx->arena);
         rte_image_u8 tinted = sub(&ctx->tinted, src->width, src->height);
+        /* the half-size shade mask in the split's distance buffer, free
+         * until then */
+        const int32_t hw = (src->width + 1) / 2, hh = (src->height + 1) / 2;
+        rte_image_u8 shade = {hw, hh, hw, (uint8_t *)ctx->distance};
+        const rte_image_u8 *shade_in = NULL;
         if (st == RTE_OK && cb && p->chroma) {
-            st = tint(ctx, src, &table, &bp, cb, cr, tp.bright, tp.dark, &tinted);
+            st = tint(ctx, src, &table, &bp, cb, cr, tp.bright, tp.dark, &tinted, &shade);
             src = &tinted;
+            shade_in = &shade;
         }
         rte_background_threshold_result tr = {0};
         if (st == RTE_OK)
-            st = rte_background_threshold_u8(src, &table, bin, &tp, &ctx->arena, &tr);
+            st = rte_background_threshold_shaded_u8(src, &table, shade_in, bin, &tp, &ctx->arena,
+                                                    &tr);
         out->threshold = tr.high;
         out->polarity = p->polarity;
         return st;

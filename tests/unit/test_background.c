@@ -304,6 +304,36 @@ static uint8_t tint_ref(int s, int b, int c, int least, bool bright, bool dark)
     return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
+/* A frame of random size, 1..70 x 1..9, odd and even (padded rows): grey
+ * src s and table b, and the four half-size chroma planes (cb, its table,
+ * cr, its table); the callers fill them. */
+typedef struct colour_frame {
+    int32_t w, h, hw, hh;
+    rte_image_u8 s, b, pl[4];
+} colour_frame;
+
+static colour_frame colour_frame_new(uint32_t *seed)
+{
+    colour_frame f;
+    f.w = 1 + (int32_t)(unit_rand(seed) % 70);
+    f.h = 1 + (int32_t)(unit_rand(seed) % 9);
+    f.hw = (f.w + 1) / 2;
+    f.hh = (f.h + 1) / 2;
+    f.s = unit_image_u8(f.w, f.h, 3, 0);
+    f.b = unit_image_u8(f.w, f.h, 0, 0);
+    for (int k = 0; k < 4; k++)
+        f.pl[k] = unit_image_u8(f.hw, f.hh, k, 0);
+    return f;
+}
+
+static void colour_frame_free(colour_frame *f)
+{
+    test_free(f->s.buf);
+    test_free(f->b.buf);
+    for (int k = 0; k < 4; k++)
+        test_free(f->pl[k].buf);
+}
+
 /* rte_background_tint_u8 against tint_ref on random frames of odd and even
  * sizes (padded rows), each side setting and threshold; then refusals. */
 static void tint_puts_colour_differences_in_place(void **state)
@@ -311,14 +341,10 @@ static void tint_puts_colour_differences_in_place(void **state)
     (void)state;
     uint32_t seed = 31;
     for (int trial = 0; trial < 60; trial++) {
-        const int32_t w = 1 + (int32_t)(unit_rand(&seed) % 70),
-                      h = 1 + (int32_t)(unit_rand(&seed) % 9);
-        const int32_t hw = (w + 1) / 2, hh = (h + 1) / 2;
-        rte_image_u8 s = unit_image_u8(w, h, 3, 0), b = unit_image_u8(w, h, 0, 0);
+        colour_frame f = colour_frame_new(&seed);
+        const int32_t w = f.w, h = f.h, hw = f.hw, hh = f.hh;
+        rte_image_u8 s = f.s, b = f.b, *pl = f.pl;
         rte_image_u8 d = unit_image_u8(w, h, 5, 0);
-        rte_image_u8 pl[4];
-        for (int k = 0; k < 4; k++)
-            pl[k] = unit_image_u8(hw, hh, k, 0);
         /* small differences often, so that every branch is taken */
         for (int32_t y = 0; y < h; y++)
             for (int32_t x = 0; x < w; x++) {
@@ -366,12 +392,172 @@ static void tint_puts_colour_differences_in_place(void **state)
                          RTE_ERR_ARGUMENT);
         assert_int_equal(rte_background_tint_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &d, NULL),
                          RTE_ERR_ARGUMENT);
-        test_free(s.buf);
-        test_free(b.buf);
         test_free(d.buf);
-        for (int k = 0; k < 4; k++)
-            test_free(pl[k].buf);
+        colour_frame_free(&f);
     }
+}
+
+/* shade by the formula in background.h, per chroma sample (its 2x2
+ * block's top-left pixel s, t) */
+static uint8_t shade_ref(int s, int t, int cb, int cbt, int cr, int crt,
+                         const rte_background_shade_params *p)
+{
+    if (t == 0)
+        return 0;
+    const long eb = labs((long)(cb - 128) * t - (long)s * (cbt - 128));
+    const long er = labs((long)(cr - 128) * t - (long)s * (crt - 128));
+    return (uint8_t)(s * 1000 >= p->darkest_permille * t && s * 1000 <= p->lightest_permille * t &&
+                             eb + er <= (long)p->chroma * t
+                         ? 255
+                         : 0);
+}
+
+/* rte_background_shade_u8 against shade_ref on random frames of odd and
+ * even sizes (padded rows), near-shadow pixels often; then refusals. */
+static void shade_marks_the_dimmed_table(void **state)
+{
+    (void)state;
+    uint32_t seed = 77;
+    int marked = 0;
+    for (int trial = 0; trial < 60; trial++) {
+        colour_frame f = colour_frame_new(&seed);
+        const int32_t w = f.w, h = f.h, hw = f.hw, hh = f.hh;
+        rte_image_u8 s = f.s, b = f.b, *pl = f.pl;
+        rte_image_u8 m = unit_image_u8(hw, hh, 5, 0);
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++) {
+                const int t = (int)(unit_rand(&seed) % 256);
+                b.buf[y * b.stride + x] = (uint8_t)t;
+                s.buf[y * s.stride + x] = (uint8_t)(t * (int)(unit_rand(&seed) % 120) / 100);
+            }
+        for (int32_t y = 0; y < hh; y++)
+            for (int32_t x = 0; x < hw; x++) {
+                /* the table's chroma, and the frame's: that dimmed by the
+                 * pixel's ratio, give or take a few */
+                const int sv = s.buf[2 * y * s.stride + 2 * x],
+                          tv = b.buf[2 * y * b.stride + 2 * x];
+                for (int k = 0; k < 4; k += 2) {
+                    const int table = 128 + (int)(unit_rand(&seed) % 41) - 20;
+                    const int dim = tv ? 128 + (table - 128) * sv / tv : 128;
+                    const int v = dim + (int)(unit_rand(&seed) % 31) - 15;
+                    pl[k + 1].buf[y * pl[k + 1].stride + x] = (uint8_t)table;
+                    pl[k].buf[y * pl[k].stride + x] = (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+                }
+            }
+        const int32_t lo = (int32_t)(unit_rand(&seed) % 600);
+        const rte_background_shade_params p = {
+            .darkest_permille = lo,
+            .lightest_permille = lo + (int32_t)(unit_rand(&seed) % (1001 - (uint32_t)lo)),
+            .chroma = (int32_t)(unit_rand(&seed) % 30)};
+        assert_int_equal(rte_background_shade_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &m, &p),
+                         RTE_OK);
+        for (int32_t y = 0; y < hh; y++)
+            for (int32_t x = 0; x < hw; x++) {
+                const uint8_t want =
+                    shade_ref(s.buf[2 * y * s.stride + 2 * x], b.buf[2 * y * b.stride + 2 * x],
+                              pl[0].buf[y * pl[0].stride + x], pl[1].buf[y * pl[1].stride + x],
+                              pl[2].buf[y * pl[2].stride + x], pl[3].buf[y * pl[3].stride + x], &p);
+                assert_int_equal(m.buf[y * m.stride + x], want);
+                marked += want != 0;
+            }
+        unit_assert_padding_u8(&m);
+        /* refusals: a full-size mask, the mask on src, bounds out of order */
+        assert_int_equal(rte_background_shade_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &s, &p),
+                         w > 1 || h > 1 ? RTE_ERR_SIZE : RTE_ERR_ARGUMENT);
+        rte_background_shade_params bad = p;
+        bad.lightest_permille = bad.darkest_permille - 1;
+        assert_int_equal(rte_background_shade_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &m, &bad),
+                         RTE_ERR_ARGUMENT);
+        bad = p;
+        bad.chroma = 256;
+        assert_int_equal(rte_background_shade_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &m, &bad),
+                         RTE_ERR_ARGUMENT);
+        assert_int_equal(rte_background_shade_u8(&s, &b, &pl[0], &pl[1], &pl[2], &pl[3], &m, NULL),
+                         RTE_ERR_ARGUMENT);
+        test_free(m.buf);
+        colour_frame_free(&f);
+    }
+    assert_true(marked > 100); /* the random frames mark pixels often */
+}
+
+/* The table (grey 180, cb 120, cr 132) under a dark teal disc (grey 60, cb
+ * 150, cr 110) that casts a neutral shadow (the table at 55%) to its lower
+ * right; elsewhere a grey patch alone (the table at 55%, no core beside
+ * it), and a dark bar (grey 50) whose middle is a grey band (the table at
+ * 55%) between its two halves. */
+static void shadow_scene(rte_image_u8 *g, rte_image_u8 *cb, rte_image_u8 *cr, rte_image_u8 *bg,
+                         rte_image_u8 *cbt, rte_image_u8 *crt)
+{
+    for (int32_t y = 0; y < H; y++)
+        for (int32_t x = 0; x < W; x++) {
+            const int32_t dx = x - 80, dy = y - 80, sx = x - 92, sy = y - 92;
+            int v = 180, b = 120, r = 132;
+            if (dx * dx + dy * dy <= 30 * 30) {
+                v = 60, b = 150, r = 110;
+            } else if (sx * sx + sy * sy <= 30 * 30 || (x >= 220 && x < 260 && y >= 40 && y < 80) ||
+                       (x >= 150 && x < 170 && y >= 170 && y < 200)) {
+                v = 99, b = 128 + (120 - 128) * 99 / 180, r = 128 + (132 - 128) * 99 / 180;
+            } else if (x >= 100 && x < 220 && y >= 170 && y < 200) {
+                v = 50, b = 128, r = 128;
+            }
+            *at(g, x, y) = (uint8_t)v;
+            *at(bg, x, y) = 180;
+            if (!(x & 1) && !(y & 1)) {
+                cb->buf[(y / 2) * cb->stride + x / 2] = (uint8_t)b;
+                cr->buf[(y / 2) * cr->stride + x / 2] = (uint8_t)r;
+                cbt->buf[(y / 2) * cbt->stride + x / 2] = 120;
+                crt->buf[(y / 2) * crt->stride + x / 2] = 132;
+            }
+        }
+}
+
+/* A dark object's neutral cast shadow is dropped with the shade mask (and
+ * kept without it); a grey patch alone and a grey band inside a dark object
+ * are kept; the disc's own pixels are the same either way. */
+static void cast_shadows_are_told_from_grey_objects(void **state)
+{
+    (void)state;
+    rte_image_u8 g = unit_image_u8(W, H, 2, 0), bg = unit_image_u8(W, H, 0, 0);
+    rte_image_u8 pl[4], m = unit_image_u8(W / 2, H / 2, 1, 0);
+    for (int k = 0; k < 4; k++)
+        pl[k] = unit_image_u8(W / 2, H / 2, k, 0);
+    shadow_scene(&g, &pl[0], &pl[2], &bg, &pl[1], &pl[3]);
+    const rte_background_shade_params sp = {400, 900, 15};
+    assert_int_equal(rte_background_shade_u8(&g, &bg, &pl[0], &pl[1], &pl[2], &pl[3], &m, &sp),
+                     RTE_OK);
+    assert_int_equal(m.buf[50 * m.stride + 53], 255); /* the shadow, at (106, 100) */
+    assert_int_equal(m.buf[40 * m.stride + 40], 0);   /* the disc */
+    assert_int_equal(m.buf[10 * m.stride + 10], 0);   /* the table */
+    rte_arena arena = new_arena();
+    rte_background_threshold_params tp;
+    rte_background_threshold_params_default(&tp, W);
+    rte_image_u8 with = unit_image_u8(W, H, 0, 0), without = unit_image_u8(W, H, 0, 0);
+    rte_background_threshold_result r, r0;
+    assert_int_equal(rte_background_threshold_shaded_u8(&g, &bg, &m, &with, &tp, &arena, &r),
+                     RTE_OK);
+    assert_int_equal(rte_background_threshold_u8(&g, &bg, &without, &tp, &arena, &r0), RTE_OK);
+    assert_int_equal(r.shadows, r0.shadows + 1);
+    assert_int_equal(*at(&without, 106, 100), 255); /* the shadow joins the disc without */
+    assert_int_equal(*at(&with, 106, 100), 0);      /* and is dropped with the mask */
+    assert_int_equal(*at(&with, 240, 60), 255);     /* the grey patch alone */
+    assert_int_equal(*at(&with, 160, 185), 255);    /* the grey band in the bar */
+    for (int32_t y = 0; y < H; y++)                 /* the disc the same */
+        for (int32_t x = 0; x < W; x++) {
+            const int32_t dx = x - 80, dy = y - 80;
+            if (dx * dx + dy * dy <= 28 * 28)
+                assert_int_equal(*at(&with, x, y), *at(&without, x, y));
+        }
+    /* refusals: a full-size mask */
+    assert_int_equal(rte_background_threshold_shaded_u8(&g, &bg, &g, &with, &tp, &arena, NULL),
+                     RTE_ERR_SIZE);
+    test_free(g.buf);
+    test_free(bg.buf);
+    test_free(m.buf);
+    test_free(with.buf);
+    test_free(without.buf);
+    for (int k = 0; k < 4; k++)
+        test_free(pl[k].buf);
+    test_free(arena.base);
 }
 
 static void bad_arguments(void **state)
@@ -452,6 +638,8 @@ int main(void)
         cmocka_unit_test(hysteresis_keeps_faint_parts_of_strong_regions),
         cmocka_unit_test(a_full_run_table_is_reported),
         cmocka_unit_test(tint_puts_colour_differences_in_place),
+        cmocka_unit_test(shade_marks_the_dimmed_table),
+        cmocka_unit_test(cast_shadows_are_told_from_grey_objects),
         cmocka_unit_test(bad_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -681,6 +681,46 @@ static void colour_contrast(void **state)
     rte_grasp_destroy(ctx);
 }
 
+/* A dark blue box (x 50..79, y 40..69) on a beige table casts a neutral
+ * shadow 12 px wide to its right and below (the table at 55%). With
+ * colour the shadow is told from the box and the grasp is at the box's
+ * centre; grey alone takes the shadow for part of the box. */
+static void cast_shadow_leaves_the_grasp(void **state)
+{
+    (void)state;
+    const int32_t w = 160, h = 120;
+    uint8_t *bgr = test_malloc((size_t)3 * w * h);
+    const uint8_t table[3] = {170, 178, 186}, box[3] = {120, 40, 20};
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++) {
+            uint8_t *p = bgr + 3 * ((size_t)y * w + x);
+            const bool in_box = x >= 50 && x < 80 && y >= 40 && y < 70;
+            const bool in_shadow = x >= 56 && x < 92 && y >= 46 && y < 82;
+            for (int k = 0; k < 3; k++)
+                p[k] = in_box ? box[k] : in_shadow ? (uint8_t)(table[k] * 55 / 100) : table[k];
+        }
+    rte_frame f;
+    assert_int_equal(rte_frame_packed(&f, RTE_PIXEL_BGR24, w, h, bgr, (size_t)3 * w * h), RTE_OK);
+    rte_image_u8 gray = unit_image_u8(w, h, 1, 0), cb = unit_image_u8(w / 2, h / 2, 2, 0),
+                 cr = unit_image_u8(w / 2, h / 2, 0, 0);
+    assert_int_equal(rte_frame_to_gray(&f, &gray), RTE_OK);
+    assert_int_equal(rte_frame_chroma_half(&f, &cb, &cr), RTE_OK);
+    rte_grasp_ctx *ctx = new_ctx(w, h, RTE_GRASP_BACKGROUND);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process_chroma(ctx, &gray, &cb, &cr, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_true(fabs(r.objects[0].x_q8 / 256.0 - 64.5) <= 1.0);
+    assert_true(fabs(r.objects[0].y_q8 / 256.0 - 54.5) <= 1.0);
+    assert_int_equal(rte_grasp_process(ctx, &gray, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_true(r.objects[0].x_q8 / 256.0 > 66.5 && r.objects[0].y_q8 / 256.0 > 56.5);
+    rte_grasp_destroy(ctx);
+    test_free(bgr);
+    test_free(gray.buf);
+    test_free(cb.buf);
+    test_free(cr.buf);
+}
+
 /* Too few contour slots: the result says so instead of failing. */
 static void contour_bound(void **state)
 {
@@ -757,6 +797,7 @@ int main(void)
         cmocka_unit_test(caller_memory),
         cmocka_unit_test(workspace),
         cmocka_unit_test(colour_contrast),
+        cmocka_unit_test(cast_shadow_leaves_the_grasp),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

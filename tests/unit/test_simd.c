@@ -864,12 +864,14 @@ static const background_variant background_variants[] = {
     {{"background_avx2", RTE_CPU_X86_AVX2},
      {rte_background_add_row_avx2, rte_background_store_row_avx2, rte_background_absdiff_row_avx2,
       rte_background_classify_row_avx2, rte_background_above_floor_row_avx2,
-      rte_background_chroma_diff_row_avx2, rte_background_tint_row_avx2}},
+      rte_background_chroma_diff_row_avx2, rte_background_tint_row_avx2,
+      rte_background_shade_row_avx2, rte_background_shade_class_row_avx2}},
 #endif
     {{"background_c", 0},
      {rte_background_add_row_c, rte_background_store_row_c, rte_background_absdiff_row_c,
       rte_background_classify_row_c, rte_background_above_floor_row_c,
-      rte_background_chroma_diff_row_c, rte_background_tint_row_c}},
+      rte_background_chroma_diff_row_c, rte_background_tint_row_c, rte_background_shade_row_c,
+      rte_background_shade_class_row_c}},
 };
 
 static void random_values(int32_t *p, int32_t n, uint32_t *seed)
@@ -899,10 +901,16 @@ static void check_background_row(const background_variant *v, int32_t w, uint32_
     const struct {
         const char *name;
         int which;
-    } bytes[] = {{"store", 0},       {"absdiff", 1}, {"classify", 2},
-                 {"above_floor", 3}, {"tint", 4},    {"chroma_diff", 5}};
+    } bytes[] = {{"store", 0}, {"absdiff", 1},     {"classify", 2}, {"above_floor", 3},
+                 {"tint", 4},  {"chroma_diff", 5}, {"shade", 6},    {"shade_class", 7}};
     const uint8_t low = (uint8_t)unit_rand(seed), high = (uint8_t)unit_rand(seed);
     const uint8_t bright = (uint8_t)(unit_rand(seed) % 3), dark = (uint8_t)(unit_rand(seed) % 3);
+    uint8_t *mask = test_malloc(n);
+    for (size_t i = 0; i < n; i++)
+        mask[i] = unit_rand(seed) % 4 ? 255 : 0;
+    const int32_t lo = (int32_t)(unit_rand(seed) % 1001),
+                  hi = lo + (int32_t)(unit_rand(seed) % (uint32_t)(1001 - lo)),
+                  tol = (int32_t)(unit_rand(seed) % 256);
     for (size_t k = 0; k < COUNT_OF(bytes); k++) {
         memset(want, 0xEE, n);
         memset(got, 0xEE, n);
@@ -923,9 +931,18 @@ static void check_background_row(const background_variant *v, int32_t w, uint32_
                 memcpy(out[j] + o, t + o, (size_t)w);
                 r[j]->tint(s + o, b + o, out[j] + o, w, low, bright & 1, dark & 1);
                 break;
-            default: /* half as many samples, each written twice */
+            case 5: /* half as many samples, each written twice */
                 r[j]->chroma_diff(s + o, b + o, t + o, s + n - GUARD - (size_t)(w + 1) / 2,
                                   out[j] + o, (w + 1) / 2);
+                break;
+            case 7: /* mask: a half-size row */
+                memcpy(out[j] + o, s + o, (size_t)w);
+                r[j]->shade_class(out[j] + o, mask + o, w);
+                break;
+            default: /* one output per chroma sample, from pixel 2h of each pair */
+                r[j]->shade(s + o, b + o, t + o, s + n - GUARD - (size_t)w / 2,
+                            b + n - GUARD - (size_t)w / 2, t + n - GUARD - (size_t)w / 2,
+                            out[j] + o, w / 2, lo, hi, tol);
             }
         }
         if (memcmp(want, got, n) != 0)
@@ -934,6 +951,7 @@ static void check_background_row(const background_variant *v, int32_t w, uint32_
     test_free(s);
     test_free(b);
     test_free(t);
+    test_free(mask);
     test_free(want);
     test_free(got);
     test_free(va);

@@ -135,6 +135,10 @@ typedef struct rte_background_rows {
                         const uint8_t *crt, uint8_t *c2, int32_t hw);
     void (*tint)(const uint8_t *s, const uint8_t *b, uint8_t *cd, int32_t w, uint8_t least,
                  uint8_t up_only, uint8_t either);
+    void (*shade)(const uint8_t *s, const uint8_t *t, const uint8_t *cb, const uint8_t *cbt,
+                  const uint8_t *cr, const uint8_t *crt, uint8_t *out, int32_t hw, int32_t lo,
+                  int32_t hi, int32_t tol);
+    void (*shade_class)(uint8_t *c, const uint8_t *m, int32_t w);
 } rte_background_rows;
 
 /* rte_background_<kernel>_row_<isa> for every kernel of the family, and
@@ -152,7 +156,13 @@ typedef struct rte_background_rows {
                                               const uint8_t *cr, const uint8_t *crt, uint8_t *c2,  \
                                               int32_t hw);                                         \
     void rte_background_tint_row_##isa(const uint8_t *s, const uint8_t *b, uint8_t *cd, int32_t w, \
-                                       uint8_t least, uint8_t up_only, uint8_t either);
+                                       uint8_t least, uint8_t up_only, uint8_t either);            \
+    void rte_background_shade_row_##isa(const uint8_t *s, const uint8_t *t, const uint8_t *cb,     \
+                                        const uint8_t *cbt, const uint8_t *cr, const uint8_t *crt, \
+                                        uint8_t *out, int32_t hw, int32_t lo, int32_t hi,          \
+                                        int32_t tol);                                              \
+    void rte_background_shade_class_row_##isa(uint8_t *c, const uint8_t *m, int32_t w);
+
 #define RTE_BACKGROUND_ROWS_DEFINE(isa)                                                            \
     void rte_background_add_row_##isa(int32_t *v, const int32_t *add, int32_t w)                   \
     {                                                                                              \
@@ -187,6 +197,17 @@ typedef struct rte_background_rows {
                                        uint8_t least, uint8_t up_only, uint8_t either)             \
     {                                                                                              \
         background_tint_row(s, b, cd, w, least, up_only, either);                                  \
+    }                                                                                              \
+    void rte_background_shade_row_##isa(const uint8_t *s, const uint8_t *t, const uint8_t *cb,     \
+                                        const uint8_t *cbt, const uint8_t *cr, const uint8_t *crt, \
+                                        uint8_t *out, int32_t hw, int32_t lo, int32_t hi,          \
+                                        int32_t tol)                                               \
+    {                                                                                              \
+        background_shade_row(s, t, cb, cbt, cr, crt, out, hw, lo, hi, tol);                        \
+    }                                                                                              \
+    void rte_background_shade_class_row_##isa(uint8_t *c, const uint8_t *m, int32_t w)             \
+    {                                                                                              \
+        background_shade_class_row(c, m, w);                                                       \
     }
 RTE_BACKGROUND_ROWS_DECLARE(c)
 rte_background_rows rte_background_rows_select(uint32_t features);
