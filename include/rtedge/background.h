@@ -124,12 +124,15 @@ RTE_API rte_status rte_background_threshold_u8(const rte_image_u8 *src,
  * mask, ((width + 1) / 2) x ((height + 1) / 2), each sample for its 2x2
  * block; NULL for none) is non-zero, a dark pixel may be a shadow on the
  * table (rte_background_shade_u8). Those pixels form regions of their
- * own. One of shadow_min_area px or more and at least a twentieth of the
- * one region of other pixels it lies beside (of shadow_min_area px or
- * more) is that object's cast shadow and is dropped (counted in
- * result->shadows); beside two or more such regions it joins the dark ones
- * into one object; smaller ones join their neighbour; beside none it is an
- * object of its own (a grey one). */
+ * own within their object (its dark pixels, shade or not, connected). In
+ * an object whose other dark pixels form one region of shadow_min_area px
+ * or more (its core), a shade region of shadow_min_area px or more, at
+ * least a twentieth of the core and lighter than it (mean |d|) is the
+ * core's cast shadow and is dropped (counted in result->shadows); the rest
+ * of every object is one region, as without the mask. Every region of the
+ * mask may be taken for a shadow: take out its thin parts first (the rim
+ * of a dark object's blurred edge is dimmed as a shadow is); the grasp
+ * path opens it with a 3 x 3 square. */
 RTE_API rte_status rte_background_threshold_shaded_u8(const rte_image_u8 *src,
                                                       const rte_image_u8 *background,
                                                       const rte_image_u8 *shade, rte_image_u8 *dst,

@@ -33,8 +33,7 @@ enum {
     REGION_STRONG = 1,
     REGION_DARK = 2,
     REGION_SHADOW = 4,
-    REGION_SHADE = 8,     /* side 3: dark and in the shade mask */
-    REGION_CANDIDATE = 16 /* settle_shade: a shade region that may be a cast shadow */
+    REGION_SHADE = 8 /* side 3: dark and in the shade mask */
 };
 
 typedef struct run_table {
@@ -248,50 +247,15 @@ static void paint_regions(const run_table *t, rte_image_u8 *dst, int32_t share,
 
 enum { NO_CORE = -1, CORES = -2 };
 
-/* A cast shadow is thick: SHADE_DEEP or more samples of the half-size mask
- * under it have their 3 x 3 neighbourhood in the mask (about a 10 x 10 px
- * square of shadow); the rim of a dark object's blurred edge, dimmed as a
- * shadow is, is one or two pixels wide. */
-#define SHADE_DEEP 4
-
-/* The deep samples (see SHADE_DEEP) under the candidate regions, into
- * their root's spare[] (a 2x2 block's sample at its top-left pixel: even
- * rows and columns). */
-static void count_deep(run_table *t, int32_t h, const rte_image_u8 *shade)
-{
-    for (int32_t y = 0; y < h; y += 2) {
-        const int32_t sy = y >> 1;
-        if (sy < 1 || sy + 1 >= shade->height)
-            continue;
-        const uint8_t *up = rte_u8_row(shade, sy - 1), *mid = rte_u8_row(shade, sy),
-                      *down = rte_u8_row(shade, sy + 1);
-        for (int32_t r = t->row_start[y]; r < t->row_start[y + 1]; r++) {
-            const int32_t s = t->parent[r];
-            if (!(t->flags[s] & REGION_CANDIDATE))
-                continue;
-            int32_t x2 = (t->x0[r] + 1) >> 1;
-            x2 = x2 < 1 ? 1 : x2;
-            for (; 2 * x2 <= t->x1[r] && x2 + 1 < shade->width; x2++) {
-                uint8_t all = 255;
-                for (int32_t k = -1; k <= 1; k++)
-                    all &= (uint8_t)(up[x2 + k] & mid[x2 + k] & down[x2 + k]);
-                t->spare[s] += all != 0;
-            }
-        }
-    }
-}
-
 /* An object (dark and shade runs connected) whose dark pixels outside
- * the shade mask form one core (a region of shadow_min_area px or more:
- * specks of noise do not count) may lie beside its cast shadow: a shade
- * region of min_area px or more, at least a twentieth of the core, lighter
- * than it (mean |d|) and thick (SHADE_DEEP). Those are dropped (flagged
- * REGION_SHADOW); the rest of every object becomes one region, as without
- * the mask (an object with two or more cores keeps its shade: a grey band
- * between a dark object and its bright end). Returns how many were
- * dropped. */
-static int32_t settle_shade(run_table *t, int32_t n, int32_t h, int32_t min_area,
-                            const rte_image_u8 *shade)
+ * the shade mask form one core (a region of min_area px or more: specks
+ * of noise do not count) may lie beside its cast shadow: a shade region
+ * of min_area px or more, at least a twentieth of the core and lighter
+ * than it (mean |d|). Those are dropped (flagged REGION_SHADOW); the rest
+ * of every object becomes one region, as without the mask (an object with
+ * two or more cores keeps its shade: a grey band between two dark parts).
+ * Returns how many were dropped. */
+static int32_t settle_shade(run_table *t, int32_t n, int32_t min_area)
 {
     /* every run straight to its root in both (roots come first: parent[r]
      * <= r), the areas and sums of |d| on the roots (the statistics pass
@@ -316,25 +280,15 @@ static int32_t settle_shade(run_table *t, int32_t n, int32_t h, int32_t min_area
         int32_t *c = &t->core[t->object[r]];
         *c = *c == NO_CORE ? r : CORES;
     }
-    /* the candidates: beside their object's one core, large enough and
-     * lighter (sum_s / count_s < sum_c / count_c); then the thick ones */
+    /* the shadows: beside their object's one core, large enough and
+     * lighter (sum_s / count_s < sum_c / count_c) */
+    int32_t dropped = 0;
     for (int32_t r = 0; r < n; r++) {
         if (!(t->flags[r] & REGION_SHADE) || t->parent[r] != r)
             continue;
         const int32_t c = t->core[t->object[r]];
         if (c >= 0 && t->count[r] >= min_area && t->count[r] * 20 >= t->count[c] &&
             t->sum[r] * t->count[c] < t->sum[c] * t->count[r]) {
-            t->flags[r] |= REGION_CANDIDATE;
-            t->spare[r] = 0;
-        }
-    }
-    count_deep(t, h, shade);
-    int32_t dropped = 0;
-    for (int32_t r = 0; r < n; r++) {
-        if (!(t->flags[r] & REGION_CANDIDATE))
-            continue;
-        t->flags[r] &= (uint8_t)~REGION_CANDIDATE;
-        if (t->spare[r] >= SHADE_DEEP) {
             t->flags[r] |= REGION_SHADOW;
             dropped++;
         }
@@ -477,7 +431,7 @@ rte_status rte_background_threshold_shaded_u8(const rte_image_u8 *src,
     int32_t n = 0;
     const int64_t dropped =
         label_frame(&t, src, background, shade, dst, low, high, params, &rows, &n);
-    int32_t shadows = shade ? settle_shade(&t, n, h, params->shadow_min_area, shade) : 0;
+    int32_t shadows = shade ? settle_shade(&t, n, params->shadow_min_area) : 0;
     /* Statistics to the roots; every run then points at its root. */
     int32_t regions = 0;
     for (int32_t r = 0; r < n; r++) {

@@ -97,7 +97,10 @@ static int32_t border_mean(const rte_image_u8 *img)
  * its grey is, then the colour differences from them put in place of the
  * grey ones where larger (rte_background_tint_u8), so that the threshold
  * sees the colour an object differs by; and the pixels a shadow may have
- * dimmed (rte_background_shade_u8, at half size) into shade. */
+ * dimmed (rte_background_shade_u8, at half size) into shade, opened by a
+ * 3 x 3 square there (a cast shadow is several pixels across; the rim of
+ * a dark object's blurred edge, dimmed as a shadow is, and a thin light
+ * part such as a pencil's sharpened tip are not). */
 static rte_status tint(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_image_u8 *table,
                        const rte_background_params *bp, const rte_image_u8 *cb,
                        const rte_image_u8 *cr, bool bright, bool dark, rte_image_u8 *dst,
@@ -118,13 +121,15 @@ static rte_status tint(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_im
         .least = (ctx->params.contrast + 1) / 2, .bright = bright, .dark = dark};
     st = rte_background_tint_u8(src, table, cb, &cbt, cr, &crt, dst, &tp);
     /* a shadow keeps 40-90% of the table's light (darker is an object's
-     * own shade, lighter the table's texture) and its colour within a
-     * little more than the tint's noise floor: half-size chroma (and JPEG's
-     * blur of it) put the object's colour on the shadow's first pixels */
+     * own shade, lighter the table's texture) and its colour within the
+     * tint's noise floor and half again: half-size chroma (and JPEG's blur
+     * of it) put the object's colour on the shadow's first pixels */
     const rte_background_shade_params sp = {
-        .darkest_permille = 400, .lightest_permille = 900, .chroma = tp.least * 6 / 5};
+        .darkest_permille = 400, .lightest_permille = 900, .chroma = tp.least * 3 / 2};
     if (st == RTE_OK)
         st = rte_background_shade_u8(src, table, cb, &cbt, cr, &crt, shade, &sp);
+    if (st == RTE_OK)
+        st = rte_morphology_u8(shade, shade, RTE_MORPH_OPEN, &ctx->shade_open, 1, &ctx->arena);
     return st;
 }
 

@@ -60,6 +60,14 @@ static int config_ok(const rte_grasp_config *c)
 
 static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
 
+/* The element that opens the half-size shade mask (grasp.c, tint). */
+static rte_morph_element shade_square(void)
+{
+    rte_morph_element e;
+    rte_morphology_element_init(&e, RTE_MORPH_RECT, 3, 3); /* a valid size: cannot fail */
+    return e;
+}
+
 /* The arena: the largest need of any one stage (each resets it). */
 static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k,
                          const rte_morph_element *e)
@@ -68,6 +76,8 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
     size_t s = rte_gaussian_blur_u8_scratch_size(w, h, k);
     s = max_size(s, rte_canny_scratch_size(w, h, 3));
     s = max_size(s, rte_morphology_scratch_size(w, h, e, c->close_iterations));
+    const rte_morph_element square = shade_square();
+    s = max_size(s, rte_morphology_scratch_size((w + 1) / 2, (h + 1) / 2, &square, 1));
     s = max_size(s, rte_contours_scratch_size(w, h, c->max_contours));
     s = max_size(s, rte_polygon_mask_scratch_size(RTE_GRASP_MAX_ROI_VERTICES));
     s = max_size(s, rte_background_scratch_size(w, h, RTE_BACKGROUND_MIN_CELL));
@@ -182,6 +192,7 @@ rte_status rte_grasp_init(const rte_grasp_config *config, void *memory, size_t b
     memset(ctx, 0, sizeof *ctx);
     ctx->blur = k;
     ctx->close = e;
+    ctx->shade_open = shade_square();
     layout(ctx, (uint8_t *)base + rte_arena_piece_size(sizeof *ctx), config, arena_bytes);
     ctx->config = *config;
     ctx->params = config->params;

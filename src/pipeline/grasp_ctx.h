@@ -22,6 +22,7 @@ struct rte_grasp_ctx {
     rte_grasp_params params; /* in force */
     rte_gaussian_kernel blur;
     rte_morph_element close;
+    rte_morph_element shade_open;        /* 3 x 3 square: opens the half-size shade mask */
     rte_image_u8 blurred, edges, binary; /* edges: also the table estimate (background mode) */
     uint16_t *distance;                  /* the split's chamfer distances, max_width x max_height */
     rte_image_u8 tinted;                 /* the grey with colour differences as contrast (chroma) */
