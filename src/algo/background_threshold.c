@@ -39,8 +39,9 @@ enum {
 typedef struct run_table {
     int32_t *x0, *x1, *parent, *count;
     /* with a shade mask: object[] unites dark and shade runs alike (the
-     * object, as without the mask); core[] and spare[] are settle_shade's */
-    int32_t *object, *core, *spare;
+     * object, as without the mask); on an object's root, core[] is its
+     * core and first[] its first run left (settle_shade) */
+    int32_t *object, *core, *first;
     bool shade; /* runs of side 3 are labelled (objects[] is kept) */
     int64_t *sum;
     uint8_t *flags;
@@ -62,7 +63,7 @@ size_t rte_background_threshold_scratch_size(int32_t max_width, int32_t max_heig
     if (max_width < 1 || max_height < 1)
         return 0;
     const size_t runs = (size_t)run_capacity(max_width, max_height);
-    /* per run: x0, x1, parent, count, and the shade's object, core, spare */
+    /* per run: x0, x1, parent, count, and the shade's object, core, first */
     return rte_arena_piece_size(runs * sizeof(int32_t)) * 7 +
            rte_arena_piece_size(runs * sizeof(int64_t)) + /* sum */
            rte_arena_piece_size(runs) +                   /* flags */
@@ -295,12 +296,12 @@ static int32_t settle_shade(run_table *t, int32_t n, int32_t min_area)
     }
     /* the rest of each object into one region, under its first run left */
     for (int32_t r = 0; r < n; r++)
-        t->spare[r] = -1;
+        t->first[r] = -1;
     for (int32_t r = 0; r < n; r++) {
         if (!(t->flags[r] & REGION_DARK) || (t->flags[t->parent[r]] & REGION_SHADOW))
             continue;
         t->flags[r] &= (uint8_t)~REGION_SHADE;
-        int32_t *first = &t->spare[t->object[r]];
+        int32_t *first = &t->first[t->object[r]];
         if (*first < 0)
             *first = r;
         else
@@ -403,12 +404,12 @@ rte_status rte_background_threshold_shaded_u8(const rte_image_u8 *src,
     t.count = rte_arena_alloc(arena, runs * sizeof *t.count);
     t.object = rte_arena_alloc(arena, runs * sizeof *t.object);
     t.core = rte_arena_alloc(arena, runs * sizeof *t.core);
-    t.spare = rte_arena_alloc(arena, runs * sizeof *t.spare);
+    t.first = rte_arena_alloc(arena, runs * sizeof *t.first);
     t.sum = rte_arena_alloc(arena, runs * sizeof *t.sum);
     t.flags = rte_arena_alloc(arena, runs);
     t.row_start = rte_arena_alloc(arena, ((size_t)h + 1) * sizeof *t.row_start);
     t.row = rte_arena_alloc(arena, (size_t)w);
-    if (!t.x0 || !t.x1 || !t.parent || !t.object || !t.count || !t.core || !t.spare || !t.sum ||
+    if (!t.x0 || !t.x1 || !t.parent || !t.object || !t.count || !t.core || !t.first || !t.sum ||
         !t.flags || !t.row_start || !t.row) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;

@@ -27,8 +27,6 @@
 #include "hough_internal.h"
 #include "simd/rows.h"
 
-static inline int64_t abs64(int64_t v) { return v < 0 ? -v : v; }
-
 static int params_ok(const rte_hough_circles_params *p)
 {
     return p && p->dp_q8 >= 256 && p->dp_q8 <= 256 * 64 && p->min_dist >= 1 &&
@@ -339,14 +337,6 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
     return ncent;
 }
 
-/* What step 3b reads: the edge pixels, their row blocks and the gradient. */
-typedef struct circle_pixels {
-    const uint32_t *pts;
-    const int32_t *blk;
-    int32_t nblk, h, dp_q8;
-    const rte_image_s16 *dx, *dy;
-} circle_pixels;
-
 /* Step 4: greedy removal, best first, of centres closer than min_dist to
  * one already kept. A centre is refined (step 3b) only when it may be
  * kept: refining moves it at most `lim` along each axis, so one whose box
@@ -355,25 +345,24 @@ typedef struct circle_pixels {
  * refining them took a fifth of the transform). Returns how many were
  * kept. */
 static int32_t keep_separated(const rte_hough_topk *top, int32_t *est, int32_t min_dist,
-                              const circle_pixels *px, rte_hough_circle *circles,
+                              const circle_pixels *cp, rte_hough_circle *circles,
                               int32_t max_circles, bool *truncated)
 {
     const int64_t min_d2 = (int64_t)min_dist * min_dist * 256;
-    const int64_t lim = circle_refine_limit(px->dp_q8);
+    const int64_t lim = circle_refine_limit(cp->dp_q8);
     int32_t nout = 0;
     for (int32_t k = 0; k < top->size; k++) {
         int32_t e = (int32_t)rte_hough_key_index(top->keys[k]);
         int32_t *c = est + 3 * e;
         bool near = false;
         for (int32_t j = 0; j < nout && !near; j++) {
-            const int64_t ddx = abs64(c[0] - circles[j].x_q4) + lim,
-                          ddy = abs64(c[1] - circles[j].y_q4) + lim;
+            const int64_t ddx = rte_abs64(c[0] - circles[j].x_q4) + lim,
+                          ddy = rte_abs64(c[1] - circles[j].y_q4) + lim;
             near = ddx * ddx + ddy * ddy < min_d2;
         }
         if (near)
             continue;
-        rte_circle_refine(px->pts, px->blk, px->nblk, px->h, px->dx, px->dy, px->dp_q8, &c[0],
-                          &c[1], &c[2]);
+        rte_circle_refine(cp, &c[0], &c[1], &c[2]);
         bool ok = true;
         for (int32_t j = 0; j < nout && ok; j++) {
             int64_t ddx = c[0] - circles[j].x_q4, ddy = c[1] - circles[j].y_q4;
@@ -474,9 +463,9 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     }
     rte_hough_topk_sort(&top);
 
-    const circle_pixels px = {pts, blk, nblk, h, params->dp_q8, dx, dy};
+    const circle_pixels cp = {pts, blk, nblk, h, params->dp_q8, dx, dy};
     const int32_t nout =
-        keep_separated(&top, est, params->min_dist, &px, circles, max_circles, truncated);
+        keep_separated(&top, est, params->min_dist, &cp, circles, max_circles, truncated);
     *count = nout;
     rte_arena_reset(arena, mark);
     return RTE_OK;

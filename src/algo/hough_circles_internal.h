@@ -44,11 +44,18 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
 /* Step 3b's largest move of a centre along each axis, 1/16 pixel: 2 dp. */
 static inline int32_t circle_refine_limit(int32_t dp_q8) { return (dp_q8 + 4) / 8; }
 
+/* What step 3b reads: the edge pixels with their row blocks (as for
+ * rte_circle_radius), the image height, the gradient and dp. */
+typedef struct circle_pixels {
+    const uint32_t *pts;
+    const int32_t *blk;
+    int32_t nblk, h, dp_q8;
+    const rte_image_s16 *dx, *dy;
+} circle_pixels;
+
 /* Step 3b: the centre (*cx, *cy) and radius *r_q4 refined to where the
  * gradient lines of the circle's edge pixels meet (moving the centre at
  * most circle_refine_limit along each axis). */
-void rte_circle_refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
-                       const rte_image_s16 *dx, const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx,
-                       int32_t *cy, int32_t *r_q4);
+void rte_circle_refine(const circle_pixels *cp, int32_t *cx, int32_t *cy, int32_t *r_q4);
 
 #endif

@@ -122,10 +122,12 @@ static inline int on_ring(uint32_t p, int32_t cx, int32_t cy, int32_t r, int32_t
  * radius becomes the mean distance to the refined centre. A move of more
  * than 2 dp, too few pixels or a degenerate system keep the grid centre;
  * radii over 1000 px (where the sums would need more than 64 bits) too. */
-void rte_circle_refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
-                       const rte_image_s16 *dx, const rte_image_s16 *dy, int32_t dp_q8, int32_t *cx,
-                       int32_t *cy, int32_t *r_q4)
+void rte_circle_refine(const circle_pixels *cp, int32_t *cx, int32_t *cy, int32_t *r_q4)
 {
+    const uint32_t *pts = cp->pts;
+    const int32_t *blk = cp->blk;
+    const int32_t nblk = cp->nblk, h = cp->h;
+    const rte_image_s16 *dx = cp->dx, *dy = cp->dy;
     const int32_t r = *r_q4, band = 24; /* 1.5 px */
     if (r + band >= (1 << 14))
         return;
@@ -176,7 +178,7 @@ void rte_circle_refine(const uint32_t *pts, const int32_t *blk, int32_t nblk, in
         return;
     const int64_t ox = rte_div_round64(a11 * b0 - a01 * b1, det),
                   oy = rte_div_round64(a00 * b1 - a01 * b0, det);
-    const int64_t lim = circle_refine_limit(dp_q8);
+    const int64_t lim = circle_refine_limit(cp->dp_q8);
     if (ox > lim || ox < -lim || oy > lim || oy < -lim)
         return;
     *cx += (int32_t)ox;

@@ -5,6 +5,8 @@
 
 #include <stdint.h>
 
+static inline int64_t rte_abs64(int64_t v) { return v < 0 ? -v : v; }
+
 /* num / den rounded to nearest, halves away from zero; any signs, den != 0. */
 static inline int64_t rte_div_round64(int64_t num, int64_t den)
 {

@@ -101,10 +101,10 @@ static int32_t border_mean(const rte_image_u8 *img)
  * 3 x 3 square there (a cast shadow is several pixels across; the rim of
  * a dark object's blurred edge, dimmed as a shadow is, and a thin light
  * part such as a pencil's sharpened tip are not). */
-static rte_status tint(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rte_image_u8 *table,
-                       const rte_background_params *bp, const rte_image_u8 *cb,
-                       const rte_image_u8 *cr, bool bright, bool dark, rte_image_u8 *dst,
-                       rte_image_u8 *shade)
+static rte_status read_colour(rte_grasp_ctx *ctx, const rte_image_u8 *src,
+                              const rte_image_u8 *table, const rte_background_params *bp,
+                              const rte_image_u8 *cb, const rte_image_u8 *cr, bool bright,
+                              bool dark, rte_image_u8 *dst, rte_image_u8 *shade)
 {
     const int32_t hw = cb->width, hh = cb->height;
     rte_image_u8 cbt = sub(&ctx->cb_table, hw, hh), crt = sub(&ctx->cr_table, hw, hh);
@@ -171,7 +171,7 @@ static rte_status binarize(rte_grasp_ctx *ctx, const rte_image_u8 *src, const rt
         rte_image_u8 shade = {hw, hh, hw, (uint8_t *)ctx->distance};
         const rte_image_u8 *shade_in = NULL;
         if (st == RTE_OK && cb && p->chroma) {
-            st = tint(ctx, src, &table, &bp, cb, cr, tp.bright, tp.dark, &tinted, &shade);
+            st = read_colour(ctx, src, &table, &bp, cb, cr, tp.bright, tp.dark, &tinted, &shade);
             src = &tinted;
             shade_in = &shade;
         }

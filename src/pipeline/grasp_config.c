@@ -60,7 +60,7 @@ static int config_ok(const rte_grasp_config *c)
 
 static size_t max_size(size_t a, size_t b) { return a > b ? a : b; }
 
-/* The element that opens the half-size shade mask (grasp.c, tint). */
+/* The element that opens the half-size shade mask (grasp.c, read_colour). */
 static rte_morph_element shade_square(void)
 {
     rte_morph_element e;

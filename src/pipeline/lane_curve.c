@@ -198,7 +198,7 @@ static int64_t bow_of(const lane_fit_hint *hint, int64_t c)
 /* A bow beyond the lane's height is no bend of a road. */
 static bool bow_beyond_lane(const lane_fit_hint *hint, int64_t bow)
 {
-    return lane_abs64(bow) > (int64_t)(hint->y_bottom - hint->y_top) * 256;
+    return rte_abs64(bow) > (int64_t)(hint->y_bottom - hint->y_top) * 256;
 }
 
 /* The horizon row under which the bend fits the windows of the sides in
@@ -265,7 +265,7 @@ static bool fit_bend(const curve_side cs[2], const bool use[2], const lane_fit_h
     if (!joint_fit(cs, use, b, c, ss))
         return false;
     *bow = bow_of(hint, *c);
-    if (lane_abs64(*bow) < CURVE_MIN_BOW_Q8 || bow_beyond_lane(hint, *bow))
+    if (rte_abs64(*bow) < CURVE_MIN_BOW_Q8 || bow_beyond_lane(hint, *bow))
         return false;
     return bend_pays(cs, use, *b, *c, ss);
 }

@@ -35,7 +35,7 @@ static void look_beside(const lane_maps *maps, int32_t y, int64_t x_q8, int64_t 
         return;
     const int64_t twin_q8 = ((px.first + px.last + 2 * (int64_t)maps->cx0) * 128) - x_q8;
     t->rows++;
-    t->share_q16 += lane_abs64(twin_q8) * 256 / w;
+    t->share_q16 += rte_abs64(twin_q8) * 256 / w;
 }
 
 void rte_lane_double_centre(const lane_maps *maps, const lane_fit_hint *hint, const bool seen[2],

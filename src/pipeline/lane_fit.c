@@ -116,8 +116,8 @@ static void fit_medians(rte_lane_context *ctx, const int32_t *members, int32_t n
 /* Largest horizontal distance of a segment's end points from the line, 1/256 px. */
 static int64_t seg_residual_q8(const lane_line *l, const rte_lane_segment *s)
 {
-    const int64_t r0 = lane_abs64((int64_t)s->x0 * 256 - lane_line_x_q8(l, s->y0));
-    const int64_t r1 = lane_abs64((int64_t)s->x1 * 256 - lane_line_x_q8(l, s->y1));
+    const int64_t r0 = rte_abs64((int64_t)s->x0 * 256 - lane_line_x_q8(l, s->y0));
+    const int64_t r1 = rte_abs64((int64_t)s->x1 * 256 - lane_line_x_q8(l, s->y1));
     return r0 > r1 ? r0 : r1;
 }
 
@@ -164,7 +164,7 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *weigh
         return false;
     else
         line->slope_q16 = lane_div_q16(cxy, cyy);
-    if (lane_abs64(line->slope_q16) > 64 * 65536)
+    if (rte_abs64(line->slope_q16) > 64 * 65536)
         return false;
     /* x at y_mid from the weighted means (Q8) */
     line->x_mid_q8 =

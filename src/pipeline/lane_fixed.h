@@ -7,9 +7,8 @@
 
 #include <stdint.h>
 
+#include "core/int_math.h"
 #include "lane_internal.h"
-
-static inline int64_t lane_abs64(int64_t v) { return v < 0 ? -v : v; }
 
 static inline int32_t lane_clamp32(int64_t v, int64_t lo, int64_t hi)
 {
@@ -19,7 +18,7 @@ static inline int32_t lane_clamp32(int64_t v, int64_t lo, int64_t hi)
 /* num * 65536 / den (den > 0), without overflow for any 62-bit inputs. */
 static inline int64_t lane_div_q16(int64_t num, int64_t den)
 {
-    while (lane_abs64(num) >= ((int64_t)1 << 46) || den >= ((int64_t)1 << 46)) {
+    while (rte_abs64(num) >= ((int64_t)1 << 46) || den >= ((int64_t)1 << 46)) {
         num /= 2;
         den /= 2;
     }

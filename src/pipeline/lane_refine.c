@@ -203,7 +203,7 @@ bool rte_lane_paint_near(const lane_maps *maps, int32_t y, int64_t x, int64_t re
     bool best_gap = false;
     for (int32_t i = 0; i + 1 < n_edges; i++) {
         const int64_t first = start[i], last = end[i + 1];
-        const int64_t d = lane_abs64(first + last - 2 * (x - maps->cx0));
+        const int64_t d = rte_abs64(first + last - 2 * (x - maps->cx0));
         if (last - first > 2 * reach || d > 2 * reach)
             continue;
         const bool gap = double_gap(maps, yc, end[i], start[i + 1], reach);
@@ -321,13 +321,13 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, int32_t cx0, int32_t cy
         else if (cyy >= sw * 64) /* rows spread over ~8 px at least */
             dslope_q16 = lane_div_q16(cyr, cyy * 256);
         const int64_t slope = line->slope_q16 + dslope_q16;
-        if (lane_abs64(slope) > 64 * 65536)
+        if (rte_abs64(slope) > 64 * 65536)
             return;
         const int64_t dx_mid = sr / sw - ((dslope_q16 * my_q8) >> 16);
         line->x_mid_q8 += dx_mid;
         line->slope_q16 = slope;
         /* settled: both ends moved less than a quarter of a pixel */
-        if (lane_abs64(dx_mid) + ((lane_abs64(dslope_q16) * half_span) >> 8) < 64)
+        if (rte_abs64(dx_mid) + ((rte_abs64(dslope_q16) * half_span) >> 8) < 64)
             return;
     }
 }

@@ -107,7 +107,7 @@ static trace_point centre_on_ridge(const lane_maps *maps, trace_point p, int32_t
     for (int32_t j = 0; j <= 2 * TRACE_CENTRE; j++) {
         const int64_t o = j - TRACE_CENTRE;
         v[j] = map_at(maps, maps->src, p.x_q8 + o * n[0], p.y_q8 + o * n[1]);
-        if (v[j] > v[best] || (v[j] == v[best] && lane_abs64(o) < lane_abs64(best - TRACE_CENTRE)))
+        if (v[j] > v[best] || (v[j] == v[best] && rte_abs64(o) < rte_abs64(best - TRACE_CENTRE)))
             best = j;
     }
     int32_t lo = best, hi = best;
@@ -270,7 +270,7 @@ void rte_lane_trace_far(const lane_maps *maps, const lane_fit_hint *rows, rte_la
     int32_t leave = 0;
     while (leave < n) {
         const int32_t y = (int32_t)((pts[leave].y_q8 + 128) >> 8);
-        if (lane_abs64(pts[leave].x_q8 - rte_lane_x_q8(lane, y)) >
+        if (rte_abs64(pts[leave].x_q8 - rte_lane_x_q8(lane, y)) >
             3 * rte_lane_band_px(rows, maps->tol, y) * 128)
             break;
         leave++;
@@ -293,11 +293,11 @@ void rte_lane_trace_far(const lane_maps *maps, const lane_fit_hint *rows, rte_la
     for (int32_t i = leave; i < n - 1 && k < RTE_LANE_FAR_POINTS - 1; i++) {
         const int32_t y = (int32_t)((pts[i].y_q8 + 128) >> 8);
         const int32_t rise = lane->far_y[k - 1] - y;
-        const int64_t run = lane_abs64(pts[i].x_q8 - lane->far_x_q8[k - 1]);
+        const int64_t run = rte_abs64(pts[i].x_q8 - lane->far_x_q8[k - 1]);
         const bool apart = rise >= TRACE_POINT_ROWS || (rise >= 2 && run >= TRACE_POINT_COLS * 256);
         const bool before_end =
             y - y_end >= TRACE_END_ROWS ||
-            (y - y_end >= 2 && lane_abs64(end.x_q8 - pts[i].x_q8) >= 2 * TRACE_POINT_COLS * 256);
+            (y - y_end >= 2 && rte_abs64(end.x_q8 - pts[i].x_q8) >= 2 * TRACE_POINT_COLS * 256);
         if (!apart || !before_end)
             continue;
         lane->far_x_q8[k] = lane_clamp32(pts[i].x_q8, INT32_MIN, INT32_MAX);

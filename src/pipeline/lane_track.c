@@ -29,7 +29,7 @@ void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int3
             s->x0 = s->x1, s->y0 = s->y1, s->x1 = tx, s->y1 = ty;
         }
         const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0; /* dy >= 0 */
-        const int64_t adx = lane_abs64(dx);
+        const int64_t adx = rte_abs64(dx);
         /* dy/dx < 0 in image coordinates (y down): the left lane */
         const int side = dx < 0 ? RTE_LANE_LEFT : RTE_LANE_RIGHT;
         const int64_t lo = side == RTE_LANE_LEFT ? p->left_min_slope_q8 : p->right_min_slope_q8;
@@ -44,7 +44,7 @@ void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int3
         const lane_track *t = &ctx->track[side];
         if (t->valid) {
             const int64_t ym = (s->y0 + s->y1) / 2;
-            const int64_t d = lane_abs64(mid2 * 128 - track_x_q8(t, y_bottom, y_top, (int32_t)ym));
+            const int64_t d = rte_abs64(mid2 * 128 - track_x_q8(t, y_bottom, y_top, (int32_t)ym));
             if (d > (int64_t)p->gate_px * 256) {
                 s->use = RTE_LANE_SEG_REJECTED_GATE;
                 continue;

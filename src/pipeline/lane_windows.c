@@ -139,7 +139,7 @@ static void trace_up(const lane_maps *maps, const lane_fit_hint *hint, const lan
             break;
         const int64_t ex_q8 = x_q8 + ((dir_q16 * (yt - y)) >> 8);
         /* the bend may double the slope since the last point */
-        const int64_t run = lane_abs64(dir_q16 * (y - yt)) >> 16;
+        const int64_t run = rte_abs64(dir_q16 * (y - yt)) >> 16;
         const int64_t reach = rte_lane_band_px(hint, maps->tol, (int32_t)yt) + run;
         band_pixels px;
         /* edges of any direction: a marking that turns level turns its
