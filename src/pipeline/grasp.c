@@ -446,7 +446,7 @@ rte_status rte_grasp_process_chroma(rte_grasp_ctx *ctx, const rte_image_u8 *gray
                                &ctx->contours, &ctx->arena);
     const int64_t t3 = rte_clock_now_ns();
     if (st == RTE_OK && p->split)
-        st = rte_grasp_split_touching(ctx, &bin, &out->split_parts);
+        st = rte_grasp_split_touching(ctx, src, &bin, &out->split_parts);
     const int64_t t3s = rte_clock_now_ns();
     if (st != RTE_OK) {
         ctx->contours.n_contours = 0;

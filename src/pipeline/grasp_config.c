@@ -83,13 +83,13 @@ static size_t arena_size(const rte_grasp_config *c, const rte_gaussian_kernel *k
     s = max_size(s, rte_background_scratch_size(w, h, RTE_BACKGROUND_MIN_CELL));
     s = max_size(s, rte_background_threshold_scratch_size(w, h));
     /* the split of one contour: the vertices, the crop's two masks, then
-     * the polygon fill's or the split's scratch; the gate's hull before */
+     * the polygon fill's, the split's or the cut's scratch; the gate's hull before */
     const size_t pts = (size_t)c->max_points, image = (size_t)w * (size_t)h;
-    s = max_size(s, rte_arena_piece_size(pts * sizeof(rte_vertex)) +
-                        2 * rte_arena_piece_size(image) +
-                        rte_arena_piece_size(rte_grasp_split_runs_bytes(w, h)) +
-                        max_size(rte_polygon_mask_scratch_size(c->max_points),
-                                 rte_split_scratch_size(w, h)));
+    s = max_size(
+        s, rte_arena_piece_size(pts * sizeof(rte_vertex)) + 2 * rte_arena_piece_size(image) +
+               rte_arena_piece_size(rte_grasp_split_runs_bytes(w, h)) +
+               max_size(rte_polygon_mask_scratch_size(c->max_points),
+                        max_size(rte_split_scratch_size(w, h), rte_grasp_refine_cut_bytes(w, h))));
     s = max_size(s, rte_arena_piece_size(pts * sizeof(int32_t)) +
                         rte_arena_piece_size((pts + 1) * sizeof(rte_point)) +
                         rte_arena_piece_size((pts + 1) * sizeof(rte_caliper)) +

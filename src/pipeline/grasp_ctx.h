@@ -44,10 +44,26 @@ static inline size_t rte_grasp_split_runs_bytes(int32_t w, int32_t h)
     return 4 * ((size_t)(w + 1) / 2 * (size_t)h + 1) * sizeof(int32_t);
 }
 
+/* Bytes of arena that rte_grasp_refine_cut takes for a w x h crop. */
+static inline size_t rte_grasp_refine_cut_bytes(int32_t w, int32_t h)
+{
+    const size_t n = (size_t)w * (size_t)h;
+    return rte_arena_piece_size(n) + rte_arena_piece_size(n * sizeof(int32_t));
+}
+
+/* Moves the cut between the parts of own (the split of the object pixels
+ * of box inside the contour, `inside`; `dist` their chamfer distance; all
+ * cw x ch crops) to the grey edge between them (grasp_cut.c); grey: the
+ * crop of the blurred frame. RTE_ERR_NO_MEMORY when the arena is short. */
+rte_status rte_grasp_refine_cut(rte_grasp_ctx *ctx, const rte_image_u8 *grey,
+                                const rte_image_u8 *box, const uint8_t *inside, uint8_t *own,
+                                const uint16_t *dist, int32_t cw, int32_t ch);
+
 /* Splits the contours of ctx->contours that may hold touching objects
  * (grasp_split.c), clearing their cut pixels in bin, then finds the
  * contours again when any was cut; adds the parts gained to *parts. */
-rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, rte_image_u8 *bin, int32_t *parts);
+rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, const rte_image_u8 *grey, rte_image_u8 *bin,
+                                    int32_t *parts);
 
 /* Integer checks of run-time parameters against a configuration. */
 rte_status rte_grasp_check_params(const rte_grasp_config *config, const rte_grasp_params *params);

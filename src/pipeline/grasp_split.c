@@ -145,8 +145,8 @@ static bool parts_alike(const uint8_t *px, int32_t w, int32_t h, int64_t min_are
  * reaching into the box are left alone), their chamfer distance, the split;
  * the cut pixels are cleared in bin. Adds the parts beyond the first to
  * *parts. */
-static rte_status split_contour(rte_grasp_ctx *ctx, rte_image_u8 *bin, const rte_point *pts,
-                                int32_t n, int32_t *parts)
+static rte_status split_contour(rte_grasp_ctx *ctx, const rte_image_u8 *grey, rte_image_u8 *bin,
+                                const rte_point *pts, int32_t n, int32_t *parts)
 {
     const rte_rect r = rte_shape_bounding_rect(pts, n);
     const int32_t x0 = r.x > 0 ? r.x - 1 : 0, y0 = r.y > 0 ? r.y - 1 : 0;
@@ -183,9 +183,17 @@ static rte_status split_contour(rte_grasp_ctx *ctx, rte_image_u8 *bin, const rte
     rte_split_result sr = {0};
     if (st == RTE_OK)
         st = rte_split_u8(&part, &dist, &part, &sp, &ctx->arena, &sr);
+    /* the parts are told by the distance, their cut then placed by the
+     * grey (the parts may change size: told again) */
+    const rte_image_u8 grey_box = {cw, ch, grey->stride, (uint8_t *)rte_u8_row(grey, y0) + x0};
     int32_t objects = 0;
-    if (st == RTE_OK && sr.cut_pixels > 0 &&
-        parts_alike(own, cw, ch, ctx->params.min_area, runs, &objects)) {
+    bool keep = st == RTE_OK && sr.cut_pixels > 0 &&
+                parts_alike(own, cw, ch, ctx->params.min_area, runs, &objects);
+    if (keep) {
+        st = rte_grasp_refine_cut(ctx, &grey_box, &box, inside, own, ctx->distance, cw, ch);
+        keep = st == RTE_OK && parts_alike(own, cw, ch, ctx->params.min_area, runs, &objects);
+    }
+    if (keep) {
         /* inside the contour, bin becomes the split part */
         for (int32_t y = 0; y < ch; y++) {
             uint8_t *b = rte_u8_row(&box, y);
@@ -199,7 +207,8 @@ static rte_status split_contour(rte_grasp_ctx *ctx, rte_image_u8 *bin, const rte
     return st;
 }
 
-rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, rte_image_u8 *bin, int32_t *parts)
+rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, const rte_image_u8 *grey, rte_image_u8 *bin,
+                                    int32_t *parts)
 {
     const rte_contours *cs = &ctx->contours;
     const int64_t min2 = 2 * (int64_t)ctx->params.min_area;
@@ -214,7 +223,7 @@ rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, rte_image_u8 *bin, int32
         if (a2 >= 2 * min2 && a2 > 0)
             st = needs_split(ctx, pts, c->count, a2, bin->width, bin->height, &split);
         if (st == RTE_OK && split)
-            st = split_contour(ctx, bin, pts, c->count, parts);
+            st = split_contour(ctx, grey, bin, pts, c->count, parts);
     }
     if (st == RTE_OK && *parts > before)
         st = rte_contours_find(bin, RTE_CONTOURS_EXTERNAL, RTE_CONTOURS_APPROX_SIMPLE,

@@ -364,6 +364,40 @@ static void touching_objects_split(void **state)
     test_free(one.buf);
 }
 
+/* The cut between touching objects runs along the grey edge between them:
+ * a light disc and a dark one with the dark shadow of the crevice between
+ * them, which widens the neck. The distance alone cuts in the shadow's
+ * middle and gives the light disc half of it; the cut goes to the light
+ * disc's outline, and the shadow, as dark as the dark disc, goes with it. */
+static void cut_follows_the_grey_edge(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 240;
+    rte_grasp_ctx *ctx = default_ctx(w, h);
+    rte_image_u8 img = unit_image_u8(w, h, 1, 220);
+    const rte_vertex crevice[4] = {{166, 134}, {187, 134}, {187, 166}, {166, 166}};
+    truth light, dark, shadow;
+    fill_polygon(&img, crevice, 4, 50, &shadow);
+    fill_disc(&img, 150, 150, 26, 110, &light); /* the distance alone: 2.9 px off */
+    fill_disc(&img, 203, 150, 26, 30, &dark);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 2);
+    assert_int_equal(r.split_parts, 1);
+    const rte_grasp_object *a = &r.objects[0], *b = &r.objects[1];
+    if (a->x_q8 > b->x_q8) {
+        a = &r.objects[1];
+        b = &r.objects[0];
+    }
+    const double ex = a->x_q8 / 256.0 - light.cx, ey = a->y_q8 / 256.0 - light.cy;
+    print_message("cut: the light disc's centre %.2f px off, the dark one's at %.1f,%.1f\n",
+                  sqrt(ex * ex + ey * ey), b->x_q8 / 256.0, b->y_q8 / 256.0);
+    assert_true(sqrt(ex * ex + ey * ey) < 0.5);
+    assert_true(b->x_q8 / 256.0 < dark.cx); /* the shadow is the dark disc's */
+    rte_grasp_destroy(ctx);
+    test_free(img.buf);
+}
+
 /* Two squares sharing an edge are one blob: one object, no phantom. */
 static void touching_objects_merge(void **state)
 {
@@ -785,19 +819,13 @@ static void caller_memory(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(synthetic_scenes),
-        cmocka_unit_test(canny_close_scenes),
-        cmocka_unit_test(touching_objects_merge),
-        cmocka_unit_test(vignetted_scenes),
-        cmocka_unit_test(touching_objects_split),
-        cmocka_unit_test(border_and_area_filters),
-        cmocka_unit_test(object_bound),
-        cmocka_unit_test(sizes_and_errors),
-        cmocka_unit_test(contour_bound),
-        cmocka_unit_test(caller_memory),
-        cmocka_unit_test(workspace),
-        cmocka_unit_test(colour_contrast),
-        cmocka_unit_test(cast_shadow_leaves_the_grasp),
+        cmocka_unit_test(synthetic_scenes),        cmocka_unit_test(canny_close_scenes),
+        cmocka_unit_test(touching_objects_merge),  cmocka_unit_test(vignetted_scenes),
+        cmocka_unit_test(touching_objects_split),  cmocka_unit_test(cut_follows_the_grey_edge),
+        cmocka_unit_test(border_and_area_filters), cmocka_unit_test(object_bound),
+        cmocka_unit_test(sizes_and_errors),        cmocka_unit_test(contour_bound),
+        cmocka_unit_test(caller_memory),           cmocka_unit_test(workspace),
+        cmocka_unit_test(colour_contrast),         cmocka_unit_test(cast_shadow_leaves_the_grasp),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
