@@ -1,5 +1,6 @@
 #include "cli_pipeline.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +28,7 @@ void cli_pipeline_defaults(cli_pipeline_options *o, int blur, int min_area, bool
         .close = c.close_ksize,
         .close_iterations = c.close_iterations,
         .contrast = c.params.contrast,
+        .edge_support = c.params.edge_support_permille / 1000.0,
         .skip_border = !tutorial && c.params.skip_border,
         .split = !tutorial && c.params.split,
         .gripper_min = c.params.gripper_min_px,
@@ -145,6 +147,16 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
                           "background: grey only (colour differences from the table are not "
                           "contrast, cast shadows are not told apart)",
                           NULL};
+    t[n++] = (cli_option){"edge-support",
+                          CLI_DOUBLE,
+                          &o->edge_support,
+                          0,
+                          1,
+                          NULL,
+                          "background: the least share of an object's outline beside the "
+                          "table on an edge (a step of a fifth of --contrast); less is a "
+                          "threshold across a smooth ramp, dropped (0: off)",
+                          NULL};
     t[n++] = (cli_option){"polarity",
                           CLI_CHOICE,
                           &o->polarity,
@@ -230,6 +242,7 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     p->split = o->split && !o->no_split;
     p->contrast = o->contrast;
     p->chroma = !o->no_chroma;
+    p->edge_support_permille = (int32_t)lround(o->edge_support * 1000);
     p->max_objects = o->max_objects;
     if (o->gripper_min > o->gripper_max) {
         cli_error(command, "--gripper-min (%d) exceeds --gripper-max (%d)", o->gripper_min,

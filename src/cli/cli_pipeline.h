@@ -17,6 +17,7 @@ typedef struct cli_pipeline_options {
     int blur, min_area, max_area, max_objects, canny_low, canny_high, close, close_iterations;
     int contrast;
     bool no_chroma;
+    double edge_support;
     bool skip_border, keep_border, split, no_split;
     const char *roi; /* the workspace, "x,y;..." fractions; NULL: the whole image */
     int gripper_min, gripper_max, margin, finger; /* px: rte_grasp_params */

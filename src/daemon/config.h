@@ -60,6 +60,7 @@ typedef struct rted_config {
     int32_t grasp_binarize, grasp_threshold, grasp_polarity, grasp_contrast, grasp_background_cell;
     int32_t grasp_min_area, grasp_max_area;
     bool grasp_skip_border, grasp_split, grasp_chroma;
+    double grasp_edge_support;
     char grasp_roi[RTED_TEXT]; /* "": the whole frame */
     int32_t grasp_gripper_min_px, grasp_gripper_max_px, grasp_margin_px, grasp_finger_px;
     /* [publish] */

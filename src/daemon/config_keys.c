@@ -158,6 +158,11 @@ static const key_def keys[] = {
          "object as grey as the table but of another colour is found), and a\n"
          "dark object's cast shadow (the table dimmed, its colour kept) is\n"
          "dropped"),
+    REAL("grasp", "edge_support", grasp_edge_support, "share", 0, 1, true, "0.75",
+         "binarize = background: the least share of an object's outline beside\n"
+         "the table that steps from it by a fifth of contrast or more; less is a\n"
+         "threshold across a smooth ramp (a shaded box crossing the table's\n"
+         "grey, a soft shadow's rim), dropped; 0: off"),
     INT("grasp", "threshold", grasp_threshold, "grey level", 0, 255, true, "128",
         "binarize = fixed"),
     ENUM("grasp", "polarity", grasp_polarity, polarities, true, "auto",

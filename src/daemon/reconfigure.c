@@ -58,6 +58,7 @@ void rted_grasp_params(const rted_config *c, rte_grasp_params *p)
     p->contrast = c->grasp_contrast;
     p->background_cell = c->grasp_background_cell;
     p->chroma = c->grasp_chroma;
+    p->edge_support_permille = (int32_t)lround(c->grasp_edge_support * 1000);
     p->min_area = c->grasp_min_area;
     p->max_area = c->grasp_max_area;
     p->skip_border = c->grasp_skip_border;

@@ -27,7 +27,8 @@ rte_status rte_grasp_check_params(const rte_grasp_config *c, const rte_grasp_par
                                      p->background_cell <= RTE_BACKGROUND_MAX_CELL)) &&
         p->min_area >= 0 && p->max_area >= 0 && (p->skip_border == 0 || p->skip_border == 1) &&
         (p->split == 0 || p->split == 1) && (p->chroma == 0 || p->chroma == 1) &&
-        p->max_objects >= 1 && p->max_objects <= c->max_objects &&
+        p->edge_support_permille >= 0 && p->edge_support_permille <= 1000 && p->max_objects >= 1 &&
+        p->max_objects <= c->max_objects &&
         (p->roi_count == 0 || (p->roi_count >= 3 && p->roi_count <= RTE_GRASP_MAX_ROI_VERTICES)) &&
         p->gripper_min_px >= 0 && p->gripper_min_px <= p->gripper_max_px &&
         p->gripper_max_px <= RTE_GRASP_MAX_OPENING_PX && p->margin_px >= 0 &&
@@ -248,6 +249,27 @@ static bool touches_border(const rte_grasp_ctx *ctx, const rte_point *pts, int32
     return false;
 }
 
+/* Whether contour pts is an object: its area within min_area..max_area
+ * (*area2: twice it), clear of the border (skip_border) and, where objects
+ * are told from the table (background mode), its outline on an edge in
+ * the thresholded image, at a fifth of the least contrast (a just visible
+ * object's step, blurred, is about a third of it). */
+static bool is_object(const rte_grasp_ctx *ctx, const rte_image_u8 *bin,
+                      const rte_image_u8 *thresholded, const rte_point *pts, int32_t n,
+                      int64_t *area2)
+{
+    const rte_grasp_params *p = &ctx->params;
+    const int64_t a2 = rte_shape_area2(pts, n);
+    *area2 = a2 < 0 ? -a2 : a2;
+    if (*area2 < 2 * (int64_t)p->min_area || (p->max_area > 0 && *area2 > 2 * (int64_t)p->max_area))
+        return false;
+    if (p->skip_border && touches_border(ctx, pts, n, bin->width, bin->height))
+        return false;
+    const int32_t step = p->contrast / 5 > 1 ? p->contrast / 5 : 1;
+    return p->binarize != RTE_GRASP_BACKGROUND || p->edge_support_permille == 0 ||
+           rte_grasp_outline_on_edges(thresholded, bin, pts, n, step) >= p->edge_support_permille;
+}
+
 /* Whether candidate a goes before b: a better score, or an equal score
  * and a larger area (equal both: contour order, the earlier first). */
 static bool before(const grasp_candidate *a, const grasp_candidate *b)
@@ -455,16 +477,15 @@ rte_status rte_grasp_process_chroma(rte_grasp_ctx *ctx, const rte_image_u8 *gray
 
     /* filters, a grasp and a score each, then the best max_objects */
     const rte_contours *cs = &ctx->contours;
-    const int64_t min2 = 2 * (int64_t)p->min_area, max2 = 2 * (int64_t)p->max_area;
+    rte_image_u8 tinted = sub(&ctx->tinted, w, h);
+    const rte_image_u8 *thresholded =
+        p->binarize == RTE_GRASP_BACKGROUND && cb && p->chroma ? &tinted : src;
     int32_t n_best = 0, dropped = 0;
     for (int32_t i = 0; i < cs->n_contours && st == RTE_OK; i++) {
         const rte_contour *c = &cs->contours[i];
         const rte_point *pts = cs->points + c->offset;
-        int64_t a2 = rte_shape_area2(pts, c->count);
-        a2 = a2 < 0 ? -a2 : a2;
-        if (a2 < min2 || (max2 > 0 && a2 > max2))
-            continue;
-        if (p->skip_border && touches_border(ctx, pts, c->count, w, h))
+        int64_t a2 = 0;
+        if (!is_object(ctx, &bin, thresholded, pts, c->count, &a2))
             continue;
         grasp_candidate g = {.area2 = a2, .contour = i};
         st = grasp_of(ctx, &bin, pts, c->count, &g);

@@ -33,6 +33,7 @@ void rte_grasp_config_default(rte_grasp_config *config)
                 .contrast = 20,
                 .background_cell = 0,
                 .chroma = 1,
+                .edge_support_permille = 750,
                 .min_area = 100,
                 .max_area = 0,
                 .skip_border = 1,

@@ -398,6 +398,43 @@ static void cut_follows_the_grey_edge(void **state)
     test_free(img.buf);
 }
 
+/* A box shaded from dark to light across the table's grey: the threshold
+ * cuts it where it matches the table and leaves two pieces whose outline
+ * runs, on one side, across the smooth ramp: not on an edge, so they are
+ * dropped; a disc beside it, all edge, is kept. Without the edge test the
+ * pieces are objects. */
+static void outlines_off_the_edges_are_dropped(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 240;
+    rte_grasp_ctx *ctx = default_ctx(w, h);
+    rte_image_u8 img = unit_image_u8(w, h, 1, 128);
+    for (int y = 60; y < 180; y++)
+        for (int x = 30; x < 130; x++) /* 20 .. 236, 2.2 levels a pixel */
+            img.buf[(size_t)y * img.stride + x] = (uint8_t)(20 + (x - 30) * 216 / 99);
+    truth disc;
+    fill_disc(&img, 240, 120, 20, 40, &disc);
+    rte_grasp_result r;
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 1);
+    assert_int_equal(r.objects[0].x_q8, 240 * 256);
+    assert_int_equal(r.objects[0].y_q8, 120 * 256);
+
+    rte_grasp_params p;
+    assert_int_equal(rte_grasp_get_params(ctx, &p), RTE_OK);
+    assert_int_equal(p.edge_support_permille, 750);
+    p.edge_support_permille = 0;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_OK);
+    assert_int_equal(rte_grasp_process(ctx, &img, &r), RTE_OK);
+    assert_int_equal(r.n_objects, 3); /* the disc and the box's two ends */
+    p.edge_support_permille = 1001;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    p.edge_support_permille = -1;
+    assert_int_equal(rte_grasp_set_params(ctx, &p), RTE_ERR_ARGUMENT);
+    rte_grasp_destroy(ctx);
+    test_free(img.buf);
+}
+
 /* Two squares sharing an edge are one blob: one object, no phantom. */
 static void touching_objects_merge(void **state)
 {
@@ -819,13 +856,21 @@ static void caller_memory(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(synthetic_scenes),        cmocka_unit_test(canny_close_scenes),
-        cmocka_unit_test(touching_objects_merge),  cmocka_unit_test(vignetted_scenes),
-        cmocka_unit_test(touching_objects_split),  cmocka_unit_test(cut_follows_the_grey_edge),
-        cmocka_unit_test(border_and_area_filters), cmocka_unit_test(object_bound),
-        cmocka_unit_test(sizes_and_errors),        cmocka_unit_test(contour_bound),
-        cmocka_unit_test(caller_memory),           cmocka_unit_test(workspace),
-        cmocka_unit_test(colour_contrast),         cmocka_unit_test(cast_shadow_leaves_the_grasp),
+        cmocka_unit_test(synthetic_scenes),
+        cmocka_unit_test(canny_close_scenes),
+        cmocka_unit_test(touching_objects_merge),
+        cmocka_unit_test(vignetted_scenes),
+        cmocka_unit_test(touching_objects_split),
+        cmocka_unit_test(cut_follows_the_grey_edge),
+        cmocka_unit_test(border_and_area_filters),
+        cmocka_unit_test(object_bound),
+        cmocka_unit_test(sizes_and_errors),
+        cmocka_unit_test(contour_bound),
+        cmocka_unit_test(caller_memory),
+        cmocka_unit_test(workspace),
+        cmocka_unit_test(colour_contrast),
+        cmocka_unit_test(cast_shadow_leaves_the_grasp),
+        cmocka_unit_test(outlines_off_the_edges_are_dropped),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
