@@ -55,6 +55,10 @@ typedef enum rte_grasp_polarity {
  * the last). */
 #define RTE_GRASP_MAX_SPLIT_PARTS 64
 
+/* Bounds of rte_grasp_config's contour store. */
+#define RTE_GRASP_MAX_CONTOURS (1 << 20)
+#define RTE_GRASP_MAX_POINTS (1 << 26)
+
 /* Safe to change at run time (rte_grasp_set_params). */
 #define RTE_GRASP_MAX_ROI_VERTICES 8
 #define RTE_GRASP_MAX_OPENING_PX 65535  /* gripper_max_px */
@@ -109,8 +113,8 @@ typedef struct rte_grasp_params {
 
 typedef struct rte_grasp_config {
     int32_t max_width, max_height; /* 1..RTE_SHAPE_MAX_COORD + 1 */
-    int32_t max_contours;          /* contours stored per frame (then truncated) */
-    int32_t max_points;            /* contour points stored per frame */
+    int32_t max_contours;          /* per frame, 1..RTE_GRASP_MAX_CONTOURS (then truncated) */
+    int32_t max_points;            /* contour points per frame, 1..RTE_GRASP_MAX_POINTS */
     int32_t max_objects;           /* capacity of the object list */
     int32_t blur_ksize;            /* odd 1..15; 1 = no blur (sigma from the size) */
     int32_t close_ksize;           /* ellipse of the canny-close mode, odd 1..31 */

@@ -226,9 +226,12 @@ int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int3
     }
     c->max_width = w;
     c->max_height = h;
-    /* room for every contour and point the image can hold */
-    c->max_contours = (int32_t)(((int64_t)w * h) / 2 + 1);
-    c->max_points = (int32_t)(2 * (int64_t)w * h + 4);
+    /* room for every contour and point the image can hold, up to the
+     * library's bounds (beyond them the result says truncated) */
+    const int64_t contours = (int64_t)w * h / 2 + 1, points = 2 * (int64_t)w * h + 4;
+    c->max_contours =
+        (int32_t)(contours < RTE_GRASP_MAX_CONTOURS ? contours : RTE_GRASP_MAX_CONTOURS);
+    c->max_points = (int32_t)(points < RTE_GRASP_MAX_POINTS ? points : RTE_GRASP_MAX_POINTS);
     c->max_objects = o->max_objects;
     c->blur_ksize = o->blur;
     c->close_ksize = o->close;

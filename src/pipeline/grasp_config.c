@@ -51,10 +51,10 @@ static int config_ok(const rte_grasp_config *c)
 {
     return c && c->max_width >= 1 && c->max_width <= RTE_SHAPE_MAX_COORD + 1 &&
            c->max_height >= 1 && c->max_height <= RTE_SHAPE_MAX_COORD + 1 && c->max_contours >= 1 &&
-           c->max_contours <= (1 << 20) && c->max_points >= 1 && c->max_points <= (1 << 26) &&
-           c->max_objects >= 1 && c->max_objects <= 4096 && c->blur_ksize >= 1 &&
-           c->blur_ksize <= RTE_GAUSSIAN_MAX_KSIZE && (c->blur_ksize & 1) && c->close_ksize >= 1 &&
-           c->close_ksize <= RTE_MORPH_MAX_KSIZE && (c->close_ksize & 1) &&
+           c->max_contours <= RTE_GRASP_MAX_CONTOURS && c->max_points >= 1 &&
+           c->max_points <= RTE_GRASP_MAX_POINTS && c->max_objects >= 1 && c->max_objects <= 4096 &&
+           c->blur_ksize >= 1 && c->blur_ksize <= RTE_GAUSSIAN_MAX_KSIZE && (c->blur_ksize & 1) &&
+           c->close_ksize >= 1 && c->close_ksize <= RTE_MORPH_MAX_KSIZE && (c->close_ksize & 1) &&
            c->close_iterations >= 1 && c->close_iterations <= 8 &&
            rte_grasp_check_params(c, &c->params) == RTE_OK;
 }

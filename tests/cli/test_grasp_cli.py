@@ -192,11 +192,28 @@ def grasp_json():
               f"grasp --gripper-max 100: the wide rectangle {wide} among the last")
     for bad in (["--binarize", "foo"], ["--binarize", "300"], ["--blur", "4"], ["--polarity", "up"],
                 ["--roi", "0.5,0;1,0"], ["--roi", "a,b;c,d;e,f"], ["--gripper-min", "90", "--gripper-max", "80"],
-                ["--margin", "-1"], ["--finger", "5000"]):
+                ["--margin", "-1"], ["--finger", "5000"], ["--edge-support", "1.5"]):
         r = run("grasp", os.path.join(OBJECTS, "pic1.png"), *bad)
         check(r.returncode == 2, f"grasp {bad}: exit {r.returncode}, expected 2")
     r = run("grasp", "/nonexistent.png")
     check(r.returncode == 3, f"missing input: exit {r.returncode}")
+
+
+def large_image():
+    """A photo taken at 1920x1440 (the smarties enlarged): more possible
+    contours than the library stores (w h / 2), so the command runs with
+    the library's bounds and all the sweets are still found."""
+    src = cv2.imread(os.path.join(OBJECTS, "smarties.png"))
+    with tempfile.TemporaryDirectory() as tmp:
+        big = os.path.join(tmp, "big.png")
+        cv2.imwrite(big, cv2.resize(src, (1920, 1440), interpolation=cv2.INTER_CUBIC))
+        for cmd in ("contours", "shapes", "grasp"):
+            r = run(cmd, big)
+            check(r.returncode == 0, f"{cmd} 1920x1440: exit {r.returncode} {r.stderr}")
+        r = run("grasp", big)
+        if r.returncode == 0:
+            n = len(json.loads(r.stdout)["objects"])
+            check(n == 10, f"grasp 1920x1440: {n} objects, expected the 10 whole sweets")
 
 
 def contours_vs_opencv():
@@ -276,6 +293,7 @@ def main():
         return 77
     objects_photos()
     grasp_json()
+    large_image()
     contours_vs_opencv()
     return tally.finish("grasp cli")
 
