@@ -89,11 +89,11 @@ typedef struct rte_grasp_params {
                               * frame, by the chamfer distance of their own pixels */
     int32_t max_objects;     /* 1..config.max_objects: objects reported (best scores) */
     /* RTE_GRASP_BACKGROUND: 0..1000, 0 = off. An object's outline lies on an
-     * edge: one whose pixels beside the table step from a table neighbour
-     * by a fifth of `contrast` or more (in the thresholded image) on less
-     * than this share (per mille) is a threshold across a smooth ramp (a
-     * shaded box crossing the table's grey, a soft shadow's rim) and is
-     * dropped. */
+     * edge: one whose pixels beside the table step by a fifth of `contrast`
+     * or more (in the thresholded image, to the table pixel one per 640 px
+     * of the frame's width away) on less than this share (per mille) is a
+     * threshold across a smooth ramp (a shaded box crossing the table's
+     * grey, a soft shadow's rim) and is dropped. */
     int32_t edge_support_permille;
     /* The workspace: a polygon in fractions of width and height (Q16, as
      * rte_polygon_from_fractions takes them), 3..RTE_GRASP_MAX_ROI_VERTICES

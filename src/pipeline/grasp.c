@@ -252,8 +252,9 @@ static bool touches_border(const rte_grasp_ctx *ctx, const rte_point *pts, int32
 /* Whether contour pts is an object: its area within min_area..max_area
  * (*area2: twice it), clear of the border (skip_border) and, where objects
  * are told from the table (background mode), its outline on an edge in
- * the thresholded image, at a fifth of the least contrast (a just visible
- * object's step, blurred, is about a third of it). */
+ * the thresholded image: a step of a fifth of the least contrast (a just
+ * visible object's step, blurred, is about a third of it) over a pixel
+ * for each 640 of the frame's width (its edges spread with its size). */
 static bool is_object(const rte_grasp_ctx *ctx, const rte_image_u8 *bin,
                       const rte_image_u8 *thresholded, const rte_point *pts, int32_t n,
                       int64_t *area2)
@@ -266,8 +267,10 @@ static bool is_object(const rte_grasp_ctx *ctx, const rte_image_u8 *bin,
     if (p->skip_border && touches_border(ctx, pts, n, bin->width, bin->height))
         return false;
     const int32_t step = p->contrast / 5 > 1 ? p->contrast / 5 : 1;
+    const int32_t reach = (bin->width + 320) / 640 > 1 ? (bin->width + 320) / 640 : 1;
     return p->binarize != RTE_GRASP_BACKGROUND || p->edge_support_permille == 0 ||
-           rte_grasp_outline_on_edges(thresholded, bin, pts, n, step) >= p->edge_support_permille;
+           rte_grasp_outline_on_edges(thresholded, bin, pts, n, step, reach) >=
+               p->edge_support_permille;
 }
 
 /* Whether candidate a goes before b: a better score, or an equal score

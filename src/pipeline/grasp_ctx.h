@@ -60,11 +60,12 @@ rte_status rte_grasp_refine_cut(rte_grasp_ctx *ctx, const rte_image_u8 *grey,
                                 const uint16_t *dist, int32_t cw, int32_t ch);
 
 /* The share (per mille) of an outline's pixels (pts[0..n), a contour of
- * bin, CHAIN_APPROX_SIMPLE) beside the table that differ from a table
- * 4-neighbour by `step` or more in img, the image bin was thresholded
- * from (grasp_outline.c); 1000 when none is beside the table. */
+ * bin, CHAIN_APPROX_SIMPLE) beside the table that differ by `step` or more
+ * in img (the image bin was thresholded from) from the table `reach`
+ * pixels away along one of the 4 axis directions (grasp_outline.c); 1000
+ * when none is beside the table. */
 int32_t rte_grasp_outline_on_edges(const rte_image_u8 *img, const rte_image_u8 *bin,
-                                   const rte_point *pts, int32_t n, int32_t step);
+                                   const rte_point *pts, int32_t n, int32_t step, int32_t reach);
 
 /* Splits the contours of ctx->contours that may hold touching objects
  * (grasp_split.c), clearing their cut pixels in bin, then finds the

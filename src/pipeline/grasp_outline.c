@@ -4,29 +4,38 @@
  * An object's outline lies on an edge: across it the image steps from the
  * object to the table. Where a threshold cuts a smooth ramp instead (a box
  * shaded across the table's grey, a soft shadow's penumbra, a lit patch
- * of the table) the outline runs where neighbouring pixels differ by a
- * grey level or two, and the piece it bounds is no object. */
+ * of the table) the outline runs where the grey changes by a level or two
+ * a pixel, and the piece it bounds is no object. The step is taken over
+ * `reach` pixels, which grows with the frame: an edge (and a ramp) spreads
+ * over more pixels of a larger frame of the same scene. */
 #include <stdint.h>
 
 #include "grasp_ctx.h"
 
-/* Whether bin holds an object pixel one or two steps beyond (x, y) along
- * (dx, dy): the background pixel there is then a split's cut or a crack
- * between objects, not the table. */
-static bool object_beyond(const rte_image_u8 *bin, int32_t x, int32_t y, int32_t dx, int32_t dy)
+/* The grey step from outline pixel (x, y) to the table `reach` pixels
+ * away along (dx, dy) (or as far as the frame goes), -1 when the pixel
+ * next to it is no table, or an object pixel lies within reach + 2 (a
+ * split's cut or a crack between objects, not the table). */
+static int32_t step_to_table(const rte_image_u8 *img, const rte_image_u8 *bin, int32_t x, int32_t y,
+                             int32_t dx, int32_t dy, int32_t reach)
 {
-    for (int32_t k = 1; k <= 2; k++) {
-        const int32_t bx = x + k * dx, by = y + k * dy;
-        if (bx < 0 || by < 0 || bx >= bin->width || by >= bin->height)
-            return false;
-        if (rte_u8_row(bin, by)[bx])
-            return true;
+    int32_t far = 0;
+    for (int32_t k = 1; k <= reach + 2; k++) {
+        const int32_t tx = x + k * dx, ty = y + k * dy;
+        if (tx < 0 || ty < 0 || tx >= img->width || ty >= img->height)
+            break;
+        if (rte_u8_row(bin, ty)[tx])
+            return -1;
+        far = k <= reach ? k : far;
     }
-    return false;
+    if (!far)
+        return -1;
+    const int32_t d = rte_u8_row(img, y + far * dy)[x + far * dx] - rte_u8_row(img, y)[x];
+    return d < 0 ? -d : d;
 }
 
 int32_t rte_grasp_outline_on_edges(const rte_image_u8 *img, const rte_image_u8 *bin,
-                                   const rte_point *pts, int32_t n, int32_t step)
+                                   const rte_point *pts, int32_t n, int32_t step, int32_t reach)
 {
     static const int8_t dx4[4] = {1, -1, 0, 0}, dy4[4] = {0, 0, 1, -1};
     int64_t counted = 0, on_edge = 0;
@@ -36,15 +45,10 @@ int32_t rte_grasp_outline_on_edges(const rte_image_u8 *img, const rte_image_u8 *
         const rte_point a = pts[i], b = pts[i + 1 < n ? i + 1 : 0];
         const int32_t sx = (b.x > a.x) - (b.x < a.x), sy = (b.y > a.y) - (b.y < a.y);
         for (rte_point q = a;; q.x += sx, q.y += sy) {
-            const int32_t g = rte_u8_row(img, q.y)[q.x];
             int32_t most = -1;
             for (int32_t d = 0; d < 4; d++) {
-                const int32_t x = q.x + dx4[d], y = q.y + dy4[d];
-                if (x < 0 || y < 0 || x >= img->width || y >= img->height ||
-                    rte_u8_row(bin, y)[x] || object_beyond(bin, x, y, dx4[d], dy4[d]))
-                    continue;
-                const int32_t diff = rte_u8_row(img, y)[x] - g, ad = diff < 0 ? -diff : diff;
-                most = ad > most ? ad : most;
+                const int32_t s = step_to_table(img, bin, q.x, q.y, dx4[d], dy4[d], reach);
+                most = s > most ? s : most;
             }
             counted += most >= 0;
             on_edge += most >= step;
