@@ -249,6 +249,21 @@ static bool touches_border(const rte_grasp_ctx *ctx, const rte_point *pts, int32
     return false;
 }
 
+/* What the edge test reads (background mode): the image that was
+ * thresholded (the grey with colour as contrast, or the grey), the table's
+ * estimate, the threshold. */
+static grasp_outline_images outline_images(rte_grasp_ctx *ctx, const rte_image_u8 *bin,
+                                           const rte_image_u8 *grey, bool colour, int32_t threshold)
+{
+    const int32_t w = bin->width, h = bin->height;
+    return (grasp_outline_images){
+        .bin = *bin,
+        .img = colour && ctx->params.chroma ? sub(&ctx->tinted, w, h) : *grey,
+        .table = sub(&ctx->edges, w, h),
+        .threshold = threshold,
+    };
+}
+
 /* Whether contour pts is an object: its area within min_area..max_area
  * (*area2: twice it), clear of the border (skip_border) and, where objects
  * are told from the table (background mode), its outline on an edge in
@@ -256,7 +271,7 @@ static bool touches_border(const rte_grasp_ctx *ctx, const rte_point *pts, int32
  * visible object's step, blurred, is about a third of it) over a pixel
  * for each 640 of the frame's width (its edges spread with its size). */
 static bool is_object(const rte_grasp_ctx *ctx, const rte_image_u8 *bin,
-                      const rte_image_u8 *thresholded, const rte_point *pts, int32_t n,
+                      const grasp_outline_images *edges, const rte_point *pts, int32_t n,
                       int64_t *area2)
 {
     const rte_grasp_params *p = &ctx->params;
@@ -269,8 +284,7 @@ static bool is_object(const rte_grasp_ctx *ctx, const rte_image_u8 *bin,
     const int32_t step = p->contrast / 5 > 1 ? p->contrast / 5 : 1;
     const int32_t reach = (bin->width + 320) / 640 > 1 ? (bin->width + 320) / 640 : 1;
     return p->binarize != RTE_GRASP_BACKGROUND || p->edge_support_permille == 0 ||
-           rte_grasp_outline_on_edges(thresholded, bin, pts, n, step, reach) >=
-               p->edge_support_permille;
+           rte_grasp_outline_on_edges(edges, pts, n, step, reach) >= p->edge_support_permille;
 }
 
 /* Whether candidate a goes before b: a better score, or an equal score
@@ -480,15 +494,13 @@ rte_status rte_grasp_process_chroma(rte_grasp_ctx *ctx, const rte_image_u8 *gray
 
     /* filters, a grasp and a score each, then the best max_objects */
     const rte_contours *cs = &ctx->contours;
-    rte_image_u8 tinted = sub(&ctx->tinted, w, h);
-    const rte_image_u8 *thresholded =
-        p->binarize == RTE_GRASP_BACKGROUND && cb && p->chroma ? &tinted : src;
+    const grasp_outline_images edges = outline_images(ctx, &bin, src, cb != NULL, out->threshold);
     int32_t n_best = 0, dropped = 0;
     for (int32_t i = 0; i < cs->n_contours && st == RTE_OK; i++) {
         const rte_contour *c = &cs->contours[i];
         const rte_point *pts = cs->points + c->offset;
         int64_t a2 = 0;
-        if (!is_object(ctx, &bin, thresholded, pts, c->count, &a2))
+        if (!is_object(ctx, &bin, &edges, pts, c->count, &a2))
             continue;
         grasp_candidate g = {.area2 = a2, .contour = i};
         st = grasp_of(ctx, &bin, pts, c->count, &g);

@@ -59,13 +59,20 @@ rte_status rte_grasp_refine_cut(rte_grasp_ctx *ctx, const rte_image_u8 *grey,
                                 const rte_image_u8 *box, const uint8_t *inside, uint8_t *own,
                                 const uint16_t *dist, int32_t cw, int32_t ch);
 
+/* What the edge test of an outline reads: the binary image, the image it
+ * was thresholded from, the table's estimate and the threshold of
+ * |img - table|. */
+typedef struct grasp_outline_images {
+    rte_image_u8 bin, img, table;
+    int32_t threshold;
+} grasp_outline_images;
+
 /* The share (per mille) of an outline's pixels (pts[0..n), a contour of
  * bin, CHAIN_APPROX_SIMPLE) beside the table that differ by `step` or more
- * in img (the image bin was thresholded from) from the table `reach`
- * pixels away along one of the 4 axis directions (grasp_outline.c); 1000
- * when none is beside the table. */
-int32_t rte_grasp_outline_on_edges(const rte_image_u8 *img, const rte_image_u8 *bin,
-                                   const rte_point *pts, int32_t n, int32_t step, int32_t reach);
+ * in img from the table `reach` pixels away along one of the 4 axis
+ * directions (grasp_outline.c); 1000 when none is beside the table. */
+int32_t rte_grasp_outline_on_edges(const grasp_outline_images *im, const rte_point *pts, int32_t n,
+                                   int32_t step, int32_t reach);
 
 /* Splits the contours of ctx->contours that may hold touching objects
  * (grasp_split.c), clearing their cut pixels in bin, then finds the

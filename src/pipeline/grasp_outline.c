@@ -7,18 +7,28 @@
  * of the table) the outline runs where the grey changes by a level or two
  * a pixel, and the piece it bounds is no object. The step is taken over
  * `reach` pixels, which grows with the frame: an edge (and a ramp) spreads
- * over more pixels of a larger frame of the same scene. */
+ * over more pixels of a larger frame of the same scene. Only the outline
+ * beside the table counts: a background pixel as far from the table's
+ * estimate as the threshold is a dark object's cast shadow, dropped, and
+ * the object's side against it may be as dark as it. */
 #include <stdint.h>
 
 #include "grasp_ctx.h"
 
 /* The grey step from outline pixel (x, y) to the table `reach` pixels
  * away along (dx, dy) (or as far as the frame goes), -1 when the pixel
- * next to it is no table, or an object pixel lies within reach + 2 (a
- * split's cut or a crack between objects, not the table). */
-static int32_t step_to_table(const rte_image_u8 *img, const rte_image_u8 *bin, int32_t x, int32_t y,
-                             int32_t dx, int32_t dy, int32_t reach)
+ * next to it is no table (an object's, or a dropped shadow's), or an
+ * object pixel lies within reach + 2 (a split's cut or a crack between
+ * objects, not the table). */
+static int32_t step_to_table(const grasp_outline_images *im, int32_t x, int32_t y, int32_t dx,
+                             int32_t dy, int32_t reach)
 {
+    const rte_image_u8 *img = &im->img, *bin = &im->bin;
+    if (x + dx >= 0 && y + dy >= 0 && x + dx < img->width && y + dy < img->height) {
+        const int32_t d = rte_u8_row(img, y + dy)[x + dx] - rte_u8_row(&im->table, y + dy)[x + dx];
+        if ((d < 0 ? -d : d) >= im->threshold)
+            return -1;
+    }
     int32_t far = 0;
     for (int32_t k = 1; k <= reach + 2; k++) {
         const int32_t tx = x + k * dx, ty = y + k * dy;
@@ -34,8 +44,8 @@ static int32_t step_to_table(const rte_image_u8 *img, const rte_image_u8 *bin, i
     return d < 0 ? -d : d;
 }
 
-int32_t rte_grasp_outline_on_edges(const rte_image_u8 *img, const rte_image_u8 *bin,
-                                   const rte_point *pts, int32_t n, int32_t step, int32_t reach)
+int32_t rte_grasp_outline_on_edges(const grasp_outline_images *im, const rte_point *pts, int32_t n,
+                                   int32_t step, int32_t reach)
 {
     static const int8_t dx4[4] = {1, -1, 0, 0}, dy4[4] = {0, 0, 1, -1};
     int64_t counted = 0, on_edge = 0;
@@ -47,7 +57,7 @@ int32_t rte_grasp_outline_on_edges(const rte_image_u8 *img, const rte_image_u8 *
         for (rte_point q = a;; q.x += sx, q.y += sy) {
             int32_t most = -1;
             for (int32_t d = 0; d < 4; d++) {
-                const int32_t s = step_to_table(img, bin, q.x, q.y, dx4[d], dy4[d], reach);
+                const int32_t s = step_to_table(im, q.x, q.y, dx4[d], dy4[d], reach);
                 most = s > most ? s : most;
             }
             counted += most >= 0;
