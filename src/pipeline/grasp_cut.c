@@ -68,6 +68,12 @@ static int32_t flood_pop(grey_flood *f)
     return i;
 }
 
+/* The fills' stacks and queues hold a pixel as y << 16 | x (a crop side
+ * is at most RTE_SHAPE_MAX_COORD + 1): no division per pixel. */
+#define PACK(x, y) ((y) << 16 | (x))
+#define PACKED_X(p) ((p)&0xFFFF)
+#define PACKED_Y(p) ((p) >> 16)
+
 /* Labels the 8-connected parts of own (1, 2, ...) in lab, where the
  * object's pixels are LABEL_BAND; stack[] holds the fill. Returns the
  * parts, 0 when more than LABEL_MAX; *band_px: the band's half-width. */
@@ -84,9 +90,11 @@ static int32_t label_parts(const uint8_t *own, const uint16_t *dist, int32_t cw,
                 return 0;
             lab[i] = (uint8_t)++parts;
             int32_t top = 0, peak = 0, area = 0;
-            stack[top++] = i;
+            stack[top++] = PACK(x, y);
             while (top) {
-                const int32_t j = stack[--top], jx = j % cw, jy = j / cw;
+                const int32_t jx = PACKED_X(stack[top - 1]), jy = PACKED_Y(stack[top - 1]);
+                const int32_t j = jy * cw + jx;
+                top--;
                 peak = dist[j] > peak ? dist[j] : peak;
                 area++;
                 for (int32_t ny = jy - 1; ny <= jy + 1; ny++)
@@ -96,7 +104,7 @@ static int32_t label_parts(const uint8_t *own, const uint16_t *dist, int32_t cw,
                             lab[k] != LABEL_BAND)
                             continue;
                         lab[k] = (uint8_t)parts;
-                        stack[top++] = k;
+                        stack[top++] = PACK(nx, ny);
                     }
             }
             if (area >= min_area && peak < least)
@@ -114,13 +122,14 @@ static band_box widen_band(uint8_t *lab, int32_t cw, int32_t ch, int32_t band_px
 {
     band_box b = {cw, ch, -1, -1};
     int32_t end = 0;
-    for (int32_t i = 0; i < cw * ch; i++)
-        if (lab[i] == LABEL_BAND)
-            queue[end++] = i;
+    for (int32_t y = 0; y < ch; y++)
+        for (int32_t x = 0; x < cw; x++)
+            if (lab[y * cw + x] == LABEL_BAND)
+                queue[end++] = PACK(x, y);
     for (int32_t start = 0, step = 0; start < end; step++) {
         const int32_t layer_end = end;
         for (; start < layer_end; start++) {
-            const int32_t j = queue[start], x = j % cw, y = j / cw;
+            const int32_t x = PACKED_X(queue[start]), y = PACKED_Y(queue[start]);
             b = (band_box){x < b.x0 ? x : b.x0, y < b.y0 ? y : b.y0, x > b.x1 ? x : b.x1,
                            y > b.y1 ? y : b.y1};
             for (int32_t ny = y - 1; ny <= y + 1 && step < band_px; ny++)
@@ -129,7 +138,7 @@ static band_box widen_band(uint8_t *lab, int32_t cw, int32_t ch, int32_t band_px
                     if (nx < 0 || ny < 0 || nx >= cw || ny >= ch || !is_part(lab[k]))
                         continue;
                     lab[k] = LABEL_BAND;
-                    queue[end++] = k;
+                    queue[end++] = PACK(nx, ny);
                 }
         }
     }

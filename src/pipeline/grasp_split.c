@@ -139,6 +139,21 @@ static bool parts_alike(const uint8_t *px, int32_t w, int32_t h, int64_t min_are
     return *objects >= 2 && lo * 1000 >= hi * SPLIT_PART_SHARE_PERMILLE;
 }
 
+/* The highest distance in dist. A cut needs two basins each rising
+ * min_dynamic above the level where they meet, at least one pixel (3 in
+ * CHAMFER34's thirds): a thin shape (a lane marking, a crack, a drawn
+ * line) has none, and the split's flood is not run on it. */
+static int32_t highest_distance(const rte_image_u16 *dist)
+{
+    uint16_t most = 0;
+    for (int32_t y = 0; y < dist->height; y++) {
+        const uint16_t *row = dist->buf + (size_t)y * dist->stride;
+        for (int32_t x = 0; x < dist->width; x++)
+            most = row[x] > most ? row[x] : most;
+    }
+    return most;
+}
+
 /* Splits touching objects within one contour (rtedge/split.h): on the
  * contour's bounding box (and a pixel around it), the pixels of bin inside
  * the contour (filled as cv::fillPoly fills it, so that other objects
@@ -181,7 +196,7 @@ static rte_status split_contour(rte_grasp_ctx *ctx, const rte_image_u8 *grey, rt
      * cuts none of the synthetic single shapes, docs/distance.md) */
     sp.min_ratio_permille = 250;
     rte_split_result sr = {0};
-    if (st == RTE_OK)
+    if (st == RTE_OK && highest_distance(&dist) >= sp.min_dynamic + 3)
         st = rte_split_u8(&part, &dist, &part, &sp, &ctx->arena, &sr);
     /* the parts are told by the distance, their cut then placed by the
      * grey (the parts may change size: told again) */
