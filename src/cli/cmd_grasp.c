@@ -1,5 +1,6 @@
 /* The grasp path on an image file: `rtedge grasp` (grasp points as JSON)
  * and `rtedge shapes` (the shape table), both with an optional overlay. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -16,17 +17,92 @@
     "grey -> Gaussian blur -> |grey - table| both ways (background), Otsu, a fixed threshold\n"  \
     "or Canny + close -> external contours -> area and border filters -> features (moments,\n"   \
     "minimum-area box, hull, shape class). grasp: background, border objects dropped;\n"         \
-    "shapes: Otsu, border objects kept (the OpenCV tutorial's shape analysis)."
+    "shapes: Otsu, border objects kept (the OpenCV tutorial's shape analysis). A photo over\n"   \
+    "2048 px a side is reduced by the smallest whole factor that fits (block means;\n"           \
+    "\"reduced\"); options and results are in the photo's pixels."
 
 typedef struct grasp_run {
     const char *name;
     const char *paths[1];
     const char *overlay;
     cli_pipeline_options opts;
-    cli_image in;
+    cli_image in;      /* as read */
+    cli_image reduced; /* in reduced by `reduce` (memory NULL when reduce is 1) */
+    int32_t reduce;
     rte_grasp_ctx *ctx;
     rte_grasp_result result;
 } grasp_run;
+
+/* The largest side the grasp path takes (its fixed-point moments). */
+#define GRASP_MAX_SIDE (RTE_SHAPE_MAX_COORD + 1)
+
+/* The mean of each k x k block of src into dst (src's size / k, the last
+ * partial blocks dropped), for `channels` interleaved channels. */
+static void reduce_plane(const uint8_t *src, size_t src_stride, int32_t w, int32_t h, int32_t k,
+                         int32_t channels, uint8_t *dst, size_t dst_stride)
+{
+    const uint32_t n = (uint32_t)k * (uint32_t)k;
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++)
+            for (int32_t c = 0; c < channels; c++) {
+                uint32_t sum = 0;
+                for (int32_t j = 0; j < k; j++) {
+                    const uint8_t *row = src + (size_t)(y * k + j) * src_stride;
+                    for (int32_t i = 0; i < k; i++)
+                        sum += row[(size_t)(x * k + i) * channels + c];
+                }
+                dst[(size_t)y * dst_stride + (size_t)x * channels + c] =
+                    (uint8_t)((sum + n / 2) / n);
+            }
+}
+
+/* A photo larger than the grasp path takes is reduced by the smallest
+ * whole factor that fits (block means, grey and colour alike); the
+ * results are reported in the photo's pixels. */
+static int reduce_input(grasp_run *run)
+{
+    const int32_t w = run->in.gray.width, h = run->in.gray.height;
+    const int32_t side = w > h ? w : h;
+    run->reduce = (side + GRASP_MAX_SIDE - 1) / GRASP_MAX_SIDE;
+    run->reduced = run->in;
+    run->reduced.memory = NULL;
+    if (run->reduce == 1)
+        return CLI_EXIT_OK;
+    const int32_t k = run->reduce, rw = w / k, rh = h / k;
+    const size_t grey = (size_t)rw * rh, colour = run->in.bgr.buf ? 3 * grey : 0;
+    uint8_t *mem = malloc(grey + colour);
+    if (!mem) {
+        cli_error(run->name, "out of memory reducing %dx%d", w, h);
+        return CLI_EXIT_FAILURE;
+    }
+    run->reduced.memory = mem;
+    run->reduced.gray = (rte_image_u8){rw, rh, rw, mem};
+    reduce_plane(run->in.gray.buf, run->in.gray.stride, rw, rh, k, 1, mem, rw);
+    if (colour) {
+        run->reduced.bgr = (rte_image_u8c3){rw, rh, 3 * rw, mem + grey};
+        reduce_plane(run->in.bgr.buf, run->in.bgr.stride, rw, rh, k, 3, mem + grey, 3 * (size_t)rw);
+    }
+    return CLI_EXIT_OK;
+}
+
+/* The options given in the photo's pixels, in the reduced image's. */
+static void reduce_params(rte_grasp_params *p, int32_t k)
+{
+    const int32_t k2 = k * k;
+    p->min_area = (p->min_area + k2 / 2) / k2;
+    p->max_area = (p->max_area + k2 / 2) / k2;
+    p->gripper_min_px = (p->gripper_min_px + k / 2) / k;
+    p->gripper_max_px = (p->gripper_max_px + k / 2) / k;
+    p->margin_px = (p->margin_px + k / 2) / k;
+    p->finger_px = (p->finger_px + k / 2) / k;
+}
+
+/* A position (x or y, 1/256 px) in the reduced image, in the photo's: a
+ * reduced pixel's centre is the middle of its k x k block. */
+static int64_t at_q8(const grasp_run *run, int32_t v)
+{
+    return (int64_t)v * run->reduce + (int64_t)(run->reduce - 1) * 128;
+}
 
 /* Parses, loads and runs the pipeline. Returns CLI_EXIT_OK to go on, -1
  * after --help, or an exit code (everything freed then). */
@@ -55,20 +131,20 @@ static int grasp_start(grasp_run *run, const cli_entry *self, int argc, char **a
         return rc;
     if ((rc = cli_load(self->name, run->paths[0], &run->in)) != CLI_EXIT_OK)
         return rc;
-    const int32_t w = run->in.gray.width, h = run->in.gray.height;
-    if (w > RTE_SHAPE_MAX_COORD + 1 || h > RTE_SHAPE_MAX_COORD + 1) {
-        cli_error(self->name, "%s: %dx%d is larger than %d px a side", run->paths[0], w, h,
-                  RTE_SHAPE_MAX_COORD + 1);
+    if ((rc = reduce_input(run)) != CLI_EXIT_OK) {
         cli_image_free(&run->in);
-        return CLI_EXIT_INPUT;
+        return rc;
     }
+    const int32_t w = run->reduced.gray.width, h = run->reduced.gray.height;
     cli_pipeline_config(self->name, &run->opts, w, h, &config);
+    reduce_params(&config.params, run->reduce);
     rte_status st = rte_grasp_create(&config, &run->ctx);
     if (st == RTE_OK)
-        st = cli_grasp_process(run->ctx, &run->in, &run->result);
+        st = cli_grasp_process(run->ctx, &run->reduced, &run->result);
     if (st != RTE_OK) {
         cli_error(self->name, "%s", rte_status_message(st));
         rte_grasp_destroy(run->ctx);
+        free(run->reduced.memory);
         cli_image_free(&run->in);
         return CLI_EXIT_FAILURE;
     }
@@ -78,17 +154,18 @@ static int grasp_start(grasp_run *run, const cli_entry *self, int argc, char **a
 static void grasp_end(grasp_run *run)
 {
     rte_grasp_destroy(run->ctx);
+    free(run->reduced.memory);
     cli_image_free(&run->in);
 }
 
-static int32_t q8_px(int32_t v) { return (v + 128) >> 8; }
+static int32_t q8_px(int64_t v) { return (int32_t)((v + 128) >> 8); }
 
 /* Draws the objects with draw and writes the overlay. */
 static int overlay(grasp_run *run, void (*draw)(rte_overlay *, const grasp_run *))
 {
     if (!run->overlay)
         return CLI_EXIT_OK;
-    rte_overlay o = {.scale_q16 = 65536};
+    rte_overlay o = {.scale_q16 = 65536 * run->reduce};
     void *mem = cli_overlay_canvas(run->name, &run->in, &o.canvas);
     if (!mem)
         return CLI_EXIT_FAILURE;
@@ -104,12 +181,13 @@ static void draw_grasp(rte_overlay *o, const grasp_run *run)
                       RTE_OVERLAY_CONTOURS | RTE_OVERLAY_GRASP | RTE_OVERLAY_LABELS);
 }
 
-static void print_q8_pair(int32_t x, int32_t y)
+/* A position in the photo's pixels. */
+static void print_point(const grasp_run *run, int32_t x_q8, int32_t y_q8)
 {
     printf("[");
-    cli_print_q8(x);
+    cli_print_q8(at_q8(run, x_q8));
     printf(",");
-    cli_print_q8(y);
+    cli_print_q8(at_q8(run, y_q8));
     printf("]");
 }
 
@@ -124,48 +202,51 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
         "width plus --margin on each side (the jaws' faces: jaws); score 0..1: solidity x\n"
         "width within --gripper-min..--gripper-max x room for the fingers (clearance,\n"
         "of --margin + --finger) on both sides. Prints {\"objects\":[{\"center\",\"angle\",\n"
-        "\"width\",\"opening\",\"jaws\",\"clearance\",\"score\",\"area\",\"shape\",\"box\"}],...}\n"
+        "\"width\",\"opening\",\"jaws\",\"clearance\",\"score\",\"area\",\"shape\",\"box\"}],\n"
+        "\"reduced\",...}, "
         "best score first (equal scores: largest first).",
         100, false);
     if (rc != CLI_EXIT_OK)
         return rc < 0 ? CLI_EXIT_OK : rc;
     const rte_grasp_result *r = &run.result;
+    const int64_t k = run.reduce;
     printf("{\"objects\":[");
     for (int32_t i = 0; i < r->n_objects; i++) {
         const rte_grasp_object *o = &r->objects[i];
         printf("%s{\"center\":", i ? "," : "");
-        print_q8_pair(o->x_q8, o->y_q8);
+        print_point(&run, o->x_q8, o->y_q8);
         printf(",\"angle\":");
         cli_print_q16(o->angle_q16);
         printf(",\"width\":");
-        cli_print_q8(o->width_q8);
+        cli_print_q8((int64_t)o->width_q8 * k);
         printf(",\"opening\":");
-        cli_print_q8(o->opening_q8);
+        cli_print_q8((int64_t)o->opening_q8 * k);
         printf(",\"jaws\":[");
-        print_q8_pair(o->jaws_q8[0][0], o->jaws_q8[0][1]);
+        print_point(&run, o->jaws_q8[0][0], o->jaws_q8[0][1]);
         printf(",");
-        print_q8_pair(o->jaws_q8[1][0], o->jaws_q8[1][1]);
+        print_point(&run, o->jaws_q8[1][0], o->jaws_q8[1][1]);
         printf("],\"clearance\":");
-        cli_print_q8(o->clearance_q8);
+        cli_print_q8((int64_t)o->clearance_q8 * k);
         printf(",\"score\":");
         cli_print_q16(o->score_q16);
         printf(",\"area\":");
-        cli_print_q8(o->info.area2 * 128);
+        cli_print_q8(o->info.area2 * 128 * k * k);
         printf(",\"shape\":\"%s\",\"box\":[", rte_grasp_shape_name(o->info.shape));
-        for (int k = 0; k < 4; k++) {
-            printf(k ? "," : "");
-            print_q8_pair(o->info.box.corners_q8[k][0], o->info.box.corners_q8[k][1]);
+        for (int c = 0; c < 4; c++) {
+            printf(c ? "," : "");
+            print_point(&run, o->info.box.corners_q8[c][0], o->info.box.corners_q8[c][1]);
         }
         printf("]}");
     }
     const rte_grasp_timing *t = &r->timing;
-    printf("],\"threshold\":%d,\"truncated\":%s,\"dropped_objects\":%d,\"split_parts\":%d,"
+    printf("],\"reduced\":%d,\"threshold\":%d,\"truncated\":%s,\"dropped_objects\":%d,"
+           "\"split_parts\":%d,"
            "\"timing_ns\":{\"blur\":%lld,\"binarize\":%lld,\"contours\":%lld,\"split\":%lld,"
            "\"features\":%lld,\"total\":%lld}}\n",
-           (int)r->threshold, r->truncated ? "true" : "false", (int)r->dropped_objects,
-           (int)r->split_parts, (long long)t->blur_ns, (long long)t->binarize_ns,
-           (long long)t->contours_ns, (long long)t->split_ns, (long long)t->features_ns,
-           (long long)t->total_ns);
+           (int)run.reduce, (int)r->threshold, r->truncated ? "true" : "false",
+           (int)r->dropped_objects, (int)r->split_parts, (long long)t->blur_ns,
+           (long long)t->binarize_ns, (long long)t->contours_ns, (long long)t->split_ns,
+           (long long)t->features_ns, (long long)t->total_ns);
     rc = overlay(&run, draw_grasp);
     grasp_end(&run);
     return rc;
@@ -178,9 +259,9 @@ static void draw_shapes(rte_overlay *o, const grasp_run *run)
     for (int32_t i = run->result.n_objects - 1; i >= 0; i--) {
         const rte_grasp_object *g = &run->result.objects[i];
         const rte_draw_color c = rte_overlay_color(i);
-        rte_draw_dot(&o->canvas, q8_px(g->x_q8), q8_px(g->y_q8), 2, c);
-        rte_overlay_label(&o->canvas, q8_px(g->x_q8) - 20, q8_px(g->y_q8) + 5,
-                          rte_grasp_shape_name(g->info.shape), c);
+        const int32_t x = q8_px(at_q8(run, g->x_q8)), y = q8_px(at_q8(run, g->y_q8));
+        rte_draw_dot(&o->canvas, x, y, 2, c);
+        rte_overlay_label(&o->canvas, x - 20, y + 5, rte_grasp_shape_name(g->info.shape), c);
     }
 }
 
@@ -198,10 +279,11 @@ int cmd_shapes(const cli_entry *self, int argc, char **argv)
            "aspect", "cx", "cy");
     for (int32_t i = 0; i < r->n_objects; i++) {
         const rte_shape_info *s = &r->objects[i].info;
+        const double k = run.reduce;
         printf("%-3d %-10s %10.1f %10.2f %8.3f %7.3f %8.2f %8.2f\n", (int)i,
-               rte_grasp_shape_name(s->shape), s->area2 / 2.0, s->perimeter_q16 / 65536.0,
-               s->solidity_q16 / 65536.0, s->aspect_q16 / 65536.0, r->objects[i].x_q8 / 256.0,
-               r->objects[i].y_q8 / 256.0);
+               rte_grasp_shape_name(s->shape), s->area2 / 2.0 * k * k,
+               s->perimeter_q16 / 65536.0 * k, s->solidity_q16 / 65536.0, s->aspect_q16 / 65536.0,
+               at_q8(&run, r->objects[i].x_q8) / 256.0, at_q8(&run, r->objects[i].y_q8) / 256.0);
     }
     if (r->truncated)
         printf("(truncated: %d more objects)\n", (int)r->dropped_objects);

@@ -202,7 +202,8 @@ def grasp_json():
 def large_image():
     """A photo taken at 1920x1440 (the smarties enlarged): more possible
     contours than the library stores (w h / 2), so the command runs with
-    the library's bounds and all the sweets are still found."""
+    the library's bounds and all the sweets are still found; and one at
+    4032x3024, larger than the grasp path takes."""
     src = cv2.imread(os.path.join(OBJECTS, "smarties.png"))
     with tempfile.TemporaryDirectory() as tmp:
         big = os.path.join(tmp, "big.png")
@@ -214,6 +215,32 @@ def large_image():
         if r.returncode == 0:
             n = len(json.loads(r.stdout)["objects"])
             check(n == 10, f"grasp 1920x1440: {n} objects, expected the 10 whole sweets")
+        # a phone's 4032x3024: beyond the grasp path's 2048 px a side, reduced 2x
+        # (block means) and reported in the photo's pixels; the gripper sized
+        # for it (the sweets are about 500 px across)
+        huge = os.path.join(tmp, "huge.jpg")
+        cv2.imwrite(huge, cv2.resize(src, (4032, 3024), interpolation=cv2.INTER_CUBIC))
+        r = run("grasp", huge, "--gripper-max", "1000", "--overlay", os.path.join(tmp, "h.png"))
+        check(r.returncode == 0, f"grasp 4032x3024: exit {r.returncode} {r.stderr}")
+        if r.returncode == 0:
+            d = json.loads(r.stdout)
+            sx, sy = 4032 / src.shape[1], 3024 / src.shape[0]
+            sweets = [(378, 81), (269, 118), (206, 212), (287.5, 214), (348, 239), (34, 229),
+                      (98.75, 259), (152, 272), (219.75, 306.5), (295, 321)]
+            worst = max(min(math.hypot(o["center"][0] - ((x + 0.5) * sx - 0.5),
+                                       o["center"][1] - ((y + 0.5) * sy - 0.5)) for o in d["objects"])
+                        for x, y in sweets)
+            check(d["reduced"] == 2 and len(d["objects"]) == 10 and worst < 0.06 * 54 * sx,
+                  f"grasp 4032x3024: reduced {d['reduced']}, {len(d['objects'])} objects, "
+                  f"worst centre {worst:.1f} px")
+            o = cv2.imread(os.path.join(tmp, "h.png"))
+            check(o is not None and o.shape == (3024, 4032, 3), "grasp 4032x3024: overlay at the photo's size")
+        r = run("shapes", huge)
+        check(r.returncode == 0, f"shapes 4032x3024: exit {r.returncode} {r.stderr}")
+        # contours prints OpenCV's contours of the image as it is: refused, saying why
+        r = run("contours", huge)
+        check(r.returncode == 3 and "larger than 2048 px a side" in r.stderr,
+              f"contours 4032x3024: exit {r.returncode} {r.stderr}")
 
 
 def contours_vs_opencv():
