@@ -90,7 +90,7 @@ static int object_options(cli_option *t, cli_pipeline_options *o)
                           RTE_GRASP_MAX_OPENING_PX,
                           NULL,
                           "narrowest object the jaws can close on, px",
-                          NULL};
+                          &o->given_gripper_min};
     t[n++] = (cli_option){"gripper-max",
                           CLI_INT,
                           &o->gripper_max,
@@ -98,7 +98,7 @@ static int object_options(cli_option *t, cli_pipeline_options *o)
                           RTE_GRASP_MAX_OPENING_PX,
                           NULL,
                           "widest opening of the jaws, px",
-                          NULL};
+                          &o->given_gripper_max};
     t[n++] = (cli_option){"margin",
                           CLI_INT,
                           &o->margin,
@@ -106,7 +106,7 @@ static int object_options(cli_option *t, cli_pipeline_options *o)
                           RTE_GRASP_MAX_CLEARANCE_PX,
                           NULL,
                           "jaws open this much wider than the object on each side, px",
-                          NULL};
+                          &o->given_margin};
     t[n++] = (cli_option){"finger",
                           CLI_INT,
                           &o->finger,
@@ -114,7 +114,7 @@ static int object_options(cli_option *t, cli_pipeline_options *o)
                           RTE_GRASP_MAX_CLEARANCE_PX,
                           NULL,
                           "free room each finger needs beyond its opened jaw face, px",
-                          NULL};
+                          &o->given_finger};
     return n;
 }
 
@@ -189,11 +189,35 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
     t[n++] = (cli_option){"close-iterations",          CLI_INT, &o->close_iterations, 1, 8, NULL,
                           "canny: closing iterations", NULL};
     t[n++] = (cli_option){"min-area", CLI_INT, &o->min_area,          0,
-                          4194304,    NULL,    "smallest object, px", NULL};
+                          4194304,    NULL,    "smallest object, px", &o->given_min_area};
     if (grasp)
         n += object_options(t + n, o);
     t[n] = (cli_option){0};
     return n;
+}
+
+/* v * num / den, rounded, at most max. */
+static int scaled(int v, int64_t num, int64_t den, int max)
+{
+    const int64_t s = ((int64_t)v * num + den / 2) / den;
+    return s < max ? (int)s : max;
+}
+
+void cli_pipeline_scale_sizes(cli_pipeline_options *o, int32_t w, int32_t h)
+{
+    const int64_t side = w > h ? w : h, ref = 640;
+    if (side <= ref)
+        return;
+    if (!o->given_min_area)
+        o->min_area = scaled(o->min_area, side * side, ref * ref, 4194304);
+    if (!o->given_gripper_min)
+        o->gripper_min = scaled(o->gripper_min, side, ref, RTE_GRASP_MAX_OPENING_PX);
+    if (!o->given_gripper_max)
+        o->gripper_max = scaled(o->gripper_max, side, ref, RTE_GRASP_MAX_OPENING_PX);
+    if (!o->given_margin)
+        o->margin = scaled(o->margin, side, ref, RTE_GRASP_MAX_CLEARANCE_PX);
+    if (!o->given_finger)
+        o->finger = scaled(o->finger, side, ref, RTE_GRASP_MAX_CLEARANCE_PX);
 }
 
 int cli_pipeline_config(const char *command, const cli_pipeline_options *o, int32_t w, int32_t h,

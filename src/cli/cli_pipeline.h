@@ -21,7 +21,14 @@ typedef struct cli_pipeline_options {
     bool skip_border, keep_border, split, no_split;
     const char *roi; /* the workspace, "x,y;..." fractions; NULL: the whole image */
     int gripper_min, gripper_max, margin, finger; /* px: rte_grasp_params */
+    /* which of the sizes in pixels the command line gave */
+    bool given_min_area, given_gripper_min, given_gripper_max, given_margin, given_finger;
 } cli_pipeline_options;
+
+/* The sizes in pixels the command line did not give, for a w x h photo:
+ * the defaults are for a camera's 640 px side, and grow with a larger
+ * photo's longest side (areas with its square). */
+void cli_pipeline_scale_sizes(cli_pipeline_options *o, int32_t w, int32_t h);
 
 extern const char *const cli_polarities[];
 

@@ -136,6 +136,8 @@ static int grasp_start(grasp_run *run, const cli_entry *self, int argc, char **a
         return rc;
     }
     const int32_t w = run->reduced.gray.width, h = run->reduced.gray.height;
+    if (!tutorial)
+        cli_pipeline_scale_sizes(&run->opts, run->in.gray.width, run->in.gray.height);
     cli_pipeline_config(self->name, &run->opts, w, h, &config);
     reduce_params(&config.params, run->reduce);
     rte_status st = rte_grasp_create(&config, &run->ctx);
@@ -201,7 +203,10 @@ int cmd_grasp(const cli_entry *self, int argc, char **argv)
         "object's convex hull (angle in degrees, image axes, y down), opened to that\n"
         "width plus --margin on each side (the jaws' faces: jaws); score 0..1: solidity x\n"
         "width within --gripper-min..--gripper-max x room for the fingers (clearance,\n"
-        "of --margin + --finger) on both sides. Prints {\"objects\":[{\"center\",\"angle\",\n"
+        "of --margin + --finger) on both sides. Unless given, --min-area, --gripper-min,\n"
+        "--gripper-max, --margin and --finger are for a 640 px side and grow with a larger\n"
+        "photo's longest side (the area with its square). Prints "
+        "{\"objects\":[{\"center\",\"angle\",\n"
         "\"width\",\"opening\",\"jaws\",\"clearance\",\"score\",\"area\",\"shape\",\"box\"}],\n"
         "\"reduced\",...}, "
         "best score first (equal scores: largest first).",

@@ -216,11 +216,11 @@ def large_image():
             n = len(json.loads(r.stdout)["objects"])
             check(n == 10, f"grasp 1920x1440: {n} objects, expected the 10 whole sweets")
         # a phone's 4032x3024: beyond the grasp path's 2048 px a side, reduced 2x
-        # (block means) and reported in the photo's pixels; the gripper sized
-        # for it (the sweets are about 500 px across)
+        # (block means) and reported in the photo's pixels; the sizes in pixels
+        # grown with it (the sweets are about 500 px across)
         huge = os.path.join(tmp, "huge.jpg")
         cv2.imwrite(huge, cv2.resize(src, (4032, 3024), interpolation=cv2.INTER_CUBIC))
-        r = run("grasp", huge, "--gripper-max", "1000", "--overlay", os.path.join(tmp, "h.png"))
+        r = run("grasp", huge, "--overlay", os.path.join(tmp, "h.png"))
         check(r.returncode == 0, f"grasp 4032x3024: exit {r.returncode} {r.stderr}")
         if r.returncode == 0:
             d = json.loads(r.stdout)
@@ -235,6 +235,14 @@ def large_image():
                   f"worst centre {worst:.1f} px")
             o = cv2.imread(os.path.join(tmp, "h.png"))
             check(o is not None and o.shape == (3024, 4032, 3), "grasp 4032x3024: overlay at the photo's size")
+            check(all(ob["score"] > 0.9 for ob in d["objects"]),
+                  f"grasp 4032x3024: a gripper for the photo's size (scores {[ob['score'] for ob in d['objects']]})")
+        # a gripper given is taken as given: 160 px cannot take a 500 px sweet
+        r = run("grasp", huge, "--gripper-max", "160")
+        if r.returncode == 0:
+            d = json.loads(r.stdout)
+            check(d["objects"] and all(ob["score"] == 0 for ob in d["objects"]),
+                  "grasp 4032x3024 --gripper-max 160: no sweet graspable")
         r = run("shapes", huge)
         check(r.returncode == 0, f"shapes 4032x3024: exit {r.returncode} {r.stderr}")
         # contours prints OpenCV's contours of the image as it is: refused, saying why
