@@ -69,6 +69,12 @@ static int reduce_input(grasp_run *run)
     if (run->reduce == 1)
         return CLI_EXIT_OK;
     const int32_t k = run->reduce, rw = w / k, rh = h / k;
+    if (rw < 1 || rh < 1) {
+        cli_error(run->name,
+                  "%s: %dx%d is larger than %d px a side and too thin to reduce %d times",
+                  run->paths[0], w, h, GRASP_MAX_SIDE, k);
+        return CLI_EXIT_INPUT;
+    }
     const size_t grey = (size_t)rw * rh, colour = run->in.bgr.buf ? 3 * grey : 0;
     uint8_t *mem = malloc(grey + colour);
     if (!mem) {

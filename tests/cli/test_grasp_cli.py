@@ -245,6 +245,12 @@ def large_image():
                   "grasp 4032x3024 --gripper-max 160: no sweet graspable")
         r = run("shapes", huge)
         check(r.returncode == 0, f"shapes 4032x3024: exit {r.returncode} {r.stderr}")
+        # too long and thin to reduce: refused, saying why
+        thin = os.path.join(tmp, "thin.png")
+        cv2.imwrite(thin, np.full((2, 30000), 128, np.uint8))
+        r = run("grasp", thin)
+        check(r.returncode == 3 and "too thin to reduce 15 times" in r.stderr,
+              f"grasp 30000x2: exit {r.returncode} {r.stderr}")
         # contours prints OpenCV's contours of the image as it is: refused, saying why
         r = run("contours", huge)
         check(r.returncode == 3 and "larger than 2048 px a side" in r.stderr,
