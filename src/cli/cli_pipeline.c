@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/fractions.h"
+#include "core/int_math.h"
 #include "rtedge/blur.h"
 #include "rtedge/color.h"
 #include "rtedge/morphology.h"
@@ -199,7 +200,7 @@ int cli_pipeline_option_table(cli_option *t, cli_pipeline_options *o, bool grasp
 /* v * num / den, rounded, at most max. */
 static int scaled(int v, int64_t num, int64_t den, int max)
 {
-    const int64_t s = ((int64_t)v * num + den / 2) / den;
+    const int64_t s = rte_div_round64((int64_t)v * num, den);
     return s < max ? (int)s : max;
 }
 

@@ -8,6 +8,7 @@
 #include "cli_image.h"
 #include "cli_pipeline.h"
 #include "commands.h"
+#include "core/int_math.h"
 #include "rtedge/overlay.h"
 #include "rtedge/grasp.h"
 
@@ -94,13 +95,12 @@ static int reduce_input(grasp_run *run)
 /* The options given in the photo's pixels, in the reduced image's. */
 static void reduce_params(rte_grasp_params *p, int32_t k)
 {
-    const int32_t k2 = k * k;
-    p->min_area = (p->min_area + k2 / 2) / k2;
-    p->max_area = (p->max_area + k2 / 2) / k2;
-    p->gripper_min_px = (p->gripper_min_px + k / 2) / k;
-    p->gripper_max_px = (p->gripper_max_px + k / 2) / k;
-    p->margin_px = (p->margin_px + k / 2) / k;
-    p->finger_px = (p->finger_px + k / 2) / k;
+    p->min_area = (int32_t)rte_div_round64(p->min_area, (int64_t)k * k);
+    p->max_area = (int32_t)rte_div_round64(p->max_area, (int64_t)k * k);
+    p->gripper_min_px = (int32_t)rte_div_round64(p->gripper_min_px, k);
+    p->gripper_max_px = (int32_t)rte_div_round64(p->gripper_max_px, k);
+    p->margin_px = (int32_t)rte_div_round64(p->margin_px, k);
+    p->finger_px = (int32_t)rte_div_round64(p->finger_px, k);
 }
 
 /* A position (x or y, 1/256 px) in the reduced image, in the photo's: a

@@ -7,6 +7,7 @@
 #include "rtedge/canny.h"
 #include "rtedge/threshold.h"
 #include "core/clock.h"
+#include "core/int_math.h"
 
 /* Largest L1 magnitude of the 3x3 Sobel pair on 8-bit images. */
 #define CANNY_MAX 2040
@@ -275,8 +276,7 @@ static bool is_object(const rte_grasp_ctx *ctx, const rte_image_u8 *bin,
                       int64_t *area2)
 {
     const rte_grasp_params *p = &ctx->params;
-    const int64_t a2 = rte_shape_area2(pts, n);
-    *area2 = a2 < 0 ? -a2 : a2;
+    *area2 = rte_abs64(rte_shape_area2(pts, n));
     if (*area2 < 2 * (int64_t)p->min_area || (p->max_area > 0 && *area2 > 2 * (int64_t)p->max_area))
         return false;
     if (p->skip_border && touches_border(ctx, pts, n, bin->width, bin->height))
@@ -375,8 +375,7 @@ static rte_status grasp_of(rte_grasp_ctx *ctx, const rte_image_u8 *bin, const rt
         rte_arena_reset(&ctx->arena, mark);
         return st;
     }
-    int64_t hull2 = rte_shape_area2(hull, nh);
-    hull2 = hull2 < 0 ? -hull2 : hull2;
+    const int64_t hull2 = rte_abs64(rte_shape_area2(hull, nh));
     /* the point: the hull's centroid (see rte_grasp_object) */
     int64_t cx, cy;
     rte_moments hm;

@@ -4,6 +4,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "core/int_math.h"
 #include "grasp_ctx.h"
 #include "rtedge/distance.h"
 #include "rtedge/polygon_mask.h"
@@ -36,8 +37,7 @@ static rte_status needs_split(rte_grasp_ctx *ctx, const rte_point *pts, int32_t 
                                        : RTE_ERR_NO_MEMORY;
     int64_t hull2 = 0;
     if (st == RTE_OK) {
-        hull2 = rte_shape_area2(hull, nh);
-        hull2 = hull2 < 0 ? -hull2 : hull2;
+        hull2 = rte_abs64(rte_shape_area2(hull, nh));
     }
     if (st == RTE_OK && area2 * 1000 < hull2 * SPLIT_SOLIDITY_PERMILLE)
         st = rte_shape_calipers(hull, nh, cal, &nc);
@@ -232,8 +232,7 @@ rte_status rte_grasp_split_touching(rte_grasp_ctx *ctx, const rte_image_u8 *grey
     for (int32_t i = 0; i < cs->n_contours && st == RTE_OK; i++) {
         const rte_contour *c = &cs->contours[i];
         const rte_point *pts = cs->points + c->offset;
-        int64_t a2 = rte_shape_area2(pts, c->count);
-        a2 = a2 < 0 ? -a2 : a2;
+        const int64_t a2 = rte_abs64(rte_shape_area2(pts, c->count));
         bool split = false;
         if (a2 >= 2 * min2 && a2 > 0)
             st = needs_split(ctx, pts, c->count, a2, bin->width, bin->height, &split);
