@@ -171,7 +171,8 @@ typedef struct rte_lane {
     int32_t far_count;
     int32_t far_x_q8[RTE_LANE_FAR_POINTS], far_y[RTE_LANE_FAR_POINTS];
     /* share of the lane's rows with paint along it, 1000 from two fifths of
-     * them (docs/lanes.md, "Lane line and confidence") */
+     * them, less four times the share of the ROI washed out by glare
+     * (docs/lanes.md, "Lane line and confidence") */
     int32_t confidence_permille;
     int32_t support_px; /* supporting segment length this frame */
 } rte_lane;

@@ -325,9 +325,13 @@ static void lane_centre(rte_lane_result *out, int32_t w, int32_t y_bottom, int32
 
 /* A lane's confidence: the share of its rows on which paint lies along it
  * (rte_lane_find_marking in the refit's band), full from two fifths of the
- * rows (a dashed line's share of paint). See docs/lanes.md, "Confidence". */
+ * rows (a dashed line's share of paint), less four times the share of the
+ * ROI washed out by glare (glare_permille; none is left when a quarter of
+ * it is): in glare, sunlit road and kerbs look like paint, and a side is
+ * right less often than its paint says. See docs/lanes.md, "Lane line and
+ * confidence". */
 #define LANE_CONFIDENT_ROWS_Q8 102 /* 0.4 */
-static void lane_confidence(const lane_maps *maps, rte_lane *lane)
+static void lane_confidence(const lane_maps *maps, int32_t glare_permille, rte_lane *lane)
 {
     const int32_t span = lane->y_bottom - lane->y_top;
     lane->confidence_permille = 0;
@@ -336,8 +340,10 @@ static void lane_confidence(const lane_maps *maps, rte_lane *lane)
     const lane_fit_hint hint = {lane->y_top, lane->y_bottom, 0, 0, 0, false};
     int64_t offset_q8;
     const int64_t rows = rte_lane_find_marking(maps, &hint, lane, 1, &offset_q8);
-    lane->confidence_permille =
+    const int64_t paint =
         lane_clamp32(rows * 1000 * 256 / ((int64_t)span * LANE_CONFIDENT_ROWS_Q8), 0, 1000);
+    const int64_t clear = 1000 - 4 * (int64_t)glare_permille;
+    lane->confidence_permille = clear > 0 ? (int32_t)(paint * clear / 1000) : 0;
 }
 
 /* The fit stage: the segments (ctx->segments[0..count)) sorted into sides,
@@ -362,6 +368,9 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
     const lane_maps maps = {edges,        src,          &gray_crop,
                             ctx->crop_x0, ctx->crop_y0, (int64_t)p->outlier_px};
     const lane_fit_hint rows = {y_top, y_bottom, 0, 0, 0, false};
+    const rte_image_u8 mask =
+        lane_view(&ctx->mask, 0, 0, ctx->crop_x1 - ctx->crop_x0, ctx->crop_y1 - ctx->crop_y0);
+    const int32_t glare_permille = rte_lane_glare_permille(&gray_crop, &mask);
     rte_lane_paint_weights(ctx, &maps, &rows, count);
     rte_lane_classify(ctx, count, w, y_bottom, y_top, members, n);
     lane_line line[2];
@@ -393,7 +402,7 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
                               &out->lane[side]);
     for (int side = 0; side < 2; side++) {
         rte_lane_trace_far(&maps, &rows, &out->lane[side]);
-        lane_confidence(&maps, &out->lane[side]);
+        lane_confidence(&maps, glare_permille, &out->lane[side]);
     }
     lane_centre(out, w, y_bottom, y_top);
 }

@@ -2,6 +2,7 @@
  * that makes white and yellow paint stand out, and the automatic Canny
  * thresholds (see include/rtedge/lane.h and docs/lanes.md). */
 #include "lane_cue_rows.h"
+#include "lane_fixed.h"
 #include "lane_internal.h"
 #include "rtedge/cpu.h"
 #include "rtedge/threshold.h"
@@ -56,4 +57,23 @@ void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const r
         *low = lo;
         *high = hi;
     }
+}
+
+/* The share of the ROI washed out by glare, in permille: grey pixels at
+ * 250 or more inside the mask, on every fourth row (a frame-wide figure,
+ * which needs no more). */
+int32_t rte_lane_glare_permille(const rte_image_u8 *gray_crop, const rte_image_u8 *mask)
+{
+    const rte_image_u8 g = {gray_crop->width, (gray_crop->height + 3) / 4, 4 * gray_crop->stride,
+                            gray_crop->buf};
+    const rte_image_u8 m = {mask->width, (mask->height + 3) / 4, 4 * mask->stride, mask->buf};
+    uint32_t hist[256];
+    if (rte_histogram_masked_u8(&g, &m, hist) != RTE_OK)
+        return 0;
+    uint64_t all = 0, glare = 0;
+    for (int v = 0; v < 256; v++) {
+        all += hist[v];
+        glare += v >= LANE_SATURATED ? hist[v] : 0;
+    }
+    return all > 0 ? (int32_t)(glare * 1000 / all) : 0;
 }

@@ -99,6 +99,9 @@ void rte_lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, cons
                         int32_t bgr_stride, bool rgb, rte_image_u8 *dst);
 void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
                          int32_t *low, int32_t *high);
+/* The share of the ROI (the grey crop's pixels inside `mask`, same size)
+ * washed out by glare (LANE_SATURATED or brighter), in permille. */
+int32_t rte_lane_glare_permille(const rte_image_u8 *gray_crop, const rte_image_u8 *mask);
 
 /* lane_track.c: sorts the Hough segments (ctx->segments[0..count)) into
  * sides by slope, position and the gate around the tracked lanes, filling

@@ -6,9 +6,9 @@
 # side labelled null not reported as seen). Each recording must keep its
 # share of frames right (docs/lanes.md, "Accuracy": today's figures, less
 # a frame where that is below 100%), and the sides reported with
-# confidence >= 0.5 must be right in 90% of cases on these hard frames
-# (today 93%: the misses are the last rows below a crest where a mountain
-# road turns sharply, docs/lanes.md, "Accuracy").
+# confidence >= 0.5 must be right in 95% of cases, as the confidence is
+# calibrated (today 84 of 88: the misses are the last rows beyond a crest
+# where a mountain road turns sharply, docs/lanes.md, "Accuracy").
 # In a cross build meson test sets MESON_EXE_WRAPPER (qemu-user).
 #   lane_frames.sh RTEDGE EVAL_LANES FIXTURES_LANES OUT_DIR
 set -u
@@ -41,8 +41,8 @@ challenge02 0.90
 challenge03 0.50
 project_video03 1.00
 FLOORS
-if ! awk -v floor=0.90 -f "$(dirname "$0")/confident_share.awk" "$OUT/eval.txt"; then
-    echo "FAIL: sides seen with confidence >= 0.5 are right in fewer than 90% of cases"
+if ! awk -v floor=0.95 -f "$(dirname "$0")/confident_share.awk" "$OUT/eval.txt"; then
+    echo "FAIL: sides seen with confidence >= 0.5 are right in fewer than 95% of cases"
     failed=1
 fi
 exit $failed

@@ -217,6 +217,47 @@ static void test_drawn_lanes(void **state)
     rte_lane_destroy(ctx);
 }
 
+/* Glare lowers the confidence, not the lanes: the same bright block on the
+ * road between them, at 249 (not glare) and at 255 (glare), rows y0..h-1. */
+static void glare_run(rte_lane_context *ctx, rte_image_u8 *g, int32_t y0, uint8_t level,
+                      rte_lane_result *r)
+{
+    const int32_t yt = 108;
+    const drawn_lane lanes[2] = {{40, 150, true}, {300, 175, true}};
+    draw_road(g, 70, 230, yt, lanes, 2);
+    for (int32_t y = y0; y < g->height; y++)
+        memset(rte_u8_row(g, y) + 110, level, 100);
+    rte_lane_reset(ctx);
+    assert_int_equal(rte_lane_process_gray(ctx, g, NULL, 0, r), RTE_OK);
+    assert_lane_near(&r->lane[RTE_LANE_LEFT], 40, 150, 2, 2);
+    assert_lane_near(&r->lane[RTE_LANE_RIGHT], 300, 175, 2, 2);
+}
+
+static void test_glare_confidence(void **state)
+{
+    (void)state;
+    rte_lane_context *ctx = make_ctx(320, 180, NULL);
+    rte_image_u8 g = unit_image_u8(320, 180, 13, 0);
+    rte_lane_result dim, glare;
+    /* 100 x 12 px: about a tenth of the ROI */
+    glare_run(ctx, &g, 168, 249, &dim);
+    glare_run(ctx, &g, 168, 255, &glare);
+    for (int side = 0; side < 2; side++) {
+        assert_int_equal(dim.lane[side].confidence_permille, 1000);
+        assert_in_range(glare.lane[side].confidence_permille, 400, 800);
+    }
+    /* 100 x 40 px: over a quarter of it, nothing left */
+    glare_run(ctx, &g, 140, 249, &dim);
+    glare_run(ctx, &g, 140, 255, &glare);
+    for (int side = 0; side < 2; side++) {
+        assert_int_equal(dim.lane[side].confidence_permille, 1000);
+        assert_int_equal(glare.lane[side].confidence_permille, 0);
+        assert_true(glare.lane[side].found);
+    }
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+}
+
 /* Near-horizontal lines and lines with the wrong slope sign for their side
  * are rejected. */
 static void test_slope_filter(void **state)
@@ -1350,7 +1391,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_runtime_params),  cmocka_unit_test(test_y4m),
         cmocka_unit_test(test_synthetic_roads), cmocka_unit_test(test_real_photos),
         cmocka_unit_test(test_real_clip),       cmocka_unit_test(test_far_trace_contract),
-        cmocka_unit_test(test_far_trace_drawn),
+        cmocka_unit_test(test_far_trace_drawn), cmocka_unit_test(test_glare_confidence),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
