@@ -207,9 +207,9 @@ static rte_status lane_stage_hough(rte_lane_context *ctx, const rte_image_u8 *ed
  * predicted chord moved onto the marking, with the predicted bow in
  * *bow_q8. Returns the supporting length (segments, else those rows), 0
  * when not seen. */
-static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, int side,
-                                 int32_t *members, int32_t n, const rte_lane *lane, lane_line *line,
-                                 int64_t *bow_q8)
+static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, int side,
+                                int32_t *members, int32_t n, const rte_lane *lane, lane_line *line,
+                                int64_t *bow_q8)
 {
     const rte_lane_params *p = &ctx->params;
     const lane_track *t = &ctx->track[side];
@@ -243,6 +243,39 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
                         lane->y_bottom};
     *bow_q8 = pred.bow_q8;
     return rows;
+}
+
+/* A side: lane_fit_tracked, and when that does not see it on a tracked
+ * side, the segments the gate rejected fitted alone (no tracked slope):
+ * when they hold paint, the tracked lane has lost the marking (it took
+ * an outlier, or the marking moved faster than the gate allows) and is
+ * restarted from them (*fresh) rather than held where it is not. */
+static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, int side,
+                                 int32_t count, int32_t *members, int32_t n, const rte_lane *lane,
+                                 lane_line *line, int64_t *bow_q8, bool *fresh)
+{
+    *fresh = false;
+    const int64_t support = lane_fit_tracked(ctx, maps, side, members, n, lane, line, bow_q8);
+    if (support > 0 || !ctx->track[side].valid || ctx->params.fit != RTE_LANE_FIT_LEAST_SQUARES)
+        return support;
+    const int32_t out = rte_lane_gated_out(ctx, side, count, members);
+    const lane_fit_hint hint = {lane->y_top, lane->y_bottom, 0, 0, 0, false};
+    lane_line found = {0, 0, (lane->y_bottom + lane->y_top) / 2};
+    const int64_t again =
+        rte_lane_fit_side(ctx, members, out, &hint, &found,
+                          side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
+    if (again <= 0 || again < ctx->params.min_support_px)
+        return 0;
+    rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, &hint, maps->tol, &found);
+    const rte_lane fitted = lane_of_line(&found, 0, 0, lane->y_top, lane->y_bottom);
+    int64_t offset_q8;
+    if (rte_lane_find_marking(maps, &hint, &fitted, 2, &offset_q8) <
+        (lane->y_bottom - lane->y_top) / 16 + 1)
+        return 0;
+    *line = found;
+    *bow_q8 = 0;
+    *fresh = true;
+    return again;
 }
 
 /* x of the lane's curve at row y (its far trace aside). */
@@ -375,13 +408,13 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
     rte_lane_classify(ctx, count, w, y_bottom, y_top, members, n);
     lane_line line[2];
     int64_t support[2], seeded_bow[2];
-    bool seen[2];
+    bool seen[2], fresh[2];
     for (int side = 0; side < 2; side++) {
         rte_lane *lane = &out->lane[side];
         lane->y_bottom = y_bottom;
         lane->y_top = y_top;
-        support[side] = lane_fit_one_side(ctx, &maps, side, members[side], n[side], lane,
-                                          &line[side], &seeded_bow[side]);
+        support[side] = lane_fit_one_side(ctx, &maps, side, count, members[side], n[side], lane,
+                                          &line[side], &seeded_bow[side], &fresh[side]);
         seen[side] = support[side] > 0;
     }
     lane_curve curve[2] = {{0, y_bottom, 0, y_bottom}, {0, y_bottom, 0, y_bottom}};
@@ -398,8 +431,8 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
         rte_lane_double_centre(&maps, &rows, seen, line, curve);
     rte_lane_width_hold(ctx, seen, line, curve, y_top, y_bottom);
     for (int side = 0; side < 2; side++)
-        rte_lane_track_update(ctx, side, seen[side], &line[side], &curve[side], support[side],
-                              &out->lane[side]);
+        rte_lane_track_update(ctx, side, seen[side], fresh[side], &line[side], &curve[side],
+                              support[side], &out->lane[side]);
     for (int side = 0; side < 2; side++) {
         rte_lane_trace_far(&maps, &rows, &out->lane[side]);
         lane_confidence(&maps, glare_permille, &out->lane[side]);

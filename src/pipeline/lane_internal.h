@@ -108,15 +108,20 @@ int32_t rte_lane_glare_permille(const rte_image_u8 *gray_crop, const rte_image_u
  * members[side][0..n[side]) and marking the rejected ones. */
 void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int32_t y_bottom,
                        int32_t y_top, int32_t *members[2], int32_t n[2]);
+/* The segments of `side` that the gate alone rejected, into members[];
+ * returns how many. */
+int32_t rte_lane_gated_out(const rte_lane_context *ctx, int side, int32_t count, int32_t *members);
 /* The fit's hint for a side: its rows, and the tracked lane's slope as
  * predicted for this frame as the prior (none when not tracked). */
 lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_bottom);
 /* The tracked lane as predicted for this frame (t->valid), its rows set. */
 rte_lane rte_lane_track_predict(const lane_track *t, int32_t y_top, int32_t y_bottom);
 /* Moves the side's tracker by this frame's line (seen) or holds it, and
- * fills the lane of the result from it (out->y_bottom and y_top set). */
-void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
-                           const lane_curve *curve, int64_t support, rte_lane *out);
+ * fills the lane of the result from it (out->y_bottom and y_top set). A
+ * fresh line (found outside the gate) restarts the tracker from it. */
+void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, bool fresh,
+                           const lane_line *line, const lane_curve *curve, int64_t support,
+                           rte_lane *out);
 
 /* lane_track.c: the lane's width on the bottom row, tracked while both
  * sides show paint in the lane's lowest quarter; a side seen only farther

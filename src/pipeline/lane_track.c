@@ -54,6 +54,18 @@ void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int3
     }
 }
 
+int32_t rte_lane_gated_out(const rte_lane_context *ctx, int side, int32_t count, int32_t *members)
+{
+    int32_t n = 0;
+    for (int32_t i = 0; i < count; i++) {
+        const rte_lane_segment *s = &ctx->segments[i]; /* (x0, y0) the upper end */
+        const int seg_side = s->x1 < s->x0 ? RTE_LANE_LEFT : RTE_LANE_RIGHT;
+        if (s->use == RTE_LANE_SEG_REJECTED_GATE && seg_side == side)
+            members[n++] = i;
+    }
+    return n;
+}
+
 lane_fit_hint rte_lane_track_hint(const lane_track *t, int32_t y_top, int32_t y_bottom)
 {
     lane_fit_hint hint = {y_top, y_bottom, 0, 0, 0, false};
@@ -80,8 +92,9 @@ rte_lane rte_lane_track_predict(const lane_track *t, int32_t y_top, int32_t y_bo
 }
 
 #define LANE_FAR_STEPS 8
-void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lane_line *line,
-                           const lane_curve *curve, int64_t support, rte_lane *out)
+void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, bool fresh,
+                           const lane_line *line, const lane_curve *curve, int64_t support,
+                           rte_lane *out)
 {
     const rte_lane_params *p = &ctx->params;
     lane_track *t = &ctx->track[side];
@@ -89,8 +102,9 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, const lan
     const int64_t mt = seen ? lane_line_x_q8(line, out->y_top) : 0;
     const int64_t lim = 1 << 28; /* keeps far-off extrapolations in range */
     /* Seen again after being held: the prediction has drifted for
-     * t->lost frames, so the measurement is taken whole. */
-    if (seen && (!t->valid || t->lost > 0)) {
+     * t->lost frames, so the measurement is taken whole; so is one found
+     * outside the gate, where the tracked lane has lost the marking. */
+    if (seen && (!t->valid || t->lost > 0 || fresh)) {
         t->valid = true;
         t->x_bottom_q8 = lane_clamp32(mb, -lim, lim);
         t->x_top_q8 = lane_clamp32(mt, -lim, lim);

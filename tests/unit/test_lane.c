@@ -353,60 +353,110 @@ static void test_color_cue(void **state)
     rte_lane_destroy(ctx);
 }
 
+/* Two lanes on a 320x180 road, tracked over four frames. */
+typedef struct tracked_road {
+    rte_lane_config cfg;
+    rte_lane_context *ctx;
+    rte_image_u8 g;
+    drawn_lane lanes[2];
+    rte_lane_result r;
+} tracked_road;
+
+static void track_two_lanes(tracked_road *t)
+{
+    t->ctx = make_ctx(320, 180, &t->cfg);
+    t->g = unit_image_u8(320, 180, 0, 0);
+    t->lanes[0] = (drawn_lane){40, 150, true};
+    t->lanes[1] = (drawn_lane){300, 175, true};
+    for (int k = 0; k < 4; k++) {
+        draw_road(&t->g, 70, 230, 108, t->lanes, 2);
+        assert_int_equal(rte_lane_process_gray(t->ctx, &t->g, NULL, k, &t->r), RTE_OK);
+        assert_lane_near(&t->r.lane[1], 300, 175, 2, 2);
+    }
+}
+
 /* A lane whose marking disappears is held as predicted for hold_frames,
  * then dropped; a jump is damped. */
 static void test_tracking(void **state)
 {
     (void)state;
-    const int32_t w = 320, h = 180;
-    rte_lane_config cfg;
-    rte_lane_context *ctx = make_ctx(w, h, &cfg);
-    rte_image_u8 g = unit_image_u8(w, h, 0, 0);
-    drawn_lane lanes[2] = {{40, 150, true}, {300, 175, true}};
-    rte_lane_result r;
-    for (int k = 0; k < 4; k++) {
-        draw_road(&g, 70, 230, 108, lanes, 2);
-        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, k, &r), RTE_OK);
-        assert_lane_near(&r.lane[1], 300, 175, 2, 2);
-    }
+    tracked_road t;
+    track_two_lanes(&t);
+    rte_lane_context *ctx = t.ctx;
+    rte_image_u8 *g = &t.g;
+    drawn_lane *lanes = t.lanes;
+    rte_lane_result *r = &t.r;
     lanes[1].present = false;
-    draw_road(&g, 70, 230, 108, lanes, 2);
-    for (int k = 0; k < cfg.params.hold_frames; k++) {
-        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, k, &r), RTE_OK);
-        assert_true(r.lane[1].found);
-        assert_true(r.lane[1].predicted);
-        assert_int_equal(r.lane[1].lost_frames, k + 1);
-        assert_lane_near(&r.lane[1], 300, 175, 2, 2);
-        assert_false(r.lane[0].predicted);
+    draw_road(g, 70, 230, 108, lanes, 2);
+    for (int k = 0; k < t.cfg.params.hold_frames; k++) {
+        assert_int_equal(rte_lane_process_gray(ctx, g, NULL, k, r), RTE_OK);
+        assert_true(r->lane[1].found);
+        assert_true(r->lane[1].predicted);
+        assert_int_equal(r->lane[1].lost_frames, k + 1);
+        assert_lane_near(&r->lane[1], 300, 175, 2, 2);
+        assert_false(r->lane[0].predicted);
     }
-    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
-    assert_false(r.lane[1].found);
-    assert_false(r.centre_valid);
+    assert_int_equal(rte_lane_process_gray(ctx, g, NULL, 0, r), RTE_OK);
+    assert_false(r->lane[1].found);
+    assert_false(r->centre_valid);
     /* Re-acquired, then a jump of 30 px at the bottom is taken in steps. */
     lanes[1].present = true;
-    draw_road(&g, 70, 230, 108, lanes, 2);
-    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
-    assert_lane_near(&r.lane[1], 300, 175, 2, 2);
+    draw_road(g, 70, 230, 108, lanes, 2);
+    assert_int_equal(rte_lane_process_gray(ctx, g, NULL, 0, r), RTE_OK);
+    assert_lane_near(&r->lane[1], 300, 175, 2, 2);
     lanes[1].xb = 270;
-    draw_road(&g, 70, 230, 108, lanes, 2);
-    rte_lane_params p = cfg.params;
+    draw_road(g, 70, 230, 108, lanes, 2);
+    rte_lane_params p = t.cfg.params;
     p.gate_px = 100; /* let the jumped line through the gate */
     assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
-    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
-    const double b = r.lane[1].x_bottom_q8 / 256.0;
+    assert_int_equal(rte_lane_process_gray(ctx, g, NULL, 0, r), RTE_OK);
+    const double b = r->lane[1].x_bottom_q8 / 256.0;
     assert_true(b < 298 && b > 272); /* moved towards 270, not all the way */
     for (int k = 0; k < 20; k++)
-        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
-    assert_lane_near(&r.lane[1], 270, 175, 2, 2);
+        assert_int_equal(rte_lane_process_gray(ctx, g, NULL, 0, r), RTE_OK);
+    assert_lane_near(&r->lane[1], 270, 175, 2, 2);
     /* Without the gate widened, a far line is ignored: segments marked. */
-    assert_int_equal(rte_lane_set_params(ctx, &cfg.params), RTE_OK);
+    assert_int_equal(rte_lane_set_params(ctx, &t.cfg.params), RTE_OK);
     lanes[1].xb = 200;
     lanes[1].xt = 200;
-    draw_road(&g, 70, 230, 108, lanes, 2);
-    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
-    assert_true(r.lane[1].predicted);
-    test_free(g.buf);
+    draw_road(g, 70, 230, 108, lanes, 2);
+    assert_int_equal(rte_lane_process_gray(ctx, g, NULL, 0, r), RTE_OK);
+    assert_true(r->lane[1].predicted);
+    test_free(g->buf);
     rte_lane_destroy(ctx);
+}
+
+/* A tracked side whose marking shows up outside the gate: a stripe there
+ * restarts the lane at once (found, not predicted); a plain edge there (a
+ * shadow's border: no paint) leaves it held. */
+static void test_reacquire(void **state)
+{
+    (void)state;
+    tracked_road t;
+    track_two_lanes(&t);
+    assert_true(t.cfg.params.gate_px < 50);
+    /* the right edge of the road: a bright step, no stripe */
+    t.lanes[1] = (drawn_lane){265, 145, false};
+    draw_road(&t.g, 70, 230, 108, t.lanes, 2);
+    for (int32_t y = 98; y < 180; y++) {
+        const int32_t x0 = 265 + (145 - 265) * (179 - y) / (179 - 108);
+        for (int32_t x = x0 < 0 ? 0 : x0; x < 320; x++)
+            rte_u8_row(&t.g, y)[x] = 160;
+    }
+    assert_int_equal(rte_lane_process_gray(t.ctx, &t.g, NULL, 0, &t.r), RTE_OK);
+    assert_true(t.r.lane[1].found && t.r.lane[1].predicted);
+    assert_lane_near(&t.r.lane[1], 300, 175, 2, 2);
+    /* the marking 35 px in (30 at the top): taken whole, in this frame */
+    t.lanes[1].present = true;
+    draw_road(&t.g, 70, 230, 108, t.lanes, 2);
+    assert_int_equal(rte_lane_process_gray(t.ctx, &t.g, NULL, 0, &t.r), RTE_OK);
+    assert_false(t.r.lane[1].predicted);
+    assert_lane_near(&t.r.lane[1], 265, 145, 2, 2);
+    assert_lane_near(&t.r.lane[0], 40, 150, 2, 2);
+    assert_int_equal(rte_lane_process_gray(t.ctx, &t.g, NULL, 0, &t.r), RTE_OK);
+    assert_lane_near(&t.r.lane[1], 265, 145, 2, 2);
+    test_free(t.g.buf);
+    rte_lane_destroy(t.ctx);
 }
 
 /* Thresholds and ROI change at run time. */
@@ -1392,6 +1442,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_synthetic_roads), cmocka_unit_test(test_real_photos),
         cmocka_unit_test(test_real_clip),       cmocka_unit_test(test_far_trace_contract),
         cmocka_unit_test(test_far_trace_drawn), cmocka_unit_test(test_glare_confidence),
+        cmocka_unit_test(test_reacquire),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
