@@ -314,6 +314,26 @@ static void bend_each_side(curve_side cs[2], const bool supports[2], const int64
     }
 }
 
+/* Whether a bend moved the bottom end of a side seen only in the lane's
+ * upper half (its lowest window above the middle, or no window) by more
+ * than 3/8 of the lane's height from its straight line. Its offset A then
+ * comes from far windows alone, where the 1/d term dominates: a bend that
+ * is a little off there, or far paint that owes its place to the road's
+ * pitch rather than a bend, throws the near end far away. On the synthetic
+ * roads (a flat road seen by an exact pinhole camera, bends down to 22 m)
+ * a bend moves such an end by 0.36 of the lane's height at most; on the
+ * real freeway of fixtures/lanes by half of it in the median and up to
+ * all of it, the dashed side swinging 100-200 px from frame to frame. */
+static bool moves_unseen_end(const curve_side *cs, const lane_fit_hint *hint,
+                             const lane_line *straight, const lane_line *bent)
+{
+    if (cs->n > 0 && cs->bs[0].u_q16 <= 32768)
+        return false;
+    const int64_t moved =
+        rte_abs64(lane_line_x_q8(bent, hint->y_bottom) - lane_line_x_q8(straight, hint->y_bottom));
+    return moved * 8 > (int64_t)(hint->y_bottom - hint->y_top) * 3 * 256;
+}
+
 /* A bent side's line becomes its chord and *curve gets its bow. ss: the
  * side's window sums under its bend's horizon. */
 static void apply_bend(const side_bend *sb, const side_sums *ss, lane_line *line, lane_curve *curve)
@@ -387,7 +407,15 @@ void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *base, const
     } else if (use[0] || use[1]) {
         bend_each_side(cs, supports, weight, ss, sb);
     }
-    for (int side = 0; side < 2; side++)
-        if (sb[side].bent)
-            apply_bend(&sb[side], &ss[side], &line[side], &curve[side]);
+    for (int side = 0; side < 2; side++) {
+        if (!sb[side].bent)
+            continue;
+        const lane_line straight = line[side];
+        const lane_curve plain = curve[side];
+        apply_bend(&sb[side], &ss[side], &line[side], &curve[side]);
+        if (moves_unseen_end(&cs[side], hint, &straight, &line[side])) {
+            line[side] = straight;
+            curve[side] = plain;
+        }
+    }
 }
