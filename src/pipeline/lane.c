@@ -199,6 +199,24 @@ static rte_status lane_stage_hough(rte_lane_context *ctx, const rte_image_u8 *ed
     return RTE_OK;
 }
 
+/* The rows a side needs paint on to count as seen: a sixteenth of the
+ * lane's. */
+static int32_t lane_min_rows(const rte_lane *lane)
+{
+    return (lane->y_bottom - lane->y_top) / 16 + 1;
+}
+
+/* A line fitted to segments, refined on the edge pixels; whether paint
+ * lies along it (segments are edges; a lane needs paint along them too). */
+static bool lane_refined_on_paint(const lane_maps *maps, const lane_fit_hint *hint,
+                                  const rte_lane *lane, lane_line *line)
+{
+    rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, hint, maps->tol, line);
+    const rte_lane fitted = lane_of_line(line, 0, 0, lane->y_top, lane->y_bottom);
+    int64_t offset_q8;
+    return rte_lane_find_marking(maps, hint, &fitted, 2, &offset_q8) >= lane_min_rows(lane);
+}
+
 /* One side of the fit stage: its segments members[0..n) fitted and the
  * line refined on the edge pixels. A tracked side whose segments are too
  * few (the gap between two dashes, a dash the Hough search left out) is
@@ -221,21 +239,15 @@ static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, in
                           side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
     if (p->fit != RTE_LANE_FIT_LEAST_SQUARES)
         return support >= p->min_support_px ? support : 0;
-    const int32_t min_rows = (lane->y_bottom - lane->y_top) / 16 + 1;
-    if (support > 0 && support >= p->min_support_px) {
-        rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, &hint, maps->tol, line);
-        /* Segments are edges; a lane needs paint along them too. */
-        const rte_lane fitted = lane_of_line(line, 0, 0, lane->y_top, lane->y_bottom);
-        int64_t offset_q8;
-        return rte_lane_find_marking(maps, &hint, &fitted, 2, &offset_q8) >= min_rows ? support : 0;
-    }
+    if (support > 0 && support >= p->min_support_px)
+        return lane_refined_on_paint(maps, &hint, lane, line) ? support : 0;
     if (!t->valid)
         return 0;
     const rte_lane pred = rte_lane_track_predict(t, lane->y_top, lane->y_bottom);
     int64_t offset_q8;
     /* twice the refit's band: the prediction is a frame old */
     const int32_t rows = rte_lane_find_marking(maps, &hint, &pred, 2, &offset_q8);
-    if (rows < min_rows)
+    if (rows < lane_min_rows(lane))
         return 0;
     const int64_t span = lane->y_bottom - lane->y_top;
     *line = (lane_line){(int64_t)pred.x_bottom_q8 + offset_q8,
@@ -264,13 +276,8 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
     const int64_t again =
         rte_lane_fit_side(ctx, members, out, &hint, &found,
                           side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
-    if (again <= 0 || again < ctx->params.min_support_px)
-        return 0;
-    rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, &hint, maps->tol, &found);
-    const rte_lane fitted = lane_of_line(&found, 0, 0, lane->y_top, lane->y_bottom);
-    int64_t offset_q8;
-    if (rte_lane_find_marking(maps, &hint, &fitted, 2, &offset_q8) <
-        (lane->y_bottom - lane->y_top) / 16 + 1)
+    if (again <= 0 || again < ctx->params.min_support_px ||
+        !lane_refined_on_paint(maps, &hint, lane, &found))
         return 0;
     *line = found;
     *bow_q8 = 0;

@@ -16,6 +16,14 @@ static int64_t track_x_q8(const lane_track *t, int32_t y_bottom, int32_t y_top, 
     return rte_lane_x_q8(&l, y);
 }
 
+/* The side a segment ((x0, y0) its upper end) would belong to: one whose
+ * upper end lies right of its lower end (dy/dx < 0 in image coordinates,
+ * y down) is the left lane's. */
+static int segment_side(const rte_lane_segment *s)
+{
+    return s->x1 < s->x0 ? RTE_LANE_LEFT : RTE_LANE_RIGHT;
+}
+
 /* Sorts the Hough segments into sides by slope, position and the gate;
  * fills side lists and marks rejected ones. */
 void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int32_t y_bottom,
@@ -30,8 +38,7 @@ void rte_lane_classify(rte_lane_context *ctx, int32_t count, int32_t width, int3
         }
         const int64_t dx = s->x1 - s->x0, dy = s->y1 - s->y0; /* dy >= 0 */
         const int64_t adx = rte_abs64(dx);
-        /* dy/dx < 0 in image coordinates (y down): the left lane */
-        const int side = dx < 0 ? RTE_LANE_LEFT : RTE_LANE_RIGHT;
+        const int side = segment_side(s);
         const int64_t lo = side == RTE_LANE_LEFT ? p->left_min_slope_q8 : p->right_min_slope_q8;
         const int64_t hi = side == RTE_LANE_LEFT ? p->left_max_slope_q8 : p->right_max_slope_q8;
         const bool slope_ok = dx != 0 && dy * 256 >= lo * adx && dy * 256 <= hi * adx;
@@ -58,9 +65,8 @@ int32_t rte_lane_gated_out(const rte_lane_context *ctx, int side, int32_t count,
 {
     int32_t n = 0;
     for (int32_t i = 0; i < count; i++) {
-        const rte_lane_segment *s = &ctx->segments[i]; /* (x0, y0) the upper end */
-        const int seg_side = s->x1 < s->x0 ? RTE_LANE_LEFT : RTE_LANE_RIGHT;
-        if (s->use == RTE_LANE_SEG_REJECTED_GATE && seg_side == side)
+        const rte_lane_segment *s = &ctx->segments[i]; /* classified: (x0, y0) the upper end */
+        if (s->use == RTE_LANE_SEG_REJECTED_GATE && segment_side(s) == side)
             members[n++] = i;
     }
     return n;
