@@ -73,12 +73,17 @@ def load_labels(labels_path, out_dir):
     return runs
 
 
+def is_seen(lane):
+    """Whether a reported side is seen this frame (found, not predicted)."""
+    return bool(lane) and bool(lane.get("found")) and not lane.get("predicted", False)
+
+
 def score_side(lane, pts, tol):
     """(right, error in px or None, why not) for one side."""
-    seen = bool(lane) and lane.get("found", False) and not lane.get("predicted", False)
+    seen_now = is_seen(lane)
     if not pts:
-        return (not seen, None, "hidden but seen")
-    if not seen:
+        return (not seen_now, None, "hidden but seen")
+    if not seen_now:
         return (False, None, "missed")
     err = max(abs(lane_x(lane, y) - x) for x, y in pts)
     return (err <= tol, err, "off by %.1f px" % err)
@@ -117,7 +122,7 @@ def main():
                 worst = max(worst, err)
             if a.verbose and not ok:
                 print("%s %s: %s" % (name, side, why))
-            if lane and lane.get("found") and not lane.get("predicted"):
+            if is_seen(lane):
                 b = bins[min(int(lane.get("confidence", 0) * 4), 3)]
                 b[0] += 1
                 b[1] += ok
@@ -131,8 +136,7 @@ def main():
     bend_ok = True
     if a.bend:
         signs = [lanes[side].get("curvature", 0) for _, _, lanes in runs
-                 for side in ("left", "right")
-                 if lanes.get(side, {}).get("found") and not lanes[side].get("predicted")]
+                 for side in ("left", "right") if is_seen(lanes.get(side))]
         right_way = sum(1 for c in signs if (c > 0) == (a.bend == "right") and c != 0)
         bend_ok = len(signs) > 0 and right_way >= 0.9 * len(signs)
         print("%s: %d of %d sides seen bend %s" % (a.lanes, right_way, len(signs), a.bend))
