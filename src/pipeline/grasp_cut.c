@@ -92,9 +92,8 @@ static int32_t label_parts(const uint8_t *own, const uint16_t *dist, int32_t cw,
             int32_t top = 0, peak = 0, area = 0;
             stack[top++] = PACK(x, y);
             while (top) {
-                const int32_t jx = PACKED_X(stack[top - 1]), jy = PACKED_Y(stack[top - 1]);
+                const int32_t p = stack[--top], jx = PACKED_X(p), jy = PACKED_Y(p);
                 const int32_t j = jy * cw + jx;
-                top--;
                 peak = dist[j] > peak ? dist[j] : peak;
                 area++;
                 for (int32_t ny = jy - 1; ny <= jy + 1; ny++)
