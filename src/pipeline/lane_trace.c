@@ -38,6 +38,9 @@ static const int16_t trace_dir[TRACE_DIRS][2] = {
  * not followed: a lane that runs along the rows below the horizon is
  * paint across the road (a stop line, a crossing), or a shadow's edge. */
 #define TRACE_RISE_MIN 25
+/* Steps over which the trace must climb a quarter of TRACE_RISE_MIN (1.5
+ * degrees) in all. */
+#define TRACE_FLAT_STEPS 12
 /* The points of the far trace kept (see rte_lane_trace_far). */
 #define TRACE_POINT_ROWS 4
 #define TRACE_POINT_COLS 16
@@ -249,6 +252,14 @@ static int32_t trace_follow(const lane_maps *maps, const lane_fit_hint *rows, tr
         dir = k;
         at = centre_on_ridge(maps, next, k);
         pts[n++] = at;
+        /* the points put back on the ridge may run along the rows although
+         * each step climbs: TRACE_FLAT_STEPS that climbed by less than 1.5
+         * degrees follow a ridge across the road (the far edge of a crest),
+         * not the marking, which beyond a crest still climbs (by 2 degrees
+         * in test_far_trace_drawn); the trace ends where they began */
+        if (n > TRACE_FLAT_STEPS && pts[n - 1 - TRACE_FLAT_STEPS].y_q8 - pts[n - 1].y_q8 <
+                                        TRACE_RISE_MIN * TRACE_STEP * TRACE_FLAT_STEPS / 4)
+            return n - TRACE_FLAT_STEPS;
     }
     return n;
 }

@@ -1491,19 +1491,58 @@ static void test_far_trace_drawn(void **state)
     test_free(img.buf);
 }
 
+/* test_far_trace_drawn's marking, but turning onto a bright ridge that runs
+ * exactly along a row (the far edge of a crest, a kerb across the road)
+ * instead of climbing on: the far trace does not follow the ridge, which
+ * would throw the lane along its last piece beyond the paint's end (to
+ * x = 1088 on row 230 when followed; the paint ends at 450). */
+static void test_far_trace_flat_ridge(void **state)
+{
+    (void)state;
+    const int32_t w = 640, h = 360;
+    rte_image_u8 img = {w, h, w, test_malloc((size_t)w * h)};
+    memset(img.buf, 90, (size_t)w * h);
+    static const double left[][2] = {{150, 359}, {237, 262}, {250, 252},
+                                     {275, 245}, {310, 242}, {450, 242}};
+    static const double right[][2] = {{490, 359}, {393, 216}};
+    paint_marking(&img, left, 6, 2, 230);
+    paint_marking(&img, right, 2, 2, 230);
+    rte_lane_context *ctx = make_ctx(w, h, NULL);
+    rte_lane_result r;
+    assert_int_equal(rte_lane_process_gray(ctx, &img, NULL, 0, &r), RTE_OK);
+    const rte_lane *L = &r.lane[RTE_LANE_LEFT];
+    assert_true(L->found);
+    for (int32_t y = 230; y <= 262; y += 2) {
+        const double x = rte_lane_x_q8(L, y) / 256.0;
+        if (x < 150 || x > 450)
+            fail_msg("left at row %d: %.1f, beyond the paint (150..450)", y, x);
+    }
+    rte_lane_destroy(ctx);
+    test_free(img.buf);
+}
+
 int main(int argc, char **argv)
 {
     if (argc > 1)
         g_roads_dir = argv[1];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_arguments),       cmocka_unit_test(test_tiny_frames),
-        cmocka_unit_test(test_drawn_lanes),     cmocka_unit_test(test_slope_filter),
-        cmocka_unit_test(test_color_cue),       cmocka_unit_test(test_tracking),
-        cmocka_unit_test(test_runtime_params),  cmocka_unit_test(test_y4m),
-        cmocka_unit_test(test_synthetic_roads), cmocka_unit_test(test_real_photos),
-        cmocka_unit_test(test_real_clip),       cmocka_unit_test(test_far_trace_contract),
-        cmocka_unit_test(test_far_trace_drawn), cmocka_unit_test(test_glare_confidence),
-        cmocka_unit_test(test_reacquire),       cmocka_unit_test(test_far_dashes_bend),
+        cmocka_unit_test(test_arguments),
+        cmocka_unit_test(test_tiny_frames),
+        cmocka_unit_test(test_drawn_lanes),
+        cmocka_unit_test(test_slope_filter),
+        cmocka_unit_test(test_color_cue),
+        cmocka_unit_test(test_tracking),
+        cmocka_unit_test(test_runtime_params),
+        cmocka_unit_test(test_y4m),
+        cmocka_unit_test(test_synthetic_roads),
+        cmocka_unit_test(test_real_photos),
+        cmocka_unit_test(test_real_clip),
+        cmocka_unit_test(test_far_trace_contract),
+        cmocka_unit_test(test_far_trace_drawn),
+        cmocka_unit_test(test_glare_confidence),
+        cmocka_unit_test(test_reacquire),
+        cmocka_unit_test(test_far_dashes_bend),
+        cmocka_unit_test(test_far_trace_flat_ridge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
