@@ -206,15 +206,16 @@ static int32_t lane_min_rows(const rte_lane *lane)
     return (lane->y_bottom - lane->y_top) / 16 + 1;
 }
 
-/* A line fitted to segments, refined on the edge pixels; whether paint
- * lies along it (segments are edges; a lane needs paint along them too). */
-static bool lane_refined_on_paint(const lane_maps *maps, const lane_fit_hint *hint,
-                                  const rte_lane *lane, lane_line *line)
+/* A line fitted to segments, refined on the edge pixels: the rows on which
+ * paint lies along it (segments are edges; a lane needs paint along them
+ * too). */
+static int32_t lane_refined_paint_rows(const lane_maps *maps, const lane_fit_hint *hint,
+                                       const rte_lane *lane, lane_line *line)
 {
     rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, hint, maps->tol, line);
     const rte_lane fitted = lane_of_line(line, 0, 0, lane->y_top, lane->y_bottom);
     int64_t offset_q8;
-    return rte_lane_find_marking(maps, hint, &fitted, 2, &offset_q8) >= lane_min_rows(lane);
+    return rte_lane_find_marking(maps, hint, &fitted, 2, &offset_q8);
 }
 
 /* One side of the fit stage: its segments members[0..n) fitted and the
@@ -227,8 +228,9 @@ static bool lane_refined_on_paint(const lane_maps *maps, const lane_fit_hint *hi
  * when not seen. */
 static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, int side,
                                 int32_t *members, int32_t n, const rte_lane *lane, lane_line *line,
-                                int64_t *bow_q8)
+                                int64_t *bow_q8, int32_t *rows)
 {
+    *rows = 0;
     const rte_lane_params *p = &ctx->params;
     const lane_track *t = &ctx->track[side];
     *line = (lane_line){0, 0, (lane->y_bottom + lane->y_top) / 2};
@@ -239,46 +241,60 @@ static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, in
                           side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
     if (p->fit != RTE_LANE_FIT_LEAST_SQUARES)
         return support >= p->min_support_px ? support : 0;
-    if (support > 0 && support >= p->min_support_px)
-        return lane_refined_on_paint(maps, &hint, lane, line) ? support : 0;
+    if (support > 0 && support >= p->min_support_px) {
+        *rows = lane_refined_paint_rows(maps, &hint, lane, line);
+        return *rows >= lane_min_rows(lane) ? support : 0;
+    }
     if (!t->valid)
         return 0;
     const rte_lane pred = rte_lane_track_predict(t, lane->y_top, lane->y_bottom);
     int64_t offset_q8;
     /* twice the refit's band: the prediction is a frame old */
-    const int32_t rows = rte_lane_find_marking(maps, &hint, &pred, 2, &offset_q8);
-    if (rows < lane_min_rows(lane))
+    *rows = rte_lane_find_marking(maps, &hint, &pred, 2, &offset_q8);
+    if (*rows < lane_min_rows(lane))
         return 0;
     const int64_t span = lane->y_bottom - lane->y_top;
     *line = (lane_line){(int64_t)pred.x_bottom_q8 + offset_q8,
                         span > 0 ? ((int64_t)pred.x_top_q8 - pred.x_bottom_q8) * 256 / -span : 0,
                         lane->y_bottom};
     *bow_q8 = pred.bow_q8;
-    return rows;
+    return *rows;
 }
 
 /* A side: lane_fit_tracked, and when that does not see it on a tracked
  * side, the segments the gate rejected fitted alone (no tracked slope):
  * when they hold paint, the tracked lane has lost the marking (it took
  * an outlier, or the marking moved faster than the gate allows) and is
- * restarted from them (*fresh) rather than held where it is not. */
+ * restarted from them (*fresh) rather than held where it is not. When it
+ * sees the side with paint on fewer than an eighth of the lane's rows (a
+ * lane half on the marking), all the side's segments, inside the gate and
+ * outside, are fitted alone the same way, and restart the lane when they
+ * hold paint on an eighth of the rows and twice as many as it. */
 static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, int side,
                                  int32_t count, int32_t *members, int32_t n, const rte_lane *lane,
                                  lane_line *line, int64_t *bow_q8, bool *fresh)
 {
     *fresh = false;
-    const int64_t support = lane_fit_tracked(ctx, maps, side, members, n, lane, line, bow_q8);
-    if (support > 0 || !ctx->track[side].valid || ctx->params.fit != RTE_LANE_FIT_LEAST_SQUARES)
+    int32_t rows = 0;
+    const int64_t support =
+        lane_fit_tracked(ctx, maps, side, members, n, lane, line, bow_q8, &rows);
+    const int32_t weak = (lane->y_bottom - lane->y_top) / 8;
+    if ((support > 0 && rows >= weak) || !ctx->track[side].valid ||
+        ctx->params.fit != RTE_LANE_FIT_LEAST_SQUARES)
         return support;
-    const int32_t out = rte_lane_gated_out(ctx, side, count, members);
+    const int32_t base = support > 0 ? n : 0; /* members[] holds count */
+    const int32_t out = base + rte_lane_gated_out(ctx, side, count, members + base);
     const lane_fit_hint hint = {lane->y_top, lane->y_bottom, 0, 0, 0, false};
     lane_line found = {0, 0, (lane->y_bottom + lane->y_top) / 2};
     const int64_t again =
         rte_lane_fit_side(ctx, members, out, &hint, &found,
                           side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
-    if (again <= 0 || again < ctx->params.min_support_px ||
-        !lane_refined_on_paint(maps, &hint, lane, &found))
-        return 0;
+    if (again <= 0 || again < ctx->params.min_support_px)
+        return support;
+    const int32_t again_rows = lane_refined_paint_rows(maps, &hint, lane, &found);
+    if (again_rows < lane_min_rows(lane) ||
+        (support > 0 && (again_rows < weak || again_rows < 2 * rows)))
+        return support;
     *line = found;
     *bow_q8 = 0;
     *fresh = true;
@@ -386,6 +402,29 @@ static void lane_confidence(const lane_maps *maps, int32_t glare_permille, rte_l
     lane->confidence_permille = clear > 0 ? (int32_t)(paint * clear / 1000) : 0;
 }
 
+/* Whether the tracked lane has left the marking this frame's measurement
+ * lies on: paint along the measurement on a quarter of the lane's rows at
+ * least and on three times as many as along the prediction (in the
+ * refit's band). The tracker smooths a marking it follows; where the lane
+ * it holds lies on bare road it has lost it (a bend or a lane change
+ * faster than its steps), and the measurement is taken whole. */
+static bool lane_track_lost(const rte_lane_context *ctx, const lane_maps *maps,
+                            const lane_fit_hint *rows, int side, const lane_line *line,
+                            const lane_curve *curve)
+{
+    const lane_track *t = &ctx->track[side];
+    if (!t->valid || t->lost > 0)
+        return false;
+    const rte_lane pred = rte_lane_track_predict(t, rows->y_top, rows->y_bottom);
+    const rte_lane meas =
+        lane_of_line(line, curve->bow_q8, curve->y_horizon, rows->y_top, rows->y_bottom);
+    int64_t offset_q8;
+    const int32_t on_meas = rte_lane_find_marking(maps, rows, &meas, 1, &offset_q8);
+    if (on_meas < (rows->y_bottom - rows->y_top) / 4)
+        return false;
+    return on_meas >= 3 * rte_lane_find_marking(maps, rows, &pred, 1, &offset_q8);
+}
+
 /* The fit stage: the segments (ctx->segments[0..count)) sorted into sides,
  * both lanes fitted and tracked, then their centre. */
 static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const rte_image_u8 *gray,
@@ -437,6 +476,9 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
     if (p->fit == RTE_LANE_FIT_LEAST_SQUARES)
         rte_lane_double_centre(&maps, &rows, seen, line, curve);
     rte_lane_width_hold(ctx, seen, line, curve, y_top, y_bottom);
+    for (int side = 0; side < 2; side++)
+        if (seen[side] && !fresh[side])
+            fresh[side] = lane_track_lost(ctx, &maps, &rows, side, &line[side], &curve[side]);
     for (int side = 0; side < 2; side++)
         rte_lane_track_update(ctx, side, seen[side], fresh[side], &line[side], &curve[side],
                               support[side], &out->lane[side]);
