@@ -13,13 +13,19 @@
  * pixels would otherwise serialise on one counter's load-increment-store
  * (eight take 12 % less time than four on the road photos). */
 #define HIST_PARTS 8
+/* Each partial histogram padded to 272 counters (1088 bytes): at 256 the
+ * same grey level's counters of parts k and k + 4 lay 4096 bytes apart,
+ * which the CPU's store-to-load check (on the low 12 address bits) takes
+ * for one address, stalling the next part's load behind the last store
+ * (6-10% of the time of rte_threshold_otsu_u8 at 1280x720). */
+#define HIST_ROW 272
 
 /* Adds the pixels of a row (where mask is NULL or mask[x] != 0) to the
  * partial histograms, eight pixels at a time (one 8-byte load each; byte
  * order cannot matter here); mask chunks of all zeros are skipped, chunks
  * without a zero byte counted as unmasked. */
 static void histogram_row(const uint8_t *row, const uint8_t *mask, int32_t n,
-                          uint32_t part[HIST_PARTS][256])
+                          uint32_t part[HIST_PARTS][HIST_ROW])
 {
     const uint64_t ones = 0x0101010101010101u, highs = 0x8080808080808080u;
     int32_t x = 0;
@@ -56,7 +62,7 @@ static rte_status histogram(const rte_image_u8 *src, const rte_image_u8 *mask, u
         return st;
     if (!hist)
         return RTE_ERR_ARGUMENT;
-    uint32_t part[HIST_PARTS][256];
+    uint32_t part[HIST_PARTS][HIST_ROW];
     memset(part, 0, sizeof part);
     for (int32_t y = 0; y < src->height; y++)
         histogram_row(rte_u8_row(src, y), mask ? rte_u8_row(mask, y) : NULL, src->width, part);
