@@ -199,6 +199,12 @@ static rte_status lane_stage_hough(rte_lane_context *ctx, const rte_image_u8 *ed
     return RTE_OK;
 }
 
+/* The mark of the segments that support a side's lane. */
+static rte_lane_segment_use lane_side_use(int side)
+{
+    return side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT;
+}
+
 /* The rows a side needs paint on to count as seen: a sixteenth of the
  * lane's. */
 static int32_t lane_min_rows(const rte_lane *lane)
@@ -236,9 +242,9 @@ static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, in
     *line = (lane_line){0, 0, (lane->y_bottom + lane->y_top) / 2};
     *bow_q8 = 0;
     const lane_fit_hint hint = rte_lane_track_hint(t, lane->y_top, lane->y_bottom);
-    const int64_t support =
-        rte_lane_fit_side(ctx, members, n, &hint, line,
-                          side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
+    int32_t inliers;
+    const int64_t support = rte_lane_fit_side(ctx, members, n, &hint, line, &inliers);
+    rte_lane_mark_side(ctx, members, n, inliers, lane_side_use(side));
     if (p->fit != RTE_LANE_FIT_LEAST_SQUARES)
         return support >= p->min_support_px ? support : 0;
     if (support > 0 && support >= p->min_support_px) {
@@ -282,19 +288,23 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
     if ((support > 0 && rows >= weak) || !ctx->track[side].valid ||
         ctx->params.fit != RTE_LANE_FIT_LEAST_SQUARES)
         return support;
-    const int32_t base = support > 0 ? n : 0; /* members[] holds count */
-    const int32_t out = base + rte_lane_gated_out(ctx, side, count, members + base);
+    /* members[] holds count: the gated-out ones go after the n in the gate */
+    const int32_t gated = rte_lane_gated_out(ctx, side, count, members + n);
+    int32_t *refit = support > 0 ? members : members + n;
+    const int32_t listed = support > 0 ? n + gated : gated;
     const lane_fit_hint hint = {lane->y_top, lane->y_bottom, 0, 0, 0, false};
     lane_line found = {0, 0, (lane->y_bottom + lane->y_top) / 2};
-    const int64_t again =
-        rte_lane_fit_side(ctx, members, out, &hint, &found,
-                          side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT);
+    int32_t inliers;
+    const int64_t again = rte_lane_fit_side(ctx, refit, listed, &hint, &found, &inliers);
     if (again <= 0 || again < ctx->params.min_support_px)
         return support;
     const int32_t again_rows = lane_refined_paint_rows(maps, &hint, lane, &found);
     if (again_rows < lane_min_rows(lane) ||
         (support > 0 && (again_rows < weak || again_rows < 2 * rows)))
         return support;
+    if (refit != members) /* the gate's segments: the lane does not use them */
+        rte_lane_mark_side(ctx, members, n, 0, RTE_LANE_SEG_OUTLIER);
+    rte_lane_mark_side(ctx, refit, listed, inliers, lane_side_use(side));
     *line = found;
     *bow_q8 = 0;
     *fresh = true;

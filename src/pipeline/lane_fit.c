@@ -173,13 +173,14 @@ static bool fit_least_squares(const rte_lane_segment *segs, const int32_t *weigh
 }
 
 /* The robust fit of one side over members[0..n): medians first; for least
- * squares, segments beyond outlier_px are marked and the rest refitted
+ * squares, segments beyond outlier_px are set aside and the rest refitted
  * (twice, so an outlier that pulled the start is caught on the second
- * pass). Returns the supporting length. */
+ * pass). members[] is partitioned in place, the inliers first. */
 int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n,
-                          const lane_fit_hint *hint, lane_line *line, rte_lane_segment_use use)
+                          const lane_fit_hint *hint, lane_line *line, int32_t *inliers)
 {
     rte_lane_segment *segs = ctx->segments;
+    *inliers = 0;
     if (n == 0)
         return 0;
     fit_medians(ctx, members, n, line);
@@ -193,12 +194,10 @@ int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n,
         const int64_t pass_tol = pass == 0 && passes > 1 ? 2 * tol : tol;
         kept = 0;
         for (int32_t i = 0; i < n; i++) {
-            rte_lane_segment *s = &segs[members[i]];
-            if (seg_residual_q8(line, s) <= pass_tol) {
-                s->use = use;
-                members[kept++] = members[i];
-            } else {
-                s->use = RTE_LANE_SEG_OUTLIER;
+            if (seg_residual_q8(line, &segs[members[i]]) <= pass_tol) {
+                const int32_t m = members[i]; /* swapped: the outliers stay listed */
+                members[i] = members[kept];
+                members[kept++] = m;
             }
         }
         n = kept;
@@ -211,5 +210,13 @@ int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n,
     int64_t support = 0;
     for (int32_t i = 0; i < kept; i++)
         support += seg_length(&segs[members[i]]);
+    *inliers = kept;
     return support;
+}
+
+void rte_lane_mark_side(rte_lane_context *ctx, const int32_t *members, int32_t n, int32_t inliers,
+                        rte_lane_segment_use use)
+{
+    for (int32_t i = 0; i < n; i++)
+        ctx->segments[members[i]].use = i < inliers ? use : RTE_LANE_SEG_OUTLIER;
 }

@@ -129,11 +129,14 @@ void rte_lane_track_update(rte_lane_context *ctx, int side, bool seen, bool fres
  * width from the other side's, its top end kept. */
 void rte_lane_width_hold(rte_lane_context *ctx, const bool seen[2], lane_line line[2],
                          const lane_curve curve[2], int32_t y_top, int32_t y_bottom);
-/* lane_fit.c: the robust fit of one side over the segments members[0..n)
- * (reordered; the inliers are marked `use`). Returns the supporting
- * length. */
+/* lane_fit.c: the robust fit of one side over the segments members[0..n),
+ * reordered with its *inliers inliers first. Returns their supporting
+ * length. The segments' `use` is left as it is: rte_lane_mark_side marks
+ * the inliers `use` and the rest outliers once the fit is taken. */
 int64_t rte_lane_fit_side(rte_lane_context *ctx, int32_t *members, int32_t n,
-                          const lane_fit_hint *hint, lane_line *line, rte_lane_segment_use use);
+                          const lane_fit_hint *hint, lane_line *line, int32_t *inliers);
+void rte_lane_mark_side(rte_lane_context *ctx, const int32_t *members, int32_t n, int32_t inliers,
+                        rte_lane_segment_use use);
 
 /* The edge pixels of columns xa..xb of one row that run along a line. */
 typedef struct band_pixels {

@@ -466,6 +466,17 @@ static void test_reacquire(void **state)
     rte_lane_destroy(t.ctx);
 }
 
+/* Rows y0..y1 of a 5 px stripe of value v on tracked_road's frame, along
+ * the line from x = xb on its bottom row to x = xt on row 108. */
+static void paint_stripe(rte_image_u8 *g, int32_t xb, int32_t xt, int32_t y0, int32_t y1, uint8_t v)
+{
+    for (int32_t y = y0; y <= y1; y++) {
+        const int32_t xc = xb + (xt - xb) * (179 - y) / (179 - 108);
+        for (int32_t x = xc - 2; x <= xc + 2; x++)
+            rte_u8_row(g, y)[x] = v;
+    }
+}
+
 /* A tracked side that its gated segments show on little paint (a dash of
  * the old marking left inside the gate: 8 of the lane's 72 rows, more
  * than the sixteenth that counts as seen, fewer than an eighth) while the
@@ -480,15 +491,48 @@ static void test_weak_side_refit(void **state)
     track_two_lanes(&t);
     t.lanes[1] = (drawn_lane){265, 145, true};
     draw_road(&t.g, 70, 230, 108, t.lanes, 2);
-    /* the dash: the old marking's rows 171..178 */
-    for (int32_t y = 171; y <= 178; y++) {
-        const int32_t xc = 300 + (175 - 300) * (179 - y) / (179 - 108);
-        for (int32_t x = xc - 2; x <= xc + 2; x++)
-            rte_u8_row(&t.g, y)[x] = 230;
-    }
+    paint_stripe(&t.g, 300, 175, 171, 178, 230); /* the dash: the old marking's rows 171..178 */
     assert_int_equal(rte_lane_process_gray(t.ctx, &t.g, NULL, 0, &t.r), RTE_OK);
     assert_false(t.r.lane[1].predicted);
     assert_lane_near(&t.r.lane[1], 265, 145, 2, 2);
+    /* the segments marked the right lane's are the new marking's; the
+     * dash's are not */
+    int32_t marked = 0;
+    for (int32_t i = 0; i < t.r.segment_count; i++) {
+        const rte_lane_segment *s = &t.r.segments[i];
+        if (s->use != RTE_LANE_SEG_RIGHT)
+            continue;
+        marked++;
+        for (int32_t e = 0; e < 2; e++) {
+            const int32_t x = e ? s->x1 : s->x0, y = e ? s->y1 : s->y0;
+            assert_in_range(x, 265 + (145 - 265) * (179 - y) / (179 - 108) - 6,
+                            265 + (145 - 265) * (179 - y) / (179 - 108) + 6);
+        }
+    }
+    assert_true(marked > 0);
+    test_free(t.g.buf);
+    rte_lane_destroy(t.ctx);
+}
+
+/* A tracked right marking gone and a dark stripe (a tar seam: edges, no
+ * paint) outside the gate: the stripe's segments do not restart the lane,
+ * which is held, and they stay marked as rejected by the gate. */
+static void test_gated_stripe_marks(void **state)
+{
+    (void)state;
+    tracked_road t;
+    track_two_lanes(&t);
+    t.lanes[1].present = false;
+    draw_road(&t.g, 70, 230, 108, t.lanes, 2);
+    paint_stripe(&t.g, 250, 170, 108, 179, 15);
+    assert_int_equal(rte_lane_process_gray(t.ctx, &t.g, NULL, 0, &t.r), RTE_OK);
+    assert_true(t.r.lane[1].predicted);
+    int32_t gated = 0;
+    for (int32_t i = 0; i < t.r.segment_count; i++) {
+        assert_int_not_equal(t.r.segments[i].use, RTE_LANE_SEG_RIGHT);
+        gated += t.r.segments[i].use == RTE_LANE_SEG_REJECTED_GATE;
+    }
+    assert_true(gated > 0);
     test_free(t.g.buf);
     rte_lane_destroy(t.ctx);
 }
@@ -1484,6 +1528,25 @@ static void paint_marking(rte_image_u8 *img, const double (*pts)[2], int n, int 
     }
 }
 
+/* The lanes of one 640x360 grey frame: a left marking along the polyline
+ * left[0..n) and a straight right one, both 5 px wide (r's segments point
+ * into the context, destroyed here: only the lanes are read). */
+static void far_road_lanes(const double (*left)[2], int n, rte_lane_result *r)
+{
+    const int32_t w = 640, h = 360;
+    rte_image_u8 img = {w, h, w, test_malloc((size_t)w * h)};
+    memset(img.buf, 90, (size_t)w * h);
+    static const double right[][2] = {{490, 359}, {393, 216}};
+    paint_marking(&img, left, n, 2, 230);
+    paint_marking(&img, right, 2, 2, 230);
+    rte_lane_context *ctx = make_ctx(w, h, NULL);
+    assert_int_equal(rte_lane_process_gray(ctx, &img, NULL, 0, r), RTE_OK);
+    r->segments = NULL;
+    r->segment_count = 0;
+    rte_lane_destroy(ctx);
+    test_free(img.buf);
+}
+
 /* A drawn road whose left marking turns sharply right near the top, to
  * run nearly along the rows: the far trace follows it where the curve
  * cannot (every drawn vertex within 2% of the width within a row of it,
@@ -1492,17 +1555,11 @@ static void paint_marking(rte_image_u8 *img, const double (*pts)[2], int n, int 
 static void test_far_trace_drawn(void **state)
 {
     (void)state;
-    const int32_t w = 640, h = 360;
-    rte_image_u8 img = {w, h, w, test_malloc((size_t)w * h)};
-    memset(img.buf, 90, (size_t)w * h);
+    const int32_t w = 640;
     static const double left[][2] = {{150, 359}, {237, 262}, {250, 252}, {275, 245},
                                      {310, 240}, {360, 236}, {420, 234}};
-    static const double right[][2] = {{490, 359}, {393, 216}};
-    paint_marking(&img, left, 7, 2, 230);
-    paint_marking(&img, right, 2, 2, 230);
-    rte_lane_context *ctx = make_ctx(w, h, NULL);
     rte_lane_result r;
-    assert_int_equal(rte_lane_process_gray(ctx, &img, NULL, 0, &r), RTE_OK);
+    far_road_lanes(left, 7, &r);
     const rte_lane *L = &r.lane[RTE_LANE_LEFT], *R = &r.lane[RTE_LANE_RIGHT];
     assert_true(L->found && R->found);
     assert_true(L->far_count >= 2);
@@ -1521,8 +1578,6 @@ static void test_far_trace_drawn(void **state)
         if (err > 0.02 * w)
             fail_msg("left near row %.0f: %.1f, drawn at %.1f", left[i][1], x, left[i][0]);
     }
-    rte_lane_destroy(ctx);
-    test_free(img.buf);
 }
 
 /* test_far_trace_drawn's marking, but turning onto a bright ridge that runs
@@ -1533,17 +1588,10 @@ static void test_far_trace_drawn(void **state)
 static void test_far_trace_flat_ridge(void **state)
 {
     (void)state;
-    const int32_t w = 640, h = 360;
-    rte_image_u8 img = {w, h, w, test_malloc((size_t)w * h)};
-    memset(img.buf, 90, (size_t)w * h);
     static const double left[][2] = {{150, 359}, {237, 262}, {250, 252},
                                      {275, 245}, {310, 242}, {450, 242}};
-    static const double right[][2] = {{490, 359}, {393, 216}};
-    paint_marking(&img, left, 6, 2, 230);
-    paint_marking(&img, right, 2, 2, 230);
-    rte_lane_context *ctx = make_ctx(w, h, NULL);
     rte_lane_result r;
-    assert_int_equal(rte_lane_process_gray(ctx, &img, NULL, 0, &r), RTE_OK);
+    far_road_lanes(left, 6, &r);
     const rte_lane *L = &r.lane[RTE_LANE_LEFT];
     assert_true(L->found);
     for (int32_t y = 230; y <= 262; y += 2) {
@@ -1551,8 +1599,6 @@ static void test_far_trace_flat_ridge(void **state)
         if (x < 150 || x > 450)
             fail_msg("left at row %d: %.1f, beyond the paint (150..450)", y, x);
     }
-    rte_lane_destroy(ctx);
-    test_free(img.buf);
 }
 
 int main(int argc, char **argv)
@@ -1560,15 +1606,25 @@ int main(int argc, char **argv)
     if (argc > 1)
         g_roads_dir = argv[1];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_arguments),       cmocka_unit_test(test_tiny_frames),
-        cmocka_unit_test(test_drawn_lanes),     cmocka_unit_test(test_slope_filter),
-        cmocka_unit_test(test_color_cue),       cmocka_unit_test(test_tracking),
-        cmocka_unit_test(test_runtime_params),  cmocka_unit_test(test_y4m),
-        cmocka_unit_test(test_synthetic_roads), cmocka_unit_test(test_real_photos),
-        cmocka_unit_test(test_real_clip),       cmocka_unit_test(test_far_trace_contract),
-        cmocka_unit_test(test_far_trace_drawn), cmocka_unit_test(test_glare_confidence),
-        cmocka_unit_test(test_reacquire),       cmocka_unit_test(test_weak_side_refit),
-        cmocka_unit_test(test_far_dashes_bend), cmocka_unit_test(test_far_trace_flat_ridge),
+        cmocka_unit_test(test_arguments),
+        cmocka_unit_test(test_tiny_frames),
+        cmocka_unit_test(test_drawn_lanes),
+        cmocka_unit_test(test_slope_filter),
+        cmocka_unit_test(test_color_cue),
+        cmocka_unit_test(test_tracking),
+        cmocka_unit_test(test_runtime_params),
+        cmocka_unit_test(test_y4m),
+        cmocka_unit_test(test_synthetic_roads),
+        cmocka_unit_test(test_real_photos),
+        cmocka_unit_test(test_real_clip),
+        cmocka_unit_test(test_far_trace_contract),
+        cmocka_unit_test(test_far_trace_drawn),
+        cmocka_unit_test(test_glare_confidence),
+        cmocka_unit_test(test_reacquire),
+        cmocka_unit_test(test_weak_side_refit),
+        cmocka_unit_test(test_gated_stripe_marks),
+        cmocka_unit_test(test_far_dashes_bend),
+        cmocka_unit_test(test_far_trace_flat_ridge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
