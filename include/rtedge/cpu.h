@@ -25,7 +25,8 @@ enum {
     RTE_CPU_X86_SSSE3 = 1u << 1,
     RTE_CPU_X86_SSE41 = 1u << 2,
     RTE_CPU_X86_AVX2 = 1u << 3,
-    RTE_CPU_ARM_NEON = 1u << 8, /* AdvSIMD (ASIMD), always present on aarch64 Linux */
+    RTE_CPU_X86_AVX512 = 1u << 4, /* AVX-512 F, BW and VL, with the OS saving their state */
+    RTE_CPU_ARM_NEON = 1u << 8,   /* AdvSIMD (ASIMD), always present on aarch64 Linux */
 };
 
 /* The RTE_CPU_* bits of this CPU that rtedge can use, or 0 when the

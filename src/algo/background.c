@@ -262,9 +262,10 @@ rte_background_rows rte_background_rows_select(uint32_t features)
     static const rte_background_rows c = RTE_BACKGROUND_ROWS_OF(c);
 #ifdef RTE_SIMD_X86
     static const rte_background_rows avx2 = RTE_BACKGROUND_ROWS_OF(avx2);
+    static const rte_background_rows avx512 = RTE_BACKGROUND_ROWS_OF(avx512);
 #endif
 #undef RTE_BACKGROUND_ROWS_OF
-    return RTE_SIMD_PICK(features, c, avx2, c);
+    return RTE_SIMD_PICK(features, c, avx2, avx512, c);
 }
 
 rte_status rte_background_estimate_u8(const rte_image_u8 *src, rte_image_u8 *background,

@@ -70,6 +70,7 @@ rte_canny_rows rte_canny_rows_select(uint32_t features)
 {
     return RTE_SIMD_PICK(features, ((rte_canny_rows){rte_canny_sobel_row_c, rte_canny_nms_row_c}),
                          ((rte_canny_rows){rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2}),
+                         ((rte_canny_rows){rte_canny_sobel_row_avx512, rte_canny_nms_row_avx512}),
                          ((rte_canny_rows){rte_canny_sobel_row_neon, rte_canny_nms_row_neon}));
 }
 

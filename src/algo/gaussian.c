@@ -94,6 +94,7 @@ rte_gaussian_rows rte_gaussian_rows_select(uint32_t features)
     return RTE_SIMD_PICK(
         features, ((rte_gaussian_rows){rte_gaussian_column_pass_c, rte_gaussian_row_pass_c}),
         ((rte_gaussian_rows){rte_gaussian_column_pass_avx2, rte_gaussian_row_pass_avx2}),
+        ((rte_gaussian_rows){rte_gaussian_column_pass_avx512, rte_gaussian_row_pass_avx512}),
         ((rte_gaussian_rows){rte_gaussian_column_pass_c, rte_gaussian_row_pass_c}));
 }
 

@@ -69,6 +69,7 @@ rte_grad_rows rte_grad_rows_select(uint32_t features)
 {
     return RTE_SIMD_PICK(features, ((rte_grad_rows){rte_grad_column_c, rte_grad_row_c}),
                          ((rte_grad_rows){rte_grad_column_avx2, rte_grad_row_avx2}),
+                         ((rte_grad_rows){rte_grad_column_avx512, rte_grad_row_avx512}),
                          ((rte_grad_rows){rte_grad_column_c, rte_grad_row_c}));
 }
 

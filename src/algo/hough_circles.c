@@ -196,7 +196,8 @@ void rte_circle_votes_c(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux
 
 rte_circle_votes_fn rte_circle_votes_select(uint32_t features)
 {
-    return RTE_SIMD_PICK(features, rte_circle_votes_c, rte_circle_votes_avx2, rte_circle_votes_c);
+    return RTE_SIMD_PICK(features, rte_circle_votes_c, rte_circle_votes_avx2,
+                         rte_circle_votes_avx512, rte_circle_votes_c);
 }
 
 /* One pixel's votes along (sx, sy) from (x1, y1) = its position plus

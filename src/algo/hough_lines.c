@@ -43,6 +43,8 @@ rte_hough_line_rows rte_hough_line_rows_select(uint32_t features)
     return RTE_SIMD_PICK(
         features, ((rte_hough_line_rows){rte_hough_point_bins_c, rte_hough_sum_copies_c}),
         ((rte_hough_line_rows){rte_hough_point_bins_avx2, rte_hough_sum_copies_avx2}),
+        /* the point bins are written with AVX2 intrinsics */
+        ((rte_hough_line_rows){rte_hough_point_bins_avx2, rte_hough_sum_copies_avx512}),
         ((rte_hough_line_rows){rte_hough_point_bins_c, rte_hough_sum_copies_c}));
 }
 

@@ -35,7 +35,8 @@ void rte_hough_bins_c(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n,
 
 rte_hough_bins_fn rte_hough_bins_select(uint32_t features)
 {
-    return RTE_SIMD_PICK(features, rte_hough_bins_c, rte_hough_bins_avx2, rte_hough_bins_c);
+    return RTE_SIMD_PICK(features, rte_hough_bins_c, rte_hough_bins_avx2, rte_hough_bins_avx512,
+                         rte_hough_bins_c);
 }
 
 /* Everything the search shares. */

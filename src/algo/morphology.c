@@ -257,6 +257,7 @@ rte_morph_rows rte_morph_rows_select(uint32_t features)
 {
     return RTE_SIMD_PICK(features, ((rte_morph_rows){rte_morph_row_op2_c, rte_morph_reduce_rows_c}),
                          ((rte_morph_rows){rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2}),
+                         ((rte_morph_rows){rte_morph_row_op2_avx512, rte_morph_reduce_rows_avx512}),
                          ((rte_morph_rows){rte_morph_row_op2_c, rte_morph_reduce_rows_c}));
 }
 

@@ -209,7 +209,7 @@ void rte_threshold_row_c(const uint8_t *s, uint8_t *d, int32_t n, int type, uint
 rte_threshold_row_fn rte_threshold_row_select(uint32_t features)
 {
     return RTE_SIMD_PICK(features, rte_threshold_row_c, rte_threshold_row_avx2,
-                         rte_threshold_row_neon);
+                         rte_threshold_row_avx512, rte_threshold_row_neon);
 }
 
 static void fill_rows(rte_image_u8 *dst, uint8_t v)

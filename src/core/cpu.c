@@ -27,6 +27,10 @@ uint32_t rte_cpu_features_hw(void)
      * ymm registers (XGETBV), so a VM without AVX state gets SSSE3 */
     if (__builtin_cpu_supports("avx2"))
         f |= RTE_CPU_X86_AVX2;
+    /* likewise the zmm and mask registers' state for AVX-512 */
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx512vl"))
+        f |= RTE_CPU_X86_AVX512;
 #elif defined(__aarch64__) && defined(__linux__)
     if (getauxval(AT_HWCAP) & HWCAP_ASIMD)
         f |= RTE_CPU_ARM_NEON;

@@ -16,7 +16,8 @@ void rte_lane_cue_row_c(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, i
 
 rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features)
 {
-    return RTE_SIMD_PICK(features, rte_lane_cue_row_c, rte_lane_cue_row_avx2, rte_lane_cue_row_c);
+    return RTE_SIMD_PICK(features, rte_lane_cue_row_c, rte_lane_cue_row_avx2,
+                         rte_lane_cue_row_avx512, rte_lane_cue_row_c);
 }
 
 /* The colour cue: white or yellow paint -> 255, everything else grey scaled

@@ -8,7 +8,7 @@ Each archive holds the objects of src/algo/simd/: NAME_x86.c holds x86
 variants, NAME_neon.c aarch64 NEON ones, and each compiles to nothing on
 the other CPU family. Every global function of a variant object is a
 variant named after its instruction set (rte_..._sse2, _ssse3, _sse41,
-_avx2, _neon) and is disassembled on its own (objdump -d, split by symbol,
+_avx2, _avx512, _neon) and is disassembled on its own (objdump -d, split by symbol,
 with the static functions of its object that it calls) and must hold:
 
   sse2   packed instructions on xmm registers, nothing past SSE2
@@ -18,6 +18,7 @@ with the static functions of its object that it calls) and must hold:
   sse41  the same with at least one SSE4.1 instruction, nothing past SSE4.1
   avx2   packed integer (vp...) instructions on ymm registers, no AVX-512
          (zmm or mask registers)
+  avx512 packed integer (vp...) instructions on zmm registers
   neon   arithmetic on vector registers with an arrangement (v0.16b,
          v1.8h, ...; loads, stores and moves do not count), no SVE
 
@@ -37,8 +38,9 @@ SKIP = 77
 X86_FAMILIES = ('x86', 'x86_64')
 FILE_FAMILY = {'_x86': 'x86', '_neon': 'aarch64'}
 VARIANT_SUFFIXES = {'_sse2': 'sse2', '_ssse3': 'ssse3', '_sse41': 'sse41', '_avx2': 'avx2',
-                    '_neon': 'neon'}
-ISA_FAMILY = {'sse2': 'x86', 'ssse3': 'x86', 'sse41': 'x86', 'avx2': 'x86', 'neon': 'aarch64'}
+                    '_avx512': 'avx512', '_neon': 'neon'}
+ISA_FAMILY = {'sse2': 'x86', 'ssse3': 'x86', 'sse41': 'x86', 'avx2': 'x86', 'avx512': 'x86',
+              'neon': 'aarch64'}
 
 SSSE3_MNEMONICS = {'pshufb', 'pmaddubsw', 'palignr', 'pabsb', 'pabsw', 'pabsd', 'phaddw', 'phaddd',
                    'phaddsw', 'phsubw', 'phsubd', 'phsubsw', 'pmulhrsw', 'psignb', 'psignw',
@@ -149,7 +151,7 @@ def body_with_callees(name, bodies, functions):
 
 def x86_packed(mnemonic, ops, reg_class):
     """Whether this is a packed (vector) operation on registers of
-    reg_class ('xmm' or 'ymm'), not a move or a zeroing idiom."""
+    reg_class ('xmm', 'ymm' or 'zmm'), not a move or a zeroing idiom."""
     regs = X86_REG.findall(ops)
     if not any(r.startswith(reg_class) for r in regs):
         return False
@@ -171,6 +173,11 @@ def check_x86(isa, insns):
         if n == 0:
             return 'no packed integer instruction on ymm registers (not vectorised for AVX2)', ''
         return None, f'{n} packed integer instructions on ymm'
+    if isa == 'avx512':
+        n = sum(1 for m, o in insns if m.startswith('vp') and x86_packed(m, o, 'zmm'))
+        if n == 0:
+            return 'no packed integer instruction on zmm registers (not vectorised for AVX-512)', ''
+        return None, f'{n} packed integer instructions on zmm'
     for m, o in insns:
         regs = X86_REG.findall(o)
         if m in ('vzeroupper', 'vzeroall') or (m.startswith('v') and regs):
@@ -227,9 +234,9 @@ def check_member(member, cpu, functions, bodies):
         insns = body_with_callees(name, bodies, functions)
         error, summary = check_x86(isa, insns) if cpu == 'x86' else check_neon(insns)
         if error:
-            errors += fail(f'{isa:5} {name} ({member}): {error}')
+            errors += fail(f'{isa:6} {name} ({member}): {error}')
         else:
-            print(f'ok   {isa:5} {name} ({member}): {summary}')
+            print(f'ok   {isa:6} {name} ({member}): {summary}')
     return errors
 
 

@@ -1109,6 +1109,8 @@ static const char *path_name(void)
         return rte_cpu_features_hw() ? "plain C (RTE_FORCE_C)" : "plain C";
     if (f & RTE_CPU_ARM_NEON)
         return "NEON";
+    if ((f & RTE_CPU_X86_AVX2) && (f & RTE_CPU_X86_AVX512))
+        return "AVX-512";
     if (f & RTE_CPU_X86_AVX2)
         return "AVX2";
     return "SSE";

@@ -2,7 +2,7 @@
  * random rows (as libyuv tests its rows): every width 1..300 and random
  * larger ones, unaligned starts, odd strides. Each kernel family runs
  * under every feature mask of its CPU family (none, SSE2, +SSSE3, +SSE4.1,
- * +AVX2 on x86; none, NEON on aarch64): the variant that the family's
+ * +AVX2, +AVX-512 on x86; none, NEON on aarch64): the variant that the family's
  * *_select(mask) picks is compared with the C reference, one CMocka test
  * per family and mask, and a mask this CPU lacks is reported as skipped.
  * Every variant must be picked by some mask, and never one that needs a
@@ -46,6 +46,8 @@ static const feature_mask feature_masks[] = {
     {"ssse3", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3},
     {"sse41", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41},
     {"avx2", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41 | RTE_CPU_X86_AVX2},
+    {"avx512", RTE_CPU_X86_SSE2 | RTE_CPU_X86_SSSE3 | RTE_CPU_X86_SSE41 | RTE_CPU_X86_AVX2 |
+                   RTE_CPU_X86_AVX512},
 #endif
 #ifdef RTE_SIMD_NEON
     {"neon", RTE_CPU_ARM_NEON},
@@ -56,8 +58,8 @@ static const feature_mask feature_masks[] = {
 static const char *feature_names(uint32_t bits, char *buf, size_t size)
 {
     static const feature_mask names[] = {
-        {"sse2", RTE_CPU_X86_SSE2}, {"ssse3", RTE_CPU_X86_SSSE3}, {"sse41", RTE_CPU_X86_SSE41},
-        {"avx2", RTE_CPU_X86_AVX2}, {"neon", RTE_CPU_ARM_NEON},
+        {"sse2", RTE_CPU_X86_SSE2}, {"ssse3", RTE_CPU_X86_SSSE3},   {"sse41", RTE_CPU_X86_SSE41},
+        {"avx2", RTE_CPU_X86_AVX2}, {"avx512", RTE_CPU_X86_AVX512}, {"neon", RTE_CPU_ARM_NEON},
     };
     size_t used = 0;
     buf[0] = '\0';
@@ -179,6 +181,9 @@ static const gaussian_variant gaussian_variants[] = {
     {{"gaussian_avx2", RTE_CPU_X86_AVX2},
      rte_gaussian_column_pass_avx2,
      rte_gaussian_row_pass_avx2},
+    {{"gaussian_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512},
+     rte_gaussian_column_pass_avx512,
+     rte_gaussian_row_pass_avx512},
 #endif
     {{"gaussian_c", 0}, rte_gaussian_column_pass_c, rte_gaussian_row_pass_c},
 };
@@ -274,6 +279,9 @@ typedef struct morph_variant {
 static const morph_variant morph_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"morph_avx2", RTE_CPU_X86_AVX2}, rte_morph_row_op2_avx2, rte_morph_reduce_rows_avx2},
+    {{"morph_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512},
+     rte_morph_row_op2_avx512,
+     rte_morph_reduce_rows_avx512},
 #endif
     {{"morph_c", 0}, rte_morph_row_op2_c, rte_morph_reduce_rows_c},
 };
@@ -337,6 +345,9 @@ typedef struct canny_variant {
 static const canny_variant canny_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"canny_avx2", RTE_CPU_X86_AVX2}, rte_canny_sobel_row_avx2, rte_canny_nms_row_avx2},
+    {{"canny_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512},
+     rte_canny_sobel_row_avx512,
+     rte_canny_nms_row_avx512},
 #endif
 #ifdef RTE_SIMD_NEON
     {{"canny_neon", RTE_CPU_ARM_NEON}, rte_canny_sobel_row_neon, rte_canny_nms_row_neon},
@@ -441,6 +452,7 @@ typedef struct threshold_variant {
 static const threshold_variant threshold_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"threshold_avx2", RTE_CPU_X86_AVX2}, rte_threshold_row_avx2},
+    {{"threshold_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512}, rte_threshold_row_avx512},
 #endif
 #ifdef RTE_SIMD_NEON
     {{"threshold_neon", RTE_CPU_ARM_NEON}, rte_threshold_row_neon},
@@ -498,6 +510,9 @@ typedef struct grad_variant {
 static const grad_variant grad_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"grad_avx2", RTE_CPU_X86_AVX2}, rte_grad_column_avx2, rte_grad_row_avx2},
+    {{"grad_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512},
+     rte_grad_column_avx512,
+     rte_grad_row_avx512},
 #endif
     {{"grad_c", 0}, rte_grad_column_c, rte_grad_row_c},
 };
@@ -577,6 +592,7 @@ typedef struct lane_cue_variant {
 static const lane_cue_variant lane_cue_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"lane_cue_avx2", RTE_CPU_X86_AVX2}, rte_lane_cue_row_avx2},
+    {{"lane_cue_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512}, rte_lane_cue_row_avx512},
 #endif
     {{"lane_cue_c", 0}, rte_lane_cue_row_c},
 };
@@ -684,6 +700,7 @@ typedef struct hough_bins_variant {
 static const hough_bins_variant hough_bins_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"hough_bins_avx2", RTE_CPU_X86_AVX2}, rte_hough_bins_avx2},
+    {{"hough_bins_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512}, rte_hough_bins_avx512},
 #endif
     {{"hough_bins_c", 0}, rte_hough_bins_c},
 };
@@ -736,6 +753,8 @@ static const hough_line_rows_variant hough_line_rows_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"hough_line_rows_avx2", RTE_CPU_X86_AVX2},
      {rte_hough_point_bins_avx2, rte_hough_sum_copies_avx2}},
+    {{"hough_line_rows_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512},
+     {rte_hough_point_bins_avx2, rte_hough_sum_copies_avx512}},
 #endif
     {{"hough_line_rows_c", 0}, {rte_hough_point_bins_c, rte_hough_sum_copies_c}},
 };
@@ -811,6 +830,7 @@ typedef struct circle_votes_variant {
 static const circle_votes_variant circle_votes_variants[] = {
 #ifdef RTE_SIMD_X86
     {{"circle_votes_avx2", RTE_CPU_X86_AVX2}, rte_circle_votes_avx2},
+    {{"circle_votes_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512}, rte_circle_votes_avx512},
 #endif
     {{"circle_votes_c", 0}, rte_circle_votes_c},
 };
@@ -866,6 +886,12 @@ static const background_variant background_variants[] = {
       rte_background_classify_row_avx2, rte_background_above_floor_row_avx2,
       rte_background_chroma_diff_row_avx2, rte_background_tint_row_avx2,
       rte_background_shade_row_avx2, rte_background_shade_class_row_avx2}},
+    {{"background_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512},
+     {rte_background_add_row_avx512, rte_background_store_row_avx512,
+      rte_background_absdiff_row_avx512, rte_background_classify_row_avx512,
+      rte_background_above_floor_row_avx512, rte_background_chroma_diff_row_avx512,
+      rte_background_tint_row_avx512, rte_background_shade_row_avx512,
+      rte_background_shade_class_row_avx512}},
 #endif
     {{"background_c", 0},
      {rte_background_add_row_c, rte_background_store_row_c, rte_background_absdiff_row_c,
@@ -1088,12 +1114,20 @@ static void force_c_selects_the_reference(void **state)
     if (hw & RTE_CPU_X86_SSSE3)
         assert_true(rte_row_c3_to_gray_select(hw, false) != rte_row_bgr_to_gray_c);
     if (hw & RTE_CPU_X86_AVX2) {
-        assert_true(rte_canny_rows_select(hw).sobel == rte_canny_sobel_row_avx2);
-        assert_true(rte_threshold_row_select(hw) == rte_threshold_row_avx2);
-        assert_true(rte_hough_bins_select(hw) == rte_hough_bins_avx2);
+        const bool wide = (hw & RTE_CPU_X86_AVX512) != 0; /* the AVX-512 builds, else AVX2 */
+        assert_true(rte_canny_rows_select(hw).sobel ==
+                    (wide ? rte_canny_sobel_row_avx512 : rte_canny_sobel_row_avx2));
+        assert_true(rte_threshold_row_select(hw) ==
+                    (wide ? rte_threshold_row_avx512 : rte_threshold_row_avx2));
+        assert_true(rte_hough_bins_select(hw) ==
+                    (wide ? rte_hough_bins_avx512 : rte_hough_bins_avx2));
         assert_true(rte_hough_line_rows_select(hw).bins == rte_hough_point_bins_avx2);
-        assert_true(rte_circle_votes_select(hw) == rte_circle_votes_avx2);
-        assert_true(rte_background_rows_select(hw).classify == rte_background_classify_row_avx2);
+        assert_true(rte_hough_line_rows_select(hw).sum ==
+                    (wide ? rte_hough_sum_copies_avx512 : rte_hough_sum_copies_avx2));
+        assert_true(rte_circle_votes_select(hw) ==
+                    (wide ? rte_circle_votes_avx512 : rte_circle_votes_avx2));
+        assert_true(rte_background_rows_select(hw).classify ==
+                    (wide ? rte_background_classify_row_avx512 : rte_background_classify_row_avx2));
     }
 #endif
 #ifdef RTE_SIMD_NEON

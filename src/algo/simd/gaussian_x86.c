@@ -1,6 +1,6 @@
-/* The Gaussian blur's row kernels for AVX2: the C reference's loops
- * (src/algo/gaussian_rows.h) in 16-bit lanes of 256-bit registers.
- * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+/* The Gaussian blur's row kernels for AVX2 and AVX-512: the C reference's loops
+ * (src/algo/gaussian_rows.h) in 16-bit lanes of 256-bit or 512-bit registers.
+ * Compiler-vectorised, no intrinsics: built twice, -mavx2 and AVX-512 (rows.h), at -O3 whatever the
  * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
  * are integer only, so vectorising them only reorders exact operations and
  * the bytes stay the C reference's. */
@@ -12,14 +12,16 @@
 #ifdef RTE_SIMD_X86
 #include "algo/gaussian_rows.h"
 
-void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
-                                   int32_t width, const uint16_t *taps, int32_t ksize, int split)
+void RTE_SIMD_NAME(rte_gaussian_column_pass)(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
+                                             int32_t width, const uint16_t *taps, int32_t ksize,
+                                             int split)
 {
     gaussian_column_pass(rows, hi, lo, width, taps, ksize, split);
 }
 
-void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
-                                const uint16_t *taps, int32_t ksize, int split)
+void RTE_SIMD_NAME(rte_gaussian_row_pass)(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,
+                                          int32_t width, const uint16_t *taps, int32_t ksize,
+                                          int split)
 {
     gaussian_row_pass(hi, lo, dst, width, taps, ksize, split);
 }

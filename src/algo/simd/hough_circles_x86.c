@@ -1,6 +1,6 @@
-/* The votes of a Hough circles edge pixel for AVX2: the cells of 8 steps
- * at a time (compiler-vectorised, no intrinsics: built with -mavx2 -O3
- * whatever the build type, src/meson.build: rtedge_simd_autovec), then the
+/* The votes of a Hough circles edge pixel for AVX2 and AVX-512: the cells of a vector of steps
+ * at a time (compiler-vectorised, no intrinsics: built twice, -mavx2 and AVX-512 (rows.h),
+ * at -O3 whatever the build type, src/meson.build: rtedge_simd_autovec), then the
  * increments, scalar since two steps can hit one cell. The C reference is
  * the plain loop rte_circle_votes_c in src/algo/hough_circles.c, not this
  * one: GCC 12 at -O3 with SSE2 or SSE4.1 vectors (not AVX2) computes the
@@ -12,12 +12,12 @@
 
 #ifdef RTE_SIMD_X86
 
-void rte_circle_votes_avx2(int32_t *restrict acc, uint32_t mask, uint32_t astep, uint32_t ux,
-                           uint32_t uy, uint32_t sx, uint32_t sy, int32_t n)
+void RTE_SIMD_NAME(rte_circle_votes)(int32_t *restrict acc, uint32_t mask, uint32_t astep,
+                                     uint32_t ux, uint32_t uy, uint32_t sx, uint32_t sy, int32_t n)
 {
-    /* The cells of 8 steps at a time (the last group may run past n: its
+    /* The cells of a vector of steps at a time (the last group may run past n: its
      * extra cells are not counted), then the increments. */
-    enum { LANES = 8, CHUNK = 64 };
+    enum { LANES = RTE_SIMD_BYTES / 4, CHUNK = 64 };
     uint32_t idx[CHUNK], px[LANES], py[LANES];
     for (int k = 0; k < LANES; k++) {
         px[k] = ux + (uint32_t)k * sx;

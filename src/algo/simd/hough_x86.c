@@ -1,7 +1,7 @@
 /* The rho bins of a point at many angles (segments, 32-bit multiplies on 8
- * angles) and the sum of the lines' vote copies (8 cells at a time) for
- * AVX2: the C references' loops (src/algo/hough_rows.h).
- * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+ * or 16 angles) and the sum of the lines' vote copies (8 or 16 cells at a time) for
+ * AVX2 and AVX-512: the C references' loops (src/algo/hough_rows.h).
+ * Compiler-vectorised, no intrinsics: built twice, -mavx2 and AVX-512 (rows.h), at -O3 whatever the
  * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
  * are integer only, so vectorising them only reorders exact operations and
  * the bytes stay the C reference's. */
@@ -12,14 +12,14 @@
 #ifdef RTE_SIMD_X86
 #include "algo/hough_rows.h"
 
-void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x,
-                         int32_t y, int32_t bias, int32_t shift, const int32_t *row_base,
-                         int32_t *idx)
+void RTE_SIMD_NAME(rte_hough_bins)(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n,
+                                   int32_t x, int32_t y, int32_t bias, int32_t shift,
+                                   const int32_t *row_base, int32_t *idx)
 {
     hough_bins_row(rho_cos, rho_sin, n, x, y, bias, shift, row_base, idx);
 }
 
-void rte_hough_sum_copies_avx2(int32_t *cells, uint16_t *copies, int32_t cstep, int32_t n)
+void RTE_SIMD_NAME(rte_hough_sum_copies)(int32_t *cells, uint16_t *copies, int32_t cstep, int32_t n)
 {
     hough_sum_copies_row(cells, copies, cstep, n);
 }

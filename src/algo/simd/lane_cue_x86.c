@@ -1,6 +1,6 @@
-/* The lane path's colour cue row for AVX2: the C reference's loop
- * (src/pipeline/lane_cue_rows.h) as byte compares and blends on 32 pixels.
- * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+/* The lane path's colour cue row for AVX2 and AVX-512: the C reference's loop
+ * (src/pipeline/lane_cue_rows.h) as byte compares and blends on 32 or 64 pixels.
+ * Compiler-vectorised, no intrinsics: built twice, -mavx2 and AVX-512 (rows.h), at -O3 whatever the
  * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
  * are integer only, so vectorising them only reorders exact operations and
  * the bytes stay the C reference's. */
@@ -12,8 +12,8 @@
 #ifdef RTE_SIMD_X86
 #include "pipeline/lane_cue_rows.h"
 
-void rte_lane_cue_row_avx2(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
-                           const rte_lane_cue *cue, bool rgb)
+void RTE_SIMD_NAME(rte_lane_cue_row)(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst,
+                                     int32_t width, const rte_lane_cue *cue, bool rgb)
 {
     lane_cue_row(gray, bgr, dst, width, cue, rgb);
 }

@@ -1,6 +1,6 @@
-/* Morphology's row kernels for AVX2: the C reference's loops
- * (src/algo/morphology_rows.h) as vpminub/vpmaxub on 32 bytes.
- * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+/* Morphology's row kernels for AVX2 and AVX-512: the C reference's loops
+ * (src/algo/morphology_rows.h) as vpminub/vpmaxub on 32 or 64 bytes.
+ * Compiler-vectorised, no intrinsics: built twice, -mavx2 and AVX-512 (rows.h), at -O3 whatever the
  * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
  * are integer only, so vectorising them only reorders exact operations and
  * the bytes stay the C reference's. */
@@ -13,13 +13,14 @@
 #ifdef RTE_SIMD_X86
 #include "algo/morphology_rows.h"
 
-void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max)
+void RTE_SIMD_NAME(rte_morph_row_op2)(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,
+                                      bool is_max)
 {
     row_op2(d, a, b, n, is_max);
 }
 
-void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate,
-                                int32_t n, bool is_max)
+void RTE_SIMD_NAME(rte_morph_reduce_rows)(uint8_t *d, const uint8_t *const *r, int32_t count,
+                                          bool accumulate, int32_t n, bool is_max)
 {
     reduce_rows(d, r, count, accumulate, n, is_max);
 }

@@ -28,16 +28,40 @@
 #define RTE_SIMD_NEON 1
 #endif
 
-/* The variant for a feature word: `avx2` on x86 with AVX2, `neon` on
- * aarch64 with NEON, else the C reference `c` (pass `c` again for a
- * variant that does not exist). Only the current CPU family's argument is
- * compiled, so the others may name functions built for other CPUs. */
+/* The variant for a feature word: `avx512` on x86 with AVX2 and AVX-512,
+ * `avx2` on x86 with AVX2, `neon` on aarch64 with NEON, else the C
+ * reference `c` (pass the next best again for a variant that does not
+ * exist). Only the current CPU family's arguments are compiled, so the
+ * others may name functions built for other CPUs. */
 #if defined(RTE_SIMD_X86)
-#define RTE_SIMD_PICK(features, c, avx2, neon) (((features)&RTE_CPU_X86_AVX2) ? (avx2) : (c))
+#define RTE_SIMD_PICK(features, c, avx2, avx512, neon)                       \
+    ((~(features) & (RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512)) == 0 ? (avx512) \
+     : ((features)&RTE_CPU_X86_AVX2)                              ? (avx2)   \
+                                                                  : (c))
 #elif defined(RTE_SIMD_NEON)
-#define RTE_SIMD_PICK(features, c, avx2, neon) (((features)&RTE_CPU_ARM_NEON) ? (neon) : (c))
+#define RTE_SIMD_PICK(features, c, avx2, avx512, neon) \
+    (((features)&RTE_CPU_ARM_NEON) ? (neon) : (c))
 #else
-#define RTE_SIMD_PICK(features, c, avx2, neon) ((void)(features), (c))
+#define RTE_SIMD_PICK(features, c, avx2, avx512, neon) ((void)(features), (c))
+#endif
+
+/* The compiler-vectorised x86 files (simd/NAME_x86.c without intrinsics)
+ * are built twice (src/meson.build): for AVX2, and with RTE_SIMD_ISA =
+ * avx512 for AVX-512 (F, BW, VL, 512-bit vectors). RTE_SIMD_NAME(rte_x) is
+ * rte_x_avx2 or rte_x_avx512, RTE_SIMD_APPLY(M) is M(avx2) or M(avx512),
+ * and RTE_SIMD_BYTES the vector width. */
+#ifndef RTE_SIMD_ISA
+#define RTE_SIMD_ISA avx2
+#endif
+#define RTE_SIMD_PASTE_(a, b) a##_##b
+#define RTE_SIMD_PASTE(a, b) RTE_SIMD_PASTE_(a, b)
+#define RTE_SIMD_NAME(name) RTE_SIMD_PASTE(name, RTE_SIMD_ISA)
+#define RTE_SIMD_APPLY_(macro, isa) macro(isa)
+#define RTE_SIMD_APPLY(macro) RTE_SIMD_APPLY_(macro, RTE_SIMD_ISA)
+#ifdef __AVX512BW__
+#define RTE_SIMD_BYTES 64
+#else
+#define RTE_SIMD_BYTES 32
 #endif
 
 /* 3-byte pixels (B,G,R or R,G,B) to grey with BT.601 luma weights in Q15.
@@ -292,30 +316,39 @@ void rte_circle_votes_c(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux
 rte_circle_votes_fn rte_circle_votes_select(uint32_t features);
 
 #ifdef RTE_SIMD_X86
-RTE_CANNY_ROWS_DECLARE(avx2)
-RTE_GRAD_ROWS_DECLARE(avx2)
-void rte_lane_cue_row_avx2(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
-                           const rte_lane_cue *cue, bool rgb);
-void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
-                            uint8_t maxval);
-void rte_morph_row_op2_avx2(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n, bool is_max);
-void rte_morph_reduce_rows_avx2(uint8_t *d, const uint8_t *const *r, int32_t count, bool accumulate,
-                                int32_t n, bool is_max);
-void rte_gaussian_column_pass_avx2(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,
-                                   int32_t width, const uint16_t *taps, int32_t ksize, int split);
-void rte_gaussian_row_pass_avx2(const uint16_t *hi, const uint16_t *lo, uint8_t *dst, int32_t width,
-                                const uint16_t *taps, int32_t ksize, int split);
 void rte_row_bgr_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_ssse3(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_bgr_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
 void rte_row_rgb_to_gray_avx2(const uint8_t *src, uint8_t *dst, int32_t width);
-void rte_hough_bins_avx2(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n, int32_t x,
-                         int32_t y, int32_t bias, int32_t shift, const int32_t *row_base,
-                         int32_t *idx);
-RTE_HOUGH_LINE_ROWS_DECLARE(avx2)
-void rte_circle_votes_avx2(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux, uint32_t uy,
-                           uint32_t sx, uint32_t sy, int32_t n);
-RTE_BACKGROUND_ROWS_DECLARE(avx2)
+void rte_hough_point_bins_avx2(const uint32_t *pts, int32_t n, int32_t rho_cos, int32_t rho_sin,
+                               int32_t bias, int32_t shift, int32_t *idx);
+/* The compiler-vectorised families, once per instruction set. */
+#define RTE_SIMD_AUTOVEC_DECLARE(isa)                                                            \
+    RTE_CANNY_ROWS_DECLARE(isa)                                                                  \
+    RTE_GRAD_ROWS_DECLARE(isa)                                                                   \
+    RTE_BACKGROUND_ROWS_DECLARE(isa)                                                             \
+    void rte_lane_cue_row_##isa(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst,           \
+                                int32_t width, const rte_lane_cue *cue, bool rgb);               \
+    void rte_threshold_row_##isa(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,   \
+                                 uint8_t maxval);                                                \
+    void rte_morph_row_op2_##isa(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,      \
+                                 bool is_max);                                                   \
+    void rte_morph_reduce_rows_##isa(uint8_t *d, const uint8_t *const *r, int32_t count,         \
+                                     bool accumulate, int32_t n, bool is_max);                   \
+    void rte_gaussian_column_pass_##isa(const uint8_t *const *rows, uint16_t *hi, uint16_t *lo,  \
+                                        int32_t width, const uint16_t *taps, int32_t ksize,      \
+                                        int split);                                              \
+    void rte_gaussian_row_pass_##isa(const uint16_t *hi, const uint16_t *lo, uint8_t *dst,       \
+                                     int32_t width, const uint16_t *taps, int32_t ksize,         \
+                                     int split);                                                 \
+    void rte_hough_bins_##isa(const int32_t *rho_cos, const int32_t *rho_sin, int32_t n,         \
+                              int32_t x, int32_t y, int32_t bias, int32_t shift,                 \
+                              const int32_t *row_base, int32_t *idx);                            \
+    void rte_hough_sum_copies_##isa(int32_t *cells, uint16_t *copies, int32_t cstep, int32_t n); \
+    void rte_circle_votes_##isa(int32_t *acc, uint32_t mask, uint32_t astep, uint32_t ux,        \
+                                uint32_t uy, uint32_t sx, uint32_t sy, int32_t n);
+RTE_SIMD_AUTOVEC_DECLARE(avx2)
+RTE_SIMD_AUTOVEC_DECLARE(avx512)
 #endif
 #ifdef RTE_SIMD_NEON
 void rte_row_bgr_to_gray_neon(const uint8_t *src, uint8_t *dst, int32_t width);

@@ -1,6 +1,6 @@
-/* The fixed-level threshold row for AVX2: the C reference's loops
- * (src/algo/threshold_rows.h) as byte compares and blends on 32 pixels.
- * Compiler-vectorised, no intrinsics: built with -mavx2 -O3 whatever the
+/* The fixed-level threshold row for AVX2 and AVX-512: the C reference's loops
+ * (src/algo/threshold_rows.h) as byte compares and blends on 32 or 64 pixels.
+ * Compiler-vectorised, no intrinsics: built twice, -mavx2 and AVX-512 (rows.h), at -O3 whatever the
  * build type (src/meson.build: rtedge_simd_autovec). Safe because the loops
  * are integer only, so vectorising them only reorders exact operations and
  * the bytes stay the C reference's. */
@@ -11,8 +11,8 @@
 #ifdef RTE_SIMD_X86
 #include "algo/threshold_rows.h"
 
-void rte_threshold_row_avx2(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
-                            uint8_t maxval)
+void RTE_SIMD_NAME(rte_threshold_row)(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,
+                                      uint8_t maxval)
 {
     threshold_row(s, d, n, type, t, maxval);
 }
