@@ -5,7 +5,7 @@
  * Each kernel has a plain C reference named *_c, kept in the family's own
  * source file (compiled with -mgeneral-regs-only), and variants in
  * src/algo/simd/ named after the instruction set (rte_..._ssse3, _avx2,
- * _neon; x86 ones in NAME_x86.c, NEON ones in NAME_neon.c, each compiling
+ * _avx512, _neon; x86 ones in NAME_x86.c, NEON ones in NAME_neon.c, each compiling
  * to nothing on the other CPU family): the build suite relies on these
  * names to check that every variant holds vector instructions of its kind
  * (tests/build/check_simd_objects.py). A *_select(features) function picks
