@@ -113,6 +113,183 @@ static void estimate_follows_the_vignette_under_objects(void **state)
     test_free(arena.base);
 }
 
+/* The estimate as include/rtedge/background.h and background.c define it,
+ * written plainly: each cell's lower median of its samples (every other
+ * row and column from 8 px cells) by sorting; the table region by a flood
+ * fill; each cell's plane through the table cells of its window from sums
+ * taken cell by cell, else the mean within 1, 2, 4, ... times the radius;
+ * then bilinear between cell centres (Q4 values, Q8 weights, rounded). */
+static int compare_u8(const void *a, const void *b)
+{
+    return (int)*(const uint8_t *)a - (int)*(const uint8_t *)b;
+}
+
+static void interpolation_ref(int32_t p, int32_t cell, int32_t n, int32_t *i, int32_t *frac)
+{
+    const int32_t num = 2 * p + 1 - cell;
+    *i = num <= 0 ? 0 : num / (2 * cell);
+    *frac = num <= 0 ? 0 : ((num - *i * 2 * cell) << 8) / (2 * cell);
+    if (*i >= n - 1) {
+        *i = n - 1;
+        *frac = 0;
+    }
+}
+
+static void estimate_ref(const rte_image_u8 *src, const rte_background_params *p, uint8_t *out)
+{
+    const int32_t w = src->width, h = src->height, c = p->cell, r0 = p->radius;
+    const int32_t gw = (w + c - 1) / c, gh = (h + c - 1) / c, n = gw * gh;
+    const int32_t step = c >= 8 ? 2 : 1;
+    uint8_t *med = test_malloc((size_t)n), *samples = test_malloc((size_t)c * c);
+    int32_t *region = test_malloc((size_t)n * sizeof *region);
+    int32_t *stack = test_malloc((size_t)n * sizeof *stack);
+    int32_t *grid = test_malloc((size_t)n * sizeof *grid);
+    for (int32_t k = 0; k < n; k++) {
+        const int32_t i = k % gw, j = k / gw;
+        int32_t m = 0;
+        for (int32_t y = j * c; y < (j + 1) * c && y < h; y += step)
+            for (int32_t x = i * c; x < (i + 1) * c && x < w; x += step)
+                samples[m++] = *at((rte_image_u8 *)src, x, y);
+        qsort(samples, (size_t)m, 1, compare_u8);
+        med[k] = samples[(m + 1) / 2 - 1];
+        region[k] = -1;
+    }
+    int32_t best = -1, best_edge = -1, best_size = 0;
+    for (int32_t seed = 0; seed < n; seed++) {
+        if (region[seed] >= 0)
+            continue;
+        int32_t top = 0, size = 0, edge = 0;
+        region[seed] = seed;
+        stack[top++] = seed;
+        while (top > 0) {
+            const int32_t k = stack[--top], i = k % gw, j = k / gw;
+            size++;
+            edge += i == 0 || j == 0 || i == gw - 1 || j == gh - 1;
+            const int32_t nb[4][2] = {{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}};
+            for (int e = 0; e < 4; e++) {
+                const int32_t ni = nb[e][0], nj = nb[e][1], m = nj * gw + ni;
+                if (ni >= 0 && nj >= 0 && ni < gw && nj < gh && region[m] < 0 &&
+                    abs((int32_t)med[m] - med[k]) <= p->step) {
+                    region[m] = seed;
+                    stack[top++] = m;
+                }
+            }
+        }
+        if (edge > best_edge || (edge == best_edge && size > best_size)) {
+            best = seed;
+            best_edge = edge;
+            best_size = size;
+        }
+    }
+    for (int32_t k = 0; k < n; k++) {
+        const int32_t i = k % gw, j = k / gw;
+        int64_t cnt = 0, su = 0, sv = 0, suu = 0, suv = 0, svv = 0, sz = 0, suz = 0, svz = 0;
+        int32_t lo = 255, hi = 0;
+        for (int32_t jj = j - r0; jj <= j + r0; jj++)
+            for (int32_t ii = i - r0; ii <= i + r0; ii++) {
+                if (ii < 0 || jj < 0 || ii >= gw || jj >= gh || region[jj * gw + ii] != best)
+                    continue;
+                const int64_t u = ii - i, v = jj - j, z = med[jj * gw + ii];
+                cnt++;
+                su += u;
+                sv += v;
+                suu += u * u;
+                suv += u * v;
+                svv += v * v;
+                sz += z;
+                suz += u * z;
+                svz += v * z;
+                lo = z < lo ? (int32_t)z : lo;
+                hi = z > hi ? (int32_t)z : hi;
+            }
+        const int64_t m11 = suu * svv - suv * suv, m12 = su * svv - suv * sv,
+                      m13 = su * suv - suu * sv, det = cnt * m11 - su * m12 + sv * m13;
+        if (cnt >= 6 && det > 0) {
+            const int64_t num = (sz * m11 - suz * m12 + svz * m13) * 16;
+            int64_t a = (num + (num >= 0 ? det / 2 : -det / 2)) / det;
+            a = a < (lo - p->tolerance) * 16 ? (lo - p->tolerance) * 16 : a;
+            a = a > (hi + p->tolerance) * 16 ? (hi + p->tolerance) * 16 : a;
+            grid[k] = (int32_t)(a < 0 ? 0 : a > 255 * 16 ? 255 * 16 : a);
+            continue;
+        }
+        int64_t sum = 0, m = 0;
+        for (int32_t r = r0; m == 0; r *= 2)
+            for (int32_t jj = j - r; jj <= j + r; jj++)
+                for (int32_t ii = i - r; ii <= i + r; ii++)
+                    if (ii >= 0 && jj >= 0 && ii < gw && jj < gh && region[jj * gw + ii] == best) {
+                        sum += med[jj * gw + ii];
+                        m++;
+                    }
+        grid[k] = (int32_t)((sum * 16 + m / 2) / m);
+    }
+    for (int32_t y = 0; y < h; y++)
+        for (int32_t x = 0; x < w; x++) {
+            int32_t i, fx, j, fy;
+            interpolation_ref(x, c, gw, &i, &fx);
+            interpolation_ref(y, c, gh, &j, &fy);
+            const int32_t i1 = i + 1 < gw ? i + 1 : i, j1 = j + 1 < gh ? j + 1 : j;
+            const int64_t v = (int64_t)grid[j * gw + i] * (256 - fx) * (256 - fy) +
+                              (int64_t)grid[j * gw + i1] * fx * (256 - fy) +
+                              (int64_t)grid[j1 * gw + i] * (256 - fx) * fy +
+                              (int64_t)grid[j1 * gw + i1] * fx * fy + (1 << 19);
+            out[(size_t)y * w + x] = (uint8_t)(v >> 20);
+        }
+    test_free(med);
+    test_free(samples);
+    test_free(region);
+    test_free(stack);
+    test_free(grid);
+}
+
+/* Random tables (tilted light, blobs lighter and darker, noise, some with a
+ * flat table or scattered levels) of random sizes and parameters: the
+ * estimate equals the plain one byte for byte. */
+static void estimate_matches_the_plain_definition(void **state)
+{
+    (void)state;
+    rte_arena arena = new_arena();
+    uint32_t rng = 2024;
+    uint8_t *ref = test_malloc((size_t)W * H);
+    for (int t = 0; t < 60; t++) {
+        const int32_t w = 9 + (int32_t)(unit_rand(&rng) % (W - 8));
+        const int32_t h = 9 + (int32_t)(unit_rand(&rng) % (H - 8));
+        rte_background_params p = {.cell = 2 + (int32_t)(unit_rand(&rng) % 39),
+                                   .radius = 1 + (int32_t)(unit_rand(&rng) % 8),
+                                   .tolerance = (int32_t)(unit_rand(&rng) % 30),
+                                   .step = (int32_t)(unit_rand(&rng) % 16)};
+        rte_image_u8 img = unit_image_u8(w, h, (int32_t)(unit_rand(&rng) % 9), 0),
+                     bg = unit_image_u8(w, h, 5, 0);
+        const int32_t gx = (int32_t)(unit_rand(&rng) % 9) - 4,
+                      gy = (int32_t)(unit_rand(&rng) % 9) - 4;
+        const int32_t noise = 1 + (int32_t)(unit_rand(&rng) % (t % 5 == 4 ? 200 : 8));
+        const int32_t bx = (int32_t)(unit_rand(&rng) % w), by = (int32_t)(unit_rand(&rng) % h);
+        const int32_t br = 3 + (int32_t)(unit_rand(&rng) % 60);
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++) {
+                int32_t v = 120 + gx * x / 8 + gy * y / 8 + (int32_t)(unit_rand(&rng) % noise);
+                if ((x - bx) * (x - bx) + (y - by) * (y - by) < br * br)
+                    v += t % 2 ? 70 : -70;
+                if (x % 97 < 20 && y % 61 < 15)
+                    v -= 50;
+                *at(&img, x, y) = (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+            }
+        assert_int_equal(rte_background_estimate_u8(&img, &bg, &p, &arena), RTE_OK);
+        estimate_ref(&img, &p, ref);
+        for (int32_t y = 0; y < h; y++)
+            for (int32_t x = 0; x < w; x++)
+                if (*at(&bg, x, y) != ref[(size_t)y * w + x])
+                    fail_msg("case %d (%dx%d, cell %d, radius %d, tolerance %d, step %d): (%d, %d) "
+                             "is %d, the definition gives %d",
+                             t, w, h, p.cell, p.radius, p.tolerance, p.step, x, y, *at(&bg, x, y),
+                             ref[(size_t)y * w + x]);
+        unit_assert_padding_u8(&bg);
+        test_free(img.buf);
+        test_free(bg.buf);
+    }
+    test_free(ref);
+    test_free(arena.base);
+}
+
 static void threshold_finds_lighter_and_darker_objects(void **state)
 {
     (void)state;
@@ -633,6 +810,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(estimate_follows_the_vignette_under_objects),
+        cmocka_unit_test(estimate_matches_the_plain_definition),
         cmocka_unit_test(threshold_finds_lighter_and_darker_objects),
         cmocka_unit_test(shadows_dropped_and_two_tone_objects_kept),
         cmocka_unit_test(hysteresis_keeps_faint_parts_of_strong_regions),
