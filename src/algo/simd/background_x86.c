@@ -1,8 +1,6 @@
 /* The table estimate's and its threshold's rows for AVX2 and AVX-512: the C
  * reference's loops (src/algo/background_rows.h) on 32 or 64 bytes (8 or 16
- * values) at a time. Compiler-vectorised, no intrinsics: built twice, -mavx2
- * and AVX-512 (rows.h), at -O3 whatever the build type (src/meson.build:
- * rtedge_simd_autovec). */
+ * values) at a time; compiler-vectorised (rows.h). */
 #include <stdint.h>
 
 #include "rows.h"

@@ -1,10 +1,6 @@
 /* The gradient family's row loops for AVX2 and AVX-512: the C reference's
  * loops (src/algo/gradient_loops.h) in 16-bit lanes of 256-bit or 512-bit
- * registers. Compiler-vectorised, no intrinsics: built twice, -mavx2 and
- * AVX-512 (rows.h), at -O3 whatever the build type (src/meson.build:
- * rtedge_simd_autovec). Safe because the loops are integer only, so
- * vectorising them only reorders exact operations and the bytes stay the C
- * reference's. */
+ * registers; compiler-vectorised (rows.h). */
 #include <stdint.h>
 
 #include "rows.h"

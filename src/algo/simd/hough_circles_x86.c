@@ -1,12 +1,9 @@
 /* The votes of a Hough circles edge pixel for AVX2 and AVX-512: the cells of
- * a vector of steps at a time (compiler-vectorised, no intrinsics: built
- * twice, -mavx2 and AVX-512 (rows.h), at -O3 whatever the build type,
- * src/meson.build: rtedge_simd_autovec), then the increments, scalar since
- * two steps can hit one cell. The C reference is the plain loop
- * rte_circle_votes_c in src/algo/hough_circles.c, not this one: GCC 12 at
- * -O3 with SSE2 or SSE4.1 vectors (not AVX2) computes the upper four lanes
- * of this loop wrong. Integer only, so the increments are the C reference's
- * (tests/unit/test_simd.c compares them). */
+ * a vector of steps at a time (compiler-vectorised, rows.h), then the
+ * increments, scalar since two steps can hit one cell. The C reference is
+ * the plain loop rte_circle_votes_c in src/algo/hough_circles.c, not this
+ * one: GCC 12 at -O3 with SSE2 or SSE4.1 vectors (not AVX2) computes the
+ * upper four lanes of this loop wrong. */
 #include <stdint.h>
 
 #include "rows.h"

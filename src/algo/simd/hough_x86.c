@@ -1,11 +1,7 @@
 /* The rho bins of a point at many angles (segments, 32-bit multiplies on 8
  * or 16 angles) and the sum of the lines' vote copies (8 or 16 cells at a
  * time) for AVX2 and AVX-512: the C references' loops
- * (src/algo/hough_rows.h). Compiler-vectorised, no intrinsics: built twice,
- * -mavx2 and AVX-512 (rows.h), at -O3 whatever the build type
- * (src/meson.build: rtedge_simd_autovec). Safe because the loops are integer
- * only, so vectorising them only reorders exact operations and the bytes
- * stay the C reference's. */
+ * (src/algo/hough_rows.h); compiler-vectorised (rows.h). */
 #include <stdint.h>
 
 #include "rows.h"

@@ -1,10 +1,6 @@
 /* The lane path's colour cue row for AVX2 and AVX-512: the C reference's
  * loop (src/pipeline/lane_cue_rows.h) as byte compares and blends on 32 or
- * 64 pixels. Compiler-vectorised, no intrinsics: built twice, -mavx2 and
- * AVX-512 (rows.h), at -O3 whatever the build type (src/meson.build:
- * rtedge_simd_autovec). Safe because the loops are integer only, so
- * vectorising them only reorders exact operations and the bytes stay the C
- * reference's. */
+ * 64 pixels; compiler-vectorised (rows.h). */
 #include <stdbool.h>
 #include <stdint.h>
 

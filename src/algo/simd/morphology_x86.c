@@ -1,10 +1,6 @@
 /* Morphology's row kernels for AVX2 and AVX-512: the C reference's loops
- * (src/algo/morphology_rows.h) as vpminub/vpmaxub on 32 or 64 bytes.
- * Compiler-vectorised, no intrinsics: built twice, -mavx2 and AVX-512
- * (rows.h), at -O3 whatever the build type (src/meson.build:
- * rtedge_simd_autovec). Safe because the loops are integer only, so
- * vectorising them only reorders exact operations and the bytes stay the C
- * reference's. */
+ * (src/algo/morphology_rows.h) as vpminub/vpmaxub on 32 or 64 bytes;
+ * compiler-vectorised (rows.h). */
 #include <stdbool.h>
 #include <stdint.h>
 #include <string.h>

@@ -45,11 +45,17 @@
 #define RTE_SIMD_PICK(features, c, avx2, avx512, neon) ((void)(features), (c))
 #endif
 
-/* The compiler-vectorised x86 files (simd/NAME_x86.c without intrinsics)
- * are built twice (src/meson.build): for AVX2, and with RTE_SIMD_ISA =
- * avx512 for AVX-512 (F, BW, VL, 512-bit vectors). RTE_SIMD_NAME(rte_x) is
- * rte_x_avx2 or rte_x_avx512, RTE_SIMD_APPLY(M) is M(avx2) or M(avx512),
- * and RTE_SIMD_BYTES the vector width. */
+/* The compiler-vectorised x86 files (simd/NAME_x86.c without intrinsics:
+ * the C references' loops, included from the family's *_rows.h or written
+ * out) are built twice, at -O3 whatever the build type (src/meson.build:
+ * rtedge_simd_autovec): for AVX2, and with RTE_SIMD_ISA = avx512 for
+ * AVX-512 (F, BW, VL, 512-bit vectors). Safe because the loops are integer
+ * only: vectorising them only reorders exact operations, so the bytes stay
+ * the C references' (tests/unit/test_simd.c compares them, and
+ * tests/build/check_simd_objects.py checks that each object holds vector
+ * code of its width). RTE_SIMD_NAME(rte_x) is rte_x_avx2 or rte_x_avx512,
+ * RTE_SIMD_APPLY(M) is M(avx2) or M(avx512), and RTE_SIMD_BYTES the vector
+ * width. */
 #ifndef RTE_SIMD_ISA
 #define RTE_SIMD_ISA avx2
 #endif
