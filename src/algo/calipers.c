@@ -14,9 +14,22 @@ static int64_t dist2x(int s, rte_point p, rte_point q, rte_point v)
     return s * rte_cross(p, q, v);
 }
 
+/* One caliper's direction: across the edge vector e, l = |e|^2 > 0. */
+static void set_direction(rte_caliper *c, rte_point e, int64_t l)
+{
+    rte_point nrm = {-e.y, e.x};
+    /* the line has two directions: the one within (-90, 90] */
+    if (nrm.x < 0 || (nrm.x == 0 && nrm.y < 0))
+        nrm = (rte_point){-nrm.x, -nrm.y};
+    c->angle_q16 = rte_atan2_deg_q16(nrm.x, nrm.y);
+    c->ux_q16 = rte_scaled_len(nrm.x, l, 16);
+    c->uy_q16 = (nrm.y < 0 ? -1 : 1) * rte_scaled_len(nrm.y, l, 16);
+}
+
 /* One caliper: across the edge vector e, `h` = |e| x the distance to
- * the far vertex, `toward` a vector from the edge to that vertex. */
-static rte_caliper make(int32_t edge, int32_t far, rte_point e, int64_t h, rte_point toward)
+ * the far vertex; the direction only when asked (it takes most of the
+ * time). */
+static rte_caliper make(int32_t edge, int32_t far, rte_point e, int64_t h, bool direction)
 {
     const int64_t l = (int64_t)e.x * e.x + (int64_t)e.y * e.y;
     rte_caliper c = {.edge = edge, .far = far};
@@ -24,20 +37,14 @@ static rte_caliper make(int32_t edge, int32_t far, rte_point e, int64_t h, rte_p
         c.ux_q16 = 65536;
         return c;
     }
-    rte_point nrm = {-e.y, e.x};
-    if ((int64_t)nrm.x * toward.x + (int64_t)nrm.y * toward.y < 0)
-        nrm = (rte_point){e.y, -e.x};
-    /* the line has two directions: the one within (-90, 90] */
-    if (nrm.x < 0 || (nrm.x == 0 && nrm.y < 0))
-        nrm = (rte_point){-nrm.x, -nrm.y};
-    c.angle_q16 = rte_atan2_deg_q16(nrm.x, nrm.y);
     c.width_q8 = rte_scaled_len(h, l, 8);
-    c.ux_q16 = rte_scaled_len(nrm.x, l, 16);
-    c.uy_q16 = (nrm.y < 0 ? -1 : 1) * rte_scaled_len(nrm.y, l, 16);
+    if (direction)
+        set_direction(&c, e, l);
     return c;
 }
 
-rte_status rte_shape_calipers(const rte_point *hull, int32_t n, rte_caliper *out, int32_t *n_out)
+static rte_status calipers(const rte_point *hull, int32_t n, rte_caliper *out, int32_t *n_out,
+                           bool directions)
 {
     if (!hull || !out || !n_out || n < 1)
         return RTE_ERR_ARGUMENT;
@@ -49,7 +56,7 @@ rte_status rte_shape_calipers(const rte_point *hull, int32_t n, rte_caliper *out
     if (n <= 2) {
         /* a point or a segment: no width, across its direction */
         const rte_point e = {hull[n - 1].x - hull[0].x, hull[n - 1].y - hull[0].y};
-        out[0] = make(0, 0, e, 0, (rte_point){-e.y, e.x});
+        out[0] = make(0, 0, e, 0, true);
         *n_out = 1;
         return RTE_OK;
     }
@@ -71,7 +78,7 @@ rte_status rte_shape_calipers(const rte_point *hull, int32_t n, rte_caliper *out
                 b = i;
         }
         const rte_point e = {hull[b].x - hull[a].x, hull[b].y - hull[a].y};
-        out[0] = make(a, a, e, 0, (rte_point){-e.y, e.x});
+        out[0] = make(a, a, e, 0, true);
         *n_out = 1;
         return RTE_OK;
     }
@@ -85,8 +92,28 @@ rte_status rte_shape_calipers(const rte_point *hull, int32_t n, rte_caliper *out
             k++;
         const rte_point v = hull[k % n];
         const rte_point e = {q.x - p.x, q.y - p.y};
-        out[i] = make(i, k % n, e, dist2x(s, p, q, v), (rte_point){v.x - p.x, v.y - p.y});
+        out[i] = make(i, k % n, e, dist2x(s, p, q, v), directions);
     }
     *n_out = n;
     return RTE_OK;
+}
+
+rte_status rte_shape_calipers(const rte_point *hull, int32_t n, rte_caliper *out, int32_t *n_out)
+{
+    return calipers(hull, n, out, n_out, true);
+}
+
+rte_status rte_shape_caliper_widths(const rte_point *hull, int32_t n, rte_caliper *out,
+                                    int32_t *n_out)
+{
+    return calipers(hull, n, out, n_out, false);
+}
+
+void rte_caliper_direction(const rte_point *hull, int32_t n, rte_caliper *c)
+{
+    if (c->ux_q16 != 0 || c->uy_q16 != 0)
+        return;
+    const rte_point p = hull[c->edge], q = hull[(c->edge + 1) % n];
+    const rte_point e = {q.x - p.x, q.y - p.y};
+    set_direction(c, e, (int64_t)e.x * e.x + (int64_t)e.y * e.y);
 }

@@ -56,18 +56,8 @@ size_t rte_shape_enclosing_circle_scratch_size(int32_t max_points)
     return rte_shape_min_area_rect_scratch_size(max_points);
 }
 
-rte_status rte_shape_enclosing_circle(const rte_point *pts, int32_t n, rte_circle *out,
-                                      rte_arena *scratch)
+void rte_shape_enclosing_circle_of_hull(rte_point *h, int32_t m, rte_circle *out)
 {
-    if (!out || n < 1 || !pts || !scratch)
-        return RTE_ERR_ARGUMENT;
-    *out = (rte_circle){0, 0, 0};
-    const size_t mark = rte_arena_mark(scratch);
-    rte_point *h = NULL;
-    int32_t m = 0;
-    rte_status st = rte_shape_hull_in_arena(pts, n, scratch, &h, &m);
-    if (st != RTE_OK)
-        return st;
     /* Fisher-Yates with a fixed xorshift seed: expected linear time,
      * repeatable results. */
     uint32_t seed = 0x9E3779B9u;
@@ -99,6 +89,21 @@ rte_status rte_shape_enclosing_circle(const rte_point *pts, int32_t n, rte_circl
     /* r = sqrt(r2) / d; 2 * 256 r by integer sqrt, then halved with rounding */
     rte_u128 v = ((rte_u128)c.r2 << 18) / ((rte_u128)c.d * (rte_u128)c.d);
     out->r_q8 = (int32_t)((rte_isqrt128(v) + 1) / 2);
+}
+
+rte_status rte_shape_enclosing_circle(const rte_point *pts, int32_t n, rte_circle *out,
+                                      rte_arena *scratch)
+{
+    if (!out || n < 1 || !pts || !scratch)
+        return RTE_ERR_ARGUMENT;
+    *out = (rte_circle){0, 0, 0};
+    const size_t mark = rte_arena_mark(scratch);
+    rte_point *h = NULL;
+    int32_t m = 0;
+    rte_status st = rte_shape_hull_in_arena(pts, n, scratch, &h, &m);
+    if (st != RTE_OK)
+        return st;
+    rte_shape_enclosing_circle_of_hull(h, m, out);
     rte_arena_reset(scratch, mark);
     return RTE_OK;
 }

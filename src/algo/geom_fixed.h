@@ -6,6 +6,7 @@
 
 #include "rtedge/arena.h"
 #include "rtedge/contours.h"
+#include "rtedge/shape.h"
 #include "rtedge/status.h"
 
 __extension__ typedef __int128 rte_i128;
@@ -101,6 +102,23 @@ static inline int32_t rte_atan2_deg_q16(int64_t x, int64_t y)
  * taken (the caller resets the arena to its own mark). */
 rte_status rte_shape_hull_in_arena(const rte_point *pts, int32_t n, rte_arena *scratch,
                                    rte_point **hull, int32_t *n_hull);
+
+/* rte_shape_min_area_rect and rte_shape_enclosing_circle of a hull
+ * already at hand (rte_shape_convex_hull's output, m >= 1 vertices): the
+ * same results, without computing it again. The circle shuffles h. */
+void rte_shape_min_area_rect_of_hull(const rte_point *hull, int32_t m, rte_rotated_rect *r);
+void rte_shape_enclosing_circle_of_hull(rte_point *h, int32_t m, rte_circle *out);
+
+/* rte_shape_calipers with the widths only: each caliper's direction
+ * (angle_q16, ux_q16, uy_q16) is left 0 where rte_shape_calipers would
+ * compute it, and rte_caliper_direction fills it in for the few a caller
+ * needs (most of the time went to directions no one read). The one caliper
+ * of a point, a segment or collinear vertices comes complete. */
+rte_status rte_shape_caliper_widths(const rte_point *hull, int32_t n, rte_caliper *out,
+                                    int32_t *n_out);
+/* Fills in the direction of caliper c of hull (n vertices) from
+ * rte_shape_caliper_widths; exactly what rte_shape_calipers gives. */
+void rte_caliper_direction(const rte_point *hull, int32_t n, rte_caliper *c);
 
 static inline int64_t rte_cross(rte_point o, rte_point a, rte_point b)
 {

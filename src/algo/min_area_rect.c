@@ -64,18 +64,9 @@ static void fill_rect(rte_rotated_rect *r, rte_point p, rte_point e, int64_t dmi
     }
 }
 
-rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_rect *r,
-                                   rte_arena *scratch)
+void rte_shape_min_area_rect_of_hull(const rte_point *hull, int32_t m, rte_rotated_rect *r)
 {
-    if (!r || n < 1 || !pts || !scratch)
-        return RTE_ERR_ARGUMENT;
     *r = (rte_rotated_rect){0};
-    const size_t mark = rte_arena_mark(scratch);
-    rte_point *hull = NULL;
-    int32_t m = 0;
-    rte_status st = rte_shape_hull_in_arena(pts, n, scratch, &hull, &m);
-    if (st != RTE_OK)
-        return st;
     if (m == 1) {
         for (int k = 0; k < 4; k++) {
             r->corners_q8[k][0] = hull[0].x * 256;
@@ -127,6 +118,21 @@ rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_
         }
         fill_rect(r, best_p, best_e, best_dmin, best_dmax, best_h, (int64_t)best_l);
     }
+}
+
+rte_status rte_shape_min_area_rect(const rte_point *pts, int32_t n, rte_rotated_rect *r,
+                                   rte_arena *scratch)
+{
+    if (!r || n < 1 || !pts || !scratch)
+        return RTE_ERR_ARGUMENT;
+    *r = (rte_rotated_rect){0};
+    const size_t mark = rte_arena_mark(scratch);
+    rte_point *hull = NULL;
+    int32_t m = 0;
+    rte_status st = rte_shape_hull_in_arena(pts, n, scratch, &hull, &m);
+    if (st != RTE_OK)
+        return st;
+    rte_shape_min_area_rect_of_hull(hull, m, r);
     rte_arena_reset(scratch, mark);
     return RTE_OK;
 }

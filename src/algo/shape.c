@@ -1,6 +1,8 @@
 /* Shape features and classes of one contour (see shape.h for the rule). */
 #include "rtedge/shape.h"
 
+#include <string.h>
+
 #include "geom_fixed.h"
 
 /* pi and 2 pi in Q16 */
@@ -118,14 +120,14 @@ rte_status rte_shape_classify(const rte_point *pts, int32_t n, rte_shape_info *i
         st =
             rte_shape_approx_poly(pts, n, (uint32_t)(2 * eps < (1 << 26) ? 2 * eps : (1 << 26) - 1),
                                   poly, &info->vertices_coarse, scratch);
-    if (st == RTE_OK)
-        st = rte_shape_min_area_rect(pts, n, &info->box, scratch);
-    if (st == RTE_OK)
-        st = rte_shape_enclosing_circle(pts, n, &info->circle, scratch);
     if (st != RTE_OK) {
         rte_arena_reset(scratch, mark);
         return st;
     }
+    rte_shape_min_area_rect_of_hull(hull, nh, &info->box);
+    /* poly is free now: a copy of the hull for the circle to shuffle */
+    memcpy(poly, hull, (size_t)nh * sizeof *poly);
+    rte_shape_enclosing_circle_of_hull(poly, nh, &info->circle);
     int64_t area2 = rte_shape_area2(pts, n);
     area2 = area2 < 0 ? -area2 : area2;
     int64_t hull_area2 = rte_shape_area2(hull, nh);

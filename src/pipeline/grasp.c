@@ -2,6 +2,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "algo/geom_fixed.h"
 #include "grasp_ctx.h"
 #include "rtedge/background.h"
 #include "rtedge/canny.h"
@@ -370,7 +371,7 @@ static rte_status grasp_of(rte_grasp_ctx *ctx, const rte_image_u8 *bin, const rt
     if (st == RTE_OK)
         st = rte_shape_convex_hull(pts, n, NULL, hull, &nh, &ctx->arena);
     if (st == RTE_OK)
-        st = rte_shape_calipers(hull, nh, cal, &nc);
+        st = rte_shape_caliper_widths(hull, nh, cal, &nc);
     if (st != RTE_OK) {
         rte_arena_reset(&ctx->arena, mark);
         return st;
@@ -401,6 +402,7 @@ static rte_status grasp_of(rte_grasp_ctx *ctx, const rte_image_u8 *bin, const rt
         const rte_caliper *k = &cal[i];
         if (k->width_q8 > near)
             continue;
+        rte_caliper_direction(hull, nh, &cal[i]);
         /* the hull's extremes along u, from the centroid (Q8) */
         int64_t t[2];
         const rte_point v[2] = {hull[k->edge], hull[k->far]};

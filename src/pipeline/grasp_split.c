@@ -4,6 +4,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "algo/geom_fixed.h"
 #include "core/int_math.h"
 #include "grasp_ctx.h"
 #include "rtedge/distance.h"
@@ -40,7 +41,7 @@ static rte_status needs_split(rte_grasp_ctx *ctx, const rte_point *pts, int32_t 
         hull2 = rte_abs64(rte_shape_area2(hull, nh));
     }
     if (st == RTE_OK && area2 * 1000 < hull2 * SPLIT_SOLIDITY_PERMILLE)
-        st = rte_shape_calipers(hull, nh, cal, &nc);
+        st = rte_shape_caliper_widths(hull, nh, cal, &nc);
     if (st == RTE_OK && nc > 0) {
         int32_t narrowest = cal[0].width_q8;
         for (int32_t i = 1; i < nc; i++)

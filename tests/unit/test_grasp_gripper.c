@@ -10,6 +10,7 @@
 
 #include "rtedge/grasp.h"
 #include "rtedge/polygon_mask.h"
+#include "algo/geom_fixed.h"
 
 static uint8_t arena_mem[1 << 16];
 
@@ -74,6 +75,49 @@ static void calipers_triangle(void **state)
     assert_int_equal(rte_shape_calipers(far, 3, c, &nc), RTE_ERR_TOO_LARGE);
     assert_int_equal(rte_shape_calipers(seg, 0, c, &nc), RTE_ERR_ARGUMENT);
     assert_int_equal(rte_shape_calipers(NULL, 3, c, &nc), RTE_ERR_ARGUMENT);
+}
+
+/* What the grasp path computes once per contour equals the public calls:
+ * the widths-only calipers with the directions filled in equal
+ * rte_shape_calipers, and the box and circle of a hull at hand those of its
+ * points; on the hulls of random point sets (a few collinear, some single
+ * points) and the degenerate hulls. */
+static void hull_shortcuts_match_the_public_calls(void **state)
+{
+    (void)state;
+    uint32_t rng = 77;
+    rte_arena a;
+    rte_arena_init(&a, arena_mem, sizeof arena_mem);
+    rte_point pts[64], hull[65], copy[65];
+    rte_caliper full[65], lazy[65];
+    for (int t = 0; t < 300; t++) {
+        const int32_t n = 1 + (int32_t)(unit_rand(&rng) % 60);
+        const int32_t span = 2 + (int32_t)(unit_rand(&rng) % (t % 3 ? 400 : 3));
+        for (int32_t i = 0; i < n; i++) {
+            pts[i].x = (int32_t)(unit_rand(&rng) % (uint32_t)span);
+            pts[i].y = t % 7 == 0 ? pts[i].x : (int32_t)(unit_rand(&rng) % (uint32_t)span);
+        }
+        int32_t nh = 0, nf = 0, nl = 0;
+        assert_int_equal(rte_shape_convex_hull(pts, n, NULL, hull, &nh, &a), RTE_OK);
+        assert_int_equal(rte_shape_calipers(hull, nh, full, &nf), RTE_OK);
+        assert_int_equal(rte_shape_caliper_widths(hull, nh, lazy, &nl), RTE_OK);
+        assert_int_equal(nl, nf);
+        for (int32_t i = 0; i < nl; i++) {
+            assert_int_equal(lazy[i].width_q8, full[i].width_q8);
+            rte_caliper_direction(hull, nh, &lazy[i]);
+            assert_memory_equal(&lazy[i], &full[i], sizeof full[i]);
+        }
+        rte_rotated_rect r1, r2;
+        rte_circle c1, c2;
+        assert_int_equal(rte_shape_min_area_rect(pts, n, &r1, &a), RTE_OK);
+        rte_shape_min_area_rect_of_hull(hull, nh, &r2);
+        assert_memory_equal(&r1, &r2, sizeof r1);
+        assert_int_equal(rte_shape_enclosing_circle(pts, n, &c1, &a), RTE_OK);
+        memcpy(copy, hull, (size_t)nh * sizeof *copy);
+        rte_shape_enclosing_circle_of_hull(copy, nh, &c2);
+        assert_memory_equal(&c1, &c2, sizeof c1);
+        assert_int_equal(a.used, 0);
+    }
 }
 
 /* A context for w x h: no blur, dark objects below grey 120. */
@@ -386,9 +430,13 @@ static void sorted_by_score(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(calipers_triangle), cmocka_unit_test(triangle_scene),
-        cmocka_unit_test(rotated_rectangle), cmocka_unit_test(l_shape),
-        cmocka_unit_test(gripper_range),     cmocka_unit_test(clearance),
+        cmocka_unit_test(calipers_triangle),
+        cmocka_unit_test(hull_shortcuts_match_the_public_calls),
+        cmocka_unit_test(triangle_scene),
+        cmocka_unit_test(rotated_rectangle),
+        cmocka_unit_test(l_shape),
+        cmocka_unit_test(gripper_range),
+        cmocka_unit_test(clearance),
         cmocka_unit_test(sorted_by_score),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
