@@ -182,8 +182,8 @@ static bool table_plane(const int64_t *m, int32_t lo, int32_t hi, int32_t i, int
     const int64_t num = sz * m11 - suz * m12 + svz * m13;
     int64_t a = (num * (1 << GRID_SHIFT) + (num >= 0 ? det / 2 : -det / 2)) / det;
     /* no further than tol beyond the cells it was fitted to */
-    const int64_t a_lo = (int64_t)(lo - tol) << GRID_SHIFT, a_hi = (int64_t)(hi + tol)
-                                                                   << GRID_SHIFT;
+    const int64_t a_lo = (int64_t)(lo - tol) * (1 << GRID_SHIFT),
+                  a_hi = (int64_t)(hi + tol) * (1 << GRID_SHIFT);
     a = a < a_lo ? a_lo : a > a_hi ? a_hi : a;
     a = a < 0 ? 0 : a > (255 << GRID_SHIFT) ? (255 << GRID_SHIFT) : a;
     *value = (int32_t)a;
