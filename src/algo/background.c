@@ -207,7 +207,7 @@ static void column_sums_add(const uint8_t *med, const uint8_t *table, int32_t gw
 
 /* Each cell's estimate, Q4: the plane through the table cells of its
  * window of radius r0; where there are too few, the mean of the table
- * cells within 2, 4, ... times r0 (a cell inside a large object). The
+ * cells within 1, 2, 4, ... times r0 (a cell inside a large object). The
  * windows' sums come from columns' sums that slide down the grid, prefix
  * summed along each row; the means' from summed-area tables. */
 static void table_estimates(const uint8_t *med, const uint8_t *table, int32_t gw, int32_t gh,
