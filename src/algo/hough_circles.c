@@ -227,31 +227,26 @@ static inline void vote_line(const circle_band *b, const circle_geom *g, int32_t
 /* Step 2 on accumulator row a (rows a - 1 .. a + 1 in the ring): local
  * maxima above the threshold (ties broken towards the right and below),
  * appended as (a * acols + x, votes). Row a - 1 is not needed after this
- * and is cleared on the way, for the row that reuses its memory. Four
- * cells at a time are skipped
- * when none is above the threshold: with v + 2^31 - 1 - thr in each 32-bit
- * half of a word (no carry out: votes are below 2^31), bit 31 of a half is
- * set exactly when v > thr. */
+ * and is cleared, for the row that reuses its memory. Eight cells at a
+ * time are skipped when none is above the threshold: with v + 2^31 - 1 -
+ * thr in each 32-bit half of a word (no carry out: votes are below 2^31),
+ * bit 31 of a half is set exactly when v > thr. */
 static int32_t find_centres_row(const circle_band *b, const circle_geom *g, int32_t a, int32_t thr,
                                 int32_t *centres, int32_t ncent)
 {
     const int32_t *r = band_row(b, a), *down = band_row(b, a + 1);
     int32_t *up = band_row(b, a - 1);
-    const uint64_t zero = 0;
     const uint64_t add = (uint64_t)(0x7FFFFFFFu - (uint32_t)thr) * 0x100000001u,
                    top = 0x8000000080000000u;
     int32_t x = 0;
     for (;;) {
-        for (; x + 4 <= g->acols; x += 4) {
-            uint64_t w0, w1;
-            memcpy(&w0, r + x, sizeof w0);
-            memcpy(&w1, r + x + 2, sizeof w1);
-            if (((w0 + add) | (w1 + add)) & top)
+        for (; x + 8 <= g->acols; x += 8) {
+            uint64_t w[4];
+            memcpy(w, r + x, sizeof w);
+            if (((w[0] + add) | (w[1] + add) | (w[2] + add) | (w[3] + add)) & top)
                 break;
-            memcpy(up + x, &zero, sizeof zero);
-            memcpy(up + x + 2, &zero, sizeof zero);
         }
-        const int32_t end = x + 4 < g->acols ? x + 4 : g->acols;
+        const int32_t end = x + 8 < g->acols ? x + 8 : g->acols;
         if (x >= end)
             break;
         for (; x < end; x++) {
@@ -261,10 +256,43 @@ static int32_t find_centres_row(const circle_band *b, const circle_geom *g, int3
                 centres[2 * ncent + 1] = v;
                 ncent++;
             }
-            up[x] = 0;
         }
     }
+    memset(up, 0, (size_t)g->acols * sizeof *up);
     return ncent;
+}
+
+/* Bit k set when e[k] is nonzero, for k < n <= 8. Eight at once (little
+ * endian): the top bit of each nonzero byte, moved to the byte's low bit,
+ * then the eight low bits gathered into the top byte by one multiply (the
+ * partial products of different bytes fall below it or above 64 bits). */
+static inline uint32_t edge_bits(const uint8_t *e, int32_t n)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    if (n == 8) {
+        uint64_t word;
+        memcpy(&word, e, sizeof word);
+        const uint64_t low7 = 0x7F7F7F7F7F7F7F7Fu;
+        const uint64_t ones = ((((word & low7) + low7) | word) >> 7) & 0x0101010101010101u;
+        return (uint32_t)((ones * 0x0102040810204080u) >> 56);
+    }
+#endif
+    uint32_t bits = 0;
+    for (int32_t k = 0; k < n; k++)
+        bits |= (uint32_t)(e[k] != 0) << k;
+    return bits;
+}
+
+/* A pixel's two vote lines: from its accumulator position (x0, y0, Q10)
+ * along its unit step (sx, sy) both ways, starting min_r steps out. */
+typedef struct circle_voter {
+    int32_t x0, y0, sx, sy;
+} circle_voter;
+
+static inline void vote_pixel(const circle_band *b, const circle_geom *g, const circle_voter *v)
+{
+    vote_line(b, g, v->x0 + g->min_r * v->sx, v->y0 + g->min_r * v->sy, v->sx, v->sy);
+    vote_line(b, g, v->x0 - g->min_r * v->sx, v->y0 - g->min_r * v->sy, -v->sx, -v->sy);
 }
 
 /* Steps 1 and 2: the edge pixels' votes, row by row, and the centres of
@@ -272,7 +300,12 @@ static int32_t find_centres_row(const circle_band *b, const circle_geom *g, int3
  * pixels (with a non-zero gradient) and their blocks. Only the first
  * `voters` of them vote (the vote budget; *truncated is set when one more
  * would have). Returns the number of centres; *npts gets the number of
- * pixels. */
+ * pixels.
+ *
+ * A pixel's step (a square root and divisions, about 40 cycles of
+ * latency) is computed before the votes of the pixel before it are cast:
+ * the votes do not wait for it, so the divider works while the
+ * increments run instead of between them. The votes keep their order. */
 static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
                           const rte_image_s16 *dy, const circle_geom *g, int32_t dp_q8, int32_t thr,
                           circle_band *b, int64_t voters, uint32_t *pts, int32_t *blk,
@@ -286,22 +319,16 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
         const int16_t *gx = rte_s16_row(dx, y), *gy = rte_s16_row(dy, y);
         const int32_t y0 = acc_q10(y, dp_q8);
         int32_t *rb = blk + (size_t)y * nblk, nb = 0;
+        circle_voter prev = {0, 0, 0, 0};
+        bool pending = false;
         for (int32_t x8 = 0; x8 < w; x8 += 8) {
-            const int32_t x_end = x8 + 8 < w ? x8 + 8 : w;
-            if (x_end - x8 == 8) {
-                uint64_t word;
-                memcpy(&word, e + x8, sizeof word);
-                if (!word)
-                    continue;
-            }
             /* bit k: pixel x8 + k is an edge (one branch per edge pixel,
              * not one per pixel, which mispredicts) */
-            uint32_t bits = 0;
-            for (int32_t k = 0; k < x_end - x8; k++)
-                bits |= (uint32_t)(e[x8 + k] != 0) << k;
-            while (bits) {
-                const int32_t x = x8 + __builtin_ctz(bits);
-                bits &= bits - 1;
+            const uint32_t bits = edge_bits(e + x8, x8 + 8 < w ? 8 : w - x8);
+            if (!bits)
+                continue;
+            for (uint32_t left = bits; left; left &= left - 1) {
+                const int32_t x = x8 + __builtin_ctz(left);
                 int32_t vx = gx[x], vy = gy[x];
                 if (vx == 0 && vy == 0)
                     continue;
@@ -316,12 +343,16 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
                 /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
                 uint64_t mag_q10 = isqrt_fast(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
                 int64_t den = (int64_t)mag_q10 * dp_q8;
-                int32_t sx = unit_step(vx, den), sy = unit_step(vy, den);
-                int32_t x0 = acc_q10(x, dp_q8);
-                vote_line(b, g, x0 + g->min_r * sx, y0 + g->min_r * sy, sx, sy);
-                vote_line(b, g, x0 - g->min_r * sx, y0 - g->min_r * sy, -sx, -sy);
+                const circle_voter cur = {acc_q10(x, dp_q8), y0, unit_step(vx, den),
+                                          unit_step(vy, den)};
+                if (pending)
+                    vote_pixel(b, g, &prev);
+                prev = cur;
+                pending = true;
             }
         }
+        if (pending)
+            vote_pixel(b, g, &prev);
         while (nb < nblk)
             rb[nb++] = n;
         /* Rows the next pixel row cannot reach are final; a row is searched
