@@ -54,7 +54,8 @@ RTE_API rte_status rte_threshold_u8(const rte_image_u8 *src, rte_image_u8 *dst,
                                     const rte_threshold_params *params, int32_t *used_thresh);
 
 /* hist[v] = number of pixels equal to v (the counts fit uint32_t because
- * every side is at most RTE_MAX_SIDE). */
+ * every side is at most RTE_MAX_SIDE). Its partial counters take 35 KB of
+ * the caller's stack (no other memory). */
 RTE_API rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256]);
 
 /* The same over the pixels where mask (same size as src) is not 0, as

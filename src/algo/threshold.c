@@ -19,40 +19,80 @@
  * for one address, stalling the next part's load behind the last store
  * (6-10% of the time of rte_threshold_otsu_u8 at 1280x720). */
 #define HIST_ROW 272
+/* The image is counted as four horizontal bands side by side, one row of
+ * each per step, each into its own parts: pixels of a uniform area fall on
+ * the same counters, and four areas far apart rarely are at the same grey
+ * level, so four times as many increments run between two of one counter
+ * (a fifth less time than one band on the photos at 1280x720; the 35 KB
+ * of counters stay in L1). */
+#define HIST_BANDS 4
 
-/* Adds the pixels of a row (where mask is NULL or mask[x] != 0) to the
- * partial histograms, eight pixels at a time (one 8-byte load each; byte
- * order cannot matter here); mask chunks of all zeros are skipped, chunks
- * without a zero byte counted as unmasked. */
-static void histogram_row(const uint8_t *row, const uint8_t *mask, int32_t n,
-                          uint32_t part[HIST_PARTS][HIST_ROW])
+typedef uint32_t hist_parts[HIST_PARTS][HIST_ROW];
+
+/* Adds the 8 pixels at row (where mask is NULL or mask[k] != 0) to part
+ * (one 8-byte load; byte order cannot matter here). A mask chunk of all
+ * zeros adds nothing, one without a zero byte is taken as no mask. */
+static inline void histogram_chunk(const uint8_t *row, const uint8_t *mask, hist_parts part)
 {
     const uint64_t ones = 0x0101010101010101u, highs = 0x8080808080808080u;
-    int32_t x = 0;
-    for (; x + 8 <= n; x += 8) {
-        uint64_t v, m = ~(uint64_t)0;
-        memcpy(&v, row + x, sizeof v);
-        if (mask) {
-            memcpy(&m, mask + x, sizeof m);
-            if (m == 0)
-                continue;
-            if (((m - ones) & ~m & highs) != 0) { /* some byte of m is zero */
-                for (int k = 0; k < 8; k++)
-                    part[k][(v >> (8 * k)) & 0xFF] += ((m >> (8 * k)) & 0xFF) != 0;
-                continue;
-            }
+    uint64_t v;
+    memcpy(&v, row, sizeof v);
+    if (mask) {
+        uint64_t m;
+        memcpy(&m, mask, sizeof m);
+        if (m == 0)
+            return;
+        if (((m - ones) & ~m & highs) != 0) { /* some byte of m is zero */
+            for (int k = 0; k < 8; k++)
+                part[k][(v >> (8 * k)) & 0xFF] += ((m >> (8 * k)) & 0xFF) != 0;
+            return;
         }
-        part[0][v & 0xFF]++;
-        part[1][(v >> 8) & 0xFF]++;
-        part[2][(v >> 16) & 0xFF]++;
-        part[3][(v >> 24) & 0xFF]++;
-        part[4][(v >> 32) & 0xFF]++;
-        part[5][(v >> 40) & 0xFF]++;
-        part[6][(v >> 48) & 0xFF]++;
-        part[7][v >> 56]++;
     }
+    part[0][v & 0xFF]++;
+    part[1][(v >> 8) & 0xFF]++;
+    part[2][(v >> 16) & 0xFF]++;
+    part[3][(v >> 24) & 0xFF]++;
+    part[4][(v >> 32) & 0xFF]++;
+    part[5][(v >> 40) & 0xFF]++;
+    part[6][(v >> 48) & 0xFF]++;
+    part[7][v >> 56]++;
+}
+
+static void histogram_tail(const uint8_t *row, const uint8_t *mask, int32_t x, int32_t n,
+                           hist_parts part)
+{
     for (; x < n; x++)
         part[0][row[x]] += !mask || mask[x] != 0;
+}
+
+/* Row y of each band (bands `band` rows apart; mask NULL or a mask image
+ * with the same layout) into its parts. */
+static void histogram_band_rows(const rte_image_u8 *src, const rte_image_u8 *mask, int32_t y,
+                                int32_t band, hist_parts part[HIST_BANDS])
+{
+    const uint8_t *r[HIST_BANDS], *m[HIST_BANDS] = {NULL, NULL, NULL, NULL};
+    for (int b = 0; b < HIST_BANDS; b++) {
+        r[b] = rte_u8_row(src, y + b * band);
+        if (mask)
+            m[b] = rte_u8_row(mask, y + b * band);
+    }
+    const int32_t n = src->width;
+    int32_t x = 0;
+    if (mask) {
+        for (; x + 8 <= n; x += 8)
+            for (int b = 0; b < HIST_BANDS; b++)
+                histogram_chunk(r[b] + x, m[b] + x, part[b]);
+    } else {
+        /* written out: the four bands' increments interleave */
+        for (; x + 8 <= n; x += 8) {
+            histogram_chunk(r[0] + x, NULL, part[0]);
+            histogram_chunk(r[1] + x, NULL, part[1]);
+            histogram_chunk(r[2] + x, NULL, part[2]);
+            histogram_chunk(r[3] + x, NULL, part[3]);
+        }
+    }
+    for (int b = 0; b < HIST_BANDS; b++)
+        histogram_tail(r[b], m[b], x, n, part[b]);
 }
 
 static rte_status histogram(const rte_image_u8 *src, const rte_image_u8 *mask, uint32_t hist[256])
@@ -62,14 +102,23 @@ static rte_status histogram(const rte_image_u8 *src, const rte_image_u8 *mask, u
         return st;
     if (!hist)
         return RTE_ERR_ARGUMENT;
-    uint32_t part[HIST_PARTS][HIST_ROW];
+    hist_parts part[HIST_BANDS];
     memset(part, 0, sizeof part);
-    for (int32_t y = 0; y < src->height; y++)
-        histogram_row(rte_u8_row(src, y), mask ? rte_u8_row(mask, y) : NULL, src->width, part);
+    const int32_t band = src->height / HIST_BANDS;
+    for (int32_t y = 0; y < band; y++)
+        histogram_band_rows(src, mask, y, band, part);
+    for (int32_t y = band * HIST_BANDS; y < src->height; y++) { /* the last few rows */
+        const uint8_t *r = rte_u8_row(src, y), *m = mask ? rte_u8_row(mask, y) : NULL;
+        int32_t x = 0;
+        for (; x + 8 <= src->width; x += 8)
+            histogram_chunk(r + x, m ? m + x : NULL, part[0]);
+        histogram_tail(r, m, x, src->width, part[0]);
+    }
     for (int32_t v = 0; v < 256; v++) {
         uint32_t sum = 0;
-        for (int k = 0; k < HIST_PARTS; k++)
-            sum += part[k][v];
+        for (int b = 0; b < HIST_BANDS; b++)
+            for (int k = 0; k < HIST_PARTS; k++)
+                sum += part[b][k][v];
         hist[v] = sum;
     }
     return RTE_OK;
