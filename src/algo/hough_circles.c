@@ -124,7 +124,7 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
            rte_arena_piece_size(cand * 2 * sizeof(int32_t)) +
            rte_arena_piece_size(kept * sizeof(uint64_t)) +
            rte_arena_piece_size(kept * 3 * sizeof(int32_t)) +
-           rte_arena_piece_size((size_t)g.nbins * sizeof(int32_t)) +
+           rte_arena_piece_size(2 * (size_t)g.nbins * sizeof(int32_t)) +
            rte_arena_piece_size(((size_t)g.nbins + 1) * sizeof(int64_t)) +
            rte_arena_piece_size(RADIUS_COARSE * sizeof(int32_t));
 }
@@ -442,7 +442,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     int32_t *centres = rte_arena_alloc(arena, cand_cap * 2 * sizeof(int32_t));
     uint64_t *keys = rte_arena_alloc(arena, kept_cap * sizeof(uint64_t));
     int32_t *est = rte_arena_alloc(arena, kept_cap * 3 * sizeof(int32_t));
-    int32_t *bins = rte_arena_alloc(arena, (size_t)g.nbins * sizeof(int32_t));
+    int32_t *bins = rte_arena_alloc(arena, 2 * (size_t)g.nbins * sizeof(int32_t));
     radius_table rt = {rte_arena_alloc(arena, ((size_t)g.nbins + 1) * sizeof(int64_t)),
                        rte_arena_alloc(arena, RADIUS_COARSE * sizeof(int32_t)), 0, 0};
     if (!band.acc || !pts || !blk || !centres || !keys || !est || !bins || !rt.sq || !rt.coarse) {

@@ -36,7 +36,7 @@ void rte_circle_radius_table_init(radius_table *t, const circle_geom *g);
 
 /* Step 3 for one centre (cx, cy in 1/16 pixel) over the edge pixels pts
  * with their row blocks blk (nblk a row): the support, and the radius in
- * *radius_q4; bins has g->nbins entries. */
+ * *radius_q4; bins has 2 g->nbins entries. */
 int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
                           const circle_geom *g, const radius_table *rt, int32_t cx, int32_t cy,
                           int32_t *bins, int32_t *radius_q4);

@@ -3,6 +3,8 @@
  * their gradient lines meet (the votes and the rest: hough_circles.c). */
 #include "hough_circles_internal.h"
 
+#include <string.h>
+
 #include "core/int_math.h"
 #include "geom_fixed.h"
 #include "rtedge/image.h"
@@ -46,7 +48,10 @@ static inline void ring_window(const int32_t *blk, int32_t nblk, int32_t y, int3
     *end = blk[(size_t)y * nblk + (b_hi < nblk - 1 ? b_hi : nblk - 1)];
 }
 
-/* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. */
+/* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. The
+ * even and odd pixels of the scan count into two halves of bins: the
+ * pixels where a row crosses the ring fall into the same bin one after
+ * the other, and one counter's increments would wait on each other. */
 int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
                           const circle_geom *g, const radius_table *rt, int32_t cx, int32_t cy,
                           int32_t *bins, int32_t *radius_q4)
@@ -55,8 +60,9 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
     int32_t y_lo = (cy >> 4) - g->max_r - 1, y_hi = (cy >> 4) + g->max_r + 1;
     y_lo = y_lo < 0 ? 0 : y_lo;
     y_hi = y_hi > h - 1 ? h - 1 : y_hi;
-    for (int32_t i = 0; i < g->nbins; i++)
-        bins[i] = 0;
+    const int32_t nbins = g->nbins;
+    int32_t *odd = bins + nbins;
+    memset(bins, 0, 2 * (size_t)nbins * sizeof *bins);
     int32_t any = 0;
     for (int32_t y = y_lo; y <= y_hi; y++) {
         int32_t i, end;
@@ -66,10 +72,12 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
             int64_t d2 = ddx * ddx + ddy * ddy;
             if (d2 < rmin2 || d2 > rmax2)
                 continue;
-            bins[radius_bin(rt, d2)]++;
+            ((i & 1) ? odd : bins)[radius_bin(rt, d2)]++;
             any = 1;
         }
     }
+    for (int32_t k = 0; k < nbins; k++)
+        bins[k] += odd[k];
     int32_t best_count = 0, best_r = 0;
     if (!any)
         return 0;
