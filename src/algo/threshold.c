@@ -26,6 +26,7 @@
  * (a fifth less time than one band on the photos at 1280x720; the 35 KB
  * of counters stay in L1). */
 #define HIST_BANDS 4
+_Static_assert(HIST_BANDS == 4, "histogram_band_rows writes out four bands");
 
 typedef uint32_t hist_parts[HIST_PARTS][HIST_ROW];
 
@@ -65,12 +66,21 @@ static void histogram_tail(const uint8_t *row, const uint8_t *mask, int32_t x, i
         part[0][row[x]] += !mask || mask[x] != 0;
 }
 
+/* One row of n pixels (mask NULL or its row) into part. */
+static void histogram_row(const uint8_t *row, const uint8_t *mask, int32_t n, hist_parts part)
+{
+    int32_t x = 0;
+    for (; x + 8 <= n; x += 8)
+        histogram_chunk(row + x, mask ? mask + x : NULL, part);
+    histogram_tail(row, mask, x, n, part);
+}
+
 /* Row y of each band (bands `band` rows apart; mask NULL or a mask image
  * with the same layout) into its parts. */
 static void histogram_band_rows(const rte_image_u8 *src, const rte_image_u8 *mask, int32_t y,
                                 int32_t band, hist_parts part[HIST_BANDS])
 {
-    const uint8_t *r[HIST_BANDS], *m[HIST_BANDS] = {NULL, NULL, NULL, NULL};
+    const uint8_t *r[HIST_BANDS], *m[HIST_BANDS] = {NULL};
     for (int b = 0; b < HIST_BANDS; b++) {
         r[b] = rte_u8_row(src, y + b * band);
         if (mask)
@@ -107,13 +117,8 @@ static rte_status histogram(const rte_image_u8 *src, const rte_image_u8 *mask, u
     const int32_t band = src->height / HIST_BANDS;
     for (int32_t y = 0; y < band; y++)
         histogram_band_rows(src, mask, y, band, part);
-    for (int32_t y = band * HIST_BANDS; y < src->height; y++) { /* the last few rows */
-        const uint8_t *r = rte_u8_row(src, y), *m = mask ? rte_u8_row(mask, y) : NULL;
-        int32_t x = 0;
-        for (; x + 8 <= src->width; x += 8)
-            histogram_chunk(r + x, m ? m + x : NULL, part[0]);
-        histogram_tail(r, m, x, src->width, part[0]);
-    }
+    for (int32_t y = band * HIST_BANDS; y < src->height; y++) /* the last few rows */
+        histogram_row(rte_u8_row(src, y), mask ? rte_u8_row(mask, y) : NULL, src->width, part[0]);
     for (int32_t v = 0; v < 256; v++) {
         uint32_t sum = 0;
         for (int b = 0; b < HIST_BANDS; b++)
