@@ -205,25 +205,6 @@ static rte_lane_segment_use lane_side_use(int side)
     return side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT;
 }
 
-/* The rows a side needs paint on to count as seen: a sixteenth of the
- * lane's. */
-static int32_t lane_min_rows(const rte_lane *lane)
-{
-    return (lane->y_bottom - lane->y_top) / 16 + 1;
-}
-
-/* A line fitted to segments, refined on the edge pixels: the rows on which
- * paint lies along it (segments are edges; a lane needs paint along them
- * too). */
-static int32_t lane_refined_paint_rows(const lane_maps *maps, const lane_fit_hint *hint,
-                                       const rte_lane *lane, lane_line *line)
-{
-    rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, hint, maps->tol, line);
-    const rte_lane fitted = lane_of_line(line, 0, 0, lane->y_top, lane->y_bottom);
-    int64_t offset_q8;
-    return rte_lane_find_marking(maps, hint, &fitted, 2, &offset_q8);
-}
-
 /* One side of the fit stage: its segments members[0..n) fitted and the
  * line refined on the edge pixels. A tracked side whose segments are too
  * few (the gap between two dashes, a dash the Hough search left out) is
@@ -248,8 +229,8 @@ static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, in
     if (p->fit != RTE_LANE_FIT_LEAST_SQUARES)
         return support >= p->min_support_px ? support : 0;
     if (support > 0 && support >= p->min_support_px) {
-        *rows = lane_refined_paint_rows(maps, &hint, lane, line);
-        return *rows >= lane_min_rows(lane) ? support : 0;
+        *rows = rte_lane_refined_paint_rows(maps, &hint, lane, line);
+        return *rows >= rte_lane_min_rows(lane) ? support : 0;
     }
     if (!t->valid)
         return 0;
@@ -257,7 +238,7 @@ static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, in
     int64_t offset_q8;
     /* twice the refit's band: the prediction is a frame old */
     *rows = rte_lane_find_marking(maps, &hint, &pred, 2, &offset_q8);
-    if (*rows < lane_min_rows(lane))
+    if (*rows < rte_lane_min_rows(lane))
         return 0;
     const int64_t span = lane->y_bottom - lane->y_top;
     *line = (lane_line){(int64_t)pred.x_bottom_q8 + offset_q8,
@@ -298,8 +279,8 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
     const int64_t again = rte_lane_fit_side(ctx, refit, listed, &hint, &found, &inliers);
     if (again <= 0 || again < ctx->params.min_support_px)
         return support;
-    const int32_t again_rows = lane_refined_paint_rows(maps, &hint, lane, &found);
-    if (again_rows < lane_min_rows(lane) ||
+    const int32_t again_rows = rte_lane_refined_paint_rows(maps, &hint, lane, &found);
+    if (again_rows < rte_lane_min_rows(lane) ||
         (support > 0 && (again_rows < weak || again_rows < 2 * rows)))
         return support;
     if (refit != members) /* the gate's segments: the lane does not use them */
@@ -473,9 +454,12 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
                                           &line[side], &seeded_bow[side], &fresh[side]);
         seen[side] = support[side] > 0;
     }
+    /* seen on its own: a side found from the other takes its bend (its
+     * few dashes would bend both) */
+    const bool own[2] = {seen[0], seen[1]};
     lane_curve curve[2] = {{0, y_bottom, 0, y_bottom}, {0, y_bottom, 0, y_bottom}};
     if (p->curves && p->fit == RTE_LANE_FIT_LEAST_SQUARES)
-        rte_lane_curves_fit(&maps, &rows, seen, line, curve);
+        rte_lane_curves_fit(&maps, &rows, own, line, curve);
     /* A side found along its predicted curve keeps that bend unless the
      * curve fit gave it one. */
     for (int side = 0; side < 2; side++)
@@ -483,8 +467,9 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
             curve[side].bow_q8 = seeded_bow[side];
             curve[side].y_horizon = ctx->track[side].y_horizon;
         }
+    rte_lane_fit_partner(ctx, &maps, &rows, glare_permille, w, seen, line, curve, support, fresh);
     if (p->fit == RTE_LANE_FIT_LEAST_SQUARES)
-        rte_lane_double_centre(&maps, &rows, seen, line, curve);
+        rte_lane_double_centre(&maps, &rows, own, line, curve);
     rte_lane_width_hold(ctx, seen, line, curve, y_top, y_bottom);
     for (int side = 0; side < 2; side++)
         if (seen[side] && !fresh[side])

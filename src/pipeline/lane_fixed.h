@@ -45,6 +45,13 @@ static inline rte_lane lane_of_line(const lane_line *l, int64_t bow_q8, int32_t 
                       .y_horizon = y_horizon};
 }
 
+/* The rows a side needs paint on to count as seen: a sixteenth of the
+ * lane's. */
+static inline int32_t rte_lane_min_rows(const rte_lane *lane)
+{
+    return (lane->y_bottom - lane->y_top) / 16 + 1;
+}
+
 /* Rows from the ROI's top row down to y, within the lane's span. */
 static inline int64_t lane_rows_below_top(const lane_fit_hint *h, int64_t y)
 {

@@ -3,9 +3,10 @@
  * lane.c (parameters, the ROI, the stages in order, the centre),
  * lane_cue.c (colour cue, automatic Canny thresholds), lane_fit.c (the
  * robust fit of the segments), lane_refine.c (the refit on the edge
- * pixels), lane_windows.c and lane_curve.c (the curve model), lane_double.c (double
- * markings), lane_track.c (sides, gate, the trackers) and lane_trace.c (the
- * far trace). */
+ * pixels), lane_windows.c and lane_curve.c (the curve model),
+ * lane_partner.c (a side searched for from the other), lane_double.c
+ * (double markings), lane_track.c (sides, gate, the trackers) and
+ * lane_trace.c (the far trace). */
 #ifndef RTEDGE_LANE_INTERNAL_H
 #define RTEDGE_LANE_INTERNAL_H
 
@@ -201,6 +202,12 @@ bool rte_lane_paint_along(const lane_maps *maps, const lane_fit_hint *hint, cons
                           int32_t band_scale, int32_t y, int64_t *lane_x_q8, band_pixels *px);
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
                               const rte_lane *pred, int32_t band_scale, int64_t *offset_q8);
+/* lane_refine.c: a line fitted to segments refined on the edge pixels
+ * (rte_lane_refine_on_edges), and the rows on which paint lies along it
+ * (segments are edges; a lane needs paint along them too). lane gives
+ * the rows. */
+int32_t rte_lane_refined_paint_rows(const lane_maps *maps, const lane_fit_hint *hint,
+                                    const rte_lane *lane, lane_line *line);
 
 /* lane_curve.c: the curves of both lanes, whose straight fits are line[]
  * (seen[side]: the side was fitted this frame), with one bend shared by
@@ -212,6 +219,19 @@ void rte_lane_curves_fit(const lane_maps *maps, const lane_fit_hint *hint, const
  * leaves it, into lane->far_count and its points (see rte_lane). */
 void rte_lane_trace_far(const lane_maps *maps, const lane_fit_hint *rows, rte_lane *lane);
 
+/* lane_partner.c: with only seen_side's lane found (`seen`, its curve
+ * included), the other side's marking on the lanes of the same road that
+ * meet it on the horizon, the one with paint on most rows into *found
+ * (its bend the seen lane's); returns those rows (0: none). width: the
+ * frame's. */
+int32_t rte_lane_partner(const lane_maps *maps, const lane_fit_hint *rows, int seen_side,
+                         const rte_lane *seen, int32_t width, rte_lane *found);
+/* lane_partner.c: the fit stage's search for a side from the other (see
+ * lane_partner.c): seen[], line[], curve[], support[] and fresh[] of the
+ * side found are set. */
+void rte_lane_fit_partner(rte_lane_context *ctx, const lane_maps *maps, const lane_fit_hint *rows,
+                          int32_t glare_permille, int32_t w, bool seen[2], lane_line line[2],
+                          lane_curve curve[2], int64_t support[2], bool fresh[2]);
 /* lane_double.c: a side whose marking has a twin beside it (a double
  * centre line) moved onto the centre between the two (both sides seen). */
 void rte_lane_double_centre(const lane_maps *maps, const lane_fit_hint *hint, const bool seen[2],

@@ -37,7 +37,7 @@ while read -r recording floor; do
         echo "ok: $recording (floor $floor)"
     fi
 done <<'FLOORS'
-challenge02 0.90
+challenge02 1.00
 challenge03 0.50
 project_video03 1.00
 FLOORS

@@ -537,6 +537,41 @@ static void test_gated_stripe_marks(void **state)
     rte_lane_destroy(t.ctx);
 }
 
+/* One frame (no tracking): a solid left marking, and on the right only
+ * three dashes too short for the Hough search (4 rows each of the lane's
+ * 72). The right side is found from the left one, on the line through
+ * their vanishing point (rte_lane_partner), with no segment of its own;
+ * without the dashes it is not found. */
+static void test_partner_from_one_side(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 180, yt = 108;
+    for (int dashes = 1; dashes >= 0; dashes--) {
+        rte_lane_context *ctx = make_ctx(w, h, NULL);
+        rte_image_u8 g = unit_image_u8(w, h, 8, 0);
+        const drawn_lane lanes[2] = {{60, 150, true}, {0, 0, false}};
+        draw_road(&g, 70, 230, yt, lanes, 2);
+        if (dashes) {
+            for (int32_t y = 160; y > 110; y -= 18)
+                paint_stripe(&g, 280, 175, y, y + 3, 230);
+        }
+        rte_lane_result r;
+        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 0, &r), RTE_OK);
+        assert_lane_near(&r.lane[0], 60, 150, 3, 3);
+        for (int32_t i = 0; i < r.segment_count; i++)
+            assert_int_not_equal(r.segments[i].use, RTE_LANE_SEG_RIGHT);
+        if (dashes) {
+            assert_lane_near(&r.lane[1], 280, 175, 6, 4);
+            assert_false(r.lane[1].predicted);
+        } else {
+            assert_false(r.lane[1].found);
+        }
+        unit_assert_padding_u8(&g);
+        test_free(g.buf);
+        rte_lane_destroy(ctx);
+    }
+}
+
 /* Thresholds and ROI change at run time. */
 static void test_runtime_params(void **state)
 {
@@ -1606,25 +1641,16 @@ int main(int argc, char **argv)
     if (argc > 1)
         g_roads_dir = argv[1];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_arguments),
-        cmocka_unit_test(test_tiny_frames),
-        cmocka_unit_test(test_drawn_lanes),
-        cmocka_unit_test(test_slope_filter),
-        cmocka_unit_test(test_color_cue),
-        cmocka_unit_test(test_tracking),
-        cmocka_unit_test(test_runtime_params),
-        cmocka_unit_test(test_y4m),
-        cmocka_unit_test(test_synthetic_roads),
-        cmocka_unit_test(test_real_photos),
-        cmocka_unit_test(test_real_clip),
-        cmocka_unit_test(test_far_trace_contract),
-        cmocka_unit_test(test_far_trace_drawn),
-        cmocka_unit_test(test_glare_confidence),
-        cmocka_unit_test(test_reacquire),
-        cmocka_unit_test(test_weak_side_refit),
-        cmocka_unit_test(test_gated_stripe_marks),
-        cmocka_unit_test(test_far_dashes_bend),
-        cmocka_unit_test(test_far_trace_flat_ridge),
+        cmocka_unit_test(test_arguments),          cmocka_unit_test(test_tiny_frames),
+        cmocka_unit_test(test_drawn_lanes),        cmocka_unit_test(test_slope_filter),
+        cmocka_unit_test(test_color_cue),          cmocka_unit_test(test_tracking),
+        cmocka_unit_test(test_runtime_params),     cmocka_unit_test(test_y4m),
+        cmocka_unit_test(test_synthetic_roads),    cmocka_unit_test(test_real_photos),
+        cmocka_unit_test(test_real_clip),          cmocka_unit_test(test_far_trace_contract),
+        cmocka_unit_test(test_far_trace_drawn),    cmocka_unit_test(test_glare_confidence),
+        cmocka_unit_test(test_reacquire),          cmocka_unit_test(test_weak_side_refit),
+        cmocka_unit_test(test_gated_stripe_marks), cmocka_unit_test(test_partner_from_one_side),
+        cmocka_unit_test(test_far_dashes_bend),    cmocka_unit_test(test_far_trace_flat_ridge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
