@@ -165,44 +165,71 @@ int32_t rte_lane_partner(const lane_maps *maps, const lane_fit_hint *rows, int s
  * searched for from the other: glare makes kerbs and sunlit road paint. */
 #define LANE_PARTNER_MAX_GLARE 50
 
-/* With one side seen on paint along a quarter of its rows at least, in
- * little glare, and the other neither seen nor tracked: the other searched
- * for on the lanes of the same road (rte_lane_partner), taken when it
- * shows paint on a sixteenth of the lane's rows, with the seen side's
- * bend when that is more than an eighth of the lane's rows (a smaller one
- * is taken as none: a straight road's lanes meet on one point). No refit
- * on the edge pixels: its band would take the seen marking's near their
- * vanishing point. */
+/* Paint rows along a side's lane (line and curve), in the refit's band. */
+static int32_t side_paint_rows(const lane_maps *maps, const lane_fit_hint *rows,
+                               const lane_line *line, const lane_curve *curve)
+{
+    const rte_lane lane =
+        lane_of_line(line, curve->bow_q8, curve->y_horizon, rows->y_top, rows->y_bottom);
+    int64_t offset_q8;
+    return rte_lane_find_marking(maps, rows, &lane, 1, &offset_q8);
+}
+
+/* In little glare, with one side (`have`) seen on paint along a quarter of
+ * its rows at least, the other is searched for on the lanes of the same
+ * road (rte_lane_partner) when it is
+ *   - neither seen nor tracked: taken when it shows paint on a sixteenth
+ *     of the lane's rows;
+ *   - tracked and seen on paint along fewer than an eighth of its rows (a
+ *     dashed side held on one dash, the prediction moved onto it) on a
+ *     straight road: its line is replaced when the search finds paint on
+ *     twice as many rows with its bottom end within two bands of it.
+ * The side found takes the seen side's bend when that is more than an
+ * eighth of the lane's rows (a smaller one is taken as none: a straight
+ * road's lanes meet on one point). No refit on the edge pixels: its band
+ * would take the seen marking's near their vanishing point. */
 void rte_lane_fit_partner(rte_lane_context *ctx, const lane_maps *maps, const lane_fit_hint *rows,
                           int32_t glare_permille, int32_t w, bool seen[2], lane_line line[2],
                           lane_curve curve[2], int64_t support[2], bool fresh[2])
 {
-    if (seen[0] == seen[1] || ctx->params.fit != RTE_LANE_FIT_LEAST_SQUARES ||
+    if ((!seen[0] && !seen[1]) || ctx->params.fit != RTE_LANE_FIT_LEAST_SQUARES ||
         glare_permille > LANE_PARTNER_MAX_GLARE)
         return;
-    const int have = seen[0] ? 0 : 1, other = 1 - have;
-    if (ctx->track[other].valid)
+    const int64_t span = rows->y_bottom - rows->y_top;
+    /* the side looked for: the unseen one, or the tracked one of less support */
+    const int other = seen[0] != seen[1] ? (seen[0] ? 1 : 0) : support[0] <= support[1] ? 0 : 1;
+    const int have = 1 - other;
+    int32_t weak_paint = 0;
+    if (seen[other]) {
+        if (!ctx->track[other].valid ||
+            (weak_paint = side_paint_rows(maps, rows, &line[other], &curve[other])) >= span / 8)
+            return;
+    } else if (ctx->track[other].valid) {
         return;
-    /* a bow under an eighth of the lane's rows is taken as none here */
-    const int64_t bow = curve[have].bow_q8, span = rows->y_bottom - rows->y_top;
+    }
+    if (side_paint_rows(maps, rows, &line[have], &curve[have]) < span / 4)
+        return;
+    const int64_t bow = curve[have].bow_q8;
     const bool bent = (bow < 0 ? -bow : bow) > span * 256 / 8;
+    if (seen[other] && bent)
+        return;
     const rte_lane lane = lane_of_line(&line[have], bent ? bow : 0, curve[have].y_horizon,
                                        rows->y_top, rows->y_bottom);
-    int64_t offset_q8;
-    if (rte_lane_find_marking(maps, rows, &lane, 1, &offset_q8) <
-        (rows->y_bottom - rows->y_top) / 4)
-        return;
     rte_lane found;
     const int32_t paint = rte_lane_partner(maps, rows, have, &lane, w, &found);
-    if (paint < rte_lane_min_rows(&lane))
+    if (paint < rte_lane_min_rows(&lane) || paint < 2 * weak_paint)
         return;
-    const lane_line chord = {found.x_bottom_q8,
-                             ((int64_t)found.x_bottom_q8 - found.x_top_q8) * 256 / span,
-                             rows->y_bottom};
+    if (seen[other]) {
+        const int64_t moved = lane_line_x_q8(&line[other], rows->y_bottom) - found.x_bottom_q8;
+        if ((moved < 0 ? -moved : moved) > 2 * 256 * maps->tol)
+            return;
+    }
     if (bent)
         curve[other] = curve[have];
-    line[other] = chord;
+    line[other] =
+        (lane_line){found.x_bottom_q8, ((int64_t)found.x_bottom_q8 - found.x_top_q8) * 256 / span,
+                    rows->y_bottom};
     support[other] = paint;
+    fresh[other] = !seen[other];
     seen[other] = true;
-    fresh[other] = true;
 }

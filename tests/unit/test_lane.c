@@ -572,6 +572,57 @@ static void test_partner_from_one_side(void **state)
     }
 }
 
+/* Rows y0..y1 of a stripe (half-width 2) of value v along the line
+ * through (x_vp, y_vp) and (xb, the bottom row). */
+static void paint_ray(rte_image_u8 *g, double x_vp, double y_vp, double xb, int32_t y0, int32_t y1)
+{
+    const int32_t yb = g->height - 1;
+    for (int32_t y = y0; y <= y1; y++) {
+        const int32_t xc = (int32_t)(x_vp + (xb - x_vp) * (y - y_vp) / (yb - y_vp) + 0.5);
+        for (int32_t x = xc - 2; x <= xc + 2; x++)
+            rte_u8_row(g, y)[x] = 230;
+    }
+}
+
+/* 640x360, both lanes tracked, the right marking never painted in the
+ * lane's lowest quarter (so no lane width is held); then it turns about
+ * the vanishing point (its bottom end 20 px left, its point on the horizon
+ * kept) and shows only three dashes too short for the Hough search, the
+ * highest inside the band searched along the prediction. The prediction
+ * moved onto that dash is a translation, its bottom end 19 px right of the
+ * marking, on paint on 6 rows; the side found from the left one through
+ * the three dashes (14 rows) is the measurement instead. */
+static void test_partner_replaces_held_dash(void **state)
+{
+    (void)state;
+    const int32_t w = 640, h = 360, yt = 216;
+    rte_lane_context *ctx = make_ctx(w, h, NULL);
+    rte_image_u8 g = unit_image_u8(w, h, 0, 0);
+    const drawn_lane lanes[2] = {{80, 300, true}, {0, 0, false}};
+    /* the lanes meet where 80 + 220 d / 143 = 600 - 250 d / 143 */
+    const double d = 520.0 * 143 / 470, y_vp = 359 - d, x_vp = 80 + 220 * d / 143;
+    rte_lane_result r;
+    for (int k = 0; k < 4; k++) {
+        draw_road(&g, 70, 230, yt, lanes, 2);
+        paint_ray(&g, x_vp, y_vp, 600, yt, 318); /* no paint in the lowest quarter */
+        assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, k, &r), RTE_OK);
+        assert_lane_near(&r.lane[1], 600, 350, 3, 3);
+    }
+    const double xb = 580;
+    draw_road(&g, 70, 230, yt, lanes, 2);
+    paint_ray(&g, x_vp, y_vp, xb, 220, 227);
+    paint_ray(&g, x_vp, y_vp, xb, 262, 267);
+    paint_ray(&g, x_vp, y_vp, xb, 310, 315);
+    assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, 4, &r), RTE_OK);
+    const double xt = x_vp + (xb - x_vp) * (yt - y_vp) / (359 - y_vp);
+    /* the tracker takes a share of the measurement (580 -> 590.7; moved
+     * onto the top dash: 598.7) */
+    assert_lane_near(&r.lane[1], xb, xt, 12, 3);
+    assert_false(r.lane[1].predicted);
+    test_free(g.buf);
+    rte_lane_destroy(ctx);
+}
+
 /* Thresholds and ROI change at run time. */
 static void test_runtime_params(void **state)
 {
@@ -1641,16 +1692,27 @@ int main(int argc, char **argv)
     if (argc > 1)
         g_roads_dir = argv[1];
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_arguments),          cmocka_unit_test(test_tiny_frames),
-        cmocka_unit_test(test_drawn_lanes),        cmocka_unit_test(test_slope_filter),
-        cmocka_unit_test(test_color_cue),          cmocka_unit_test(test_tracking),
-        cmocka_unit_test(test_runtime_params),     cmocka_unit_test(test_y4m),
-        cmocka_unit_test(test_synthetic_roads),    cmocka_unit_test(test_real_photos),
-        cmocka_unit_test(test_real_clip),          cmocka_unit_test(test_far_trace_contract),
-        cmocka_unit_test(test_far_trace_drawn),    cmocka_unit_test(test_glare_confidence),
-        cmocka_unit_test(test_reacquire),          cmocka_unit_test(test_weak_side_refit),
-        cmocka_unit_test(test_gated_stripe_marks), cmocka_unit_test(test_partner_from_one_side),
-        cmocka_unit_test(test_far_dashes_bend),    cmocka_unit_test(test_far_trace_flat_ridge),
+        cmocka_unit_test(test_arguments),
+        cmocka_unit_test(test_tiny_frames),
+        cmocka_unit_test(test_drawn_lanes),
+        cmocka_unit_test(test_slope_filter),
+        cmocka_unit_test(test_color_cue),
+        cmocka_unit_test(test_tracking),
+        cmocka_unit_test(test_runtime_params),
+        cmocka_unit_test(test_y4m),
+        cmocka_unit_test(test_synthetic_roads),
+        cmocka_unit_test(test_real_photos),
+        cmocka_unit_test(test_real_clip),
+        cmocka_unit_test(test_far_trace_contract),
+        cmocka_unit_test(test_far_trace_drawn),
+        cmocka_unit_test(test_glare_confidence),
+        cmocka_unit_test(test_reacquire),
+        cmocka_unit_test(test_weak_side_refit),
+        cmocka_unit_test(test_gated_stripe_marks),
+        cmocka_unit_test(test_partner_from_one_side),
+        cmocka_unit_test(test_partner_replaces_held_dash),
+        cmocka_unit_test(test_far_dashes_bend),
+        cmocka_unit_test(test_far_trace_flat_ridge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
