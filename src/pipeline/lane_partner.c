@@ -68,6 +68,15 @@ static void partner_vote(const lane_maps *maps, const lane_fit_hint *rows, const
             scale_q16[k] = d > span / 8 ? ((int64_t)(rows->y_bottom - v[k].y_vp) << 16) / d : 0;
         }
         for (int32_t x = x0; x < x1; x++) {
+            /* the edge map is sparse: eight empty pixels skipped at a time */
+            if (x + 8 <= x1) {
+                uint64_t word;
+                memcpy(&word, r + x, sizeof word);
+                if (word == 0) {
+                    x += 7;
+                    continue;
+                }
+            }
             if (!r[x])
                 continue;
             const int64_t xq8 = (int64_t)(x + maps->cx0) * 256 - bend;
