@@ -623,6 +623,66 @@ static void test_partner_replaces_held_dash(void **state)
     rte_lane_destroy(ctx);
 }
 
+/* Random roads, run under the sanitizers in CI: one solid marking and one
+ * dashed, both meeting at a random point, moving between frames, on noise
+ * with glare pixels, at random sizes, in sequences of 1 to 6 frames (the
+ * searches for a side from the other, tracked and not, run on many). Every
+ * call returns RTE_OK and every lane keeps its contract. */
+static void test_random_roads(void **state)
+{
+    (void)state;
+    uint32_t seed = 20261207;
+    for (int it = 0; it < 300; it++) {
+        const int32_t w = 16 + (int32_t)(unit_rand(&seed) % 400);
+        const int32_t h = 16 + (int32_t)(unit_rand(&seed) % 300);
+        rte_lane_config cfg;
+        rte_lane_context *ctx = make_ctx(w, h, &cfg);
+        rte_image_u8 g = unit_image_u8(w, h, 3, 0);
+        const int32_t frames = 1 + (int32_t)(unit_rand(&seed) % 6);
+        const int32_t x_vp = (int32_t)(unit_rand(&seed) % (uint32_t)w);
+        const int32_t y_vp = (int32_t)(unit_rand(&seed) % (uint32_t)(h * 6 / 10));
+        const int32_t x_solid = (int32_t)(unit_rand(&seed) % (uint32_t)w);
+        int32_t x_dashed = (int32_t)(unit_rand(&seed) % (uint32_t)w);
+        for (int32_t f = 0; f < frames; f++) {
+            const uint32_t spread = 1 + unit_rand(&seed) % 40;
+            for (int32_t y = 0; y < h; y++)
+                for (int32_t x = 0; x < w; x++)
+                    rte_u8_row(&g, y)[x] = (uint8_t)(60 + unit_rand(&seed) % spread);
+            for (int32_t y = y_vp + 1; y < h; y++) {
+                const int32_t xs = x_vp + (x_solid - x_vp) * (y - y_vp) / (h - 1 - y_vp);
+                const int32_t xd = x_vp + (x_dashed - x_vp) * (y - y_vp) / (h - 1 - y_vp);
+                for (int32_t x = xs - 2; x <= xs + 2; x++)
+                    if (x >= 0 && x < w)
+                        rte_u8_row(&g, y)[x] = 230;
+                if ((y / 6) % 3 == 0)
+                    for (int32_t x = xd - 2; x <= xd + 2; x++)
+                        if (x >= 0 && x < w)
+                            rte_u8_row(&g, y)[x] = 220;
+            }
+            if (unit_rand(&seed) % 5 == 0)
+                for (int32_t k = 0; k < w * h / 3; k++)
+                    g.buf[(unit_rand(&seed) % (uint32_t)h) * (uint32_t)g.stride +
+                          unit_rand(&seed) % (uint32_t)w] = 255;
+            rte_lane_result r;
+            assert_int_equal(rte_lane_process_gray(ctx, &g, NULL, f, &r), RTE_OK);
+            assert_in_range(r.segment_count, 0, cfg.max_segments);
+            for (int side = 0; side < 2; side++) {
+                const rte_lane *l = &r.lane[side];
+                if (!l->found)
+                    continue;
+                assert_int_equal(l->y_bottom, h - 1);
+                assert_in_range(l->y_top, 0, h - 1);
+                assert_in_range(l->confidence_permille, 0, 1000);
+                assert_in_range(l->far_count, 0, RTE_LANE_FAR_POINTS);
+            }
+            x_dashed += (int32_t)(unit_rand(&seed) % 21) - 10;
+        }
+        unit_assert_padding_u8(&g);
+        test_free(g.buf);
+        rte_lane_destroy(ctx);
+    }
+}
+
 /* Thresholds and ROI change at run time. */
 static void test_runtime_params(void **state)
 {
@@ -1711,6 +1771,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_gated_stripe_marks),
         cmocka_unit_test(test_partner_from_one_side),
         cmocka_unit_test(test_partner_replaces_held_dash),
+        cmocka_unit_test(test_random_roads),
         cmocka_unit_test(test_far_dashes_bend),
         cmocka_unit_test(test_far_trace_flat_ridge),
     };
