@@ -205,6 +205,18 @@ static rte_lane_segment_use lane_side_use(int side)
     return side == RTE_LANE_LEFT ? RTE_LANE_SEG_LEFT : RTE_LANE_SEG_RIGHT;
 }
 
+/* A line fitted to segments, refined on the edge pixels: the rows on which
+ * paint lies along it (segments are edges; a lane needs paint along them
+ * too). */
+static int32_t lane_refined_paint_rows(const lane_maps *maps, const lane_fit_hint *hint,
+                                       const rte_lane *lane, lane_line *line)
+{
+    rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, hint, maps->tol, line);
+    const rte_lane fitted = lane_of_line(line, 0, 0, lane->y_top, lane->y_bottom);
+    int64_t offset_q8;
+    return rte_lane_find_marking(maps, hint, &fitted, 2, &offset_q8);
+}
+
 /* One side of the fit stage: its segments members[0..n) fitted and the
  * line refined on the edge pixels. A tracked side whose segments are too
  * few (the gap between two dashes, a dash the Hough search left out) is
@@ -229,8 +241,8 @@ static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, in
     if (p->fit != RTE_LANE_FIT_LEAST_SQUARES)
         return support >= p->min_support_px ? support : 0;
     if (support > 0 && support >= p->min_support_px) {
-        *rows = rte_lane_refined_paint_rows(maps, &hint, lane, line);
-        return *rows >= rte_lane_min_rows(lane) ? support : 0;
+        *rows = lane_refined_paint_rows(maps, &hint, lane, line);
+        return *rows >= lane_min_rows(lane) ? support : 0;
     }
     if (!t->valid)
         return 0;
@@ -238,12 +250,10 @@ static int64_t lane_fit_tracked(rte_lane_context *ctx, const lane_maps *maps, in
     int64_t offset_q8;
     /* twice the refit's band: the prediction is a frame old */
     *rows = rte_lane_find_marking(maps, &hint, &pred, 2, &offset_q8);
-    if (*rows < rte_lane_min_rows(lane))
+    if (*rows < lane_min_rows(lane))
         return 0;
-    const int64_t span = lane->y_bottom - lane->y_top;
-    *line = (lane_line){(int64_t)pred.x_bottom_q8 + offset_q8,
-                        span > 0 ? ((int64_t)pred.x_top_q8 - pred.x_bottom_q8) * 256 / -span : 0,
-                        lane->y_bottom};
+    *line = lane_line_of_chord((int64_t)pred.x_bottom_q8 + offset_q8,
+                               (int64_t)pred.x_top_q8 + offset_q8, lane->y_top, lane->y_bottom);
     *bow_q8 = pred.bow_q8;
     return *rows;
 }
@@ -279,8 +289,8 @@ static int64_t lane_fit_one_side(rte_lane_context *ctx, const lane_maps *maps, i
     const int64_t again = rte_lane_fit_side(ctx, refit, listed, &hint, &found, &inliers);
     if (again <= 0 || again < ctx->params.min_support_px)
         return support;
-    const int32_t again_rows = rte_lane_refined_paint_rows(maps, &hint, lane, &found);
-    if (again_rows < rte_lane_min_rows(lane) ||
+    const int32_t again_rows = lane_refined_paint_rows(maps, &hint, lane, &found);
+    if (again_rows < lane_min_rows(lane) ||
         (support > 0 && (again_rows < weak || again_rows < 2 * rows)))
         return support;
     if (refit != members) /* the gate's segments: the lane does not use them */
@@ -298,8 +308,7 @@ static int32_t curve_x_q8(const rte_lane *lane, int32_t y)
     const int64_t span = lane->y_bottom - lane->y_top, v = lane->y_bottom - y;
     if (span <= 0)
         return lane->x_bottom_q8;
-    const int64_t chord =
-        lane->x_bottom_q8 + ((int64_t)lane->x_top_q8 - lane->x_bottom_q8) * v / span;
+    const int64_t chord = lane_chord_x_q8(lane, y);
     if (lane->bow_q8 == 0)
         return lane_clamp32(chord, INT32_MIN, INT32_MAX);
     /* q = d_top / d, d the rows below the horizon (lane_horizon_row) */

@@ -45,9 +45,28 @@ static inline rte_lane lane_of_line(const lane_line *l, int64_t bow_q8, int32_t 
                       .y_horizon = y_horizon};
 }
 
+/* x of a lane's chord (its bottom end to its top end) at row y, 1/256 px. */
+static inline int64_t lane_chord_x_q8(const rte_lane *l, int64_t y)
+{
+    const int64_t span = l->y_bottom - l->y_top;
+    if (span <= 0)
+        return l->x_bottom_q8;
+    return l->x_bottom_q8 + ((int64_t)l->x_top_q8 - l->x_bottom_q8) * (l->y_bottom - y) / span;
+}
+
+/* The line through (x_bottom, y_bottom) and (x_top, y_top): lane_of_line's
+ * inverse for a lane without bow. */
+static inline lane_line lane_line_of_chord(int64_t x_bottom_q8, int64_t x_top_q8, int32_t y_top,
+                                           int32_t y_bottom)
+{
+    const int64_t span = y_bottom - y_top;
+    return (lane_line){x_bottom_q8, span > 0 ? (x_top_q8 - x_bottom_q8) * 256 / -span : 0,
+                       y_bottom};
+}
+
 /* The rows a side needs paint on to count as seen: a sixteenth of the
  * lane's. */
-static inline int32_t rte_lane_min_rows(const rte_lane *lane)
+static inline int32_t lane_min_rows(const rte_lane *lane)
 {
     return (lane->y_bottom - lane->y_top) / 16 + 1;
 }

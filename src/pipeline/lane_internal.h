@@ -202,12 +202,6 @@ bool rte_lane_paint_along(const lane_maps *maps, const lane_fit_hint *hint, cons
                           int32_t band_scale, int32_t y, int64_t *lane_x_q8, band_pixels *px);
 int32_t rte_lane_find_marking(const lane_maps *maps, const lane_fit_hint *hint,
                               const rte_lane *pred, int32_t band_scale, int64_t *offset_q8);
-/* lane_refine.c: a line fitted to segments refined on the edge pixels
- * (rte_lane_refine_on_edges), and the rows on which paint lies along it
- * (segments are edges; a lane needs paint along them too). lane gives
- * the rows. */
-int32_t rte_lane_refined_paint_rows(const lane_maps *maps, const lane_fit_hint *hint,
-                                    const rte_lane *lane, lane_line *line);
 
 /* lane_curve.c: the curves of both lanes, whose straight fits are line[]
  * (seen[side]: the side was fitted this frame), with one bend shared by

@@ -33,15 +33,6 @@ typedef struct partner_votes {
     int32_t bin[PARTNER_BINS];
 } partner_votes;
 
-/* x of a lane's chord (bottom to top end) at row y, 1/256 px. */
-static int64_t chord_x_q8(const rte_lane *l, int64_t y)
-{
-    const int64_t span = l->y_bottom - l->y_top;
-    return span > 0
-               ? l->x_bottom_q8 + ((int64_t)l->x_top_q8 - l->x_bottom_q8) * (l->y_bottom - y) / span
-               : l->x_bottom_q8;
-}
-
 /* The edge pixels of frame rows y_top..y_bottom beyond the seen line
  * (toward side `dir`: +1 right, -1 left) into each vanishing row's bins. */
 static void partner_vote(const lane_maps *maps, const lane_fit_hint *rows, const rte_lane *seen,
@@ -57,7 +48,7 @@ static void partner_vote(const lane_maps *maps, const lane_fit_hint *rows, const
             continue;
         const uint8_t *r = rte_u8_row(e, cy);
         /* half the band beyond the seen lane: its own edges stay out */
-        const int64_t x_seen = rte_lane_x_q8(seen, y), bend = x_seen - chord_x_q8(seen, y);
+        const int64_t x_seen = rte_lane_x_q8(seen, y), bend = x_seen - lane_chord_x_q8(seen, y);
         const int64_t xs = (x_seen >> 8) - maps->cx0 + dir * (maps->tol / 2 + 2);
         const int32_t x0 = dir > 0 ? lane_clamp32(xs, 0, e->width) : 0;
         const int32_t x1 = dir > 0 ? e->width : lane_clamp32(xs + 1, 0, e->width);
@@ -104,21 +95,13 @@ static int32_t partner_rows(const lane_maps *maps, const lane_fit_hint *rows, co
         if (y < maps->cy0 || y > maps->cy0 + maps->edges->height - 1)
             continue;
         const int64_t apart = rte_lane_x_q8(cand, y) - rte_lane_x_q8(seen, y);
-        if ((apart < 0 ? -apart : apart) < 5 * 256 * rte_lane_band_px(rows, maps->tol, y))
+        if (rte_abs64(apart) < 5 * 256 * rte_lane_band_px(rows, maps->tol, y))
             continue;
         int64_t lx;
         band_pixels px;
         n += rte_lane_paint_along(maps, rows, cand, 2, y, &lx, &px);
     }
     return n;
-}
-
-/* The line through the vanishing point and bottom-row crossing xb. */
-static lane_line partner_line(const lane_fit_hint *rows, int32_t y_vp, int64_t x_vp_q8,
-                              int64_t xb_q8)
-{
-    const int64_t dy = rows->y_bottom - y_vp;
-    return (lane_line){xb_q8, dy > 0 ? (xb_q8 - x_vp_q8) * 256 / dy : 0, rows->y_bottom};
 }
 
 int32_t rte_lane_partner(const lane_maps *maps, const lane_fit_hint *rows, int seen_side,
@@ -137,7 +120,7 @@ int32_t rte_lane_partner(const lane_maps *maps, const lane_fit_hint *rows, int s
     for (int k = 0; k < nrows; k++) {
         memset(v[k].bin, 0, sizeof v[k].bin);
         v[k].y_vp = nrows == 1 ? seen->y_horizon : rows->y_top + partner_row_16ths[k] * (span / 16);
-        v[k].x_vp_q8 = chord_x_q8(seen, v[k].y_vp);
+        v[k].x_vp_q8 = lane_chord_x_q8(seen, v[k].y_vp);
     }
     partner_vote(maps, rows, seen, dir, lo_q8, bin_q8, v, nrows);
 
@@ -157,7 +140,8 @@ int32_t rte_lane_partner(const lane_maps *maps, const lane_fit_hint *rows, int s
                 break;
             v[k].bin[top - 1] = v[k].bin[top] = v[k].bin[top + 1] = 0;
             const int64_t xb = xs_bottom + dir * (lo_q8 + top * bin_q8 + bin_q8 / 2);
-            const lane_line chord = partner_line(rows, v[k].y_vp, v[k].x_vp_q8, xb);
+            /* the line through the vanishing point and that crossing */
+            const lane_line chord = lane_line_of_chord(xb, v[k].x_vp_q8, v[k].y_vp, rows->y_bottom);
             const rte_lane lane =
                 lane_of_line(&chord, seen->bow_q8, seen->y_horizon, rows->y_top, rows->y_bottom);
             const int32_t n = partner_rows(maps, rows, &lane, seen);
@@ -219,25 +203,24 @@ void rte_lane_fit_partner(rte_lane_context *ctx, const lane_maps *maps, const la
     if (side_paint_rows(maps, rows, &line[have], &curve[have]) < span / 4)
         return;
     const int64_t bow = curve[have].bow_q8;
-    const bool bent = (bow < 0 ? -bow : bow) > span * 256 / 8;
+    const bool bent = rte_abs64(bow) > span * 256 / 8;
     if (seen[other] && bent)
         return;
     const rte_lane lane = lane_of_line(&line[have], bent ? bow : 0, curve[have].y_horizon,
                                        rows->y_top, rows->y_bottom);
     rte_lane found;
     const int32_t paint = rte_lane_partner(maps, rows, have, &lane, w, &found);
-    if (paint < rte_lane_min_rows(&lane) || paint < 2 * weak_paint)
+    if (paint < lane_min_rows(&lane) || paint < 2 * weak_paint)
         return;
     if (seen[other]) {
         const int64_t moved = lane_line_x_q8(&line[other], rows->y_bottom) - found.x_bottom_q8;
-        if ((moved < 0 ? -moved : moved) > 2 * 256 * maps->tol)
+        if (rte_abs64(moved) > 2 * 256 * maps->tol)
             return;
     }
     if (bent)
         curve[other] = curve[have];
     line[other] =
-        (lane_line){found.x_bottom_q8, ((int64_t)found.x_bottom_q8 - found.x_top_q8) * 256 / span,
-                    rows->y_bottom};
+        lane_line_of_chord(found.x_bottom_q8, found.x_top_q8, rows->y_top, rows->y_bottom);
     support[other] = paint;
     fresh[other] = !seen[other];
     seen[other] = true;

@@ -331,15 +331,3 @@ void rte_lane_refine_on_edges(const rte_image_u8 *edges, int32_t cx0, int32_t cy
             return;
     }
 }
-
-/* A line fitted to segments, refined on the edge pixels: the rows on which
- * paint lies along it (segments are edges; a lane needs paint along them
- * too). */
-int32_t rte_lane_refined_paint_rows(const lane_maps *maps, const lane_fit_hint *hint,
-                                    const rte_lane *lane, lane_line *line)
-{
-    rte_lane_refine_on_edges(maps->edges, maps->cx0, maps->cy0, hint, maps->tol, line);
-    const rte_lane fitted = lane_of_line(line, 0, 0, lane->y_top, lane->y_bottom);
-    int64_t offset_q8;
-    return rte_lane_find_marking(maps, hint, &fitted, 2, &offset_q8);
-}
