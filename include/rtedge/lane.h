@@ -243,8 +243,10 @@ RTE_API int32_t rte_lane_polyline(const rte_lane *lane, int32_t max_points, int3
 RTE_API double rte_lane_curvature(const rte_lane *lane);
 
 /* One frame. `frame` may be any rte_frame format up to the configured
- * size; BGR24 and RGB24 frames give the colour cue, the others are used as
- * grey. t_ns is the frame's time (kept in the result). */
+ * size; BGR24 and RGB24 frames give the colour cue from their colours,
+ * NV12, YUYV and UYVY from their chroma (full-range BT.601), GREY frames
+ * none. Only the ROI's bounding box is read. t_ns is the frame's time
+ * (kept in the result). */
 RTE_API rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64_t t_ns,
                                     rte_lane_result *out);
 /* The same from a grey image and, optionally, the BGR image it came from

@@ -122,19 +122,21 @@ static void lane_stage_end(rte_lane_result *out, rte_lane_stage stage, int64_t *
 /* The grey stage's part here: the crop of `gray` to the ROI's bounding
  * box, or the colour cue of it when there is colour. */
 static rte_image_u8 lane_stage_gray(rte_lane_context *ctx, const rte_image_u8 *gray,
-                                    const uint8_t *color, int32_t color_stride, bool rgb)
+                                    const lane_colour *colour)
 {
     const rte_lane_params *p = &ctx->params;
     const int32_t cx0 = ctx->crop_x0, cy0 = ctx->crop_y0, cx1 = ctx->crop_x1, cy1 = ctx->crop_y1;
-    const int32_t cw = cx1 - cx0, ch = cy1 - cy0;
     rte_image_u8 src = lane_view(gray, cx0, cy0, cx1, cy1);
-    if (color && p->use_color) {
-        rte_image_u8 cue = lane_view(&ctx->cue, 0, 0, cw, ch);
-        rte_lane_color_cue(p, &src, color + (size_t)cy0 * (size_t)color_stride + (size_t)cx0 * 3,
-                           color_stride, rgb, &cue);
-        src = cue;
-    }
-    return src;
+    if (!colour || !p->use_color)
+        return src;
+    rte_image_u8 cue = lane_view(&ctx->cue, 0, 0, cx1 - cx0, cy1 - cy0);
+    if (colour->chroma)
+        rte_lane_chroma_cue(p, &src, colour, &cue);
+    else
+        rte_lane_color_cue(p, &src,
+                           colour->bgr + (size_t)cy0 * (size_t)colour->bgr_stride + (size_t)cx0 * 3,
+                           colour->bgr_stride, colour->rgb, &cue);
+    return cue;
 }
 
 /* The blur and Canny stages: the edge map of the crop `src` in *edges and
@@ -494,8 +496,8 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
 }
 
 /* gray_ns: time already spent making `gray` (counted in the grey stage). */
-static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, const uint8_t *color,
-                           int32_t color_stride, bool rgb, int64_t t_ns, int64_t gray_ns,
+static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray,
+                           const lane_colour *colour, int64_t t_ns, int64_t gray_ns,
                            rte_lane_result *out)
 {
     int64_t t0 = rte_clock_now_ns() - gray_ns;
@@ -505,7 +507,7 @@ static rte_status lane_run(rte_lane_context *ctx, const rte_image_u8 *gray, cons
     rte_status st = lane_roi(ctx, w, h);
     if (st != RTE_OK)
         return st;
-    const rte_image_u8 src = lane_stage_gray(ctx, gray, color, color_stride, rgb);
+    const rte_image_u8 src = lane_stage_gray(ctx, gray, colour);
     lane_stage_end(out, RTE_LANE_STAGE_GRAY, &t0);
 
     rte_image_u8 edges, edges_inside;
@@ -546,7 +548,8 @@ rte_status rte_lane_process_gray(rte_lane_context *ctx, const rte_image_u8 *gray
     if (bgr && (!bgr->buf || bgr->width != gray->width || bgr->height != gray->height ||
                 bgr->stride < 3 * bgr->width))
         return RTE_ERR_SIZE;
-    return lane_run(ctx, gray, bgr ? bgr->buf : NULL, bgr ? bgr->stride : 0, false, t_ns, 0, out);
+    const lane_colour colour = {.bgr = bgr ? bgr->buf : NULL, .bgr_stride = bgr ? bgr->stride : 0};
+    return lane_run(ctx, gray, bgr ? &colour : NULL, t_ns, 0, out);
 }
 
 rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64_t t_ns,
@@ -557,26 +560,37 @@ rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64
     rte_status st = rte_frame_check(frame);
     if (st != RTE_OK || (st = lane_check_size(ctx, frame->width, frame->height)) != RTE_OK)
         return st;
-    rte_image_u8 gray;
-    if (rte_frame_gray_view(frame, &gray) == RTE_OK)
-        return lane_run(ctx, &gray, NULL, 0, false, t_ns, 0, out);
     const int64_t t0 = rte_clock_now_ns();
-    const bool colour = frame->format == RTE_PIXEL_BGR24 || frame->format == RTE_PIXEL_RGB24;
-    /* Only the ROI's bounding box is read: with 3-byte pixels (where any
-     * crop is a plain view of the frame) only that part becomes grey. */
-    rte_frame part = *frame;
-    int32_t x0 = 0, y0 = 0;
-    if (colour && lane_roi(ctx, frame->width, frame->height) == RTE_OK) {
-        x0 = ctx->crop_x0;
-        y0 = ctx->crop_y0;
+    /* The ROI first: only its bounding box becomes grey or gives colour. */
+    if ((st = lane_roi(ctx, frame->width, frame->height)) != RTE_OK)
+        return st;
+    const rte_pixel_format f = frame->format;
+    lane_colour colour = {0}, *with = NULL;
+    if (ctx->params.use_color &&
+        (f == RTE_PIXEL_NV12 || f == RTE_PIXEL_YUYV || f == RTE_PIXEL_UYVY)) {
+        if ((st = rte_lane_frame_chroma(ctx, frame, &colour)) != RTE_OK)
+            return st;
+        with = &colour;
+    }
+    rte_image_u8 gray;
+    if (rte_frame_gray_view(frame, &gray) != RTE_OK) {
+        /* the crop widened to even x0 (a YUYV pair), as a view of the frame */
+        const int32_t x0 = ctx->crop_x0 & ~1, y0 = ctx->crop_y0;
+        const int32_t bytes = f == RTE_PIXEL_BGR24 || f == RTE_PIXEL_RGB24 ? 3 : 2;
+        rte_frame part = *frame;
         part.width = ctx->crop_x1 - x0;
         part.height = ctx->crop_y1 - y0;
-        part.plane[0] += (size_t)y0 * (size_t)frame->stride[0] + 3 * (size_t)x0;
+        part.plane[0] += (size_t)y0 * (size_t)frame->stride[0] + (size_t)bytes * (size_t)x0;
+        gray = lane_view(&ctx->gray, x0, y0, x0 + part.width, y0 + part.height);
+        if ((st = rte_frame_to_gray(&part, &gray)) != RTE_OK)
+            return st;
+        gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
+        if (bytes == 3) {
+            colour = (lane_colour){.bgr = frame->plane[0],
+                                   .bgr_stride = frame->stride[0],
+                                   .rgb = f == RTE_PIXEL_RGB24};
+            with = &colour;
+        }
     }
-    gray = lane_view(&ctx->gray, x0, y0, x0 + part.width, y0 + part.height);
-    if ((st = rte_frame_to_gray(&part, &gray)) != RTE_OK)
-        return st;
-    gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
-    return lane_run(ctx, &gray, colour ? frame->plane[0] : NULL, frame->stride[0],
-                    frame->format == RTE_PIXEL_RGB24, t_ns, rte_clock_now_ns() - t0, out);
+    return lane_run(ctx, &gray, with, t_ns, rte_clock_now_ns() - t0, out);
 }

@@ -98,7 +98,9 @@ rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
     scratch = s > scratch ? s : scratch;
     const size_t lists = (size_t)n * (sizeof(rte_hough_segment) + sizeof(rte_lane_segment) +
                                       4 * sizeof(int32_t) + 2 * sizeof(int64_t));
-    size_t total = 6 * plane + lists + 64 * 8 + scratch;
+    const int32_t half_w = (w + 1) / 2 + 1, half_h = (h + 1) / 2 + 1;
+    const size_t half_plane = (size_t)((half_w + 63) & ~63) * (size_t)half_h;
+    size_t total = 6 * plane + 2 * half_plane + lists + 64 * 8 + scratch;
     uint8_t *mem = aligned_alloc(64, (total + 63) & ~(size_t)63);
     if (!mem) {
         rte_lane_destroy(ctx);
@@ -112,6 +114,8 @@ rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
     lane_image(&ctx->edges, &cur, w, h);
     lane_image(&ctx->edges_roi, &cur, w, h);
     lane_image(&ctx->mask, &cur, w, h);
+    lane_image(&ctx->cb, &cur, half_w, half_h);
+    lane_image(&ctx->cr, &cur, half_w, half_h);
     ctx->raw = (rte_hough_segment *)cur;
     cur += ((size_t)n * sizeof(rte_hough_segment) + 63) & ~(size_t)63;
     ctx->segments = (rte_lane_segment *)cur;

@@ -73,6 +73,10 @@ struct rte_lane_context {
     /* Images of max_width x max_height */
     rte_image_u8 gray; /* grey when the frame is not grey itself */
     rte_image_u8 cue;  /* grey with the colour cue */
+    /* The crop's Cb and Cr at half resolution, for the cue of a frame whose
+     * colour is chroma (NV12, YUYV, UYVY): (max_width + 1) / 2 + 1 wide,
+     * (max_height + 1) / 2 + 1 high (a crop widened to even x0, y0) */
+    rte_image_u8 cb, cr;
     rte_image_u8 blurred;
     rte_image_u8 edges;     /* Canny over the ROI's bounding box: the lanes are followed here */
     rte_image_u8 edges_roi; /* the same inside the ROI polygon: what the Hough search sees */
@@ -92,12 +96,35 @@ struct rte_lane_context {
     void *memory;
 };
 
+/* A frame's colour for the cue: its B,G,R rows (R,G,B when rgb is set;
+ * bgr at the frame's first pixel), or, when chroma is set, the Cb and Cr
+ * of the crop's chroma blocks: row 0 at cb and cr, rows chroma_stride
+ * apart, Cb and Cr of block i at cb[i], cr[i], or cb[2 i], cr[2 i] when
+ * interleaved (NV12, cr = cb + 1). The blocks start on the row and column
+ * before the crop when odd_y, odd_x are set. */
+typedef struct lane_colour {
+    const uint8_t *bgr;
+    int32_t bgr_stride;
+    bool rgb;
+    bool chroma, interleaved, odd_x, odd_y;
+    const uint8_t *cb, *cr;
+    int32_t chroma_stride;
+} lane_colour;
+
 /* lane_cue.c: the colour cue of the crop `gray` (white or yellow paint ->
  * 255, everything else grey scaled by dim_q8 / 256; `bgr` rows hold B,G,R,
  * R,G,B when rgb is set), and the automatic Canny thresholds of a blurred
  * crop inside the ROI mask (*low, *high unchanged when it is empty). */
 void rte_lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, const uint8_t *bgr,
                         int32_t bgr_stride, bool rgb, rte_image_u8 *dst);
+/* The same from the chroma of colour->chroma (lane_cue_rows.h). */
+void rte_lane_chroma_cue(const rte_lane_params *p, const rte_image_u8 *gray,
+                         const lane_colour *colour, rte_image_u8 *dst);
+/* *colour set to the chroma of the crop (ctx->crop_*, set by the ROI) of
+ * an NV12 frame (its own UV plane), or of a YUYV or UYVY frame (averaged
+ * over each block's two rows into ctx->cb and ctx->cr). */
+rte_status rte_lane_frame_chroma(rte_lane_context *ctx, const rte_frame *frame,
+                                 lane_colour *colour);
 void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
                          int32_t *low, int32_t *high);
 /* The share of the ROI (the grey crop's pixels inside `mask`, same size)

@@ -290,14 +290,10 @@ static void test_slope_filter(void **state)
     rte_lane_destroy(ctx);
 }
 
-/* A yellow line whose grey equals the road's is invisible in grey; the
- * colour cue finds it, and rte_lane_process gives the same for BGR24 and
- * RGB24 frames. */
-static void test_color_cue(void **state)
+/* A 320x180 road: a yellow line whose grey equals the road's on the left,
+ * a white one on the right, into bgr (B,G,R) and rgb (R,G,B, may be NULL). */
+static void colour_road(int32_t w, int32_t h, uint8_t *bgr, uint8_t *rgb)
 {
-    (void)state;
-    const int32_t w = 320, h = 180;
-    rte_lane_context *ctx = make_ctx(w, h, NULL);
     /* yellow B=0 G=185 R=205: grey (19235*185 + 9798*205 + 16384) >> 15 = 170 */
     const uint8_t yellow[3] = {0, 185, 205}, road[3] = {170, 170, 170}, white[3] = {255, 255, 255};
     rte_image_u8 mark = unit_image_u8(w, h, 0, 0);
@@ -306,16 +302,32 @@ static void test_color_cue(void **state)
     draw_road(&mark, 0, 1, 108, lanes, 2);
     rte_image_u8 mark_r = unit_image_u8(w, h, 0, 0);
     draw_road(&mark_r, 0, 1, 108, right, 2);
-    uint8_t *bgr = test_malloc((size_t)w * h * 3), *rgb = test_malloc((size_t)w * h * 3);
     for (int32_t y = 0; y < h; y++)
         for (int32_t x = 0; x < w; x++) {
             const uint8_t *c = rte_u8_row(&mark, y)[x]     ? yellow
                                : rte_u8_row(&mark_r, y)[x] ? white
                                                            : road;
-            uint8_t *d = bgr + ((size_t)y * w + x) * 3, *e = rgb + ((size_t)y * w + x) * 3;
+            uint8_t *d = bgr + ((size_t)y * w + x) * 3;
             d[0] = c[0], d[1] = c[1], d[2] = c[2];
-            e[0] = c[2], e[1] = c[1], e[2] = c[0];
+            if (rgb) {
+                uint8_t *e = rgb + ((size_t)y * w + x) * 3;
+                e[0] = c[2], e[1] = c[1], e[2] = c[0];
+            }
         }
+    test_free(mark.buf);
+    test_free(mark_r.buf);
+}
+
+/* A yellow line whose grey equals the road's is invisible in grey; the
+ * colour cue finds it, and rte_lane_process gives the same for BGR24 and
+ * RGB24 frames. */
+static void test_color_cue(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 180;
+    rte_lane_context *ctx = make_ctx(w, h, NULL);
+    uint8_t *bgr = test_malloc((size_t)w * h * 3), *rgb = test_malloc((size_t)w * h * 3);
+    colour_road(w, h, bgr, rgb);
     rte_image_u8c3 bgr_img = {w, h, w * 3, bgr};
     rte_image_u8 g = unit_image_u8(w, h, 0, 0);
     assert_int_equal(rte_color_bgr_to_gray(&bgr_img, &g), RTE_OK);
@@ -348,9 +360,95 @@ static void test_color_cue(void **state)
     test_free(bgr);
     test_free(rgb);
     test_free(g.buf);
-    test_free(mark.buf);
-    test_free(mark_r.buf);
     rte_lane_destroy(ctx);
+}
+
+/* Full-range BT.601 (JPEG) Y of a B,G,R pixel, and its Cb and Cr in
+ * 1/65536 added to *cb, *cr (a block's sums). */
+static void ycc_of(const uint8_t *c, int32_t *y, int32_t *cb, int32_t *cr)
+{
+    const int32_t b = c[0], g = c[1], r = c[2];
+    *y = (19595 * r + 38470 * g + 7471 * b + 32768) >> 16;
+    *cb += 128 * 65536 - 11059 * r - 21709 * g + 32768 * b;
+    *cr += 128 * 65536 + 32768 * r - 27439 * g - 5329 * b;
+}
+
+/* The rounded mean of n values summed in 1/65536. */
+static uint8_t chroma_mean(int32_t sum, int32_t n)
+{
+    const int32_t v = (sum / n + 32768) >> 16;
+    return (uint8_t)(v < 0 ? 0 : v > 255 ? 255 : v);
+}
+
+/* The road of test_color_cue as NV12, YUYV and UYVY (chroma of each 2x2 or
+ * 2x1 block averaged; even sizes): rte_lane_process finds the yellow line
+ * from the chroma, with the default ROI (its crop from row 108, column 0)
+ * and with one whose crop starts on row 107 and column 1, the second pixel
+ * of a chroma block; not with the colour cue off. */
+static void test_color_cue_yuv(void **state)
+{
+    (void)state;
+    const int32_t w = 320, h = 180;
+    uint8_t *bgr = test_malloc((size_t)w * h * 3), *nv12 = test_malloc((size_t)w * h * 3 / 2);
+    uint8_t *yuyv = test_malloc((size_t)w * h * 2), *uyvy = test_malloc((size_t)w * h * 2);
+    colour_road(w, h, bgr, NULL);
+    for (int32_t y = 0; y < h; y += 2)
+        for (int32_t x = 0; x < w; x += 2) {
+            int32_t cb = 0, cr = 0, luma[2][2];
+            int32_t row_cb[2] = {0, 0}, row_cr[2] = {0, 0};
+            for (int32_t j = 0; j < 2; j++)
+                for (int32_t i = 0; i < 2; i++) {
+                    int32_t pcb = 0, pcr = 0;
+                    ycc_of(bgr + ((size_t)(y + j) * w + x + i) * 3, &luma[j][i], &pcb, &pcr);
+                    cb += pcb, cr += pcr, row_cb[j] += pcb, row_cr[j] += pcr;
+                    nv12[(size_t)(y + j) * w + x + i] = (uint8_t)luma[j][i];
+                }
+            nv12[(size_t)w * h + (size_t)(y / 2) * w + x] = chroma_mean(cb, 4);
+            nv12[(size_t)w * h + (size_t)(y / 2) * w + x + 1] = chroma_mean(cr, 4);
+            for (int32_t j = 0; j < 2; j++) {
+                uint8_t *p = yuyv + (size_t)(y + j) * w * 2 + (size_t)x * 2;
+                uint8_t *q = uyvy + (size_t)(y + j) * w * 2 + (size_t)x * 2;
+                const uint8_t u = chroma_mean(row_cb[j], 2), v = chroma_mean(row_cr[j], 2);
+                p[0] = (uint8_t)luma[j][0], p[1] = u, p[2] = (uint8_t)luma[j][1], p[3] = v;
+                q[0] = u, q[1] = (uint8_t)luma[j][0], q[2] = v, q[3] = (uint8_t)luma[j][1];
+            }
+        }
+    const rte_frame frames[3] = {{RTE_PIXEL_NV12, w, h, {nv12, nv12 + (size_t)w * h}, {w, w}},
+                                 {RTE_PIXEL_YUYV, w, h, {yuyv, NULL}, {2 * w, 0}},
+                                 {RTE_PIXEL_UYVY, w, h, {uyvy, NULL}, {2 * w, 0}}};
+    for (int odd = 0; odd < 2; odd++) {
+        rte_lane_config cfg;
+        rte_lane_context *ctx = make_ctx(w, h, &cfg);
+        rte_lane_params p = cfg.params;
+        if (odd) { /* x 205/65536 of 320 = 1, y 38958/65536 of 180 = 107 */
+            p.roi[0].x = 205;
+            p.roi[1].y = p.roi[2].y = 38958;
+            assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
+        }
+        rte_lane_result r;
+        for (int k = 0; k < 3; k++) {
+            rte_lane_reset(ctx);
+            assert_int_equal(rte_lane_process(ctx, &frames[k], 0, &r), RTE_OK);
+            assert_int_equal(r.edges_x0, odd ? 1 : 0);
+            assert_int_equal(r.edges_y0, odd ? 107 : 108);
+            /* a pixel wider than from B,G,R: chroma blocks straddle the edges */
+            assert_lane_near(&r.lane[RTE_LANE_LEFT], 40, 150, 2, 3);
+            assert_lane_near(&r.lane[RTE_LANE_RIGHT], 300, 175, 2, 3);
+        }
+        p.use_color = false;
+        assert_int_equal(rte_lane_set_params(ctx, &p), RTE_OK);
+        for (int k = 0; k < 3; k++) {
+            rte_lane_reset(ctx);
+            assert_int_equal(rte_lane_process(ctx, &frames[k], 0, &r), RTE_OK);
+            assert_false(r.lane[RTE_LANE_LEFT].found); /* grey only: nothing to see */
+            assert_true(r.lane[RTE_LANE_RIGHT].found);
+        }
+        rte_lane_destroy(ctx);
+    }
+    test_free(bgr);
+    test_free(nv12);
+    test_free(yuyv);
+    test_free(uyvy);
 }
 
 /* Two lanes on a 320x180 road, tracked over four frames. */
@@ -1757,6 +1855,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_drawn_lanes),
         cmocka_unit_test(test_slope_filter),
         cmocka_unit_test(test_color_cue),
+        cmocka_unit_test(test_color_cue_yuv),
         cmocka_unit_test(test_tracking),
         cmocka_unit_test(test_runtime_params),
         cmocka_unit_test(test_y4m),

@@ -597,15 +597,11 @@ static const lane_cue_variant lane_cue_variants[] = {
     {{"lane_cue_c", 0}, rte_lane_cue_row_c},
 };
 
-static void check_lane_cue(const lane_cue_variant *v, int32_t width, uint32_t *seed)
+/* Rules from the random word r (bits 0-27): thresholds anywhere near
+ * their defaults, each test off (threshold 256) a quarter of the time. */
+static rte_lane_cue random_cue(uint32_t r)
 {
-    const size_t so = unit_rand(seed) % MAX_OFFSET, n = (size_t)width + GUARD;
-    uint8_t *bgr = test_malloc(so + 3 * (size_t)width), *gray = test_malloc((size_t)width);
-    /* extremes often, and colours near the thresholds below */
-    fill_random(bgr + so, 3 * (size_t)width, seed, width % 7 == 0);
-    fill_random(gray, (size_t)width, seed, 0);
-    const uint32_t r = unit_rand(seed);
-    const rte_lane_cue cue = {
+    return (rte_lane_cue){
         .white_min = (uint8_t)(150 + r % 100),
         .white_on = (r >> 8) % 4 ? 0xFF : 0,
         .yellow_min = (uint8_t)(100 + (r >> 10) % 120),
@@ -613,6 +609,32 @@ static void check_lane_cue(const lane_cue_variant *v, int32_t width, uint32_t *s
         .yellow_b_margin = (uint8_t)((r >> 19) % 80),
         .dim_q8 = (uint16_t)((r >> 23) % 257),
     };
+}
+
+/* check(v, width, seed) on every width 1..67 eight times, then on 32
+ * random widths up to 3067 (and `extra` widths from extra_from). */
+static void each_width(void (*check)(const void *, int32_t, uint32_t *), const void *v,
+                       uint32_t *seed, int32_t extra_from, int32_t extra)
+{
+    for (int32_t w = 1; w <= 67; w++)
+        for (int k = 0; k < 8; k++)
+            check(v, w, seed);
+    for (int32_t w = extra_from; w < extra_from + extra; w++)
+        check(v, w, seed);
+    for (int k = 0; k < 32; k++)
+        check(v, 68 + (int32_t)(unit_rand(seed) % 3000), seed);
+}
+
+static void check_lane_cue(const void *variant, int32_t width, uint32_t *seed)
+{
+    const lane_cue_variant *v = variant;
+    const size_t so = unit_rand(seed) % MAX_OFFSET, n = (size_t)width + GUARD;
+    uint8_t *bgr = test_malloc(so + 3 * (size_t)width), *gray = test_malloc((size_t)width);
+    /* extremes often, and colours near the thresholds below */
+    fill_random(bgr + so, 3 * (size_t)width, seed, width % 7 == 0);
+    fill_random(gray, (size_t)width, seed, 0);
+    const uint32_t r = unit_rand(seed);
+    const rte_lane_cue cue = random_cue(r);
     const bool rgb = (r >> 31) != 0;
     uint8_t *want = test_malloc(n), *got = test_malloc(n);
     memset(want, 0xEE, n);
@@ -629,16 +651,68 @@ static void check_lane_cue(const lane_cue_variant *v, int32_t width, uint32_t *s
 
 static void lane_cue_rows(const void *variant, uint32_t *seed)
 {
-    const lane_cue_variant *v = variant;
-    for (int32_t w = 1; w <= 67; w++)
-        for (int k = 0; k < 8; k++)
-            check_lane_cue(v, w, seed);
-    for (int k = 0; k < 32; k++)
-        check_lane_cue(v, 68 + (int32_t)(unit_rand(seed) % 3000), seed);
+    each_width(check_lane_cue, variant, seed, 0, 0);
 }
 
 DEFINE_PICK(lane_cue, lane_cue_variants, lane_cue_variant, rte_lane_cue_row_fn,
             rte_lane_cue_row_select(features), v->row == p)
+
+/* The same cue from Y and half-resolution chroma: each variant against the
+ * C reference, one and two rows, planar and interleaved chroma, both
+ * parities, widths across the kernel's 128-block steps, chroma near
+ * neutral as often as anywhere. */
+typedef struct lane_cue_chroma_variant {
+    variant_head head;
+    rte_lane_cue_chroma_row_fn row;
+} lane_cue_chroma_variant;
+
+static const lane_cue_chroma_variant lane_cue_chroma_variants[] = {
+#ifdef RTE_SIMD_X86
+    {{"lane_cue_chroma_avx2", RTE_CPU_X86_AVX2}, rte_lane_cue_chroma_row_avx2},
+    {{"lane_cue_chroma_avx512", RTE_CPU_X86_AVX2 | RTE_CPU_X86_AVX512},
+     rte_lane_cue_chroma_row_avx512},
+#endif
+    {{"lane_cue_chroma_c", 0}, rte_lane_cue_chroma_row_c},
+};
+
+static void check_lane_cue_chroma(const void *variant, int32_t width, uint32_t *seed)
+{
+    const lane_cue_chroma_variant *v = variant;
+    const uint32_t r = unit_rand(seed);
+    const bool odd = (r >> 30) & 1, two = (r >> 29) & 1, interleaved = (r >> 28) & 1;
+    const size_t n = (size_t)width + GUARD, blocks = ((size_t)width + odd + 1) / 2;
+    const size_t so = unit_rand(seed) % MAX_OFFSET;
+    uint8_t *gray = test_malloc(so + 2 * (size_t)width), *chroma = test_malloc(2 * blocks);
+    fill_random(gray + so, 2 * (size_t)width, seed, width % 7 == 0);
+    for (size_t i = 0; i < 2 * blocks; i++) { /* half near neutral, half anywhere */
+        const uint32_t c = unit_rand(seed);
+        chroma[i] = (uint8_t)(c & 1 ? 108u + (c >> 1) % 41 : c >> 8);
+    }
+    const uint8_t *cb = chroma, *cr = interleaved ? chroma + 1 : chroma + blocks;
+    const rte_lane_cue cue = random_cue(r);
+    uint8_t *want = test_malloc(2 * n), *got = test_malloc(2 * n);
+    memset(want, 0xEE, 2 * n);
+    memset(got, 0xEE, 2 * n);
+    const uint8_t *g[2] = {gray + so, two ? gray + so + width : NULL};
+    uint8_t *dw[2] = {want, two ? want + n : NULL}, *dg[2] = {got, two ? got + n : NULL};
+    rte_lane_cue_chroma_row_c(g, cb, cr, interleaved, dw, width, odd, &cue);
+    v->row(g, cb, cr, interleaved, dg, width, odd, &cue);
+    if (memcmp(want, got, 2 * n) != 0)
+        fail_msg("%s width %d odd %d rows %d interleaved %d differs", v->head.name, (int)width, odd,
+                 two ? 2 : 1, interleaved);
+    test_free(gray);
+    test_free(chroma);
+    test_free(want);
+    test_free(got);
+}
+
+static void lane_cue_chroma_rows(const void *variant, uint32_t *seed)
+{
+    each_width(check_lane_cue_chroma, variant, seed, 250, 13); /* the 128-block step */
+}
+
+DEFINE_PICK(lane_cue_chroma, lane_cue_chroma_variants, lane_cue_chroma_variant,
+            rte_lane_cue_chroma_row_fn, rte_lane_cue_chroma_row_select(features), v->row == p)
 
 /* Every colour through the dispatched whole-image path: 2^24 pixels as a
  * 4096 x 4096 image would be 48 MB, so a strided 256 x 256 window per red
@@ -1023,6 +1097,7 @@ static const kernel_family families[] = {
     FAMILY(canny, canny_variants, canny_rows, 0x5EED1u),
     FAMILY(threshold, threshold_variants, threshold_rows, 0x7E57u),
     FAMILY(lane_cue, lane_cue_variants, lane_cue_rows, 0xC0105u),
+    FAMILY(lane_cue_chroma, lane_cue_chroma_variants, lane_cue_chroma_rows, 0xC0C0Au),
     FAMILY(grad, grad_variants, grad_rows, 0x6AD1u),
     FAMILY(hough_bins, hough_bins_variants, hough_bins, 0x4B0Fu),
     FAMILY(hough_line_rows, hough_line_rows_variants, hough_line_rows, 0x11E5u),
@@ -1154,6 +1229,7 @@ static void force_c_selects_the_reference(void **state)
     assert_true(rte_background_rows_select(rte_cpu_features()).absdiff ==
                 rte_background_absdiff_row_c);
     assert_true(rte_lane_cue_row_select(rte_cpu_features()) == rte_lane_cue_row_c);
+    assert_true(rte_lane_cue_chroma_row_select(rte_cpu_features()) == rte_lane_cue_chroma_row_c);
     rte_grad_rows gr = rte_grad_rows_select(rte_cpu_features());
     assert_true(gr.column == rte_grad_column_c && gr.row == rte_grad_row_c);
     assert_int_equal(rte_cpu_features_hw(), hw);

@@ -276,6 +276,17 @@ typedef void (*rte_lane_cue_row_fn)(const uint8_t *gray, const uint8_t *bgr, uin
 void rte_lane_cue_row_c(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst, int32_t width,
                         const rte_lane_cue *cue, bool rgb);
 rte_lane_cue_row_fn rte_lane_cue_row_select(uint32_t features);
+/* The same cue on the one or two Y rows (g[1], d[1] NULL for one) that
+ * share a row of half-resolution chroma blocks: block i's Cb, Cr at
+ * cb[i], cr[i], or at cb[2 i], cr[2 i] when interleaved (NV12); block 0
+ * begins one pixel left of the rows when odd is set. */
+typedef void (*rte_lane_cue_chroma_row_fn)(const uint8_t *const g[2], const uint8_t *cb,
+                                           const uint8_t *cr, bool interleaved, uint8_t *const d[2],
+                                           int32_t width, bool odd, const rte_lane_cue *cue);
+void rte_lane_cue_chroma_row_c(const uint8_t *const g[2], const uint8_t *cb, const uint8_t *cr,
+                               bool interleaved, uint8_t *const d[2], int32_t width, bool odd,
+                               const rte_lane_cue *cue);
+rte_lane_cue_chroma_row_fn rte_lane_cue_chroma_row_select(uint32_t features);
 
 /* Hough segments (src/algo/hough_segments.c, hough_rows.h): the
  * accumulator index of the point (x, y) at each of n angles,
@@ -335,6 +346,9 @@ void rte_hough_point_bins_avx2(const uint32_t *pts, int32_t n, int32_t rho_cos, 
     RTE_BACKGROUND_ROWS_DECLARE(isa)                                                             \
     void rte_lane_cue_row_##isa(const uint8_t *gray, const uint8_t *bgr, uint8_t *dst,           \
                                 int32_t width, const rte_lane_cue *cue, bool rgb);               \
+    void rte_lane_cue_chroma_row_##isa(const uint8_t *const g[2], const uint8_t *cb,             \
+                                       const uint8_t *cr, bool interleaved, uint8_t *const d[2], \
+                                       int32_t width, bool odd, const rte_lane_cue *cue);        \
     void rte_threshold_row_##isa(const uint8_t *s, uint8_t *d, int32_t n, int type, uint8_t t,   \
                                  uint8_t maxval);                                                \
     void rte_morph_row_op2_##isa(uint8_t *d, const uint8_t *a, const uint8_t *b, int32_t n,      \
