@@ -1,6 +1,6 @@
 /* YUV4MPEG2 (.y4m) recordings: a small reader for 8-bit streams, giving
- * each frame's Y plane as a grey image (what the lane and tag pipelines
- * need). Chroma tags C420* (jpeg, paldv, mpeg2 and plain 420), C422, C444
+ * each frame's Y plane as a grey image, or a 4:2:0 frame as NV12 (its
+ * colour for the lane path's cue). Chroma tags C420* (jpeg, paldv, mpeg2 and plain 420), C422, C444
  * and Cmono are understood; a missing C tag means 420, as the format says.
  * Memory is allocated once, at open. (`ffmpeg -i drive.mp4 -pix_fmt
  * yuv420p drive.y4m` turns a video into one.) */
@@ -10,6 +10,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "rtedge/color.h"
 #include "rtedge/image.h"
 #include "rtedge/status.h"
 
@@ -46,6 +47,12 @@ RTE_API rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max
  * RTE_ERR_FORMAT for a missing FRAME marker. */
 RTE_API rte_status rte_y4m_read_gray(rte_y4m_reader *reader, const rte_image_u8 *dst, char *msg,
                                      size_t msg_size);
+/* The next frame into dst (of the stream's size): its Y plane for a GREY
+ * frame (any chroma is skipped), and for an NV12 frame also the U and V
+ * planes of a 4:2:0 stream, interleaved (RTE_ERR_UNSUPPORTED for other
+ * streams and formats). Errors as rte_y4m_read_gray. */
+RTE_API rte_status rte_y4m_read_frame(rte_y4m_reader *reader, const rte_frame *dst, char *msg,
+                                      size_t msg_size);
 RTE_API void rte_y4m_close(rte_y4m_reader *reader);
 
 #ifdef __cplusplus

@@ -241,9 +241,15 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
         cli_error(name, "%s", msg);
         return CLI_EXIT_INPUT;
     }
+    /* 4:2:0 streams as NV12, so that the lanes see their colour (as rtedged
+     * does); others as their grey plane */
+    const bool nv12 = rte_frame_packed_size(RTE_PIXEL_NV12, info.width, info.height) ==
+                      (size_t)info.width * (size_t)info.height + (size_t)info.chroma_bytes;
+    const rte_pixel_format format = nv12 ? RTE_PIXEL_NV12 : RTE_PIXEL_GREY;
+    const size_t size = rte_frame_packed_size(format, info.width, info.height);
     rte_lane_config cfg;
     rte_lane_context *ctx = NULL;
-    uint8_t *mem = malloc((size_t)info.width * (size_t)info.height);
+    uint8_t *mem = malloc(size);
     int rc = lanes_config(name, o, info.width, info.height, &cfg);
     if (rc == CLI_EXIT_OK && !mem) {
         cli_error(name, "out of memory");
@@ -251,18 +257,20 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
     }
     if (rc == CLI_EXIT_OK)
         rc = lanes_create(name, &cfg, &ctx);
-    rte_image_u8 gray = rte_image_u8_view(mem, info.width, info.height, 0);
+    rte_frame frame;
+    if (rc == CLI_EXIT_OK)
+        rte_frame_packed(&frame, format, info.width, info.height, mem, size);
     const int64_t frame_ns =
         info.fps_num > 0 ? (int64_t)1000000000 * info.fps_den / info.fps_num : 0;
     for (long i = 0; rc == CLI_EXIT_OK; i++) {
-        st = rte_y4m_read_gray(reader, &gray, msg, sizeof msg);
+        st = rte_y4m_read_frame(reader, &frame, msg, sizeof msg);
         if (st == RTE_ERR_END)
             break;
         rte_lane_result r;
         if (st != RTE_OK) {
             cli_error(name, "%s: frame %ld: %s", path, i, msg[0] ? msg : rte_status_message(st));
             rc = CLI_EXIT_INPUT;
-        } else if ((st = rte_lane_process_gray(ctx, &gray, NULL, i * frame_ns, &r)) != RTE_OK) {
+        } else if ((st = rte_lane_process(ctx, &frame, i * frame_ns, &r)) != RTE_OK) {
             cli_error(name, "%s", rte_status_message(st));
             rc = CLI_EXIT_FAILURE;
         } else {
@@ -338,7 +346,8 @@ int cmd_lanes(const cli_entry *self, int argc, char **argv)
         "the far trace's, where a sharply turning marking is followed beyond the\n"
         "curve) and its curvature at the bottom row (1/px, > 0: bends right going up);\n"
         "offset_px = lane centre minus image centre on the bottom row.\n"
-        "With --sequence, one JSON line per frame, tracked.",
+        "With --sequence, one JSON line per frame, tracked; a 4:2:0 .y4m file is\n"
+        "read as NV12, its chroma giving the colour cue (as in rtedged).",
         options,
         positionals};
     const char *in = NULL;

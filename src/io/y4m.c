@@ -176,14 +176,22 @@ rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
     return RTE_OK;
 }
 
-rte_status rte_y4m_read_gray(rte_y4m_reader *r, const rte_image_u8 *dst, char *msg, size_t msg_size)
+/* Reads n bytes into dst; false when the file ends first. */
+static bool y4m_read(FILE *f, uint8_t *dst, size_t n) { return fread(dst, 1, n, f) == n; }
+
+rte_status rte_y4m_read_frame(rte_y4m_reader *r, const rte_frame *dst, char *msg, size_t msg_size)
 {
     if (msg && msg_size)
         msg[0] = 0;
-    if (!r || !dst || !dst->buf)
+    if (!r || !dst || rte_frame_check(dst) != RTE_OK)
         return RTE_ERR_ARGUMENT;
-    if (dst->width != r->info.width || dst->height != r->info.height || dst->stride < dst->width)
+    if (dst->width != r->info.width || dst->height != r->info.height)
         return RTE_ERR_SIZE;
+    const int32_t w = dst->width, h = dst->height, cw = (w + 1) / 2, ch = (h + 1) / 2;
+    const bool nv12 = dst->format == RTE_PIXEL_NV12;
+    if ((!nv12 && dst->format != RTE_PIXEL_GREY) ||
+        (nv12 && r->info.chroma_bytes != 2 * (int64_t)cw * ch))
+        return RTE_ERR_UNSUPPORTED;
     char line[256];
     int rc = y4m_line(r->file, line, sizeof line);
     if (rc == -1)
@@ -192,13 +200,39 @@ rte_status rte_y4m_read_gray(rte_y4m_reader *r, const rte_image_u8 *dst, char *m
         return y4m_fail(rc == -2 && strncmp(line, "FRAME", 5) == 0 ? RTE_ERR_TRUNCATED
                                                                    : RTE_ERR_FORMAT,
                         msg, msg_size, "missing FRAME marker", NULL);
-    for (int32_t y = 0; y < dst->height; y++)
-        if (fread(dst->buf + (size_t)y * (size_t)dst->stride, 1, (size_t)dst->width, r->file) !=
-            (size_t)dst->width)
+    for (int32_t y = 0; y < h; y++)
+        if (!y4m_read(r->file, dst->plane[0] + (size_t)y * (size_t)dst->stride[0], (size_t)w))
             return y4m_fail(RTE_ERR_TRUNCATED, msg, msg_size, "frame cut short", NULL);
-    if (r->info.chroma_bytes > 0 && fseek(r->file, r->info.chroma_bytes, SEEK_CUR) != 0)
-        return y4m_fail(RTE_ERR_IO, msg, msg_size, "cannot skip chroma", NULL);
+    if (!nv12)
+        return r->info.chroma_bytes > 0 && fseek(r->file, r->info.chroma_bytes, SEEK_CUR) != 0
+                   ? y4m_fail(RTE_ERR_IO, msg, msg_size, "cannot skip chroma", NULL)
+                   : RTE_OK;
+    /* The U plane, then V, each cw x ch: into the even and odd bytes of the
+     * UV rows (NV12), through a small buffer. */
+    uint8_t part[512];
+    for (int plane = 0; plane < 2; plane++)
+        for (int32_t y = 0; y < ch; y++) {
+            uint8_t *uv = dst->plane[1] + (size_t)y * (size_t)dst->stride[1] + plane;
+            for (int32_t x = 0; x < cw; x += (int32_t)sizeof part) {
+                const int32_t n = cw - x < (int32_t)sizeof part ? cw - x : (int32_t)sizeof part;
+                if (!y4m_read(r->file, part, (size_t)n))
+                    return y4m_fail(RTE_ERR_TRUNCATED, msg, msg_size, "frame cut short", NULL);
+                for (int32_t i = 0; i < n; i++)
+                    uv[2 * (x + i)] = part[i];
+            }
+        }
     return RTE_OK;
+}
+
+rte_status rte_y4m_read_gray(rte_y4m_reader *r, const rte_image_u8 *dst, char *msg, size_t msg_size)
+{
+    if (!r || !dst || !dst->buf)
+        return RTE_ERR_ARGUMENT;
+    if (dst->width != r->info.width || dst->height != r->info.height || dst->stride < dst->width)
+        return RTE_ERR_SIZE;
+    const rte_frame grey = {
+        RTE_PIXEL_GREY, dst->width, dst->height, {dst->buf, NULL}, {dst->stride, 0}};
+    return rte_y4m_read_frame(r, &grey, msg, msg_size);
 }
 
 void rte_y4m_close(rte_y4m_reader *r)
