@@ -39,7 +39,8 @@ done
     --calibration --verbose >"$OUT/eval.txt"
 cat "$OUT/eval.txt"
 # recording floor: frames right out of the recording's frames (the Y4M
-# frames: one freeway frame fewer, 20 of 21)
+# frames: 20 of 21 on the freeway today, floor 19: the bytes ffmpeg's
+# colour conversion gives may differ between its CPU paths)
 while read -r mode recording floor; do
     [ "$mode" = "$MODE" ] || continue
     if ! awk -v g="$recording" -v floor="$floor" '
@@ -54,13 +55,13 @@ done <<'FLOORS'
 jpeg challenge02 1.00
 jpeg challenge03 0.50
 jpeg project_video03 1.00
-y4m challenge02 0.95
+y4m challenge02 0.90
 y4m challenge03 0.50
 y4m project_video03 1.00
 FLOORS
 # (calibrated on the JPEG frames; their Y4M copies: 83 of 88, 94%)
 confident=0.95
-[ "$MODE" = y4m ] && confident=0.93
+[ "$MODE" = y4m ] && confident=0.92
 if ! awk -v floor=$confident -f "$(dirname "$0")/confident_share.awk" "$OUT/eval.txt"; then
     echo "FAIL: sides seen with confidence >= 0.5 are right in fewer than $confident of cases"
     failed=1
