@@ -99,7 +99,7 @@ static inline void lane_cue_apply(const uint8_t *restrict g, const uint8_t *rest
                                   uint8_t *restrict d, int32_t n, uint16_t dim)
 {
     for (int32_t x = 0; x < n; x++)
-        d[x] = g[x] > t[x] ? 255 : (uint8_t)((g[x] * dim) >> 8);
+        d[x] = lane_cue_one(g[x], t[x], dim);
 }
 
 /* The rows of `width` pixels that share a row of chroma blocks: g[0] and
