@@ -35,6 +35,10 @@ typedef struct rte_y4m_info {
  * other than 420*, 422, 444 or mono), with the reason in why. */
 RTE_API rte_status rte_y4m_parse_header(char *line, rte_y4m_info *info, char *why, size_t why_size);
 
+/* The format rte_y4m_read_frame gives a stream's frames in, from its
+ * header: RTE_PIXEL_NV12 for 4:2:0 (its colour kept), RTE_PIXEL_GREY for
+ * mono, 4:2:2 and 4:4:4 (the Y plane). */
+RTE_API rte_pixel_format rte_y4m_frame_format(const rte_y4m_info *info);
 /* Opens `path` and reads its header. RTE_ERR_FORMAT for a file that is not
  * YUV4MPEG2 or has no size, RTE_ERR_UNSUPPORTED for interlacing other than
  * progressive/unknown or chroma of more than 8 bits, RTE_ERR_TOO_LARGE when

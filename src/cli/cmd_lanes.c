@@ -243,9 +243,7 @@ static int lanes_y4m(const char *name, const lanes_options *o, const char *path)
     }
     /* 4:2:0 streams as NV12, so that the lanes see their colour (as rtedged
      * does); others as their grey plane */
-    const bool nv12 = rte_frame_packed_size(RTE_PIXEL_NV12, info.width, info.height) ==
-                      (size_t)info.width * (size_t)info.height + (size_t)info.chroma_bytes;
-    const rte_pixel_format format = nv12 ? RTE_PIXEL_NV12 : RTE_PIXEL_GREY;
+    const rte_pixel_format format = rte_y4m_frame_format(&info);
     const size_t size = rte_frame_packed_size(format, info.width, info.height);
     rte_lane_config cfg;
     rte_lane_context *ctx = NULL;

@@ -176,6 +176,11 @@ rte_status rte_y4m_open(const char *path, int32_t max_width, int32_t max_height,
     return RTE_OK;
 }
 
+rte_pixel_format rte_y4m_frame_format(const rte_y4m_info *info)
+{
+    return strncmp(info->chroma, "420", 3) == 0 ? RTE_PIXEL_NV12 : RTE_PIXEL_GREY;
+}
+
 /* Reads n bytes into dst; false when the file ends first. */
 static bool y4m_read(FILE *f, uint8_t *dst, size_t n) { return fread(dst, 1, n, f) == n; }
 
@@ -189,8 +194,7 @@ rte_status rte_y4m_read_frame(rte_y4m_reader *r, const rte_frame *dst, char *msg
         return RTE_ERR_SIZE;
     const int32_t w = dst->width, h = dst->height, cw = (w + 1) / 2, ch = (h + 1) / 2;
     const bool nv12 = dst->format == RTE_PIXEL_NV12;
-    if ((!nv12 && dst->format != RTE_PIXEL_GREY) ||
-        (nv12 && r->info.chroma_bytes != 2 * (int64_t)cw * ch))
+    if (dst->format != RTE_PIXEL_GREY && dst->format != rte_y4m_frame_format(&r->info))
         return RTE_ERR_UNSUPPORTED;
     char line[256];
     int rc = y4m_line(r->file, line, sizeof line);

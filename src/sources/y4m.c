@@ -115,7 +115,7 @@ static rte_status parse_header(y4m_source *s, char *line, char *msg, size_t msg_
     }
     if (strcmp(info.chroma, "mono") == 0) {
         s->mono = 1;
-    } else if (strncmp(info.chroma, "420", 3) != 0) {
+    } else if (rte_y4m_frame_format(&info) != RTE_PIXEL_NV12) {
         rte_source_msgf(msg, msg_size, "%s: colour space C%s is not supported (mono and 420 are)",
                         s->path_name, info.chroma);
         return RTE_ERR_UNSUPPORTED;

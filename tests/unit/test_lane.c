@@ -864,11 +864,38 @@ static void test_y4m(void **state)
     rte_y4m_close(rd);
     assert_int_equal(rte_y4m_open(path, 2, 2, &rd, &info, msg, sizeof msg), RTE_ERR_TOO_LARGE);
 
+    /* the same stream as NV12: U "ab" and V "cd" interleaved, padding kept */
+    assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), RTE_OK);
+    assert_int_equal(rte_y4m_frame_format(&info), RTE_PIXEL_NV12);
+    uint8_t nv12[2][8 + 6];
+    memset(nv12, 0xEE, sizeof nv12);
+    const rte_frame yuv = {RTE_PIXEL_NV12, 3, 2, {nv12[0], nv12[1]}, {7, 6}};
+    assert_int_equal(rte_y4m_read_frame(rd, &yuv, msg, sizeof msg), RTE_OK);
+    assert_memory_equal(nv12[0], "\x01\x02\x03\xEE\xEE\xEE\xEE\x04\x05\x06", 10);
+    assert_memory_equal(nv12[1], "acbd\xEE", 5);
+    assert_int_equal(rte_y4m_read_frame(rd, &yuv, msg, sizeof msg), RTE_OK);
+    assert_int_equal(nv12[0][7], 0x14);
+    assert_int_equal(rte_y4m_read_frame(rd, &yuv, msg, sizeof msg), RTE_ERR_END);
+    rte_y4m_close(rd);
+
+    /* 4:2:2: its Y plane only (the chroma skipped), never as NV12 */
+    const char c422[] = "YUV4MPEG2 W3 H2 C422\nFRAME\nABCDEFabcdefghFRAME\nGHIJKLabcdefgh";
+    write_file(path, c422, sizeof c422 - 1);
+    assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), RTE_OK);
+    assert_int_equal(rte_y4m_frame_format(&info), RTE_PIXEL_GREY);
+    assert_int_equal(rte_y4m_read_frame(rd, &yuv, msg, sizeof msg), RTE_ERR_UNSUPPORTED);
+    assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_OK);
+    assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_OK);
+    assert_int_equal(img.buf[0], 'G');
+    assert_int_equal(img.buf[img.stride + 2], 'L');
+    rte_y4m_close(rd);
+
     /* mono, truncated second frame */
     const char mono[] = "YUV4MPEG2 W3 H2 Cmono\nFRAME\nabcdefFRAME\nab";
     write_file(path, mono, sizeof mono - 1);
     assert_int_equal(rte_y4m_open(path, 0, 0, &rd, &info, msg, sizeof msg), RTE_OK);
     assert_int_equal(info.chroma_bytes, 0);
+    assert_int_equal(rte_y4m_frame_format(&info), RTE_PIXEL_GREY);
     assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_OK);
     assert_int_equal(img.buf[img.stride], 'd');
     assert_int_equal(rte_y4m_read_gray(rd, &img, msg, sizeof msg), RTE_ERR_TRUNCATED);
