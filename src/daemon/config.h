@@ -91,7 +91,8 @@ typedef struct rted_config {
     int32_t rt_priority; /* 0 = no SCHED_FIFO */
     int32_t rt_cpu;      /* -1 = no affinity */
     bool rt_mlockall;
-    int32_t rt_threads; /* 2 = the grasp path on a thread of its own */
+    int32_t rt_cpu_dma_latency_us; /* -1 = no PM QoS request */
+    int32_t rt_threads;            /* 2 = the grasp path on a thread of its own */
 } rted_config;
 
 /* One key of the table (config_keys.c), for typed access (params_t). */

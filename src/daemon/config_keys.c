@@ -255,6 +255,10 @@ static const key_def keys[] = {
     INT("realtime", "cpu", rt_cpu, "", -1, 1023, false, "-1", "pin to this CPU; -1: no affinity"),
     BOOL("realtime", "mlockall", rt_mlockall, false, "false",
          "lock all memory (a warning if not permitted)"),
+    INT("realtime", "cpu_dma_latency_us", rt_cpu_dma_latency_us, "us", -1, 1000000, false, "-1",
+        "while rtedged runs, keep the CPUs out of idle states that take longer\n"
+        "than this to wake from (/dev/cpu_dma_latency, a warning if not\n"
+        "permitted); 0: they only poll; -1: the kernel's own choice"),
     INT("realtime", "threads", rt_threads, "", 1, 2, false, "1",
         "2: the grasp path runs on a second thread, made at start, beside the\n"
         "lane path (the same results, published by the main thread), pinned to\n"

@@ -154,6 +154,10 @@ struct rted_daemon {
     rted_log_limit log_frames, log_params;
     rte_status path_said[2]; /* the lane's and grasp path's last failure said */
 
+    /* realtime.cpu_dma_latency_us: the open PM QoS request */
+    bool wake_latency_held;
+    int wake_latency_fd;
+
     /* realtime.threads = 2 (and both paths): the grasp thread and its job */
     bool threaded;
     pthread_t job_thread;
@@ -233,12 +237,12 @@ void rted_param_state_outcome(rted_daemon *d, int64_t request_id, int8_t outcome
                               const char *reason, bool saved);
 
 /* realtime.c */
-/* [realtime]: mlockall, the main thread's CPU and SCHED_FIFO priority
- * (warnings where not permitted), then the grasp thread when
- * realtime.threads = 2 and both paths run (false and *msg when it cannot
- * be made). */
+/* [realtime]: mlockall, the CPUs' wake-up latency, the main thread's CPU
+ * and SCHED_FIFO priority (warnings where not permitted), then the grasp
+ * thread when realtime.threads = 2 and both paths run (false and *msg
+ * when it cannot be made). */
 bool rted_realtime_start(rted_daemon *d, char *msg, size_t msg_size);
-/* Joins the grasp thread (between frames). */
+/* Joins the grasp thread (between frames) and drops the latency request. */
 void rted_realtime_stop(rted_daemon *d);
 /* The job's grey image, then the grasp path when d has one and the budget
  * holds it; j->frame and j->need_gray set. */

@@ -1,6 +1,13 @@
-/* [realtime]: the memory locked, the main thread pinned and SCHED_FIFO,
- * then (threads = 2) the grasp path on a second thread, beside the lane path
- * on the main one.
+/* [realtime]: the memory locked, the CPUs' wake-up latency bounded, the
+ * main thread pinned and SCHED_FIFO, then (threads = 2) the grasp path on a
+ * second thread, beside the lane path on the main one.
+ *
+ * A thread that waits for a frame or for the other path sleeps, and its CPU
+ * may go idle; waking it then takes the idle state's exit latency (in a
+ * KVM guest, a halted virtual CPU: 60-70 us in the median and up to 2 ms,
+ * on every hand-over between the two threads). realtime.cpu_dma_latency_us
+ * asks the kernel (PM QoS, /dev/cpu_dma_latency: held while the file is
+ * open, as cyclictest does) for no idle state slower to leave than that.
  *
  * The thread is made once at start, after the main thread's settings (so
  * that it inherits SCHED_FIFO and mlockall's MCL_FUTURE locks its stack),
@@ -15,11 +22,13 @@
  * frames, when the thread waits for the next one. */
 #define _GNU_SOURCE
 #include <errno.h>
+#include <fcntl.h>
 #include <pthread.h>
 #include <sched.h>
 #include <signal.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include "daemon_internal.h"
 #include "core/clock.h"
@@ -106,6 +115,22 @@ static void pin(int cpu)
         rted_warn("CPU affinity %d: %s (not pinned)", cpu, strerror(errno));
 }
 
+/* The PM QoS request of realtime.cpu_dma_latency_us, held open in d (a
+ * warning when it cannot be made). */
+static void hold_wake_latency(rted_daemon *d, int32_t us)
+{
+    const int fd = open("/dev/cpu_dma_latency", O_WRONLY | O_CLOEXEC);
+    if (fd >= 0 && write(fd, &us, sizeof us) == (ssize_t)sizeof us) {
+        d->wake_latency_fd = fd;
+        d->wake_latency_held = true;
+        return;
+    }
+    rted_warn("realtime.cpu_dma_latency_us = %d: /dev/cpu_dma_latency: %s (not set)", us,
+              strerror(errno));
+    if (fd >= 0)
+        close(fd);
+}
+
 /* The grasp thread, made with every signal blocked and pinned to the CPU
  * after realtime.cpu among those allowed at start. */
 static bool start_thread(rted_daemon *d, const cpu_set_t *allowed, char *msg, size_t msg_size)
@@ -157,6 +182,8 @@ bool rted_realtime_start(rted_daemon *d, char *msg, size_t msg_size)
         CPU_ZERO(&allowed);
     if (c->rt_mlockall && mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
         rted_warn("mlockall: %s (memory not locked)", strerror(errno));
+    if (c->rt_cpu_dma_latency_us >= 0)
+        hold_wake_latency(d, c->rt_cpu_dma_latency_us);
     if (c->rt_cpu >= 0)
         pin(c->rt_cpu);
     if (c->rt_priority > 0) {
@@ -173,6 +200,10 @@ bool rted_realtime_start(rted_daemon *d, char *msg, size_t msg_size)
 
 void rted_realtime_stop(rted_daemon *d)
 {
+    if (d->wake_latency_held) {
+        close(d->wake_latency_fd);
+        d->wake_latency_held = false;
+    }
     if (!d->threaded)
         return;
     d->job_quit = true;
