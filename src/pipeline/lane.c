@@ -576,16 +576,12 @@ rte_status rte_lane_process(rte_lane_context *ctx, const rte_frame *frame, int64
     if (rte_frame_gray_view(frame, &gray) != RTE_OK) {
         /* the crop widened to even x0 (a YUYV pair), as a view of the frame */
         const int32_t x0 = ctx->crop_x0 & ~1, y0 = ctx->crop_y0;
-        const int32_t bytes = f == RTE_PIXEL_BGR24 || f == RTE_PIXEL_RGB24 ? 3 : 2;
-        rte_frame part = *frame;
-        part.width = ctx->crop_x1 - x0;
-        part.height = ctx->crop_y1 - y0;
-        part.plane[0] += (size_t)y0 * (size_t)frame->stride[0] + (size_t)bytes * (size_t)x0;
-        gray = lane_view(&ctx->gray, x0, y0, x0 + part.width, y0 + part.height);
+        const rte_frame part = lane_frame_part(frame, x0, y0, ctx->crop_x1, ctx->crop_y1);
+        gray = lane_view(&ctx->gray, x0, y0, ctx->crop_x1, ctx->crop_y1);
         if ((st = rte_frame_to_gray(&part, &gray)) != RTE_OK)
             return st;
         gray = lane_view(&ctx->gray, 0, 0, frame->width, frame->height);
-        if (bytes == 3) {
+        if (f == RTE_PIXEL_BGR24 || f == RTE_PIXEL_RGB24) {
             colour = (lane_colour){.bgr = frame->plane[0],
                                    .bgr_stride = frame->stride[0],
                                    .rgb = f == RTE_PIXEL_RGB24};

@@ -95,10 +95,7 @@ rte_status rte_lane_frame_chroma(rte_lane_context *ctx, const rte_frame *frame, 
     }
     if (frame->format != RTE_PIXEL_YUYV && frame->format != RTE_PIXEL_UYVY)
         return RTE_ERR_UNSUPPORTED;
-    rte_frame part = *frame;
-    part.width = ctx->crop_x1 - x0;
-    part.height = ctx->crop_y1 - y0;
-    part.plane[0] += (size_t)y0 * (size_t)frame->stride[0] + 2 * (size_t)x0;
+    const rte_frame part = lane_frame_part(frame, x0, y0, ctx->crop_x1, ctx->crop_y1);
     const int32_t cw = (part.width + 1) / 2, ch = (part.height + 1) / 2;
     rte_image_u8 cb = rte_image_u8_view(ctx->cb.buf, cw, ch, ctx->cb.stride);
     rte_image_u8 cr = rte_image_u8_view(ctx->cr.buf, cw, ch, ctx->cr.stride);

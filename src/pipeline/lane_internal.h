@@ -111,6 +111,20 @@ typedef struct lane_colour {
     int32_t chroma_stride;
 } lane_colour;
 
+/* Pixels x0..x1-1 of rows y0..y1-1 of a one-plane frame (BGR24, RGB24,
+ * YUYV, UYVY; x0 even for the last two) as a frame of their own: a view. */
+static inline rte_frame lane_frame_part(const rte_frame *frame, int32_t x0, int32_t y0, int32_t x1,
+                                        int32_t y1)
+{
+    const rte_pixel_format f = frame->format;
+    const size_t bytes = f == RTE_PIXEL_BGR24 || f == RTE_PIXEL_RGB24 ? 3 : 2;
+    rte_frame part = *frame;
+    part.width = x1 - x0;
+    part.height = y1 - y0;
+    part.plane[0] += (size_t)y0 * (size_t)frame->stride[0] + bytes * (size_t)x0;
+    return part;
+}
+
 /* lane_cue.c: the colour cue of the crop `gray` (white or yellow paint ->
  * 255, everything else grey scaled by dim_q8 / 256; `bgr` rows hold B,G,R,
  * R,G,B when rgb is set), and the automatic Canny thresholds of a blurred
