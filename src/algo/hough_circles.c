@@ -126,7 +126,8 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
            rte_arena_piece_size(kept * 3 * sizeof(int32_t)) +
            rte_arena_piece_size(2 * (size_t)g.nbins * sizeof(int32_t)) +
            rte_arena_piece_size(((size_t)g.nbins + 1) * sizeof(int64_t)) +
-           rte_arena_piece_size(RADIUS_COARSE * sizeof(int32_t));
+           rte_arena_piece_size(RADIUS_COARSE * sizeof(int32_t)) +
+           rte_arena_piece_size(radius_reach_rows(&g) * sizeof(int32_t));
 }
 
 /* Accumulator coordinate of pixel coordinate v, Q10: v / dp rounded. */
@@ -178,9 +179,12 @@ static inline uint64_t isqrt_fast(uint64_t v)
  * a branch (it is a coin toss from one pixel to the next). */
 static inline int32_t unit_step(int32_t v, int64_t den)
 {
-    const int64_t a = (int64_t)(v < 0 ? -v : v) << 28;
-    const int32_t q = (int32_t)((a + den / 2) / den);
-    return v < 0 ? -q : q;
+    /* s: 0 or -1; (x ^ s) - s is x or -x (written out: GCC turns the
+     * conditional negation into two branches around two divisions) */
+    const int64_t s = -(int64_t)((uint32_t)v >> 31);
+    const int64_t a = (((int64_t)v ^ s) - s) << 28;
+    const int64_t q = (a + den / 2) / den;
+    return (int32_t)((q ^ s) - s);
 }
 
 /* n + 1 votes from (ux, uy), Q10, in steps of (sx, sy) (two's complement),
@@ -283,6 +287,20 @@ static inline uint32_t edge_bits(const uint8_t *e, int32_t n)
     return bits;
 }
 
+/* Bit k set when e[k] is nonzero, for k < n <= 64. */
+static inline uint64_t edge_bits64(const uint8_t *e, int32_t n)
+{
+    uint64_t bits = 0;
+    if (n == 64) { /* unrolled */
+        for (int32_t k = 0; k < 64; k += 8)
+            bits |= (uint64_t)edge_bits(e + k, 8) << k;
+        return bits;
+    }
+    for (int32_t k = 0; k < n; k += 8)
+        bits |= (uint64_t)edge_bits(e + k, n - k < 8 ? n - k : 8) << k;
+    return bits;
+}
+
 /* A pixel's two vote lines: from its accumulator position (x0, y0, Q10)
  * along its unit step (sx, sy) both ways, starting min_r steps out. */
 typedef struct circle_voter {
@@ -318,22 +336,21 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
         const uint8_t *e = rte_u8_row(edges, y);
         const int16_t *gx = rte_s16_row(dx, y), *gy = rte_s16_row(dy, y);
         const int32_t y0 = acc_q10(y, dp_q8);
-        int32_t *rb = blk + (size_t)y * nblk, nb = 0;
+        int32_t *rb = blk + (size_t)y * nblk;
         circle_voter prev = {0, 0, 0, 0};
         bool pending = false;
-        for (int32_t x8 = 0; x8 < w; x8 += 8) {
-            /* bit k: pixel x8 + k is an edge (one branch per edge pixel,
-             * not one per pixel, which mispredicts) */
-            const uint32_t bits = edge_bits(e + x8, x8 + 8 < w ? 8 : w - x8);
-            if (!bits)
-                continue;
-            for (uint32_t left = bits; left; left &= left - 1) {
-                const int32_t x = x8 + __builtin_ctz(left);
+        for (int32_t x64 = 0; x64 < w; x64 += 64) {
+            /* bit k: pixel x64 + k is an edge (one branch per edge pixel,
+             * not one per pixel, and one loop exit per 64 pixels: both
+             * mispredict) */
+            const uint64_t bits = edge_bits64(e + x64, x64 + 64 < w ? 64 : w - x64);
+            int32_t in_block[64 / BLOCK] = {0};
+            for (uint64_t left = bits; left; left &= left - 1) {
+                const int32_t k = __builtin_ctzll(left), x = x64 + k;
                 int32_t vx = gx[x], vy = gy[x];
                 if (vx == 0 && vy == 0)
                     continue;
-                while (nb * BLOCK <= x)
-                    rb[nb++] = n;
+                in_block[k / BLOCK]++;
                 pts[n++] = ((uint32_t)y << 16) | (uint32_t)x;
                 if (voters == 0) {
                     *truncated = true;
@@ -350,11 +367,19 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
                 prev = cur;
                 pending = true;
             }
+            /* the blocks of these 64 pixels start where the pixels listed
+             * before them end (counted, not branched on per pixel) */
+            _Static_assert(64 % BLOCK == 0, "a block lies in one 64-pixel word");
+            int32_t start = n;
+            for (int32_t j = 64 / BLOCK - 1; j >= 0; j--) {
+                start -= in_block[j];
+                if (x64 / BLOCK + j < nblk)
+                    rb[x64 / BLOCK + j] = start;
+            }
         }
         if (pending)
             vote_pixel(b, g, &prev);
-        while (nb < nblk)
-            rb[nb++] = n;
+        rb[nblk - 1] = n;
         /* Rows the next pixel row cannot reach are final; a row is searched
          * once the row below it is final too. */
         int32_t final = g->arows + 1;
@@ -444,8 +469,10 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     int32_t *est = rte_arena_alloc(arena, kept_cap * 3 * sizeof(int32_t));
     int32_t *bins = rte_arena_alloc(arena, 2 * (size_t)g.nbins * sizeof(int32_t));
     radius_table rt = {rte_arena_alloc(arena, ((size_t)g.nbins + 1) * sizeof(int64_t)),
-                       rte_arena_alloc(arena, RADIUS_COARSE * sizeof(int32_t)), 0, 0};
-    if (!band.acc || !pts || !blk || !centres || !keys || !est || !bins || !rt.sq || !rt.coarse) {
+                       rte_arena_alloc(arena, RADIUS_COARSE * sizeof(int32_t)),
+                       rte_arena_alloc(arena, radius_reach_rows(&g) * sizeof(int32_t)), 0, 0};
+    if (!band.acc || !pts || !blk || !centres || !keys || !est || !bins || !rt.sq || !rt.coarse ||
+        !rt.reach) {
         rte_arena_reset(arena, mark);
         return RTE_ERR_NO_MEMORY;
     }

@@ -26,12 +26,19 @@ static inline int32_t blocks_of(int32_t w) { return (w + BLOCK - 1) / BLOCK + 1;
 typedef struct radius_table {
     int64_t *sq;     /* sq[k] = (min_r * 16 + k)^2 for k <= nbins (sq[nbins] stops the steps) */
     int32_t *coarse; /* the bin of rmin2 + (i << shift) */
+    /* reach[k + max_r + 1], for the row k pixels below the centre's pixel
+     * row: how far (1/16 pixel) from the centre's x a pixel of that row
+     * may lie within max_r of any centre in that pixel (-1: none) */
+    int32_t *reach;
     int64_t rmin2;
     int32_t shift;
 } radius_table;
 
-/* The tables of g's radii (t->sq and t->coarse allocated by the caller:
- * nbins + 1 and RADIUS_COARSE entries). */
+/* Entries of radius_table.reach. */
+static inline size_t radius_reach_rows(const circle_geom *g) { return 2 * (size_t)g->max_r + 3; }
+
+/* The tables of g's radii (t->sq, t->coarse and t->reach allocated by the
+ * caller: nbins + 1, RADIUS_COARSE and radius_reach_rows entries). */
 void rte_circle_radius_table_init(radius_table *t, const circle_geom *g);
 
 /* Step 3 for one centre (cx, cy in 1/16 pixel) over the edge pixels pts

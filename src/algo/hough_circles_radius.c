@@ -26,6 +26,15 @@ void rte_circle_radius_table_init(radius_table *t, const circle_geom *g)
             k++;
         t->coarse[i] = k;
     }
+    /* A centre's x and y are 1/16 pixel; one in pixel row cy lies 16 k - f
+     * (0 <= f < 16) above row cy + k: at least 16 k - 15 for k > 0, 0 for
+     * k = 0 and 16 |k| for k < 0. */
+    const int64_t rmax2 = t->sq[g->nbins - 1];
+    for (int32_t row = -g->max_r - 1; row <= g->max_r + 1; row++) {
+        const int64_t dy = row > 0 ? 16 * (int64_t)row - 15 : -16 * (int64_t)row;
+        t->reach[row + g->max_r + 1] =
+            dy * dy > rmax2 ? -1 : (int32_t)rte_isqrt64((uint64_t)(rmax2 - dy * dy));
+    }
 }
 
 static inline int32_t radius_bin(const radius_table *t, int64_t d2)
@@ -64,11 +73,24 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
     int32_t *odd = bins + nbins;
     memset(bins, 0, 2 * (size_t)nbins * sizeof *bins);
     int32_t any = 0;
+    const int32_t *reach = rt->reach + g->max_r + 1 - (cy >> 4);
     for (int32_t y = y_lo; y <= y_hi; y++) {
-        int32_t i, end;
-        ring_window(blk, nblk, y, cx, g->max_r * 16, &i, &end);
+        /* only the columns of the row within max_r of the centre: the
+         * square around it holds a third more pixels than its disc */
+        const int32_t r16 = reach[y];
+        if (r16 < 0)
+            continue;
+        const int32_t x_lo = cx - r16 <= 0 ? 0 : (cx - r16 + 15) >> 4, x_hi = (cx + r16) >> 4;
+        const int32_t *rb = blk + (size_t)y * nblk;
+        int32_t i = rb[x_lo / BLOCK < nblk - 1 ? x_lo / BLOCK : nblk - 1];
+        const int32_t end = rb[nblk - 1];
+        while (i < end && (int32_t)(pts[i] & 0xFFFF) < x_lo)
+            i++;
         for (; i < end; i++) {
-            int64_t ddx = (int64_t)(pts[i] & 0xFFFF) * 16 - cx, ddy = (int64_t)y * 16 - cy;
+            const int32_t x = (int32_t)(pts[i] & 0xFFFF);
+            if (x > x_hi)
+                break;
+            int64_t ddx = (int64_t)x * 16 - cx, ddy = (int64_t)y * 16 - cy;
             int64_t d2 = ddx * ddx + ddy * ddy;
             if (d2 < rmin2 || d2 > rmax2)
                 continue;
