@@ -181,6 +181,11 @@ void rte_circle_refine(const circle_pixels *cp, int32_t *cx, int32_t *cy, int32_
             if ((cross < 0 ? -cross : cross) * 4 > (dot < 0 ? -dot : dot))
                 continue;
             const int64_t gm = (int64_t)rte_isqrt64((uint64_t)(gx * gx + gy * gy));
+            /* listed pixels have a gradient, unless the caller's gradient
+             * images share memory with the arena (a skipped pixel, not a
+             * division by zero) */
+            if (gm == 0)
+                continue;
             const int64_t ux = gx * 256 / gm, uy = gy * 256 / gm; /* Q8 unit vector */
             /* I - u u^T in Q16: [uy^2, -ux uy; -ux uy, ux^2] */
             const int64_t m00 = uy * uy, m01 = -ux * uy, m11 = ux * ux;
