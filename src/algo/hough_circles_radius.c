@@ -73,11 +73,10 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
     int32_t *odd = bins + nbins;
     memset(bins, 0, 2 * (size_t)nbins * sizeof *bins);
     int32_t any = 0;
-    const int32_t *reach = rt->reach + g->max_r + 1 - (cy >> 4);
     for (int32_t y = y_lo; y <= y_hi; y++) {
         /* only the columns of the row within max_r of the centre: the
          * square around it holds a third more pixels than its disc */
-        const int32_t r16 = reach[y];
+        const int32_t r16 = rt->reach[y - (cy >> 4) + g->max_r + 1];
         if (r16 < 0)
             continue;
         const int32_t x_lo = cx - r16 <= 0 ? 0 : (cx - r16 + 15) >> 4, x_hi = (cx + r16) >> 4;
