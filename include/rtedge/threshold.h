@@ -63,6 +63,13 @@ RTE_API rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256])
 RTE_API rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *mask,
                                            uint32_t hist[256]);
 
+/* The same over the pixels x0[y] <= x < x1[y] of each row y (x0, x1: one
+ * entry a row, clipped to the image; a row with x1[y] <= x0[y] adds
+ * nothing): a convex region such as an ROI polygon's, its spans worked out
+ * once, counted without reading a mask. */
+RTE_API rte_status rte_histogram_spans_u8(const rte_image_u8 *src, const int32_t *x0,
+                                          const int32_t *x1, uint32_t hist[256]);
+
 /* Otsu's threshold of a histogram exactly as OpenCV 4.6 computes it for
  * THRESH_OTSU: OpenCV works in IEEE double precision, and near-ties (for
  * example every empty bin between the two levels of a two-valued image)

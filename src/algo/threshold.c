@@ -26,29 +26,16 @@
  * (a fifth less time than one band on the photos at 1280x720; the 35 KB
  * of counters stay in L1). */
 #define HIST_BANDS 4
-_Static_assert(HIST_BANDS == 4, "histogram_band_rows writes out four bands");
+_Static_assert(HIST_BANDS == 4, "histogram_band_rows and histogram_run write out four bands");
 
 typedef uint32_t hist_parts[HIST_PARTS][HIST_ROW];
 
-/* Adds the 8 pixels at row (where mask is NULL or mask[k] != 0) to part
- * (one 8-byte load; byte order cannot matter here). A mask chunk of all
- * zeros adds nothing, one without a zero byte is taken as no mask. */
-static inline void histogram_chunk(const uint8_t *row, const uint8_t *mask, hist_parts part)
+/* Adds the 8 pixels at p to part (one 8-byte load; byte order cannot
+ * matter here). */
+static inline void histogram_chunk(const uint8_t *p, hist_parts part)
 {
-    const uint64_t ones = 0x0101010101010101u, highs = 0x8080808080808080u;
     uint64_t v;
-    memcpy(&v, row, sizeof v);
-    if (mask) {
-        uint64_t m;
-        memcpy(&m, mask, sizeof m);
-        if (m == 0)
-            return;
-        if (((m - ones) & ~m & highs) != 0) { /* some byte of m is zero */
-            for (int k = 0; k < 8; k++)
-                part[k][(v >> (8 * k)) & 0xFF] += ((m >> (8 * k)) & 0xFF) != 0;
-            return;
-        }
-    }
+    memcpy(&v, p, sizeof v);
     part[0][v & 0xFF]++;
     part[1][(v >> 8) & 0xFF]++;
     part[2][(v >> 16) & 0xFF]++;
@@ -59,66 +46,136 @@ static inline void histogram_chunk(const uint8_t *row, const uint8_t *mask, hist
     part[7][v >> 56]++;
 }
 
-static void histogram_tail(const uint8_t *row, const uint8_t *mask, int32_t x, int32_t n,
-                           hist_parts part)
+/* A run of n pixels at p: its four quarters side by side, as the bands
+ * of an image (pixels far apart rarely share a grey level), the rest
+ * into the first parts. */
+static void histogram_run(const uint8_t *p, int32_t n, hist_parts part[HIST_BANDS])
 {
-    for (; x < n; x++)
-        part[0][row[x]] += !mask || mask[x] != 0;
-}
-
-/* One row of n pixels (mask NULL or its row) into part. */
-static void histogram_row(const uint8_t *row, const uint8_t *mask, int32_t n, hist_parts part)
-{
-    int32_t x = 0;
+    const int32_t q = n / (8 * HIST_BANDS) * 8;
+    for (int32_t x = 0; x < q; x += 8) {
+        histogram_chunk(p + x, part[0]);
+        histogram_chunk(p + q + x, part[1]);
+        histogram_chunk(p + 2 * q + x, part[2]);
+        histogram_chunk(p + 3 * q + x, part[3]);
+    }
+    int32_t x = HIST_BANDS * q;
     for (; x + 8 <= n; x += 8)
-        histogram_chunk(row + x, mask ? mask + x : NULL, part);
-    histogram_tail(row, mask, x, n, part);
+        histogram_chunk(p + x, part[0]);
+    for (; x < n; x++)
+        part[0][0][p[x]]++;
 }
 
-/* Row y of each band (bands `band` rows apart; mask NULL or a mask image
- * with the same layout) into its parts. */
-static void histogram_band_rows(const rte_image_u8 *src, const rte_image_u8 *mask, int32_t y,
-                                int32_t band, hist_parts part[HIST_BANDS])
+/* Whether a byte of m is 0. */
+static inline uint64_t zero_bytes(uint64_t m)
 {
-    const uint8_t *r[HIST_BANDS], *m[HIST_BANDS] = {NULL};
-    for (int b = 0; b < HIST_BANDS; b++) {
-        r[b] = rte_u8_row(src, y + b * band);
-        if (mask)
-            m[b] = rte_u8_row(mask, y + b * band);
+    return (m - 0x0101010101010101u) & ~m & 0x8080808080808080u;
+}
+
+/* The first x from x on (or n) where mask[x] is not 0 (set) or is 0
+ * (!set): 32 bytes a step, then 8, then one. */
+static int32_t mask_boundary(const uint8_t *mask, int32_t x, int32_t n, bool set)
+{
+    uint64_t m[4];
+    for (; x + 32 <= n; x += 32) {
+        memcpy(m, mask + x, sizeof m);
+        if (set ? (m[0] | m[1] | m[2] | m[3]) != 0
+                : (zero_bytes(m[0]) | zero_bytes(m[1]) | zero_bytes(m[2]) | zero_bytes(m[3])) != 0)
+            break;
     }
+    for (; x + 8 <= n; x += 8) {
+        memcpy(m, mask + x, sizeof m[0]);
+        if (set ? m[0] != 0 : zero_bytes(m[0]) != 0)
+            break;
+    }
+    while (x < n && (mask[x] != 0) != set)
+        x++;
+    return x;
+}
+
+/* What a histogram counts: the whole image, the pixels under a mask, or
+ * a span of each row. */
+typedef struct hist_region {
+    const rte_image_u8 *mask;
+    const int32_t *x0, *x1;
+} hist_region;
+
+/* The first run of row y that region counts, [*start, *end). */
+static inline void region_run(const rte_image_u8 *src, const hist_region *g, int32_t y,
+                              int32_t *start, int32_t *end)
+{
     const int32_t n = src->width;
-    int32_t x = 0;
-    if (mask) {
-        for (; x + 8 <= n; x += 8)
-            for (int b = 0; b < HIST_BANDS; b++)
-                histogram_chunk(r[b] + x, m[b] + x, part[b]);
+    if (g->mask) {
+        const uint8_t *m = rte_u8_row(g->mask, y);
+        *start = mask_boundary(m, 0, n, true);
+        *end = mask_boundary(m, *start, n, false);
+    } else if (g->x0) {
+        *start = g->x0[y] < 0 ? 0 : g->x0[y] > n ? n : g->x0[y];
+        *end = g->x1[y] < *start ? *start : g->x1[y] > n ? n : g->x1[y];
     } else {
-        /* written out: the four bands' increments interleave */
-        for (; x + 8 <= n; x += 8) {
-            histogram_chunk(r[0] + x, NULL, part[0]);
-            histogram_chunk(r[1] + x, NULL, part[1]);
-            histogram_chunk(r[2] + x, NULL, part[2]);
-            histogram_chunk(r[3] + x, NULL, part[3]);
-        }
+        *start = 0;
+        *end = n;
     }
-    for (int b = 0; b < HIST_BANDS; b++)
-        histogram_tail(r[b], m[b], x, n, part[b]);
 }
 
-static rte_status histogram(const rte_image_u8 *src, const rte_image_u8 *mask, uint32_t hist[256])
+/* The runs of row y after the first one, under a mask. */
+static void mask_later_runs(const rte_image_u8 *src, const hist_region *g, int32_t y, int32_t x,
+                            hist_parts part[HIST_BANDS])
 {
-    rte_status st = mask ? rte_image_u8_check_pair(src, mask) : rte_image_u8_check(src);
-    if (st != RTE_OK)
-        return st;
-    if (!hist)
-        return RTE_ERR_ARGUMENT;
+    const uint8_t *row = rte_u8_row(src, y), *m = rte_u8_row(g->mask, y);
+    const int32_t n = src->width;
+    for (x = mask_boundary(m, x, n, true); x < n;) {
+        const int32_t end = mask_boundary(m, x, n, false);
+        histogram_run(row + x, end - x, part);
+        x = mask_boundary(m, end, n, true);
+    }
+}
+
+/* Row y of each of the four bands (`band` rows apart): their first runs
+ * side by side for as long as the shortest, then the rest of each. */
+static inline __attribute__((always_inline)) void histogram_band_rows(const rte_image_u8 *src,
+                                                                      const hist_region *g,
+                                                                      int32_t y, int32_t band,
+                                                                      hist_parts part[HIST_BANDS])
+{
+    const uint8_t *r[HIST_BANDS];
+    int32_t start[HIST_BANDS], end[HIST_BANDS], common = src->width;
+    for (int b = 0; b < HIST_BANDS; b++) {
+        region_run(src, g, y + b * band, &start[b], &end[b]);
+        r[b] = rte_u8_row(src, y + b * band) + start[b];
+        common = end[b] - start[b] < common ? end[b] - start[b] : common;
+    }
+    common &= ~7;
+    /* written out: the four bands' increments interleave */
+    for (int32_t x = 0; x < common; x += 8) {
+        histogram_chunk(r[0] + x, part[0]);
+        histogram_chunk(r[1] + x, part[1]);
+        histogram_chunk(r[2] + x, part[2]);
+        histogram_chunk(r[3] + x, part[3]);
+    }
+    for (int b = 0; b < HIST_BANDS; b++) {
+        histogram_run(r[b] + common, end[b] - start[b] - common, part);
+        if (g->mask)
+            mask_later_runs(src, g, y + b * band, end[b], part);
+    }
+}
+
+/* Inlined into each caller, so that the whole image's loop carries no
+ * test for a mask or spans. */
+static inline __attribute__((always_inline)) rte_status
+histogram(const rte_image_u8 *src, const hist_region *g, uint32_t hist[256])
+{
     hist_parts part[HIST_BANDS];
     memset(part, 0, sizeof part);
     const int32_t band = src->height / HIST_BANDS;
     for (int32_t y = 0; y < band; y++)
-        histogram_band_rows(src, mask, y, band, part);
-    for (int32_t y = band * HIST_BANDS; y < src->height; y++) /* the last few rows */
-        histogram_row(rte_u8_row(src, y), mask ? rte_u8_row(mask, y) : NULL, src->width, part[0]);
+        histogram_band_rows(src, g, y, band, part);
+    for (int32_t y = band * HIST_BANDS; y < src->height; y++) { /* the last few rows */
+        int32_t start, end;
+        region_run(src, g, y, &start, &end);
+        histogram_run(rte_u8_row(src, y) + start, end - start, part);
+        if (g->mask)
+            mask_later_runs(src, g, y, end, part);
+    }
     for (int32_t v = 0; v < 256; v++) {
         uint32_t sum = 0;
         for (int b = 0; b < HIST_BANDS; b++)
@@ -131,15 +188,37 @@ static rte_status histogram(const rte_image_u8 *src, const rte_image_u8 *mask, u
 
 rte_status rte_histogram_u8(const rte_image_u8 *src, uint32_t hist[256])
 {
-    return histogram(src, NULL, hist);
+    rte_status st = rte_image_u8_check(src);
+    if (st != RTE_OK)
+        return st;
+    if (!hist)
+        return RTE_ERR_ARGUMENT;
+    const hist_region all = {NULL, NULL, NULL};
+    return histogram(src, &all, hist);
 }
 
 rte_status rte_histogram_masked_u8(const rte_image_u8 *src, const rte_image_u8 *mask,
                                    uint32_t hist[256])
 {
-    if (!mask)
+    if (!mask || !hist)
         return RTE_ERR_ARGUMENT;
-    return histogram(src, mask, hist);
+    rte_status st = rte_image_u8_check_pair(src, mask);
+    if (st != RTE_OK)
+        return st;
+    const hist_region under = {mask, NULL, NULL};
+    return histogram(src, &under, hist);
+}
+
+rte_status rte_histogram_spans_u8(const rte_image_u8 *src, const int32_t *x0, const int32_t *x1,
+                                  uint32_t hist[256])
+{
+    rte_status st = rte_image_u8_check(src);
+    if (st != RTE_OK)
+        return st;
+    if (!x0 || !x1 || !hist)
+        return RTE_ERR_ARGUMENT;
+    const hist_region spans = {NULL, x0, x1};
+    return histogram(src, &spans, hist);
 }
 
 /* FLT_EPSILON (2^-23) and 1 - FLT_EPSILON as binary64 bit patterns. */

@@ -104,6 +104,7 @@ static rte_status lane_roi(rte_lane_context *ctx, int32_t w, int32_t h)
     st = rte_polygon_mask_build(&mask, &poly, 1, &ctx->arena);
     if (st != RTE_OK)
         return st;
+    rte_lane_roi_spans(ctx, &mask);
     ctx->roi_width = w;
     ctx->roi_height = h;
     ctx->roi_dirty = false;
@@ -177,7 +178,7 @@ static rte_status lane_stage_edges(rte_lane_context *ctx, const rte_image_u8 *sr
     out->canny_low = low;
     out->canny_high = high;
     *inside = lane_view(&ctx->edges_roi, 0, 0, cw, ch);
-    return rte_polygon_mask_apply(edges, &mask, inside);
+    return rte_lane_keep_roi(ctx, edges, &mask, inside);
 }
 
 /* The Hough stage: the segments of the edge map, in frame coordinates. */

@@ -100,7 +100,8 @@ rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
                                       4 * sizeof(int32_t) + 2 * sizeof(int64_t));
     const int32_t half_w = (w + 1) / 2 + 1, half_h = (h + 1) / 2 + 1;
     const size_t half_plane = (size_t)((half_w + 63) & ~63) * (size_t)half_h;
-    size_t total = 6 * plane + 2 * half_plane + lists + 64 * 8 + scratch;
+    const size_t span_row = ((size_t)h * sizeof(int32_t) + 63) & ~(size_t)63;
+    size_t total = 6 * plane + 2 * half_plane + lists + 2 * span_row + 64 * 8 + scratch;
     uint8_t *mem = aligned_alloc(64, (total + 63) & ~(size_t)63);
     if (!mem) {
         rte_lane_destroy(ctx);
@@ -126,6 +127,10 @@ rte_status rte_lane_create(const rte_lane_config *cfg, rte_lane_context **out)
     cur += ((size_t)n * sizeof(int32_t) + 63) & ~(size_t)63;
     ctx->keys = (int64_t *)cur;
     cur += ((size_t)n * 2 * sizeof(int64_t) + 63) & ~(size_t)63;
+    ctx->roi_x0 = (int32_t *)cur;
+    cur += span_row;
+    ctx->roi_x1 = (int32_t *)cur;
+    cur += span_row;
     rte_arena_init(&ctx->arena, cur, total - (size_t)(cur - mem));
     *out = ctx;
     return RTE_OK;

@@ -1,11 +1,15 @@
 /* The lane path's image cues, per frame (integer only): the colour cue
- * that makes white and yellow paint stand out, and the automatic Canny
- * thresholds (see include/rtedge/lane.h and docs/lanes.md). */
+ * that makes white and yellow paint stand out, the ROI's spans, and the
+ * automatic Canny thresholds (see include/rtedge/lane.h and
+ * docs/lanes.md). */
+#include <string.h>
+
 #include "lane_cue_rows.h"
 #include "lane_fixed.h"
 #include "lane_internal.h"
 #include "rtedge/color.h"
 #include "rtedge/cpu.h"
+#include "rtedge/polygon_mask.h"
 #include "rtedge/threshold.h"
 
 /* The colour cue's row kernel, once per instruction set (see simd/rows.h). */
@@ -106,6 +110,39 @@ rte_status rte_lane_frame_chroma(rte_lane_context *ctx, const rte_frame *frame, 
     return st;
 }
 
+void rte_lane_roi_spans(rte_lane_context *ctx, const rte_image_u8 *mask)
+{
+    ctx->roi_spans = true;
+    for (int32_t y = 0; y < mask->height; y++) {
+        const uint8_t *m = rte_u8_row(mask, y);
+        int32_t a = 0, b = mask->width;
+        while (a < b && m[a] == 0)
+            a++;
+        while (b > a && m[b - 1] == 0)
+            b--;
+        for (int32_t x = a; x < b; x++)
+            ctx->roi_spans = ctx->roi_spans && m[x] != 0;
+        ctx->roi_x0[y] = a;
+        ctx->roi_x1[y] = b;
+    }
+}
+
+rte_status rte_lane_keep_roi(const rte_lane_context *ctx, const rte_image_u8 *edges,
+                             const rte_image_u8 *mask, rte_image_u8 *inside)
+{
+    if (!ctx->roi_spans)
+        return rte_polygon_mask_apply(edges, mask, inside);
+    for (int32_t y = 0; y < edges->height; y++) {
+        const uint8_t *e = rte_u8_row(edges, y);
+        uint8_t *in = rte_u8_row(inside, y);
+        const int32_t a = ctx->roi_x0[y], b = ctx->roi_x1[y];
+        memset(in, 0, (size_t)a);
+        memcpy(in + a, e + a, (size_t)(b - a));
+        memset(in + b, 0, (size_t)(edges->width - b));
+    }
+    return RTE_OK;
+}
+
 /* Automatic Canny thresholds for this frame from the histogram of the
  * blurred pixels inside the ROI (unchanged when it is empty). */
 void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
@@ -113,7 +150,10 @@ void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const r
 {
     const rte_lane_params *p = &ctx->params;
     uint32_t hist[256];
-    if (rte_histogram_masked_u8(img, mask, hist) != RTE_OK)
+    const rte_status counted = ctx->roi_spans
+                                   ? rte_histogram_spans_u8(img, ctx->roi_x0, ctx->roi_x1, hist)
+                                   : rte_histogram_masked_u8(img, mask, hist);
+    if (counted != RTE_OK)
         return;
     int32_t lo, hi;
     rte_status st = p->canny_mode == RTE_LANE_CANNY_MEDIAN

@@ -81,6 +81,10 @@ struct rte_lane_context {
     rte_image_u8 edges;     /* Canny over the ROI's bounding box: the lanes are followed here */
     rte_image_u8 edges_roi; /* the same inside the ROI polygon: what the Hough search sees */
     rte_image_u8 mask;      /* ROI polygon, crop coordinates */
+    /* Each mask row's span [roi_x0[y], roi_x1[y]) (max_height entries);
+     * roi_spans when every row is that one run (a convex ROI) */
+    int32_t *roi_x0, *roi_x1;
+    bool roi_spans;
     /* Segments */
     rte_hough_segment *raw;
     rte_lane_segment *segments;
@@ -128,7 +132,8 @@ static inline rte_frame lane_frame_part(const rte_frame *frame, int32_t x0, int3
 /* lane_cue.c: the colour cue of the crop `gray` (white or yellow paint ->
  * 255, everything else grey scaled by dim_q8 / 256; `bgr` rows hold B,G,R,
  * R,G,B when rgb is set), and the automatic Canny thresholds of a blurred
- * crop inside the ROI mask (*low, *high unchanged when it is empty). */
+ * crop inside the ROI mask, counted by its row spans when every row is one
+ * run (*low, *high unchanged when it is empty). */
 void rte_lane_color_cue(const rte_lane_params *p, const rte_image_u8 *gray, const uint8_t *bgr,
                         int32_t bgr_stride, bool rgb, rte_image_u8 *dst);
 /* The same from the chroma of colour->chroma (lane_cue_rows.h). */
@@ -139,6 +144,13 @@ void rte_lane_chroma_cue(const rte_lane_params *p, const rte_image_u8 *gray,
  * over each block's two rows into ctx->cb and ctx->cr). */
 rte_status rte_lane_frame_chroma(rte_lane_context *ctx, const rte_frame *frame,
                                  lane_colour *colour);
+/* The ROI mask's span on each row into ctx->roi_x0, roi_x1, and
+ * ctx->roi_spans set when each row is that one run (a convex ROI): its rows
+ * are then counted and kept without reading the mask on every frame. */
+void rte_lane_roi_spans(rte_lane_context *ctx, const rte_image_u8 *mask);
+/* inside = edges within the ROI (the mask, or its spans), 0 elsewhere. */
+rte_status rte_lane_keep_roi(const rte_lane_context *ctx, const rte_image_u8 *edges,
+                             const rte_image_u8 *mask, rte_image_u8 *inside);
 void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const rte_image_u8 *mask,
                          int32_t *low, int32_t *high);
 /* The share of the ROI (the grey crop's pixels inside `mask`, same size)

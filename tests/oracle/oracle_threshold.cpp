@@ -216,6 +216,34 @@ static void check_auto(oracle::Tally &t, const std::string &name, const cv::Mat 
         t.cases++;
         t.differing += cv::countNonZero(hist_ne);
     }
+    // A span of each row (some empty or reaching past the sides) against
+    // calcHist under the mask of those spans.
+    std::vector<int32_t> x0(gray.rows), x1(gray.rows);
+    cv::Mat span_mask = cv::Mat::zeros(gray.size(), CV_8UC1);
+    for (int y = 0; y < gray.rows; y++) {
+        x0[y] = (int32_t)(rng() % (uint32_t)(gray.cols + 8)) - 4;
+        x1[y] = x0[y] + (int32_t)(rng() % (uint32_t)(gray.cols + 8)) - 2;
+        const int a = std::clamp(x0[y], 0, gray.cols), b = std::clamp(x1[y], 0, gray.cols);
+        if (b > a)
+            span_mask.row(y).colRange(a, b).setTo(255);
+    }
+    uint32_t span_hist[256]; // hist stays the whole image's, for the rules below
+    if (int st = rte_histogram_spans_u8(&src, x0.data(), x1.data(), span_hist); st != RTE_OK) {
+        t.call_failed(name + " span histogram", st);
+        return;
+    }
+    {
+        cv::Mat cvhist;
+        int channels[] = {0}, bins[] = {256};
+        float range[] = {0, 256};
+        const float *ranges[] = {range};
+        cv::calcHist(&gray, 1, channels, span_mask, cvhist, 1, bins, ranges);
+        int differing = 0;
+        for (int i = 0; i < 256; i++)
+            differing += cvhist.at<float>(i) != (float)span_hist[i];
+        t.cases++;
+        t.differing += differing;
+    }
     int st = RTE_OK;
 
     double med = numpy_median(gray);

@@ -207,6 +207,51 @@ static void masked_histogram_counts_pixels_under_the_mask(void **state)
     test_free(b.buf);
 }
 
+/* Spans of each row, clipped: random spans (some empty, reversed, or
+ * reaching past either side) on sizes up to 300 x 40, and the same region
+ * as a mask (runs long enough to be counted in quarters). */
+static void span_histogram_counts_each_rows_span(void **state)
+{
+    uint32_t rng = 4242, hist[256], masked[256];
+    for (int32_t round = 0; round < 60; round++) {
+        const int32_t w = 1 + (int32_t)(unit_rand(&rng) % 300),
+                      h = 1 + (int32_t)(unit_rand(&rng) % 40);
+        rte_image_u8 img = unit_image_u8(w, h, (int32_t)(unit_rand(&rng) % 9), 0);
+        rte_image_u8 mask = unit_image_u8(w, h, 0, 0);
+        int32_t x0[40], x1[40];
+        uint32_t want[256] = {0};
+        for (int32_t y = 0; y < h; y++) {
+            x0[y] = (int32_t)(unit_rand(&rng) % (uint32_t)(w + 20)) - 10;
+            x1[y] = round % 3 == 0 ? x0[y] - 1
+                                   : x0[y] + (int32_t)(unit_rand(&rng) % (uint32_t)(w + 10));
+            for (int32_t x = 0; x < w; x++) {
+                const uint8_t v = (uint8_t)(unit_rand(&rng) % (round % 2 ? 4 : 256));
+                const bool in = x >= x0[y] && x < x1[y];
+                img.buf[y * img.stride + x] = v;
+                mask.buf[y * mask.stride + x] = in ? 255 : 0;
+                want[v] += in;
+            }
+        }
+        assert_int_equal(rte_histogram_spans_u8(&img, x0, x1, hist), RTE_OK);
+        assert_memory_equal(hist, want, sizeof want);
+        assert_int_equal(rte_histogram_masked_u8(&img, &mask, masked), RTE_OK);
+        assert_memory_equal(masked, want, sizeof want);
+        test_free(img.buf);
+        test_free(mask.buf);
+    }
+    rte_image_u8 a = unit_image_u8(9, 2, 0, 7);
+    const int32_t x0[2] = {0, 4}, x1[2] = {9, 5};
+    assert_int_equal(rte_histogram_spans_u8(&a, NULL, x1, hist), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_histogram_spans_u8(&a, x0, NULL, hist), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_histogram_spans_u8(&a, x0, x1, NULL), RTE_ERR_ARGUMENT);
+    assert_int_equal(rte_histogram_spans_u8(&a, x0, x1, hist), RTE_OK);
+    assert_int_equal(hist[7], 10);
+    a.width = 0;
+    assert_int_equal(rte_histogram_spans_u8(&a, x0, x1, hist), RTE_ERR_SIZE);
+    a.width = 9;
+    test_free(a.buf);
+}
+
 /* OpenCV 4.6's Otsu loop in hardware doubles (the tests may use the FPU). */
 static int32_t otsu_double(const uint32_t hist[256])
 {
@@ -426,6 +471,7 @@ int main(void)
         cmocka_unit_test(random_images_all_widths_and_in_place),
         cmocka_unit_test(histogram_counts_every_pixel),
         cmocka_unit_test(masked_histogram_counts_pixels_under_the_mask),
+        cmocka_unit_test(span_histogram_counts_each_rows_span),
         cmocka_unit_test(otsu_matches_double_replay_on_adversarial_histograms),
         cmocka_unit_test(otsu_hand_checked_and_errors),
         cmocka_unit_test(binary64_emulation_matches_the_fpu),
