@@ -452,7 +452,7 @@ static void lane_stage_fit(rte_lane_context *ctx, const rte_image_u8 *src, const
     const lane_fit_hint rows = {y_top, y_bottom, 0, 0, 0, false};
     const rte_image_u8 mask =
         lane_view(&ctx->mask, 0, 0, ctx->crop_x1 - ctx->crop_x0, ctx->crop_y1 - ctx->crop_y0);
-    const int32_t glare_permille = rte_lane_glare_permille(&gray_crop, &mask);
+    const int32_t glare_permille = rte_lane_glare_permille(ctx, &gray_crop, &mask);
     rte_lane_paint_weights(ctx, &maps, &rows, count);
     rte_lane_classify(ctx, count, w, y_bottom, y_top, members, n);
     lane_line line[2];

@@ -169,11 +169,19 @@ void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const r
  * LANE_SATURATED or more inside the mask, on a grid of every fourth row
  * and column (a frame-wide figure, which needs no more: 23 000 samples at
  * 1280x720). */
-int32_t rte_lane_glare_permille(const rte_image_u8 *gray_crop, const rte_image_u8 *mask)
+int32_t rte_lane_glare_permille(const rte_lane_context *ctx, const rte_image_u8 *gray_crop,
+                                const rte_image_u8 *mask)
 {
     int64_t all = 0, glare = 0;
     for (int32_t y = 0; y < mask->height; y += 4) {
         const uint8_t *g = rte_u8_row(gray_crop, y), *m = rte_u8_row(mask, y);
+        if (ctx->roi_spans) { /* the grid's columns within the row's span */
+            for (int32_t x = (ctx->roi_x0[y] + 3) & ~3; x < ctx->roi_x1[y]; x += 4) {
+                all++;
+                glare += g[x] >= LANE_SATURATED;
+            }
+            continue;
+        }
         for (int32_t x = 0; x < mask->width; x += 4) {
             all += m[x] != 0;
             glare += m[x] != 0 && g[x] >= LANE_SATURATED;

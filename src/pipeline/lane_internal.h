@@ -155,7 +155,8 @@ void rte_lane_thresholds(rte_lane_context *ctx, const rte_image_u8 *img, const r
                          int32_t *low, int32_t *high);
 /* The share of the ROI (the grey crop's pixels inside `mask`, same size)
  * washed out by glare (LANE_SATURATED or brighter), in permille. */
-int32_t rte_lane_glare_permille(const rte_image_u8 *gray_crop, const rte_image_u8 *mask);
+int32_t rte_lane_glare_permille(const rte_lane_context *ctx, const rte_image_u8 *gray_crop,
+                                const rte_image_u8 *mask);
 
 /* lane_track.c: sorts the Hough segments (ctx->segments[0..count)) into
  * sides by slope, position and the gate around the tracked lanes, filling
