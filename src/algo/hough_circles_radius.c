@@ -3,7 +3,7 @@
  * their gradient lines meet (the votes and the rest: hough_circles.c). */
 #include "hough_circles_internal.h"
 
-#include <string.h>
+#include <stdbool.h>
 
 #include "core/int_math.h"
 #include "geom_fixed.h"
@@ -57,70 +57,107 @@ static inline void ring_window(const int32_t *blk, int32_t nblk, int32_t y, int3
     *end = blk[(size_t)y * nblk + (b_hi < nblk - 1 ? b_hi : nblk - 1)];
 }
 
-/* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. The
- * even and odd pixels of the scan count into two halves of bins: the
- * pixels where a row crosses the ring fall into the same bin one after
- * the other, and one counter's increments would wait on each other. */
-int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
-                          const circle_geom *g, const radius_table *rt, int32_t cx, int32_t cy,
-                          int32_t *bins, int32_t *radius_q4)
+size_t rte_circle_radius_offsets_size(const circle_geom *g)
 {
-    const int64_t rmin2 = rt->rmin2, rmax2 = rt->sq[g->nbins - 1]; /* (min_r 16)^2, (max_r 16)^2 */
-    int32_t y_lo = (cy >> 4) - g->max_r - 1, y_hi = (cy >> 4) + g->max_r + 1;
-    y_lo = y_lo < 0 ? 0 : y_lo;
-    y_hi = y_hi > h - 1 ? h - 1 : y_hi;
-    const int32_t nbins = g->nbins;
-    int32_t *odd = bins + nbins;
-    memset(bins, 0, 2 * (size_t)nbins * sizeof *bins);
-    int32_t any = 0;
-    for (int32_t y = y_lo; y <= y_hi; y++) {
-        /* only the columns of the row within max_r of the centre: the
-         * square around it holds a third more pixels than its disc */
-        const int32_t r16 = rt->reach[y - (cy >> 4) + g->max_r + 1];
-        if (r16 < 0)
-            continue;
-        const int32_t x_lo = cx - r16 <= 0 ? 0 : (cx - r16 + 15) >> 4, x_hi = (cx + r16) >> 4;
-        const int32_t *rb = blk + (size_t)y * nblk;
-        int32_t i = rb[x_lo / BLOCK < nblk - 1 ? x_lo / BLOCK : nblk - 1];
-        const int32_t end = rb[nblk - 1];
-        while (i < end && (int32_t)(pts[i] & 0xFFFF) < x_lo)
-            i++;
-        for (; i < end; i++) {
-            const int32_t x = (int32_t)(pts[i] & 0xFFFF);
-            if (x > x_hi)
-                break;
-            int64_t ddx = (int64_t)x * 16 - cx, ddy = (int64_t)y * 16 - cy;
-            int64_t d2 = ddx * ddx + ddy * ddy;
-            if (d2 < rmin2 || d2 > rmax2)
-                continue;
-            ((i & 1) ? odd : bins)[radius_bin(rt, d2)]++;
-            any = 1;
+    const int64_t rows = 2 * (int64_t)g->max_r + 3, cols = 2 * ((int64_t)g->max_r + BLOCK + 1) + 1;
+    if (2 * (int64_t)g->nbins > INT16_MAX || rows * cols > RADIUS_OFFSETS_MAX)
+        return 0;
+    return (size_t)(rows * cols);
+}
+
+void rte_circle_radius_offsets_init(radius_offsets *o, const circle_geom *g, const radius_table *rt,
+                                    int32_t fx, int32_t fy)
+{
+    const int64_t rmin2 = rt->rmin2, rmax2 = rt->sq[g->nbins - 1];
+    o->half_w = g->max_r + BLOCK + 1;
+    o->cols = 2 * o->half_w + 1;
+    o->fx = fx;
+    o->fy = fy;
+    for (int32_t ry = -g->max_r - 1; ry <= g->max_r + 1; ry++) {
+        const int64_t ddy = (int64_t)ry * 16 - fy;
+        int16_t *row = o->bin2 + (size_t)(ry + g->max_r + 1) * (size_t)o->cols + o->half_w;
+        for (int32_t rx = -o->half_w; rx <= o->half_w; rx++) {
+            const int64_t ddx = (int64_t)rx * 16 - fx, d2 = ddx * ddx + ddy * ddy;
+            row[rx] = (int16_t)(2 * (d2 < rmin2 || d2 > rmax2 ? g->nbins : radius_bin(rt, d2)));
         }
     }
-    for (int32_t k = 0; k < nbins; k++)
-        bins[k] += odd[k];
+}
+
+/* From the largest radius down: each non-empty bin opens a window of
+ * `window` bins; a window wins when count / radius is at least the best so
+ * far (so ties go to the smaller radius). The pairs are cleared as they are
+ * read, for the next centre (a memset per centre, a rep stos, cost a tenth
+ * of step 3 on AMD Zen 3). */
+static int32_t best_radius(int32_t *pairs, const circle_geom *g, int32_t *radius_q4)
+{
     int32_t best_count = 0, best_r = 0;
-    if (!any)
-        return 0;
-    /* From the largest radius down: each non-empty bin opens a window of
-     * `window` bins; a window wins when count / radius is at least the best
-     * so far (so ties go to the smaller radius). */
+    bool found = false;
     for (int32_t j = g->nbins - 1; j >= 0; j--) {
-        if (!bins[j])
+        if (!(pairs[2 * j] | pairs[2 * j + 1]))
             continue;
         int32_t up = j, cnt = 0;
-        for (; j > up - g->window && j >= 0; j--)
-            cnt += bins[j];
+        for (; j > up - g->window && j >= 0; j--) {
+            cnt += pairs[2 * j] + pairs[2 * j + 1];
+            pairs[2 * j] = pairs[2 * j + 1] = 0;
+        }
         int32_t r = g->min_r * 16 + (up + j + 1) / 2;
         if ((int64_t)cnt * best_r >= (int64_t)best_count * r ||
             (best_r == 0 && cnt >= best_count)) {
             best_r = r;
             best_count = cnt;
         }
+        found = true;
         j++; /* the loop's j-- moves to the first bin below the window */
     }
+    pairs[2 * g->nbins] = pairs[2 * g->nbins + 1] = 0;
+    if (!found)
+        return 0;
     *radius_q4 = best_r;
     return best_count;
+}
+
+/* Step 3 for one centre (cx, cy in 1/16 pixel): support and radius. Bin k
+ * counts in pairs[2 k] and pairs[2 k + 1], from the even and odd pixels of
+ * the scan: the pixels where a row crosses the ring fall into the same bin
+ * one after the other, and one counter's increments would wait on each
+ * other. Pairs 2 nbins and 2 nbins + 1 take the pixels out of range. */
+int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
+                          const circle_geom *g, const radius_table *rt, const radius_offsets *o,
+                          int32_t cx, int32_t cy, int32_t *pairs, int32_t *radius_q4)
+{
+    const int64_t rmin2 = rt->rmin2, rmax2 = rt->sq[g->nbins - 1]; /* (min_r 16)^2, (max_r 16)^2 */
+    int32_t y_lo = (cy >> 4) - g->max_r - 1, y_hi = (cy >> 4) + g->max_r + 1;
+    y_lo = y_lo < 0 ? 0 : y_lo;
+    y_hi = y_hi > h - 1 ? h - 1 : y_hi;
+    for (int32_t y = y_lo; y <= y_hi; y++) {
+        /* only the blocks of the row's columns within max_r of the centre
+         * (the square around it holds a third more pixels than its disc);
+         * the bins drop the pixels beyond max_r, without a branch: a scan
+         * that stops at a pixel mispredicts */
+        const int32_t r16 = rt->reach[y - (cy >> 4) + g->max_r + 1];
+        if (r16 < 0)
+            continue;
+        const int32_t x_lo = cx - r16 <= 0 ? 0 : (cx - r16 + 15) >> 4, x_hi = (cx + r16) >> 4;
+        const int32_t b_lo = x_lo / BLOCK, b_hi = x_hi / BLOCK + 1;
+        const int32_t *rb = blk + (size_t)y * nblk;
+        const int32_t first = rb[b_lo < nblk - 1 ? b_lo : nblk - 1];
+        const int32_t end = rb[b_hi < nblk - 1 ? b_hi : nblk - 1];
+        if (o) {
+            /* the row's entries, indexed by the pixel's column */
+            const int16_t *row = o->bin2 + (size_t)(y - (cy >> 4) + g->max_r + 1) * (size_t)o->cols;
+            const int32_t shift = o->half_w - (cx >> 4);
+            for (int32_t i = first; i < end; i++)
+                pairs[row[(int32_t)(pts[i] & 0xFFFF) + shift] + (i & 1)]++;
+            continue;
+        }
+        const int64_t ddy = (int64_t)y * 16 - cy, dy2 = ddy * ddy;
+        for (int32_t i = first; i < end; i++) {
+            const int64_t ddx = (int64_t)(pts[i] & 0xFFFF) * 16 - cx, d2 = ddx * ddx + dy2;
+            const int64_t clamped = d2 < rmin2 ? rmin2 : d2 > rmax2 ? rmax2 : d2;
+            pairs[2 * radius_bin(rt, clamped) + (i & 1)] += (d2 >= rmin2) & (d2 <= rmax2);
+        }
+    }
+    return best_radius(pairs, g, radius_q4);
 }
 
 /* The point p (packed y << 16 | x) relative to the centre (1/16 pixel) in
