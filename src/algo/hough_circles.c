@@ -24,6 +24,7 @@
 #include "core/image_checks.h"
 #include "core/int_math.h"
 #include "hough_circles_internal.h"
+#include "hough_circles_step.h"
 #include "hough_internal.h"
 #include "simd/rows.h"
 
@@ -143,57 +144,6 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
 static inline int32_t acc_q10(int32_t v, int32_t dp_q8)
 {
     return dp_q8 == 256 ? v << 10 : (int32_t)rte_div_round64((int64_t)v << 18, dp_q8);
-}
-
-/* floor(sqrt(v)) for 2^8 <= v < 2^62 with two divisions (rte_isqrt64 takes
- * five or six, a third of the votes' time): a start above sqrt(v) within
- * 2^-7 from a table of ceil(sqrt(i + 1) 2^16) for the leading bits i in
- * [64, 256), two Newton steps from above (each stays >= floor(sqrt(v)) and
- * squares the relative error) and a last step down. */
-static const uint32_t sqrt_start[192] = {
-    528369,  532417,  536436,  540424,  544383,  548314,  552217,  556092,  559940,  563762,
-    567559,  571330,  575077,  578799,  582497,  586172,  589824,  593454,  597062,  600648,
-    604213,  607756,  611280,  614783,  618266,  621730,  625174,  628600,  632007,  635396,
-    638766,  642120,  645455,  648774,  652075,  655360,  658629,  661882,  665118,  668339,
-    671545,  674735,  677910,  681071,  684216,  687348,  690465,  693568,  696658,  699734,
-    702796,  705845,  708881,  711904,  714914,  717911,  720896,  723869,  726830,  729779,
-    732715,  735640,  738554,  741456,  744346,  747226,  750094,  752952,  755799,  758635,
-    761460,  764275,  767080,  769874,  772659,  775433,  778197,  780952,  783697,  786432,
-    789158,  791875,  794582,  797280,  799969,  802649,  805320,  807983,  810636,  813281,
-    815917,  818545,  821164,  823775,  826378,  828973,  831559,  834138,  836708,  839271,
-    841826,  844373,  846912,  849444,  851968,  854485,  856995,  859497,  861992,  864480,
-    866960,  869434,  871900,  874360,  876812,  879258,  881697,  884129,  886555,  888974,
-    891386,  893792,  896192,  898585,  900972,  903352,  905726,  908094,  910456,  912811,
-    915161,  917504,  919842,  922174,  924500,  926820,  929134,  931442,  933745,  936042,
-    938333,  940619,  942899,  945174,  947443,  949707,  951966,  954219,  956467,  958710,
-    960947,  963179,  965406,  967628,  969845,  972056,  974263,  976465,  978662,  980854,
-    983040,  985223,  987400,  989572,  991740,  993903,  996061,  998215,  1000364, 1002509,
-    1004648, 1006784, 1008914, 1011041, 1013162, 1015280, 1017393, 1019501, 1021606, 1023706,
-    1025801, 1027892, 1029980, 1032062, 1034141, 1036216, 1038286, 1040352, 1042414, 1044472,
-    1046526, 1048576};
-
-static inline uint64_t isqrt_fast(uint64_t v)
-{
-    const int e = (63 - __builtin_clzll(v) - 6) & ~1; /* v >> e in [64, 256) */
-    uint64_t r = (((uint64_t)sqrt_start[(v >> e) - 64] << (e / 2)) >> 16) + 1;
-    r = (r + v / r) / 2;
-    r = (r + v / r) / 2;
-    r -= r * r > v; /* without a branch: r is often one above */
-    while (r * r > v)
-        r--;
-    return r;
-}
-
-/* round(v 2^28 / den), ties away from zero, for den > 0; the sign without
- * a branch (it is a coin toss from one pixel to the next). */
-static inline int32_t unit_step(int32_t v, int64_t den)
-{
-    /* s: 0 or -1; (x ^ s) - s is x or -x (written out: GCC turns the
-     * conditional negation into two branches around two divisions) */
-    const int64_t s = -(int64_t)((uint32_t)v >> 31);
-    const int64_t a = (((int64_t)v ^ s) - s) << 28;
-    const int64_t q = (a + den / 2) / den;
-    return (int32_t)((q ^ s) - s);
 }
 
 /* n + 1 votes from (ux, uy), Q10, in steps of (sx, sy) (two's complement),
@@ -369,11 +319,8 @@ static int32_t accumulate(const rte_image_u8 *edges, const rte_image_s16 *dx,
                     continue;
                 }
                 voters--;
-                /* Unit gradient / dp in Q10: vx * 1024 / (dp * |v|), with |v| in Q10. */
-                uint64_t mag_q10 = isqrt_fast(((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20);
-                int64_t den = (int64_t)mag_q10 * dp_q8;
-                const circle_voter cur = {acc_q10(x, dp_q8), y0, unit_step(vx, den),
-                                          unit_step(vy, den)};
+                circle_voter cur = {acc_q10(x, dp_q8), y0, 0, 0};
+                circle_step(vx, vy, dp_q8, &cur.sx, &cur.sy);
                 if (pending)
                     vote_pixel(b, g, &prev);
                 prev = cur;
