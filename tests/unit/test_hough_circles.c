@@ -1,13 +1,16 @@
-/* Hough circles, step 3: the radius of a centre from the table of bins by
- * pixel offset (rte_circle_radius_offsets_init) against the same step from
- * the distances, on random edge pixels, radii, windows and positions of
- * the centre within its pixel: the same support and radius, and the
- * counters left at zero for the next centre. */
+/* Hough circles' internals: the vote step's square root and division by a
+ * reciprocal against plain integer arithmetic, for every gradient of a 3x3
+ * Sobel and random larger ones; and step 3, the radius of a centre from
+ * the table of bins by pixel offset (rte_circle_radius_offsets_init)
+ * against the same step from the distances, on random edge pixels, radii,
+ * windows and positions of the centre within its pixel: the same support
+ * and radius, and the counters left at zero for the next centre. */
 #include "unit.h"
 
 #include <stdlib.h>
 
 #include "algo/hough_circles_internal.h"
+#include "algo/hough_circles_step.h"
 
 enum { W = 181, H = 137 };
 
@@ -94,9 +97,58 @@ static void test_offsets_match_distances(void **state)
     test_free(blk);
 }
 
+/* round(v 2^28 / den), ties away from zero, by one signed division. */
+static int32_t unit_step_plain(int32_t v, int64_t den)
+{
+    const int64_t a = (int64_t)(v < 0 ? -v : v) << 28, q = (a + den / 2) / den;
+    return (int32_t)(v < 0 ? -q : q);
+}
+
+static void check_step(int32_t vx, int32_t vy, int32_t dp_q8)
+{
+    const uint64_t v = ((uint64_t)(vx * vx) + (uint64_t)(vy * vy)) << 20;
+    const uint64_t mag = circle_isqrt(v);
+    assert_true(mag == rte_isqrt64(v));
+    int32_t sx, sy;
+    circle_step(vx, vy, dp_q8, &sx, &sy);
+    assert_int_equal(sx, unit_step_plain(vx, (int64_t)mag * dp_q8));
+    assert_int_equal(sy, unit_step_plain(vy, (int64_t)mag * dp_q8));
+}
+
+/* Every squared magnitude of a 3x3 Sobel (|dx|, |dy| <= 1020), each with
+ * the steps of a gradient of that magnitude's row; then random gradients
+ * of the whole int16 range and random dp. */
+static void test_vote_steps(void **state)
+{
+    (void)state;
+    for (uint64_t s = 1; s <= 2 * 1020 * 1020; s++)
+        assert_true(circle_isqrt(s << 20) == rte_isqrt64(s << 20));
+    for (int32_t vx = -1020; vx <= 1020; vx += 7)
+        for (int32_t vy = -1020; vy <= 1020; vy++)
+            if (vx || vy)
+                check_step(vx, vy, 256);
+    /* exact quotients, where the multiply by the reciprocal falls one
+     * short: 3 2^28 + den / 2 = 2 den for den = 2^29 */
+    const uint64_t den = (uint64_t)1 << 29;
+    assert_int_equal(circle_unit_step(3, den, UINT64_MAX / den), 2);
+    assert_int_equal(circle_unit_step(-3, den, UINT64_MAX / den), -2);
+    for (uint64_t d = (uint64_t)1 << 13; d < ((uint64_t)1 << 46); d = d * 3 + 1)
+        for (int32_t v = -32768; v < 32768; v += 97)
+            assert_int_equal(circle_unit_step(v, d, UINT64_MAX / d),
+                             unit_step_plain(v, (int64_t)d));
+    uint32_t seed = 0x57E95u;
+    for (int32_t k = 0; k < 1000000; k++) {
+        const int32_t vx = (int32_t)(unit_rand(&seed) % 65536) - 32768,
+                      vy = (int32_t)(unit_rand(&seed) % 65536) - 32768;
+        if (vx || vy)
+            check_step(vx, vy, 256 + (int32_t)(unit_rand(&seed) % (256 * 63 + 1)));
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_vote_steps),
         cmocka_unit_test(test_offsets_match_distances),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
