@@ -206,11 +206,16 @@ static int32_t find_centres_row(const circle_band *b, const circle_geom *g, int3
     int32_t x = 0;
     for (;;) {
         for (; x + 8 <= g->acols; x += 8) {
-            uint64_t w[4];
-            memcpy(w, r + x, sizeof w);
-            if (((w[0] + add) | (w[1] + add) | (w[2] + add) | (w[3] + add)) & top)
+            /* four words, not an array (GCC copies an array through the
+             * stack) */
+            uint64_t w0, w1, w2, w3;
+            memcpy(&w0, r + x, sizeof w0);
+            memcpy(&w1, r + x + 2, sizeof w1);
+            memcpy(&w2, r + x + 4, sizeof w2);
+            memcpy(&w3, r + x + 6, sizeof w3);
+            if (((w0 + add) | (w1 + add) | (w2 + add) | (w3 + add)) & top)
                 break;
-            memset(up + x, 0, sizeof w);
+            memset(up + x, 0, 8 * sizeof *up);
         }
         const int32_t end = x + 8 < g->acols ? x + 8 : g->acols;
         if (x >= end)

@@ -120,7 +120,8 @@ static int32_t best_radius(int32_t *pairs, const circle_geom *g, int32_t *radius
  * counts in pairs[2 k] and pairs[2 k + 1], from the even and odd pixels of
  * the scan: the pixels where a row crosses the ring fall into the same bin
  * one after the other, and one counter's increments would wait on each
- * other. Pairs 2 nbins and 2 nbins + 1 take the pixels out of range. */
+ * other. Pairs 2 nbins and 2 nbins + 1 take the table's pixels out of
+ * range. */
 int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,
                           const circle_geom *g, const radius_table *rt, const radius_offsets *o,
                           int32_t cx, int32_t cy, int32_t *pairs, int32_t *radius_q4)
@@ -130,31 +131,38 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
     y_lo = y_lo < 0 ? 0 : y_lo;
     y_hi = y_hi > h - 1 ? h - 1 : y_hi;
     for (int32_t y = y_lo; y <= y_hi; y++) {
-        /* only the blocks of the row's columns within max_r of the centre
-         * (the square around it holds a third more pixels than its disc);
-         * the bins drop the pixels beyond max_r, without a branch: a scan
-         * that stops at a pixel mispredicts */
+        /* only the columns of the row within max_r of the centre: the
+         * square around it holds a third more pixels than its disc */
         const int32_t r16 = rt->reach[y - (cy >> 4) + g->max_r + 1];
         if (r16 < 0)
             continue;
         const int32_t x_lo = cx - r16 <= 0 ? 0 : (cx - r16 + 15) >> 4, x_hi = (cx + r16) >> 4;
         const int32_t b_lo = x_lo / BLOCK, b_hi = x_hi / BLOCK + 1;
         const int32_t *rb = blk + (size_t)y * nblk;
-        const int32_t first = rb[b_lo < nblk - 1 ? b_lo : nblk - 1];
-        const int32_t end = rb[b_hi < nblk - 1 ? b_hi : nblk - 1];
+        int32_t i = rb[b_lo < nblk - 1 ? b_lo : nblk - 1];
         if (o) {
-            /* the row's entries, indexed by the pixel's column */
+            /* the pixels of the blocks: the table's entries beyond max_r
+             * are out of range, and a scan that stops at a pixel
+             * mispredicts */
+            const int32_t end = rb[b_hi < nblk - 1 ? b_hi : nblk - 1];
             const int16_t *row = o->bin2 + (size_t)(y - (cy >> 4) + g->max_r + 1) * (size_t)o->cols;
             const int32_t shift = o->half_w - (cx >> 4);
-            for (int32_t i = first; i < end; i++)
+            for (; i < end; i++)
                 pairs[row[(int32_t)(pts[i] & 0xFFFF) + shift] + (i & 1)]++;
             continue;
         }
-        const int64_t ddy = (int64_t)y * 16 - cy, dy2 = ddy * ddy;
-        for (int32_t i = first; i < end; i++) {
-            const int64_t ddx = (int64_t)(pts[i] & 0xFFFF) * 16 - cx, d2 = ddx * ddx + dy2;
-            const int64_t clamped = d2 < rmin2 ? rmin2 : d2 > rmax2 ? rmax2 : d2;
-            pairs[2 * radius_bin(rt, clamped) + (i & 1)] += (d2 >= rmin2) & (d2 <= rmax2);
+        const int32_t end = rb[nblk - 1];
+        while (i < end && (int32_t)(pts[i] & 0xFFFF) < x_lo)
+            i++;
+        const int64_t ddy = (int64_t)y * 16 - cy;
+        for (; i < end; i++) {
+            const int32_t x = (int32_t)(pts[i] & 0xFFFF);
+            if (x > x_hi)
+                break;
+            const int64_t ddx = (int64_t)x * 16 - cx, d2 = ddx * ddx + ddy * ddy;
+            if (d2 < rmin2 || d2 > rmax2)
+                continue;
+            pairs[2 * radius_bin(rt, d2) + (i & 1)]++;
         }
     }
     return best_radius(pairs, g, radius_q4);
