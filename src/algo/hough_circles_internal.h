@@ -47,7 +47,7 @@ void rte_circle_radius_table_init(radius_table *t, const circle_geom *g);
  * the pixel rx columns right and ry rows below the centre's pixel, or
  * 2 nbins (out of range). It covers the rows within max_r + 1 and the
  * columns of the blocks a row's scan visits. One lookup a pixel instead
- * of a distance and a search of the bins: a third of step 3's time. */
+ * of a distance and a search of the bins: half of step 3's time. */
 typedef struct radius_offsets {
     int16_t *bin2;
     int32_t cols, half_w, fx, fy;
