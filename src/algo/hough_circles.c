@@ -133,7 +133,7 @@ size_t rte_hough_circles_scratch_size(int32_t max_width, int32_t max_height,
            rte_arena_piece_size(cand * 2 * sizeof(int32_t)) +
            rte_arena_piece_size(kept * sizeof(uint64_t)) +
            rte_arena_piece_size(kept * 3 * sizeof(int32_t)) +
-           rte_arena_piece_size((2 * (size_t)g.nbins + 2) * sizeof(int32_t)) +
+           rte_arena_piece_size(radius_pairs(&g) * sizeof(int32_t)) +
            rte_arena_piece_size(offsets_entries(&g, params) * sizeof(int16_t)) +
            rte_arena_piece_size(((size_t)g.nbins + 1) * sizeof(int64_t)) +
            rte_arena_piece_size(RADIUS_COARSE * sizeof(int32_t)) +
@@ -444,7 +444,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
     int32_t *centres = rte_arena_alloc(arena, cand_cap * 2 * sizeof(int32_t));
     uint64_t *keys = rte_arena_alloc(arena, kept_cap * sizeof(uint64_t));
     int32_t *est = rte_arena_alloc(arena, kept_cap * 3 * sizeof(int32_t));
-    int32_t *pairs = rte_arena_alloc(arena, (2 * (size_t)g.nbins + 2) * sizeof(int32_t));
+    int32_t *pairs = rte_arena_alloc(arena, radius_pairs(&g) * sizeof(int32_t));
     const size_t offsets = rte_circle_radius_offsets_size(&g);
     radius_offsets ro = {offsets ? rte_arena_alloc(arena, offsets * sizeof(int16_t)) : NULL, 0, 0,
                          -1, -1};
@@ -457,7 +457,7 @@ rte_status rte_hough_circles(const rte_image_u8 *edges, const rte_image_s16 *dx,
         return RTE_ERR_NO_MEMORY;
     }
     memset(band.acc, 0, band_cells * sizeof(int32_t));
-    memset(pairs, 0, (2 * (size_t)g.nbins + 2) * sizeof(int32_t));
+    memset(pairs, 0, radius_pairs(&g) * sizeof(int32_t));
     const int32_t thr = params->acc_threshold;
     int32_t npts = 0;
     const int32_t ncent =

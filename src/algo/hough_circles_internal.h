@@ -34,6 +34,9 @@ typedef struct radius_table {
     int32_t shift;
 } radius_table;
 
+/* Entries of rte_circle_radius's pairs. */
+static inline size_t radius_pairs(const circle_geom *g) { return 2 * (size_t)g->nbins + 2; }
+
 /* Entries of radius_table.reach. */
 static inline size_t radius_reach_rows(const circle_geom *g) { return 2 * (size_t)g->max_r + 3; }
 
@@ -46,7 +49,8 @@ void rte_circle_radius_table_init(radius_table *t, const circle_geom *g);
  * bin2[(ry + max_r + 1) * cols + rx + half_w] is twice the radius bin of
  * the pixel rx columns right and ry rows below the centre's pixel, or
  * 2 nbins (out of range). It covers the rows within max_r + 1 and the
- * columns of the blocks a row's scan visits. One lookup a pixel instead
+ * columns of the blocks a row's scan visits (ring_window's: up to
+ * max_r + BLOCK columns away). One lookup a pixel instead
  * of a distance and a search of the bins: half of step 3's time. */
 typedef struct radius_offsets {
     int16_t *bin2;
@@ -65,7 +69,7 @@ void rte_circle_radius_offsets_init(radius_offsets *o, const circle_geom *g, con
 
 /* Step 3 for one centre (cx, cy in 1/16 pixel) over the edge pixels pts
  * with their row blocks blk (nblk a row): the support, and the radius in
- * *radius_q4. pairs has 2 g->nbins + 2 entries, all zero, and is left so.
+ * *radius_q4. pairs has radius_pairs(g) entries, all zero, and is left so.
  * With o not NULL (made for the centre's position in its pixel), the bins
  * come from it; else from the distances. */
 int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk, int32_t h,

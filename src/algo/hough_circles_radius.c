@@ -3,8 +3,6 @@
  * their gradient lines meet (the votes and the rest: hough_circles.c). */
 #include "hough_circles_internal.h"
 
-#include <stdbool.h>
-
 #include "core/int_math.h"
 #include "geom_fixed.h"
 #include "rtedge/image.h"
@@ -91,7 +89,6 @@ void rte_circle_radius_offsets_init(radius_offsets *o, const circle_geom *g, con
 static int32_t best_radius(int32_t *pairs, const circle_geom *g, int32_t *radius_q4)
 {
     int32_t best_count = 0, best_r = 0;
-    bool found = false;
     for (int32_t j = g->nbins - 1; j >= 0; j--) {
         if (!(pairs[2 * j] | pairs[2 * j + 1]))
             continue;
@@ -106,11 +103,10 @@ static int32_t best_radius(int32_t *pairs, const circle_geom *g, int32_t *radius
             best_r = r;
             best_count = cnt;
         }
-        found = true;
         j++; /* the loop's j-- moves to the first bin below the window */
     }
     pairs[2 * g->nbins] = pairs[2 * g->nbins + 1] = 0;
-    if (!found)
+    if (best_count == 0) /* no pixel in range (a window counts at least one) */
         return 0;
     *radius_q4 = best_r;
     return best_count;
@@ -136,21 +132,21 @@ int32_t rte_circle_radius(const uint32_t *pts, const int32_t *blk, int32_t nblk,
         const int32_t r16 = rt->reach[y - (cy >> 4) + g->max_r + 1];
         if (r16 < 0)
             continue;
-        const int32_t x_lo = cx - r16 <= 0 ? 0 : (cx - r16 + 15) >> 4, x_hi = (cx + r16) >> 4;
-        const int32_t b_lo = x_lo / BLOCK, b_hi = x_hi / BLOCK + 1;
-        const int32_t *rb = blk + (size_t)y * nblk;
-        int32_t i = rb[b_lo < nblk - 1 ? b_lo : nblk - 1];
         if (o) {
             /* the pixels of the blocks: the table's entries beyond max_r
              * are out of range, and a scan that stops at a pixel
              * mispredicts */
-            const int32_t end = rb[b_hi < nblk - 1 ? b_hi : nblk - 1];
+            int32_t i, end;
+            ring_window(blk, nblk, y, cx, r16, &i, &end);
             const int16_t *row = o->bin2 + (size_t)(y - (cy >> 4) + g->max_r + 1) * (size_t)o->cols;
             const int32_t shift = o->half_w - (cx >> 4);
             for (; i < end; i++)
                 pairs[row[(int32_t)(pts[i] & 0xFFFF) + shift] + (i & 1)]++;
             continue;
         }
+        const int32_t x_lo = cx - r16 <= 0 ? 0 : (cx - r16 + 15) >> 4, x_hi = (cx + r16) >> 4;
+        const int32_t *rb = blk + (size_t)y * nblk;
+        int32_t i = rb[x_lo / BLOCK < nblk - 1 ? x_lo / BLOCK : nblk - 1];
         const int32_t end = rb[nblk - 1];
         while (i < end && (int32_t)(pts[i] & 0xFFFF) < x_lo)
             i++;

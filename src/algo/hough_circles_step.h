@@ -153,8 +153,8 @@ static inline uint64_t circle_isqrt(uint64_t v)
 /* round(v 2^28 / den), ties away from zero, for |v| <= 2^15, 2^13 <= den <
  * 2^48 (so that it fits in 32 bits) and inv = floor((2^64 - 1) / den): the
  * high half of a multiply by inv is the quotient or one less (the dividend
- * is below 2^44), and the remainder says which. The sign without a branch (it is a coin toss from one pixel to
- * the next). */
+ * is below 2^44), and the remainder says which. The sign without a branch
+ * (it is a coin toss from one pixel to the next). */
 static inline int32_t circle_unit_step(int32_t v, uint64_t den, uint64_t inv)
 {
     /* s: 0 or -1; (x ^ s) - s is x or -x */

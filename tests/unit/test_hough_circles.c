@@ -62,7 +62,7 @@ static void test_offsets_match_distances(void **state)
         /* the largest radii here make more entries than the table takes */
         assert_true(entries == 0 || entries <= RADIUS_OFFSETS_MAX);
         assert_int_equal(entries == 0, g.max_r > 118);
-        const int32_t npairs = 2 * g.nbins + 2;
+        const int32_t npairs = (int32_t)radius_pairs(&g);
         int32_t *pairs = test_calloc((size_t)npairs, sizeof *pairs);
         radius_offsets o = {entries ? test_malloc(entries * sizeof(int16_t)) : NULL, 0, 0, 0, 0};
         for (int32_t pos = 0; pos < 4 && o.bin2; pos++) {
